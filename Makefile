@@ -1,0 +1,63 @@
+# Sable build. `make` builds bin/sable and build/libsable.a (the tests link it).
+#   make DEBUG=1      debug build (-O0 -g, PetscAssert active), in build-debug/
+#   make test         installs missing packages, builds, runs the whole suite
+#   make run          installs missing packages, builds, runs the default case
+#   make bench        the performance benchmarks (never part of `make test`)
+DEBUG ?= 0
+ifeq ($(DEBUG),1)
+  BUILD ?= build-debug
+  OPT = -O0 -g -DSABLE_DEBUG
+else
+  BUILD ?= build
+  OPT = -O3 -march=native -fno-math-errno -DNDEBUG
+endif
+BIN = bin
+CC = mpicc
+PKGS = petsc ccd hdf5-openmpi
+CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra $(OPT) \
+         $(shell pkg-config --cflags $(PKGS) 2>/dev/null) -Isrc
+LDLIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm
+
+LIB_SRC = $(filter-out src/main.c,$(shell find src -name '*.c' | sort))
+LIB_OBJ = $(LIB_SRC:%.c=$(BUILD)/%.o)
+TEST_SRC = $(wildcard tests/*.c)
+TEST_BIN = $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+HDRS = $(shell find src -name '*.h')
+
+.PHONY: all deps test run bench clean
+all: $(BIN)/sable $(TEST_BIN)
+
+deps:
+	@tools/install-deps.sh
+
+$(BUILD)/%.o: %.c $(HDRS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/libsable.a: $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BIN)/sable: $(BUILD)/src/main.o $(BUILD)/libsable.a
+	@mkdir -p $(BIN)
+	$(CC) $(CFLAGS) $^ $(LDLIBS) -o $@
+
+$(BUILD)/tests/%: tests/%.c $(BUILD)/libsable.a $(HDRS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $< $(BUILD)/libsable.a $(LDLIBS) -o $@
+
+# The targets that a fresh machine runs first install what is missing, then build.
+test: deps
+	@$(MAKE) --no-print-directory -s all
+	@BUILD=$(BUILD) tests/run.sh
+
+run: deps
+	@$(MAKE) --no-print-directory -s all
+	tools/run-default.sh
+
+bench: deps
+	@$(MAKE) --no-print-directory -s all
+	tools/bench.sh
+
+clean:
+	rm -rf build build-debug bin

@@ -1,0 +1,58 @@
+/* Domain: the box, its periodicity and the DMDA that decomposes it (see domain.h). The rank box
+ * is the union of its owned cells, so particle and fluid ownership coincide by construction. */
+#include "domain.h"
+
+static PetscErrorCode DomainReadBox(Domain *dom)
+{
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Domain (shared by DEM and fluid)", NULL);
+  SableOptionsRealN("-domain_lo", "Lower corner of the domain box (m)", NULL, dom->lo, 3, &set);
+  SableOptionsRealN("-domain_hi", "Upper corner of the domain box (m)", NULL, dom->hi, 3, &set);
+  PetscCall(PetscOptionsBool("-domain_periodic_x", "Periodic along x", NULL, dom->periodic[0], &dom->periodic[0], NULL));
+  PetscCall(PetscOptionsBool("-domain_periodic_y", "Periodic along y", NULL, dom->periodic[1], &dom->periodic[1], NULL));
+  PetscCall(PetscOptionsBool("-domain_periodic_z", "Periodic along z", NULL, dom->periodic[2], &dom->periodic[2], NULL));
+  PetscOptionsEnd();
+  for (int k = 0; k < 3; k++) {
+    dom->len[k] = dom->hi[k] - dom->lo[k];
+    PetscCheck(dom->len[k] > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-domain_hi[%d] = %g must exceed -domain_lo[%d] = %g", k, (double)dom->hi[k], k, (double)dom->lo[k]);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt stencil_width, Domain *dom)
+{
+  DMBoundaryType   bt[3];
+  PetscInt         m[3];
+  PetscMPIInt      size;
+  const PetscInt  *l[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(DomainReadBox(dom));
+  for (int k = 0; k < 3; k++) {
+    m[k]  = PetscMax(1, (PetscInt)PetscFloorReal(dom->len[k] / default_cell));
+    bt[k] = dom->periodic[k] ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_GHOSTED;
+  }
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(DMDACreate3d(comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, m[0], m[1], m[2], PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, 1, stencil_width, NULL, NULL, NULL, &dom->da));
+  PetscCall(DMSetFromOptions(dom->da));
+  PetscCall(DMSetUp(dom->da));
+  PetscCall(DMDAGetInfo(dom->da, NULL, &dom->cells[0], &dom->cells[1], &dom->cells[2], &dom->nranks[0], &dom->nranks[1], &dom->nranks[2], NULL, NULL, NULL, NULL, NULL, NULL));
+  PetscCall(DMDAGetCorners(dom->da, &dom->cstart[0], &dom->cstart[1], &dom->cstart[2], &dom->ccount[0], &dom->ccount[1], &dom->ccount[2]));
+  PetscCall(DMDAGetOwnershipRanges(dom->da, &l[0], &l[1], &l[2]));
+  for (int k = 0; k < 3; k++) {
+    dom->h[k]     = dom->len[k] / dom->cells[k];
+    dom->sublo[k] = dom->lo[k] + dom->cstart[k] * dom->h[k];
+    /* the last rank's upper face is exactly hi, not lo + cells*h with roundoff */
+    dom->subhi[k] = (dom->cstart[k] + dom->ccount[k] == dom->cells[k]) ? dom->hi[k] : dom->lo[k] + (dom->cstart[k] + dom->ccount[k]) * dom->h[k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DomainDestroy(Domain *dom)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DMDestroy(&dom->da));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

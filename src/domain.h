@@ -1,0 +1,23 @@
+/* The one cartesian decomposition of a run (DESIGN §1). A cell-centred PETSc DMDA over the box
+ * [lo, hi] decides the process grid and each rank's box; the fluid uses it as its grid, a dry
+ * case uses it as a coarse background grid, and the DEM owns the particles whose centre lies in
+ * the rank's box. Options: -domain_lo, -domain_hi (m), -domain_periodic_x/y/z, and PETSc's own
+ * -da_grid_x/y/z and -da_processors_x/y/z. */
+#pragma once
+#include "sable.h"
+
+typedef struct {
+  PetscReal lo[3], hi[3], len[3]; /* global box (m) */
+  PetscBool periodic[3];
+  DM        da;                   /* cell-centred DMDA, one dof */
+  PetscInt  cells[3];             /* global cell counts */
+  PetscReal h[3];                 /* cell size (m) */
+  PetscInt  cstart[3], ccount[3]; /* this rank's owned cells */
+  PetscReal sublo[3], subhi[3];   /* this rank's box (m) */
+  PetscInt  nranks[3];            /* process grid */
+} Domain;
+
+/* Collective. Reads the -domain_ options; the default cell count per axis is len/default_cell
+ * (at least 1). stencil_width is the DMDA ghost width the caller needs. */
+PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt stencil_width, Domain *dom);
+PetscErrorCode DomainDestroy(Domain *dom);

@@ -1,0 +1,343 @@
+/* HDF5 + XDMF output (see io.h). Layout of a frame file:
+ *   /particles/<name>  [N] or [N, ncomp], rows in rank order (ids identify particles)
+ *   /fluid/<name>      [nz, ny, nx] or [nz, ny, nx, ncomp], cell centred
+ *   attribute "time" on the root group.
+ * The XDMF index lists, per frame, a Polyvertex grid for particles and a 3DCoRectMesh for the
+ * fluid, inside a temporal collection. */
+#include "io/io.h"
+#include <hdf5.h>
+#include <errno.h>
+#include <sys/stat.h>
+
+#define IO_MAX_SETS 32
+
+typedef struct {
+  char    name[64];
+  PetscInt ncomp;
+  PetscBool isint;
+} IoSet;
+
+typedef struct {
+  PetscReal t;
+  char      file[PETSC_MAX_PATH_LEN];
+  PetscInt  np;                         /* global particle count */
+  IoSet     part[IO_MAX_SETS], fluid[IO_MAX_SETS];
+  PetscInt  npart, nfluid;
+} IoFrame;
+
+struct _p_Io {
+  MPI_Comm  comm;
+  char      dir[PETSC_MAX_PATH_LEN], prefix[64], index[PETSC_MAX_PATH_LEN];
+  PetscReal interval, next;
+  PetscBool fluidmesh;
+  PetscReal flo[3], fh[3];
+  PetscInt  fcells[3];
+  IoFrame  *frames;
+  PetscInt  nframes, capframes;
+  hid_t     file, gpart, gfluid;
+  char      tmpname[PETSC_MAX_PATH_LEN];
+};
+
+PetscErrorCode IoCreate(MPI_Comm comm, Io *io)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(io));
+  (*io)->comm = comm;
+  PetscCall(PetscStrcpy((*io)->dir, "out"));
+  PetscCall(PetscStrcpy((*io)->prefix, "sable"));
+  (*io)->interval = 0;
+  (*io)->file     = -1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoSetFromOptions(Io io)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(io->comm, NULL, "Output (HDF5 + XDMF)", NULL);
+  PetscCall(PetscOptionsString("-io_dir", "Output directory", NULL, io->dir, io->dir, sizeof io->dir, NULL));
+  PetscCall(PetscOptionsString("-io_prefix", "Output file name prefix", NULL, io->prefix, io->prefix, sizeof io->prefix, NULL));
+  PetscCall(PetscOptionsReal("-io_interval", "Simulated time between outputs (s); 0 = no output", NULL, io->interval, &io->interval, NULL));
+  PetscOptionsEnd();
+  PetscCheck(io->interval >= 0, io->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_interval %g must be >= 0", (double)io->interval);
+  PetscCall(PetscSNPrintf(io->index, sizeof io->index, "%s/%s.xmf", io->dir, io->prefix));
+  io->next = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoGetIndexPath(Io io, const char **path)
+{
+  PetscFunctionBeginUser;
+  *path = io->index;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due)
+{
+  PetscFunctionBeginUser;
+  *due = (io->interval > 0 && t >= io->next - 1e-12 * io->interval) ? PETSC_TRUE : PETSC_FALSE;
+  if (*due) io->next = (PetscFloorReal(t / io->interval + 1e-9) + 1) * io->interval;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoDestroy(Io *io)
+{
+  PetscFunctionBeginUser;
+  if (!*io) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscFree((*io)->frames));
+  PetscCall(PetscFree(*io));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode IoMakeDir(Io io)
+{
+  PetscMPIInt rank;
+  int         err = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
+  if (!rank && mkdir(io->dir, 0755) != 0 && errno != EEXIST) err = errno;
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, io->comm));
+  PetscCheck(!err, io->comm, PETSC_ERR_FILE_OPEN, "-io_dir %s: cannot create the directory (%s)", io->dir, strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
+{
+  hid_t    fapl, attr, space;
+  IoFrame *fr;
+
+  PetscFunctionBeginUser;
+  (void)step;
+  if (!io->nframes) PetscCall(IoMakeDir(io));
+  if (io->nframes == io->capframes) {
+    IoFrame *nf;
+    io->capframes = 2 * io->capframes + 16;
+    PetscCall(PetscCalloc1(io->capframes, &nf));
+    if (io->nframes) PetscCall(PetscArraycpy(nf, io->frames, io->nframes));
+    PetscCall(PetscFree(io->frames));
+    io->frames = nf;
+  }
+  fr = &io->frames[io->nframes];
+  PetscCall(PetscMemzero(fr, sizeof *fr));
+  fr->t = t;
+  PetscCall(PetscSNPrintf(fr->file, sizeof fr->file, "%s_%06" PetscInt_FMT ".h5", io->prefix, io->nframes));
+  PetscCall(PetscSNPrintf(io->tmpname, sizeof io->tmpname, "%s/%s.tmp", io->dir, fr->file));
+  fapl = H5Pcreate(H5P_FILE_ACCESS);
+  SableCallH5(fapl);
+  SableCallH5(H5Pset_fapl_mpio(fapl, io->comm, MPI_INFO_NULL));
+  io->file = H5Fcreate(io->tmpname, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  SableCallH5(H5Pclose(fapl));
+  PetscCheck(io->file >= 0, io->comm, PETSC_ERR_FILE_OPEN, "-io_dir: cannot create %s", io->tmpname);
+  io->gpart  = H5Gcreate2(io->file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  io->gfluid = H5Gcreate2(io->file, "fluid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  SableCallH5(io->gpart);
+  SableCallH5(io->gfluid);
+  space = H5Screate(H5S_SCALAR);
+  attr  = H5Acreate2(io->file, "time", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
+  SableCallH5(attr);
+  SableCallH5(H5Awrite(attr, H5T_NATIVE_DOUBLE, &t));
+  SableCallH5(H5Aclose(attr));
+  SableCallH5(H5Sclose(space));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective write of a block [start, start+count) of a dataset of global dims (rank-1..4). */
+static PetscErrorCode IoWriteBlock(hid_t group, const char *name, hid_t type, int rank, const hsize_t *dims, const hsize_t *start, const hsize_t *count, const void *data)
+{
+  hid_t    fspace, mspace, dset, dxpl;
+  hsize_t  n = 1;
+
+  PetscFunctionBeginUser;
+  for (int k = 0; k < rank; k++) n *= count[k];
+  fspace = H5Screate_simple(rank, dims, NULL);
+  SableCallH5(fspace);
+  dset = H5Dcreate2(group, name, type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  SableCallH5(dset);
+  mspace = H5Screate_simple(1, &n, NULL);
+  SableCallH5(mspace);
+  if (n) SableCallH5(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL));
+  else {
+    SableCallH5(H5Sselect_none(fspace));
+    SableCallH5(H5Sselect_none(mspace));
+  }
+  dxpl = H5Pcreate(H5P_DATASET_XFER);
+  SableCallH5(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE));
+  SableCallH5(H5Dwrite(dset, type, mspace, fspace, dxpl, data));
+  SableCallH5(H5Pclose(dxpl));
+  SableCallH5(H5Sclose(mspace));
+  SableCallH5(H5Sclose(fspace));
+  SableCallH5(H5Dclose(dset));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode IoWriteRows(Io io, const char *name, PetscInt nlocal, PetscInt ncomp, hid_t type, const void *data, PetscBool isint)
+{
+  long long n = nlocal, off = 0, total = 0;
+  hsize_t   dims[2], start[2] = {0, 0}, count[2];
+  IoFrame  *fr = &io->frames[io->nframes];
+
+  PetscFunctionBeginUser;
+  PetscCheck(fr->npart < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many particle datasets in one frame");
+  PetscCallMPI(MPI_Exscan(&n, &off, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
+  PetscCallMPI(MPI_Allreduce(&n, &total, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
+  dims[0]  = (hsize_t)total;
+  dims[1]  = (hsize_t)ncomp;
+  start[0] = (hsize_t)off;
+  count[0] = (hsize_t)n;
+  count[1] = (hsize_t)ncomp;
+  PetscCall(IoWriteBlock(io->gpart, name, type, ncomp > 1 ? 2 : 1, dims, start, count, data));
+  PetscCall(PetscStrncpy(fr->part[fr->npart].name, name, sizeof fr->part[0].name));
+  fr->part[fr->npart].ncomp = ncomp;
+  fr->part[fr->npart].isint = isint;
+  fr->npart++;
+  fr->np = (PetscInt)total;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoWriteParticles(Io io, const char *name, PetscInt nlocal, PetscInt ncomp, const PetscReal *data)
+{
+  PetscFunctionBeginUser;
+  PetscCall(IoWriteRows(io, name, nlocal, ncomp, H5T_NATIVE_DOUBLE, data, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoWriteParticlesInt(Io io, const char *name, PetscInt nlocal, const PetscInt *data)
+{
+  PetscFunctionBeginUser;
+  PetscCall(IoWriteRows(io, name, nlocal, 1, sizeof(PetscInt) == 8 ? H5T_NATIVE_INT64 : H5T_NATIVE_INT32, data, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoSetFluidMesh(Io io, const PetscReal lo[3], const PetscReal h[3], const PetscInt cells[3])
+{
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 3; k++) {
+    io->flo[k]    = lo[k];
+    io->fh[k]     = h[k];
+    io->fcells[k] = cells[k];
+  }
+  io->fluidmesh = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoWriteField(Io io, const char *name, PetscInt ncomp, const PetscInt start[3], const PetscInt count[3], const PetscReal *data)
+{
+  hsize_t  dims[4], st[4] = {0, 0, 0, 0}, cnt[4];
+  IoFrame *fr = &io->frames[io->nframes];
+
+  PetscFunctionBeginUser;
+  PetscCheck(io->fluidmesh, io->comm, PETSC_ERR_ORDER, "IoSetFluidMesh must precede IoWriteField");
+  PetscCheck(fr->nfluid < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many fluid datasets in one frame");
+  for (int k = 0; k < 3; k++) { /* HDF5 order is z, y, x */
+    dims[k] = (hsize_t)io->fcells[2 - k];
+    st[k]   = (hsize_t)start[2 - k];
+    cnt[k]  = (hsize_t)count[2 - k];
+  }
+  dims[3] = cnt[3] = (hsize_t)ncomp;
+  PetscCall(IoWriteBlock(io->gfluid, name, H5T_NATIVE_DOUBLE, ncomp > 1 ? 4 : 3, dims, st, cnt, data));
+  PetscCall(PetscStrncpy(fr->fluid[fr->nfluid].name, name, sizeof fr->fluid[0].name));
+  fr->fluid[fr->nfluid].ncomp = ncomp;
+  fr->nfluid++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static void IoXdmfAttribute(FILE *fp, const char *file, const char *group, const IoSet *s, const char *center, const char *dims)
+{
+  const char *type = s->ncomp == 3 ? "Vector" : (s->ncomp == 1 ? "Scalar" : "Matrix");
+  fprintf(fp, "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", s->name, type, center);
+  if (s->ncomp > 1) fprintf(fp, "          <DataItem Dimensions=\"%s %d\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, (int)s->ncomp, s->isint ? "Int" : "Float", file, group, s->name);
+  else fprintf(fp, "          <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->isint ? "Int" : "Float", file, group, s->name);
+  fprintf(fp, "        </Attribute>\n");
+}
+
+static void IoXdmfFrame(Io io, FILE *fp, const IoFrame *fr)
+{
+  char d[64];
+
+  fprintf(fp, "    <Grid Name=\"frame\" GridType=\"Collection\" CollectionType=\"Spatial\">\n      <Time Value=\"%.17g\"/>\n", (double)fr->t);
+  if (fr->npart) {
+    PetscSNPrintf(d, sizeof d, "%d", (int)fr->np);
+    fprintf(fp, "      <Grid Name=\"particles\" GridType=\"Uniform\">\n");
+    fprintf(fp, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\"/>\n", (int)fr->np);
+    fprintf(fp, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/position</DataItem>\n        </Geometry>\n", (int)fr->np, fr->file);
+    for (PetscInt i = 0; i < fr->npart; i++)
+      if (strcmp(fr->part[i].name, "position")) IoXdmfAttribute(fp, fr->file, "particles", &fr->part[i], "Node", d);
+    fprintf(fp, "      </Grid>\n");
+  }
+  if (fr->nfluid) {
+    PetscSNPrintf(d, sizeof d, "%d %d %d", (int)io->fcells[2], (int)io->fcells[1], (int)io->fcells[0]);
+    fprintf(fp, "      <Grid Name=\"fluid\" GridType=\"Uniform\">\n");
+    fprintf(fp, "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"%d %d %d\"/>\n", (int)io->fcells[2] + 1, (int)io->fcells[1] + 1, (int)io->fcells[0] + 1);
+    fprintf(fp, "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n");
+    fprintf(fp, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n", (double)io->flo[2], (double)io->flo[1], (double)io->flo[0]);
+    fprintf(fp, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n        </Geometry>\n", (double)io->fh[2], (double)io->fh[1], (double)io->fh[0]);
+    for (PetscInt i = 0; i < fr->nfluid; i++) IoXdmfAttribute(fp, fr->file, "fluid", &fr->fluid[i], "Cell", d);
+    fprintf(fp, "      </Grid>\n");
+  }
+  fprintf(fp, "    </Grid>\n");
+}
+
+static PetscErrorCode IoWriteIndex(Io io)
+{
+  char  tmp[PETSC_MAX_PATH_LEN];
+  FILE *fp;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(tmp, sizeof tmp, "%s.tmp", io->index));
+  fp = fopen(tmp, "w");
+  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-io_dir: cannot write %s", tmp);
+  fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n  <Grid Name=\"sable\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  for (PetscInt i = 0; i < io->nframes; i++) IoXdmfFrame(io, fp, &io->frames[i]);
+  fprintf(fp, "  </Grid>\n  </Domain>\n</Xdmf>\n");
+  PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "-io_dir: cannot finish %s", tmp);
+  PetscCheck(rename(tmp, io->index) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s", tmp, io->index);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoFrameEnd(Io io)
+{
+  PetscMPIInt rank;
+  char        final[PETSC_MAX_PATH_LEN];
+  int         err = 0;
+
+  PetscFunctionBeginUser;
+  SableCallH5(H5Gclose(io->gpart));
+  SableCallH5(H5Gclose(io->gfluid));
+  SableCallH5(H5Fclose(io->file));
+  io->file = -1;
+  PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
+  PetscCall(PetscSNPrintf(final, sizeof final, "%s/%s", io->dir, io->frames[io->nframes].file));
+  io->nframes++;
+  if (!rank) {
+    if (rename(io->tmpname, final) != 0) err = errno;
+    else PetscCall(IoWriteIndex(io));
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, io->comm));
+  PetscCheck(!err, io->comm, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s (%s)", io->tmpname, final, strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows, PetscInt *ncomp, PetscReal **data)
+{
+  hid_t   f, d, s;
+  hsize_t dims[2] = {0, 1};
+  int     rank;
+
+  PetscFunctionBeginUser;
+  f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open HDF5 file %s", file);
+  d = H5Dopen2(f, name, H5P_DEFAULT);
+  PetscCheck(d >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "file %s has no dataset %s", file, name);
+  s    = H5Dget_space(d);
+  rank = H5Sget_simple_extent_ndims(s);
+  PetscCheck(rank == 1 || rank == 2, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s:%s has rank %d, expected 1 or 2", file, name, rank);
+  SableCallH5(H5Sget_simple_extent_dims(s, dims, NULL));
+  *rows  = (PetscInt)dims[0];
+  *ncomp = rank == 2 ? (PetscInt)dims[1] : 1;
+  PetscCall(PetscMalloc1(PetscMax(1, *rows * *ncomp), data));
+  if (*rows) SableCallH5(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, *data));
+  SableCallH5(H5Sclose(s));
+  SableCallH5(H5Dclose(d));
+  SableCallH5(H5Fclose(f));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

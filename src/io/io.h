@@ -1,0 +1,37 @@
+/* Output: one HDF5 file per output time (particles under /particles, fluid fields under /fluid)
+ * and one XDMF file indexing them as a time series that ParaView opens. Each HDF5 file is
+ * written under a temporary name and renamed when complete, and the XDMF index is rewritten the
+ * same way, so a killed run never leaves a half-written file behind a name ParaView reads.
+ * Writes are collective (MPI-IO); each rank passes its own block. Options: -io_dir, -io_prefix,
+ * -io_interval. */
+#pragma once
+#include "sable.h"
+
+typedef struct _p_Io *Io;
+
+PetscErrorCode IoCreate(MPI_Comm comm, Io *io);
+/* Reads -io_dir (default out), -io_prefix (default sable), -io_interval (s, 0 = no output). */
+PetscErrorCode IoSetFromOptions(Io io);
+PetscErrorCode IoDestroy(Io *io);
+/* Whether an output is due at simulated time t (first call: always, when output is on). */
+PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due);
+/* The directory and the XDMF index path, for messages. */
+PetscErrorCode IoGetIndexPath(Io io, const char **path);
+
+/* Collective. Opens <dir>/<prefix>_<frame>.h5 (under a temporary name). */
+PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step);
+/* Collective. A particle array: nlocal rows of ncomp reals on this rank ("position" must be
+ * written for the frame to show particles). */
+PetscErrorCode IoWriteParticles(Io io, const char *name, PetscInt nlocal, PetscInt ncomp, const PetscReal *data);
+PetscErrorCode IoWriteParticlesInt(Io io, const char *name, PetscInt nlocal, const PetscInt *data);
+/* Collective, once before the first frame: the fluid mesh (uniform cells from lo, spacing h). */
+PetscErrorCode IoSetFluidMesh(Io io, const PetscReal lo[3], const PetscReal h[3], const PetscInt cells[3]);
+/* Collective. A cell-centred field block: count[0..2] cells from start[0..2], x fastest, the
+ * ncomp components of a cell contiguous. */
+PetscErrorCode IoWriteField(Io io, const char *name, PetscInt ncomp, const PetscInt start[3], const PetscInt count[3], const PetscReal *data);
+/* Collective. Closes, renames into place, rewrites the XDMF index. */
+PetscErrorCode IoFrameEnd(Io io);
+
+/* Every rank reads a whole dataset of a Sable HDF5 file (rows x ncomp, as written); free with
+ * PetscFree. Errors name the file and the dataset. */
+PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows, PetscInt *ncomp, PetscReal **data);

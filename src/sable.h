@@ -1,0 +1,30 @@
+/* Sable-wide helpers shared by every module: checked calls into HDF5, the check that every
+ * option given was read by somebody, and the version string. Nothing physical lives here. */
+#pragma once
+#include <petsc.h>
+
+#define SABLE_VERSION "0.1"
+
+/* HDF5 returns a negative value on failure; turn it into a PETSc error naming the call. */
+#define SableCallH5(call) \
+  do { \
+    if ((call) < 0) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 call failed: %s", #call); \
+  } while (0)
+
+/* Collective. Errors when an option in the database was never read (a typo cannot silently run
+ * the wrong physics). Call after every object has done its SetFromOptions. */
+PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm);
+
+/* PETSc 3.18 predates PETSC_SUCCESS. */
+#ifndef PETSC_SUCCESS
+  #define PETSC_SUCCESS 0
+#endif
+
+/* Inside a PetscOptionsBegin block: a real array option of exactly n values ("a,b,c"); a wrong
+ * count is an error naming the option. */
+#define SableOptionsRealN(opt, text, man, v, n, set) \
+  do { \
+    PetscInt got_ = (n); \
+    PetscCall(PetscOptionsRealArray(opt, text, man, v, &got_, set)); \
+    PetscCheck(!*(set) || got_ == (n), PETSC_COMM_WORLD, PETSC_ERR_ARG_SIZ, "%s takes %d comma-separated values, got %d", opt, (int)(n), (int)got_); \
+  } while (0)

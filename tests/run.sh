@@ -1,0 +1,49 @@
+#!/bin/sh
+# The test suite. Every tests/*.c is a self-checking executable that prints one line per check,
+#   PASS <check>: <measured> (<bound>)   or   FAIL <check>: ...
+# A line "/* ranks: 1 2 4 */" in its source runs it on each of those rank counts (default 1).
+# Every tests/*.sh is a shell test printing the same kind of lines.
+# A test that exits non-zero without printing a FAIL line counts as one failure.
+# Last line: "N passed, N failed"; exit status non-zero when anything failed.
+set -u
+cd "$(dirname "$0")/.."
+BUILD=${BUILD:-build}
+[ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+LOG=$(mktemp -d)
+trap 'rm -rf "$LOG"' EXIT
+pass=0; fail=0
+ONLY=${ONLY:-}
+
+run_one() { # label, command...
+  label=$1; shift
+  out="$LOG/out"
+  "$@" >"$out" 2>"$LOG/err"
+  rc=$?
+  grep -E '^(PASS|FAIL) ' "$out" | sed "s/^\(PASS\|FAIL\) /\1 $label /"
+  np=$(grep -c '^PASS ' "$out"); nf=$(grep -c '^FAIL ' "$out")
+  if [ "$rc" -ne 0 ] && [ "$nf" -eq 0 ]; then
+    echo "FAIL $label: exit status $rc; last lines:"; tail -n 5 "$out" "$LOG/err" | sed 's/^/    /'
+    nf=1
+  fi
+  [ "$np" -eq 0 ] && [ "$nf" -eq 0 ] && { echo "FAIL $label: printed no check"; nf=1; }
+  pass=$((pass + np)); fail=$((fail + nf))
+}
+
+for src in tests/*.c; do
+  name=$(basename "$src" .c)
+  case "$name" in *$ONLY*) ;; *) continue ;; esac
+  ranks=$(sed -n 's|^/\* ranks: \(.*\) \*/$|\1|p' "$src" | head -n 1)
+  for n in ${ranks:-1}; do
+    if [ "$n" -eq 1 ]; then run_one "$name" "$BUILD/tests/$name"
+    else run_one "$name[np=$n]" mpiexec -n "$n" "$BUILD/tests/$name"; fi
+  done
+done
+for t in tests/*.sh; do
+  [ "$t" = tests/run.sh ] && continue
+  name=$(basename "$t" .sh)
+  case "$name" in *$ONLY*) ;; *) continue ;; esac
+  run_one "$name" sh "$t"
+done
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
