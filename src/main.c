@@ -1,2 +1,114 @@
+/* sable: the driver. Reads the options, builds the one decomposition (Domain), decides which
+ * modules the scene needs, runs, reports. User mistakes end with one line
+ *   sable: error: <what, which option, which value, which range>
+ * and exit status 1 (PETSc's traceback is kept for internal errors, with -sable_traceback). */
 #include "sable.h"
-int main(int argc, char **argv) { PetscCall(PetscInitialize(&argc, &argv, NULL, NULL)); PetscCall(PetscFinalize()); return 0; }
+#include "domain.h"
+#include "dem/dem.h"
+#include "io/io.h"
+#include <errno.h>
+
+static PetscBool sable_traceback = PETSC_FALSE;
+
+static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *func, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  PetscMPIInt rank = 0, size = 1;
+
+  (void)ctx;
+  if (sable_traceback) return PetscTraceBackErrorHandler(comm, line, func, file, n, p, mess, NULL);
+  if (p != PETSC_ERROR_INITIAL) return n;
+  MPI_Comm_size(comm, &size);
+  MPI_Comm_rank(comm, &rank);
+  if (!rank || size == 1) {
+    if (size == 1 && comm != PETSC_COMM_WORLD && comm != MPI_COMM_WORLD) {
+      int wr = 0;
+      MPI_Comm_rank(MPI_COMM_WORLD, &wr);
+      fprintf(stderr, "sable: error (rank %d): %s\n", wr, mess ? mess : "unknown error");
+    } else fprintf(stderr, "sable: error: %s\n", mess ? mess : "unknown error");
+    fflush(stderr);
+  }
+  return n;
+}
+
+/* PETSc's own message for a missing options file is a traceback; say it in one line first. */
+static int SableCheckOptionsFiles(int argc, char **argv)
+{
+  for (int i = 1; i + 1 < argc; i++)
+    if (!strcmp(argv[i], "-options_file")) {
+      FILE *fp = fopen(argv[i + 1], "r");
+      if (!fp) {
+        fprintf(stderr, "sable: error: -options_file %s: cannot open (%s)\n", argv[i + 1], strerror(errno));
+        return 1;
+      }
+      fclose(fp);
+    }
+  return 0;
+}
+
+static PetscErrorCode SableRun(void)
+{
+  Domain    dom;
+  Dem       dem;
+  Io        io;
+  PetscBool help;
+  PetscReal phi, coord, t;
+  PetscInt  step;
+  PetscLogDouble t0, t1;
+  const char *index;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Sable driver", NULL);
+  PetscCall(PetscOptionsBool("-sable_traceback", "Print PETSc's full traceback on errors", NULL, sable_traceback, &sable_traceback, NULL));
+  PetscOptionsEnd();
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "Sable %s — CFD-DEM for fluidized beds and granular flows\n", SABLE_VERSION));
+  /* dry case: the background grid's cell is a few diameters (coarse, only decomposes space) */
+  PetscCall(DomainCreate(PETSC_COMM_WORLD, 0.05, 1, &dom));
+  PetscCall(DemCreate(&dom, &dem));
+  PetscCall(DemSetFromOptions(dem));
+  PetscCall(IoCreate(PETSC_COMM_WORLD, &io));
+  PetscCall(IoSetFromOptions(io));
+  if (help) { /* every object has printed its options */
+    PetscCall(DemDestroy(&dem));
+    PetscCall(IoDestroy(&io));
+    PetscCall(DomainDestroy(&dom));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on; fluid off (dry case); coupling off; convex shapes off; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", dom.nranks[0], dom.nranks[1], dom.nranks[2]));
+  PetscCall(DemSetUp(dem));
+  PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(PetscTime(&t0));
+  PetscCall(DemRun(dem, io));
+  PetscCall(PetscTime(&t1));
+  PetscCall(DemGetTime(dem, &t, &step));
+  PetscCall(DemGetBedFigures(dem, &phi, &coord));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "done: t = %g s, %" PetscInt_FMT " steps in %.2f s\n", (double)t, step, t1 - t0));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "bed: packing fraction %.4f, mean coordination number %.3f\n", (double)phi, (double)coord));
+  PetscCall(IoGetIndexPath(io, &index));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "output: %s (open it in ParaView)\n", index));
+  PetscCall(DemDestroy(&dem));
+  PetscCall(IoDestroy(&io));
+  PetscCall(DomainDestroy(&dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  PetscErrorCode ierr;
+  PetscMPIInt    size;
+
+  if (SableCheckOptionsFiles(argc, argv)) return 1;
+  PetscCall(PetscInitialize(&argc, &argv, NULL, "sable: parallel CFD-DEM. Options: see -help.\n"));
+  PetscCall(PetscPushErrorHandler(SableErrorHandler, NULL));
+  ierr = SableRun();
+  if (ierr) {
+    PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1); /* another rank may wait in a collective */
+    PetscFinalize();
+    return 1;
+  }
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscFinalize());
+  return 0;
+}

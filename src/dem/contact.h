@@ -1,0 +1,92 @@
+/* Contact laws as small stateless kernels, shared by particle-particle and particle-wall pairs.
+ *
+ * Normal (n points from particle i to its partner, delta > 0 the overlap, vn = v_rel . n with
+ * v_rel the partner's contact-point velocity relative to i's, so vn < 0 when approaching):
+ *   linear:  Fn = kn delta - gn m* vn,  gn = 2 zeta sqrt(kn/m*), zeta = -ln e / sqrt(pi^2 + ln^2 e)
+ *            (exact restitution e, contact time Tc = pi / sqrt(kn/m* - (gn/2)^2)).
+ *   hertz:   Fn = 4/3 E* sqrt(R* delta) delta - c_h sqrt(m* S_n) vn, S_n = 2 E* sqrt(R* delta),
+ *            c_h from the exact restitution map of the reduced Hertz ODE (contact_params.c).
+ * Tangential:
+ *   no history (Grains3D): Ft = -min(mu |Fn|, gt m* |vt|) vt/|vt|;
+ *   history (linear / Mindlin): xi += vt dt kept in the tangent plane, Ft = -kt xi - gt m* vt,
+ *            capped at mu |Fn| with xi reset to the capped spring (Cundall-Strack slip).
+ * Forces returned act on the partner; i receives the opposite (Newton's third law).
+ * Units SI. No allocation, no branching on options other than the law. */
+#pragma once
+#include <math.h>
+
+typedef enum { DEM_LAW_LINEAR_NOHIST, DEM_LAW_LINEAR, DEM_LAW_HERTZ } DemLaw;
+
+/* Parameters of one (shape, shape) or (shape, wall) pair, precomputed at set-up. */
+typedef struct {
+  double kn, kt;      /* linear stiffness (N/m) */
+  double gn, gt;      /* damping rate per unit effective mass (1/s), linear law */
+  double es, g8;      /* hertz: effective Young's modulus E* and 8 G* (Pa) */
+  double ch;          /* hertz: damping factor c_h (dimensionless) */
+  double mu;          /* Coulomb friction coefficient */
+  double meff, reff;  /* effective mass (kg) and radius (m) */
+  double hratio;      /* hertz: gt/gn ratio applied to sqrt(m* S) damping */
+} DemPairParams;
+
+static inline double dem_dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static inline void dem_cross(const double *a, const double *b, double *c)
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Normal force magnitude (N, positive = repulsive) and, through *kt_out / *gt_out, the
+ * tangential stiffness and damping (per unit mass) valid at this overlap. */
+static inline double dem_normal_force(DemLaw law, const DemPairParams *p, double delta, double vn, double *kt_out, double *gt_out)
+{
+  if (law == DEM_LAW_HERTZ) {
+    const double a  = sqrt(p->reff * delta); /* contact radius (m) */
+    const double sn = 2.0 * p->es * a;       /* normal contact stiffness S_n (N/m) */
+    *kt_out         = p->g8 * a;             /* tangential stiffness S_t = 8 G* a (N/m) */
+    *gt_out         = p->hratio * p->ch * sqrt(*kt_out / p->meff);
+    return (4.0 / 3.0) * p->es * a * delta - p->ch * sqrt(sn / p->meff) * p->meff * vn;
+  }
+  *kt_out = p->kt;
+  *gt_out = p->gt;
+  return p->kn * delta - p->gn * p->meff * vn;
+}
+
+/* Tangential force on the partner (3-vector ft) from the tangential relative velocity vt.
+ * xi is the pair's tangential spring (m), NULL for the law without history. */
+static inline void dem_tangential_force(const DemPairParams *p, double fn, double kt, double gt, const double *nrm, const double *vt, double *xi, double dt, double *ft)
+{
+  const double fmax = p->mu * fabs(fn);
+  if (!xi) {
+    const double vtn = sqrt(dem_dot(vt, vt));
+    if (vtn <= 0.0) {
+      ft[0] = ft[1] = ft[2] = 0.0;
+      return;
+    }
+    const double mag = fmin(fmax, gt * p->meff * vtn) / vtn;
+    for (int k = 0; k < 3; k++) ft[k] = -mag * vt[k];
+    return;
+  }
+  /* keep the spring in the current tangent plane, preserving its length (rigid rotation) */
+  const double x2 = dem_dot(xi, xi);
+  if (x2 > 0.0) {
+    const double xn = dem_dot(xi, nrm);
+    for (int k = 0; k < 3; k++) xi[k] -= xn * nrm[k];
+    const double y2 = dem_dot(xi, xi);
+    if (y2 > 0.0) {
+      const double s = sqrt(x2 / y2);
+      for (int k = 0; k < 3; k++) xi[k] *= s;
+    }
+  }
+  for (int k = 0; k < 3; k++) xi[k] += vt[k] * dt;
+  for (int k = 0; k < 3; k++) ft[k] = -kt * xi[k] - gt * p->meff * vt[k];
+  const double f2 = dem_dot(ft, ft);
+  if (f2 > fmax * fmax) {
+    const double s = fmax / sqrt(f2);
+    for (int k = 0; k < 3; k++) {
+      ft[k] *= s;
+      xi[k] = kt > 0.0 ? -(ft[k] + gt * p->meff * vt[k]) / kt : 0.0;
+    }
+  }
+}

@@ -1,0 +1,140 @@
+/* Contact parameters per material pair, precomputed per (shape, shape) and (shape, wall) pair.
+ *   linear: kn given, or from E, nu at the impact speed V (Hertz-equivalent stiffness, as the
+ *           LIGGGHTS "hooke" model does): kn = 16/15 sqrt(R*) E* (15 m* V^2 / (16 sqrt(R*) E*))^(1/5);
+ *           kt = 2/7 kn unless given; gn = 2 zeta sqrt(kn/m*), gt = ratio * gn.
+ *   hertz:  E* = 1/((1-nu1^2)/E1 + (1-nu2^2)/E2), G* = 1/((2-nu1)/G1 + (2-nu2)/G2), G = E/(2(1+nu)).
+ * The damped Hertz contact x'' = -x^(3/2) - c x^(1/4) x' (x = delta/X, X = (m* V^2/K)^(2/5),
+ * K = 4/3 E* sqrt(R*), time unit X/V) has a restitution that depends on c alone; the damping
+ * factor of the kernel, c_h = c / sqrt(3/2), is found by bisection on that reduced equation so
+ * that the restitution is exactly the one set (the usual closed-form beta(e) is only approximate
+ * for Hertz). The same reduced solution gives the contact time at speed V. */
+#include "dem/dem_impl.h"
+
+/* Integrates the reduced Hertz impact; returns restitution and dimensionless contact time. */
+static void dem_hertz_reduced(double c, double *e, double *tau)
+{
+  const double h = 2e-4;
+  double       x = 0, u = 1, t = 0;
+  for (;;) {
+    double k[4][2], xs = x, us = u;
+    for (int s = 0; s < 4; s++) {
+      const double xx = xs > 0 ? xs : 0;
+      k[s][0]         = us;
+      k[s][1]         = -xx * sqrt(xx) - c * sqrt(sqrt(xx)) * us;
+      const double fr = s < 2 ? 0.5 : 1.0;
+      if (s < 3) {
+        xs = x + fr * h * k[s][0];
+        us = u + fr * h * k[s][1];
+      }
+    }
+    const double xn = x + h / 6 * (k[0][0] + 2 * k[1][0] + 2 * k[2][0] + k[3][0]);
+    const double un = u + h / 6 * (k[0][1] + 2 * k[1][1] + 2 * k[2][1] + k[3][1]);
+    if (xn <= 0 && t > 0) { /* crossed back through zero overlap: interpolate */
+      const double s = x / (x - xn);
+      *tau           = t + s * h;
+      *e             = -(u + s * (un - u));
+      return;
+    }
+    x = xn;
+    u = un;
+    t += h;
+  }
+}
+
+PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau)
+{
+  double lo = 0, hi = 8, ee, tt;
+
+  PetscFunctionBeginUser;
+  if (e >= 1) {
+    dem_hertz_reduced(0, &ee, tau);
+    *ch = 0;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  for (dem_hertz_reduced(hi, &ee, &tt); ee > e; dem_hertz_reduced(hi, &ee, &tt)) hi *= 2;
+  for (int it = 0; it < 48; it++) { /* restitution decreases with c */
+    const double mid = 0.5 * (lo + hi);
+    dem_hertz_reduced(mid, &ee, &tt);
+    if (ee > e) lo = mid;
+    else hi = mid;
+  }
+  dem_hertz_reduced(0.5 * (lo + hi), &ee, tau);
+  *ch = 0.5 * (lo + hi) / sqrt(1.5);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static double dem_zeta(double e)
+{
+  const double l = log(e);
+  return -l / sqrt(PETSC_PI * PETSC_PI + l * l);
+}
+
+/* Fills one pair. mb <= 0 / rb <= 0 mean the wall (infinite mass and radius). */
+static PetscErrorCode DemPairFill(Dem dem, const DemMaterial *a, const DemMaterial *b, double ma, double ra, double mb, double rb, double ch, DemPairParams *p)
+{
+  const double e = PetscMin(a->e, b->e), mu = PetscMin(a->mu, b->mu);
+
+  PetscFunctionBeginUser;
+  p->meff = mb > 0 ? ma * mb / (ma + mb) : ma;
+  p->reff = rb > 0 ? ra * rb / (ra + rb) : ra;
+  p->mu   = mu;
+  if (a->E_set) {
+    const double Ga = a->E / (2 * (1 + a->nu)), Gb = b->E / (2 * (1 + b->nu));
+    p->es = 1.0 / ((1 - a->nu * a->nu) / a->E + (1 - b->nu * b->nu) / b->E);
+    p->g8 = 8.0 / ((2 - a->nu) / Ga + (2 - b->nu) / Gb);
+  }
+  p->ch     = ch;
+  p->hratio = dem->tdamp_ratio;
+  if (b->kn_set) p->kn = b->kn;
+  else {
+    const double V = dem->vimpact, sr = sqrt(p->reff);
+    p->kn          = 16.0 / 15.0 * sr * p->es * pow(15.0 * p->meff * V * V / (16.0 * sr * p->es), 0.2);
+  }
+  p->kt = b->kt_set ? b->kt : 2.0 / 7.0 * p->kn;
+  p->gn = 2 * dem_zeta(e) * sqrt(p->kn / p->meff);
+  p->gt = dem->tdamp_ratio * p->gn;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemMaterialsSetUp(Dem dem)
+{
+  double chp = 0, chw = 0, tau;
+
+  PetscFunctionBeginUser;
+  if (dem->law == DEM_LAW_HERTZ) {
+    PetscCheck(dem->mat.E_set && dem->wmat.E_set, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_contact_law hertz needs -dem_youngs_modulus (Pa)");
+    PetscCall(DemHertzRestitutionMap(dem->mat.e, &chp, &tau));
+    PetscCall(DemHertzRestitutionMap(PetscMin(dem->mat.e, dem->wmat.e), &chw, &tau));
+  } else {
+    PetscCheck(dem->mat.kn_set || dem->mat.E_set, dem->comm, PETSC_ERR_ARG_WRONG, "the linear laws need -dem_kn (N/m) or -dem_youngs_modulus (Pa)");
+  }
+  for (PetscInt s = 0; s < dem->nshape; s++) {
+    const DemShape *a = &dem->shp[s];
+    for (PetscInt t = 0; t < dem->nshape; t++) {
+      const DemShape *b = &dem->shp[t];
+      PetscCall(DemPairFill(dem, &dem->mat, &dem->mat, a->m, a->r, b->m, b->r, chp, &dem->pp[s * dem->nshape + t]));
+    }
+    PetscCall(DemPairFill(dem, &dem->mat, &dem->wmat, a->m, a->r, 0, 0, chw, &dem->pw[s]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v, PetscReal *tc, PetscReal *e)
+{
+  const DemPairParams *p = t < 0 ? &dem->pw[s] : &dem->pp[s * dem->nshape + t];
+  const double         ee = t < 0 ? PetscMin(dem->mat.e, dem->wmat.e) : dem->mat.e;
+
+  PetscFunctionBeginUser;
+  PetscCheck(s >= 0 && s < dem->nshape && t < dem->nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape pair (%" PetscInt_FMT ", %" PetscInt_FMT ") out of range", s, t);
+  *e = ee;
+  if (dem->law == DEM_LAW_HERTZ) {
+    double ch, tau;
+    PetscCall(DemHertzRestitutionMap(ee, &ch, &tau));
+    const double K = 4.0 / 3.0 * p->es * sqrt(p->reff), X = pow(p->meff * v * v / K, 0.4);
+    *tc = tau * X / v;
+  } else {
+    const double w0 = p->kn / p->meff, g = 0.5 * p->gn;
+    *tc = PETSC_PI / sqrt(w0 - g * g);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

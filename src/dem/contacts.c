@@ -1,0 +1,79 @@
+/* Particle-particle contact forces over the half Verlet list (each pair once; Newton's third
+ * law adds the opposite force to the partner). Spheres: n = (x_j - x_i)/|x_j - x_i|, overlap
+ * delta = r_i + r_j - |x_j - x_i|, contact point at r_i - delta/2 from i along n. The spring of
+ * a pair that is not touching is reset to zero (a new contact starts unloaded). Torques only
+ * when the scene has friction (dem->rotation). */
+#include "dem/dem_impl.h"
+
+PetscErrorCode DemContactsPairs(Dem dem)
+{
+  const DemNeigh *nl = &dem->nl;
+  const double   *x = dem->x, *v = dem->v, *w = dem->w;
+  double         *f = dem->f, *tq = dem->tq, *hist = nl->hist;
+  const PetscInt *shape = dem->shape, *start = nl->start, *nbr = nl->nbr;
+  const PetscInt  ns = dem->nshape, n = dem->n;
+  const DemLaw    law = dem->law;
+  const PetscBool rot = dem->rotation;
+  const double    dt = dem->dt;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
+  for (PetscInt i = 0; i < n; i++) {
+    const double        *xi = x + 3 * i, *vi = v + 3 * i, *wi = w + 3 * i;
+    const double         ri = dem->shp[shape[i]].r;
+    const DemPairParams *row = dem->pp + shape[i] * ns;
+    double               fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
+    for (PetscInt a = start[i]; a < start[i + 1]; a++) {
+      const PetscInt j  = nbr[a];
+      const double  *xj = x + 3 * j;
+      const double   rj = dem->shp[shape[j]].r, rs = ri + rj;
+      double         d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+      const double   d2 = dem_dot(d, d);
+      double        *xi_t = hist ? hist + 3 * a : NULL;
+      if (d2 >= rs * rs) {
+        if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
+        continue;
+      }
+      const DemPairParams *p    = row + shape[j];
+      const double         dist = sqrt(d2), inv = 1.0 / dist, delta = rs - dist;
+      const double         nrm[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
+      const double        *vj = v + 3 * j, *wj = w + 3 * j;
+      const double         li = ri - 0.5 * delta, lj = rj - 0.5 * delta; /* lever arms */
+      double               vr[3], kt, gt, F[3];
+      /* partner's contact-point velocity relative to i's: v_j - v_i + (w_j l_j + w_i l_i) x (-n)... */
+      {
+        double wsum[3], c[3];
+        for (int k = 0; k < 3; k++) wsum[k] = li * wi[k] + lj * wj[k];
+        dem_cross(wsum, nrm, c); /* w_i x (l_i n) - w_j x (-l_j n) = (l_i w_i + l_j w_j) x n */
+        for (int k = 0; k < 3; k++) vr[k] = vj[k] - vi[k] - c[k];
+      }
+      const double vn = dem_dot(vr, nrm);
+      const double fn = dem_normal_force(law, p, delta, vn, &kt, &gt);
+      for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k]; /* on i */
+      if (p->mu > 0) {
+        double vt[3], ft[3];
+        for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
+        dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft); /* ft acts on the partner */
+        if (rot) {
+          double c[3];
+          dem_cross(nrm, ft, c); /* torque on i: (l_i n) x (-ft); on j: (-l_j n) x ft */
+          for (int k = 0; k < 3; k++) {
+            ti[k] -= li * c[k];
+            tq[3 * j + k] -= lj * c[k];
+          }
+        }
+        for (int k = 0; k < 3; k++) F[k] -= ft[k];
+      }
+      for (int k = 0; k < 3; k++) {
+        fi[k] += F[k];
+        f[3 * j + k] -= F[k];
+      }
+    }
+    for (int k = 0; k < 3; k++) {
+      f[3 * i + k] += fi[k];
+      tq[3 * i + k] += ti[k];
+    }
+  }
+  PetscCall(PetscLogEventEnd(DEM_Contacts, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,240 @@
+/* The Dem object: options, set-up, the time step and the run loop (see dem.h).
+ * One step (velocity Verlet): half kick + drift (+ rebuild check) -> walls move -> lists rebuilt
+ * if a particle or a wall moved more than skin/2 -> forces (gravity, pairs, walls) -> half kick.
+ * The time step is checked against the contact time at set-up: dt <= dt_max_fraction * Tc for
+ * every pair type (Tc of the hertz law at -dem_impact_velocity). */
+#include "dem/dem_impl.h"
+
+PetscLogEvent        DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
+static PetscClassId  DEM_CLASSID;
+static PetscBool     dem_registered = PETSC_FALSE;
+static const char   *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
+
+PetscErrorCode DemCreate(Domain *dom, Dem *dem)
+{
+  Dem d;
+
+  PetscFunctionBeginUser;
+  if (!dem_registered) {
+    PetscCall(PetscClassIdRegister("DEM", &DEM_CLASSID));
+    PetscCall(PetscLogEventRegister("DemNeighbours", DEM_CLASSID, &DEM_Neighbours));
+    PetscCall(PetscLogEventRegister("DemContacts", DEM_CLASSID, &DEM_Contacts));
+    PetscCall(PetscLogEventRegister("DemWalls", DEM_CLASSID, &DEM_Walls));
+    PetscCall(PetscLogEventRegister("DemIntegrate", DEM_CLASSID, &DEM_Integrate));
+    PetscCall(PetscLogEventRegister("DemOutput", DEM_CLASSID, &DEM_Output));
+    dem_registered = PETSC_TRUE;
+  }
+  PetscCall(PetscNew(&d));
+  d->comm   = PetscObjectComm((PetscObject)dom->da);
+  d->dom    = dom;
+  d->law    = DEM_LAW_LINEAR;
+  d->nshape = 1;
+  d->shp[0].r   = 0.0069;
+  d->shp[0].rho = 2500;
+  d->shape_frac[0] = 1;
+  d->mat.e = 0.75;
+  d->mat.mu = 0.3;
+  d->mat.nu = 0.3;
+  d->tdamp_ratio = 1;
+  d->vimpact     = 1;
+  d->dt          = 1e-5;
+  d->dt_frac     = 0.1;
+  d->g[2]        = -9.81;
+  d->sort_interval = 1;
+  d->seed          = 1;
+  d->skin          = -1;
+  *dem = d;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DemMaterialOptions(PetscOptionItems *PetscOptionsObject, Dem dem, const char *pre, DemMaterial *m, const DemMaterial *dflt)
+{
+  char o[7][64];
+  const char *name[7] = {"kn", "kt", "restitution", "friction", "youngs_modulus", "poisson_ratio", NULL};
+
+  PetscFunctionBeginUser;
+  if (dflt) *m = *dflt;
+  for (int k = 0; k < 6; k++) PetscCall(PetscSNPrintf(o[k], sizeof o[k], "-dem_%s%s", pre, name[k]));
+  PetscCall(PetscOptionsReal(o[0], "Normal stiffness of the linear laws (N/m)", NULL, m->kn, &m->kn, &m->kn_set));
+  PetscCall(PetscOptionsReal(o[1], "Tangential stiffness (N/m); default 2/7 kn", NULL, m->kt, &m->kt, &m->kt_set));
+  PetscCall(PetscOptionsReal(o[2], "Coefficient of restitution, in (0,1]", NULL, m->e, &m->e, NULL));
+  PetscCall(PetscOptionsReal(o[3], "Coulomb friction coefficient, >= 0", NULL, m->mu, &m->mu, NULL));
+  PetscCall(PetscOptionsReal(o[4], "Young's modulus (Pa), for hertz or to derive kn", NULL, m->E, &m->E, &m->E_set));
+  PetscCall(PetscOptionsReal(o[5], "Poisson ratio, in (-1, 0.5)", NULL, m->nu, &m->nu, NULL));
+  if (dflt) { /* a wall inherits what it was not given */
+    m->kn_set = (PetscBool)(m->kn_set || dflt->kn_set);
+    m->kt_set = (PetscBool)(m->kt_set || dflt->kt_set);
+    m->E_set  = (PetscBool)(m->E_set || dflt->E_set);
+  }
+  PetscCheck(m->e > 0 && m->e <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be in (0,1]", o[2], (double)m->e);
+  PetscCheck(m->mu >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", o[3], (double)m->mu);
+  PetscCheck(!m->kn_set || m->kn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be > 0", o[0], (double)m->kn);
+  PetscCheck(!m->kt_set || m->kt >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", o[1], (double)m->kt);
+  PetscCheck(!m->E_set || m->E > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be > 0", o[4], (double)m->E);
+  PetscCheck(m->nu > -1 && m->nu < 0.5, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be in (-1, 0.5)", o[5], (double)m->nu);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemSetFromOptions(Dem dem)
+{
+  PetscReal r[DEM_MAX_SHAPES], fr[DEM_MAX_SHAPES], sum = 0;
+  PetscInt  nr = DEM_MAX_SHAPES, nf = DEM_MAX_SHAPES, law = dem->law;
+  PetscBool rset, fset, gset;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(dem->comm, NULL, "DEM: particles, contacts, time stepping", NULL);
+  PetscCall(PetscOptionsRealArray("-dem_radius", "Sphere radii r1,r2,... (m), one shape each", NULL, r, &nr, &rset));
+  PetscCall(PetscOptionsRealArray("-dem_radius_fraction", "Number fraction of each radius (default equal)", NULL, fr, &nf, &fset));
+  PetscCall(PetscOptionsReal("-dem_density", "Particle density (kg/m^3)", NULL, dem->shp[0].rho, &dem->shp[0].rho, NULL));
+  PetscCall(PetscOptionsEList("-dem_contact_law", "Contact law", NULL, DemLawNames, 3, DemLawNames[dem->law], &law, NULL));
+  dem->law = (DemLaw)law;
+  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, "", &dem->mat, NULL));
+  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, "wall_", &dem->wmat, &dem->mat));
+  PetscCall(PetscOptionsReal("-dem_tangential_damping", "Tangential over normal damping ratio, >= 0", NULL, dem->tdamp_ratio, &dem->tdamp_ratio, NULL));
+  PetscCall(PetscOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates (m/s)", NULL, dem->vimpact, &dem->vimpact, NULL));
+  PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->dt, &dem->dt, NULL));
+  PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->dt_frac, &dem->dt_frac, NULL));
+  PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run (s)", NULL, dem->t_end, &dem->t_end, NULL));
+  PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, dem->progress_dt, &dem->progress_dt, NULL));
+  SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
+  PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, NULL));
+  PetscCall(PetscOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, dem->sort_interval, &dem->sort_interval, NULL));
+  PetscOptionsEnd();
+  if (rset) {
+    PetscCheck(nr >= 1, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius needs at least one value");
+    for (PetscInt s = 0; s < nr; s++) {
+      PetscCheck(r[s] > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_radius %g must be > 0 (m)", (double)r[s]);
+      dem->shp[s]     = dem->shp[0];
+      dem->shp[s].r   = r[s];
+    }
+    dem->nshape = nr;
+  }
+  PetscCheck(!fset || nf == dem->nshape, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius_fraction has %" PetscInt_FMT " values for %" PetscInt_FMT " radii", nf, dem->nshape);
+  for (PetscInt s = 0; s < dem->nshape; s++) {
+    dem->shape_frac[s] = fset ? fr[s] : 1.0;
+    PetscCheck(dem->shape_frac[s] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_radius_fraction %g must be >= 0", (double)dem->shape_frac[s]);
+    sum += dem->shape_frac[s];
+  }
+  PetscCheck(sum > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_radius_fraction must not be all zero");
+  for (PetscInt s = 0; s < dem->nshape; s++) dem->shape_frac[s] /= sum;
+  PetscCheck(dem->shp[0].rho > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_density %g must be > 0 (kg/m^3)", (double)dem->shp[0].rho);
+  PetscCheck(dem->dt > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt %g must be > 0 (s)", (double)dem->dt);
+  PetscCheck(dem->dt_frac > 0 && dem->dt_frac <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_max_fraction %g must be in (0,1]", (double)dem->dt_frac);
+  PetscCheck(dem->t_end >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_t_end %g must be >= 0 (s)", (double)dem->t_end);
+  PetscCheck(dem->vimpact > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_impact_velocity %g must be > 0 (m/s)", (double)dem->vimpact);
+  PetscCheck(dem->tdamp_ratio >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_tangential_damping %g must be >= 0", (double)dem->tdamp_ratio);
+  PetscCheck(dem->sort_interval >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_sort_interval %" PetscInt_FMT " must be >= 0", dem->sort_interval);
+  PetscCall(DemWallsSetFromOptions(dem));
+  PetscCall(DemInsertSetFromOptions(dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* dt against the contact time of every pair type. */
+static PetscErrorCode DemCheckTimeStep(Dem dem)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt s = 0; s < dem->nshape; s++)
+    for (PetscInt t = -1; t < dem->nshape; t++) {
+      PetscReal tc, e;
+      PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
+      PetscCheck(dem->dt <= dem->dt_frac * tc, dem->comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-dem_dt %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (%s, radius %g m): use -dem_dt <= %g", (double)dem->dt, (double)dem->dt_frac, (double)tc, t < 0 ? "particle-wall" : "particle-particle", (double)dem->shp[s].r, (double)(dem->dt_frac * tc));
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DemComputeForces(Dem dem)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dem->n; i++) {
+    const double m = dem->shp[dem->shape[i]].m;
+    for (int k = 0; k < 3; k++) dem->f[3 * i + k] = m * dem->g[k];
+  }
+  if (dem->rotation) PetscCall(PetscArrayzero(dem->tq, 3 * dem->n));
+  PetscCall(DemContactsPairs(dem));
+  PetscCall(DemContactsWalls(dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemSetUp(Dem dem)
+{
+  double rmax = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemInsert(dem));
+  for (PetscInt s = 0; s < dem->nshape; s++) {
+    DemShape *sh = &dem->shp[s];
+    sh->m        = sh->rho * 4.0 / 3.0 * PETSC_PI * sh->r * sh->r * sh->r;
+    sh->inertia  = 0.4 * sh->m * sh->r * sh->r;
+    sh->invm     = 1.0 / sh->m;
+    sh->invi     = 1.0 / sh->inertia;
+    rmax         = PetscMax(rmax, sh->r);
+  }
+  PetscCall(DemMaterialsSetUp(dem));
+  PetscCall(DemCheckTimeStep(dem));
+  if (dem->skin < 0) dem->skin = 0.2 * rmax;
+  PetscCheck(dem->skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->skin);
+  dem->reach    = 2 * rmax + dem->skin;
+  dem->rotation = (PetscBool)(dem->mat.mu > 0 || dem->wmat.mu > 0);
+  PetscCall(DemNeighBuild(dem));
+  PetscCall(DemComputeForces(dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemStep(Dem dem)
+{
+  double d2, wmax = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemIntegrateFirstHalf(dem, &d2));
+  PetscCheck(PetscIsNormalReal(d2) || d2 == 0, PETSC_COMM_SELF, PETSC_ERR_FP, "step %" PetscInt_FMT ": a particle position became non-finite; lower -dem_dt (now %g s)", dem->step, (double)dem->dt);
+  for (PetscInt w = 0; w < dem->nwall; w++) {
+    DemWall *wl = &dem->wall[w];
+    for (int k = 0; k < 3; k++) wl->p[k] += wl->v[k] * dem->dt;
+    wl->moved += sqrt(dem_dot(wl->v, wl->v)) * dem->dt;
+    wmax = PetscMax(wmax, wl->moved);
+  }
+  if (dem->need_build || 4 * d2 > dem->skin * dem->skin || 2 * wmax > dem->skin) PetscCall(DemNeighBuild(dem));
+  PetscCall(DemComputeForces(dem));
+  PetscCall(DemIntegrateSecondHalf(dem));
+  dem->t += dem->dt;
+  dem->step++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetTime(Dem dem, PetscReal *t, PetscInt *step)
+{
+  PetscFunctionBeginUser;
+  if (t) *t = dem->t;
+  if (step) *step = dem->step;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetTimeStep(Dem dem, PetscReal *dt)
+{
+  PetscFunctionBeginUser;
+  *dt = dem->dt;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemDestroy(Dem *dem)
+{
+  PetscFunctionBeginUser;
+  if (!*dem) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DemNeighDestroy(*dem));
+  for (PetscInt w = 0; w < (*dem)->nwall; w++) {
+    PetscCall(PetscFree((*dem)->wall[w].idx));
+    PetscCall(PetscFree((*dem)->wall[w].hist));
+  }
+  PetscCall(PetscFree((*dem)->x));
+  PetscCall(PetscFree((*dem)->v));
+  PetscCall(PetscFree((*dem)->w));
+  PetscCall(PetscFree((*dem)->f));
+  PetscCall(PetscFree((*dem)->tq));
+  PetscCall(PetscFree((*dem)->q));
+  PetscCall(PetscFree((*dem)->x0));
+  PetscCall(PetscFree((*dem)->id));
+  PetscCall(PetscFree((*dem)->shape));
+  PetscCall(PetscFree(*dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,62 @@
+/* DEM: the particle side of Sable (public interface). A Dem owns its particles (structure of
+ * arrays), the shape table, the contact parameters, the walls and the neighbour lists, and
+ * advances them with velocity Verlet. It reads its subdomain from the shared Domain and never
+ * sees the fluid. Life cycle: DemCreate -> DemSetFromOptions -> DemSetUp -> DemStep... ->
+ * DemDestroy. Options use the prefix -dem_ (see -help). */
+#pragma once
+#include "domain.h"
+#include "io/io.h"
+
+typedef struct _p_Dem *Dem;
+
+/* Global diagnostics (collective reductions). Energies in J. */
+typedef struct {
+  PetscInt  n;               /* particles */
+  PetscInt  contacts;        /* particle-particle contacts (overlap > 0) */
+  PetscInt  wall_contacts;   /* particle-wall contacts */
+  PetscReal ke, ke_rot;      /* translational and rotational kinetic energy */
+  PetscReal pe_grav;         /* gravitational potential energy, relative to the origin */
+  PetscReal pe_spring;       /* elastic energy stored in normal and tangential springs */
+  PetscReal max_overlap;     /* largest overlap / radius */
+  PetscReal checksum;        /* sum of ids (exact in double up to 2^53) */
+} DemStats;
+
+/* One particle as tests and insertion see it. */
+typedef struct {
+  PetscInt  id, shape;
+  PetscReal x[3], v[3], w[3], q[4];
+} DemParticle;
+
+PetscErrorCode DemCreate(Domain *dom, Dem *dem);
+/* Reads every -dem_ option (material, contact law, walls, insertion, time step, run length). */
+PetscErrorCode DemSetFromOptions(Dem dem);
+/* Builds shapes and pair tables, inserts particles, checks the time step, builds the lists. */
+PetscErrorCode DemSetUp(Dem dem);
+PetscErrorCode DemDestroy(Dem *dem);
+/* Prints the modules, the contact pre-flight figures (Tc, dt/Tc, overlap estimate). */
+PetscErrorCode DemView(Dem dem, PetscViewer viewer);
+
+/* One time step. Collective. */
+PetscErrorCode DemStep(Dem dem);
+/* Runs to -dem_t_end with progress lines and output through io (NULL: no output). */
+PetscErrorCode DemRun(Dem dem, Io io);
+PetscErrorCode DemGetTime(Dem dem, PetscReal *t, PetscInt *step);
+PetscErrorCode DemGetTimeStep(Dem dem, PetscReal *dt);
+PetscErrorCode DemGetStats(Dem dem, DemStats *s);
+/* Packing fraction of the bed (particle volume over footprint x surface height, the surface
+ * being the mean of the highest sphere top per column of one diameter) and mean coordination
+ * number (particle-particle contacts per particle). Collective. */
+PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord);
+PetscErrorCode DemWriteOutput(Dem dem, Io io);
+
+/* Access for tests and drivers: add particles (before DemSetUp or between steps), read them. */
+PetscErrorCode DemAddParticle(Dem dem, const DemParticle *p);
+PetscErrorCode DemGetLocalCount(Dem dem, PetscInt *n);
+PetscErrorCode DemGetParticle(Dem dem, PetscInt i, DemParticle *p);
+PetscErrorCode DemSetParticle(Dem dem, PetscInt i, const DemParticle *p);
+/* Contact time and restitution the parameters give for a pair of shape s with shape t (t < 0:
+ * the wall), at impact speed v (only the hertz law depends on v). */
+PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v, PetscReal *tc, PetscReal *e);
+/* Number of particle-particle pairs in contact found by the Verlet list and by an O(N^2)
+ * search over the same positions; they must agree. */
+PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt *verlet, PetscInt *brute);

@@ -1,0 +1,95 @@
+/* DEM private state. Particles are a structure of arrays, xyz interleaved per particle
+ * (x[3*i+k]): local particles 0..n-1 (ghosts will follow them). Geometry and mass live once per
+ * shape. The half Verlet list is CSR over local particles; for laws with history each list entry
+ * carries its tangential spring, which follows the pair through list rebuilds and re-sorts.
+ * Invariant: between rebuilds no particle has moved more than skin/2 from x0, and no wall more
+ * than skin/2, so every pair that can touch is in the list. */
+#pragma once
+#include "dem/dem.h"
+#include "dem/contact.h"
+
+#define DEM_MAX_SHAPES 32
+#define DEM_MAX_WALLS  16
+
+typedef struct {
+  double r, rho, m, inertia, invm, invi; /* sphere radius (m), density, mass, moment of inertia */
+} DemShape;
+
+typedef struct {
+  double p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity */
+  double moved;            /* distance moved since the last list build (m) */
+  /* list of particles within reach, with their tangential springs */
+  PetscInt *idx;
+  double   *hist;
+  PetscInt  cnt, cap;
+} DemWall;
+
+typedef struct { /* material of one side of a contact */
+  PetscReal kn, kt, e, mu, E, nu;
+  PetscBool kn_set, kt_set, E_set;
+} DemMaterial;
+
+typedef struct {
+  /* cells over the local box (plus margin): counting sort */
+  PetscInt   nc[3], ncell;
+  double     lo[3], inv[3];
+  PetscInt  *cstart, *cof, *order;
+  /* half Verlet list */
+  PetscInt  *start, *nbr, cap;
+  double    *hist;   /* 3 per entry, NULL without history */
+  PetscInt   builds, sorts;
+} DemNeigh;
+
+struct _p_Dem {
+  MPI_Comm  comm;
+  Domain   *dom;
+  /* particles */
+  PetscInt  n, cap;
+  double   *x, *v, *w, *f, *tq, *q, *x0;
+  PetscInt *id, *shape;
+  PetscInt  next_id;
+  /* shapes and pair parameters */
+  DemShape      shp[DEM_MAX_SHAPES];
+  PetscInt      nshape;
+  PetscReal     shape_frac[DEM_MAX_SHAPES];
+  DemMaterial   mat, wmat;
+  DemLaw        law;
+  PetscReal     tdamp_ratio, vimpact;
+  DemPairParams pp[DEM_MAX_SHAPES * DEM_MAX_SHAPES], pw[DEM_MAX_SHAPES];
+  PetscBool     rotation; /* any friction: torques and spins are integrated */
+  /* walls */
+  DemWall   wall[DEM_MAX_WALLS];
+  PetscInt  nwall;
+  /* neighbours */
+  DemNeigh  nl;
+  PetscReal skin, reach; /* reach = 2 r_max + skin */
+  PetscInt  sort_interval;
+  PetscBool need_build;
+  /* time */
+  PetscReal g[3], dt, t, t_end, dt_frac, progress_dt;
+  PetscInt  step;
+  /* insertion */
+  PetscInt  lat[3];
+  PetscReal lat_a, lat_origin[3], lat_jitter, lat_speed;
+  PetscBool lat_origin_set;
+  PetscInt  seed;
+  char      init_file[PETSC_MAX_PATH_LEN];
+};
+
+/* internal functions, by file */
+PetscErrorCode DemMaterialsSetUp(Dem dem);                         /* contact_params.c */
+PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* contact_params.c */
+PetscErrorCode DemParticlesReserve(Dem dem, PetscInt n);           /* particles.c */
+PetscErrorCode DemParticlesPermute(Dem dem, const PetscInt *perm); /* particles.c */
+PetscErrorCode DemNeighBuild(Dem dem);                             /* neighbours.c */
+PetscErrorCode DemNeighDestroy(Dem dem);                           /* neighbours.c */
+PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c */
+PetscErrorCode DemContactsWalls(Dem dem);                          /* walls.c */
+PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls.c */
+PetscErrorCode DemWallsBuildLists(Dem dem, const PetscInt *inv);   /* walls.c */
+PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
+PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
+PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
+PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
+
+extern PetscLogEvent DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;

@@ -1,0 +1,197 @@
+/* DEM diagnostics and reporting: global statistics by reductions (count, id checksum, energies,
+ * contacts, largest overlap), bed figures (packing fraction, coordination number), the start-up
+ * summary with the contact pre-flight figures, output of particle state, and the run loop with
+ * its progress line. Elastic energy: linear 1/2 kn delta^2 + 1/2 kt |xi|^2; hertz
+ * 8/15 E* sqrt(R*) delta^(5/2) (the tangential spring energy is left out for hertz). */
+#include "dem/dem_impl.h"
+
+static double dem_spring_energy(const Dem dem, const DemPairParams *p, double delta, const double *xi)
+{
+  double e = dem->law == DEM_LAW_HERTZ ? 8.0 / 15.0 * p->es * sqrt(p->reff) * pow(delta, 2.5) : 0.5 * p->kn * delta * delta;
+  if (xi && dem->law == DEM_LAW_LINEAR) e += 0.5 * p->kt * dem_dot(xi, xi);
+  return e;
+}
+
+PetscErrorCode DemGetStats(Dem dem, DemStats *st)
+{
+  double   r[6] = {0, 0, 0, 0, 0, 0}, rmax = 0, g[6];
+  PetscInt c[3] = {dem->n, 0, 0}, cg[3];
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dem->n; i++) {
+    const DemShape *s = &dem->shp[dem->shape[i]];
+    r[0] += 0.5 * s->m * dem_dot(dem->v + 3 * i, dem->v + 3 * i);
+    r[1] += 0.5 * s->inertia * dem_dot(dem->w + 3 * i, dem->w + 3 * i);
+    r[2] -= s->m * dem_dot(dem->g, dem->x + 3 * i);
+    r[4] += (double)dem->id[i];
+    for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
+      const PetscInt j  = dem->nl.nbr[a];
+      const double   rs = s->r + dem->shp[dem->shape[j]].r;
+      const double   d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
+      const double   delta = rs - sqrt(dem_dot(d, d));
+      if (delta <= 0) continue;
+      c[1]++;
+      r[3] += dem_spring_energy(dem, &dem->pp[dem->shape[i] * dem->nshape + dem->shape[j]], delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
+      rmax = PetscMax(rmax, delta / PetscMin(s->r, dem->shp[dem->shape[j]].r));
+    }
+  }
+  for (PetscInt w = 0; w < dem->nwall; w++) {
+    const DemWall *wl = &dem->wall[w];
+    for (PetscInt a = 0; a < wl->cnt; a++) {
+      const PetscInt i = wl->idx[a];
+      const double   d[3] = {dem->x[3 * i] - wl->p[0], dem->x[3 * i + 1] - wl->p[1], dem->x[3 * i + 2] - wl->p[2]};
+      const double   rr = dem->shp[dem->shape[i]].r, delta = rr - dem_dot(d, wl->n);
+      if (delta <= 0) continue;
+      c[2]++;
+      r[3] += dem_spring_energy(dem, &dem->pw[dem->shape[i]], delta, dem->law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);
+      rmax = PetscMax(rmax, delta / rr);
+    }
+  }
+  r[5] = rmax;
+  PetscCallMPI(MPI_Allreduce(r, g, 5, MPI_DOUBLE, MPI_SUM, dem->comm));
+  PetscCallMPI(MPI_Allreduce(&r[5], &g[5], 1, MPI_DOUBLE, MPI_MAX, dem->comm));
+  PetscCallMPI(MPI_Allreduce(c, cg, 3, MPIU_INT, MPI_SUM, dem->comm));
+  st->n             = cg[0];
+  st->contacts      = cg[1];
+  st->wall_contacts = cg[2];
+  st->ke            = g[0];
+  st->ke_rot        = g[1];
+  st->pe_grav       = g[2];
+  st->pe_spring     = g[3];
+  st->checksum      = g[4];
+  st->max_overlap   = g[5];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord)
+{
+  const Domain *dom = dem->dom;
+  double        dmax = 0, vol = 0, vg, hsum = 0;
+  PetscInt      gx, gy;
+  double       *top, *gtop;
+  DemStats      st;
+
+  PetscFunctionBeginUser;
+  for (PetscInt s = 0; s < dem->nshape; s++) dmax = PetscMax(dmax, 2 * dem->shp[s].r);
+  gx = PetscMax(1, (PetscInt)(dom->len[0] / dmax));
+  gy = PetscMax(1, (PetscInt)(dom->len[1] / dmax));
+  PetscCall(PetscMalloc2(gx * gy, &top, gx * gy, &gtop));
+  for (PetscInt c = 0; c < gx * gy; c++) top[c] = -PETSC_MAX_REAL;
+  for (PetscInt i = 0; i < dem->n; i++) {
+    const double   r  = dem->shp[dem->shape[i]].r, *x = dem->x + 3 * i;
+    const PetscInt cx = PetscMin(gx - 1, PetscMax(0, (PetscInt)((x[0] - dom->lo[0]) / dom->len[0] * gx)));
+    const PetscInt cy = PetscMin(gy - 1, PetscMax(0, (PetscInt)((x[1] - dom->lo[1]) / dom->len[1] * gy)));
+    top[cx + gx * cy] = PetscMax(top[cx + gx * cy], x[2] + r - dom->lo[2]);
+    vol += 4.0 / 3.0 * PETSC_PI * r * r * r;
+  }
+  PetscCallMPI(MPI_Allreduce(top, gtop, (PetscMPIInt)(gx * gy), MPI_DOUBLE, MPI_MAX, dem->comm));
+  PetscCallMPI(MPI_Allreduce(&vol, &vg, 1, MPI_DOUBLE, MPI_SUM, dem->comm));
+  PetscInt nc = 0;
+  for (PetscInt c = 0; c < gx * gy; c++)
+    if (gtop[c] > -PETSC_MAX_REAL) {
+      hsum += gtop[c];
+      nc++;
+    }
+  PetscCall(PetscFree2(top, gtop));
+  PetscCall(DemGetStats(dem, &st));
+  *phi   = nc ? vg / (dom->len[0] * dom->len[1] * hsum / nc) : 0;
+  *coord = st.n ? 2.0 * st.contacts / st.n : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemView(Dem dem, PetscViewer v)
+{
+  const char *law[] = {"linear spring-dashpot, Coulomb without history", "linear spring-dashpot with tangential history", "Hertz-Mindlin with tangential history"};
+  DemStats    st;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetStats(dem, &st));
+  PetscCall(PetscViewerASCIIPrintf(v, "DEM: %" PetscInt_FMT " spheres, %" PetscInt_FMT " shape(s), %s; rotation %s; %" PetscInt_FMT " wall(s)\n", st.n, dem->nshape, law[dem->law], dem->rotation ? "on" : "off (no friction)", dem->nwall));
+  for (PetscInt s = 0; s < dem->nshape; s++)
+    for (PetscInt t = -1; t < dem->nshape; t++) {
+      PetscReal tc, e;
+      PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
+      const DemPairParams *p = t < 0 ? &dem->pw[s] : &dem->pp[s * dem->nshape + t];
+      /* undamped overlap bound at the impact speed: linear V sqrt(meff/kn), hertz 1.0934 X */
+      double ov = dem->law == DEM_LAW_HERTZ ? 1.0934 * pow(p->meff * dem->vimpact * dem->vimpact / (4.0 / 3.0 * p->es * sqrt(p->reff)), 0.4) : dem->vimpact * sqrt(p->meff / p->kn);
+      PetscCall(PetscViewerASCIIPrintf(v, "  contact r=%g m with %s: Tc = %.3g s, dt/Tc = %.3g (limit %g), e = %g, overlap at %g m/s <= %.3g r\n", (double)dem->shp[s].r, t < 0 ? "wall" : "particle", (double)tc, (double)(dem->dt / tc), (double)dem->dt_frac, (double)e, (double)dem->vimpact, ov / dem->shp[s].r));
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemWriteOutput(Dem dem, Io io)
+{
+  double *r;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Output, 0, 0, 0, 0));
+  PetscCall(PetscMalloc1(dem->n + 1, &r));
+  for (PetscInt i = 0; i < dem->n; i++) r[i] = dem->shp[dem->shape[i]].r;
+  PetscCall(IoWriteParticles(io, "position", dem->n, 3, dem->x));
+  PetscCall(IoWriteParticles(io, "velocity", dem->n, 3, dem->v));
+  PetscCall(IoWriteParticles(io, "angular_velocity", dem->n, 3, dem->w));
+  PetscCall(IoWriteParticles(io, "quaternion", dem->n, 4, dem->q));
+  PetscCall(IoWriteParticles(io, "radius", dem->n, 1, r));
+  PetscCall(IoWriteParticlesInt(io, "id", dem->n, dem->id));
+  PetscCall(PetscFree(r));
+  PetscCall(PetscLogEventEnd(DEM_Output, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt *verlet, PetscInt *brute)
+{
+  DemStats st;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetStats(dem, &st));
+  *verlet = st.contacts;
+  *brute  = 0;
+  for (PetscInt i = 0; i < dem->n; i++)
+    for (PetscInt j = i + 1; j < dem->n; j++) {
+      const double rs   = dem->shp[dem->shape[i]].r + dem->shp[dem->shape[j]].r;
+      const double d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
+      if (dem_dot(d, d) < rs * rs) (*brute)++;
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DemOutput(Dem dem, Io io)
+{
+  PetscFunctionBeginUser;
+  PetscCall(IoFrameBegin(io, dem->t, dem->step));
+  PetscCall(DemWriteOutput(dem, io));
+  PetscCall(IoFrameEnd(io));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemRun(Dem dem, Io io)
+{
+  PetscLogDouble t0, now;
+  PetscReal      next = dem->t + dem->progress_dt;
+  PetscBool      due;
+  const PetscInt s0 = dem->step;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  if (io) {
+    PetscCall(IoDue(io, dem->t, &due));
+    if (due) PetscCall(DemOutput(dem, io));
+  }
+  while (dem->t < dem->t_end - 0.5 * dem->dt) {
+    PetscCall(DemStep(dem));
+    if (io) {
+      PetscCall(IoDue(io, dem->t, &due));
+      if (due) PetscCall(DemOutput(dem, io));
+    }
+    if (dem->progress_dt > 0 && dem->t >= next - 0.5 * dem->dt) {
+      DemStats st;
+      PetscCall(DemGetStats(dem, &st));
+      PetscCall(PetscTime(&now));
+      const double rate = (dem->step - s0) / PetscMax(now - t0, 1e-9);
+      PetscCall(PetscPrintf(dem->comm, "t %.4f s  step %" PetscInt_FMT "  %.0f steps/s  ETA %.0f s  KE %.4g J  contacts %" PetscInt_FMT "  max overlap/r %.3g\n", (double)dem->t, dem->step, rate, (dem->t_end - dem->t) / dem->dt / rate, (double)(st.ke + st.ke_rot), st.contacts + st.wall_contacts, (double)st.max_overlap));
+      PetscCheck(PetscIsNormalReal(st.ke) || st.ke == 0, dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": kinetic energy is not finite; lower -dem_dt", dem->step);
+      next += dem->progress_dt;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,155 @@
+/* Insertion. A cubic lattice of nx x ny x nz sites of spacing a, site (i,j,k) at
+ * origin + ((i+1/2) a, (j+1/2) a, (k+1/2) a), id = i + nx (j + ny k). Optional perturbations,
+ * all functions of the site and the seed only (so independent of the rank count):
+ *   position jitter, uniform in +-jitter (a - d_max)/2 per axis;
+ *   velocity v_c = V (2 h_c - 1), h_c = frac(43758.5453 sin(12.9898 (id+1) + 78.233 c)),
+ *   c = 1, 2, 3 — the symmetry-breaking velocity of the LIGGGHTS peer decks, so both codes start
+ *   from the same state; shapes drawn by number fraction (-dem_radius_fraction).
+ * Or: particles from an HDF5 file that Sable wrote (-dem_init_file), the last frame's state. */
+#include "dem/dem_impl.h"
+
+static double dem_hash_frac(double n, int c)
+{
+  const double s = 43758.5453 * sin(12.9898 * n + 78.233 * c);
+  return s - floor(s);
+}
+
+/* splitmix64: a uniform double in [0,1) from (seed, site, stream) */
+static double dem_uniform(PetscInt seed, PetscInt site, int stream)
+{
+  uint64_t z = (uint64_t)seed * 0x9E3779B97F4A7C15ULL + (uint64_t)site * 0xBF58476D1CE4E5B9ULL + (uint64_t)stream * 0x94D049BB133111EBULL;
+  z          = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z          = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return (double)(z >> 11) * (1.0 / 9007199254740992.0);
+}
+
+PetscErrorCode DemInsertSetFromOptions(Dem dem)
+{
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(dem->comm, NULL, "DEM insertion", NULL);
+  PetscInt nl = 3;
+  PetscCall(PetscOptionsIntArray("-dem_lattice", "Cubic lattice site counts nx,ny,nz (0 = no lattice)", NULL, dem->lat, &nl, &set));
+  PetscCheck(!set || nl == 3, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_lattice takes 3 counts nx,ny,nz, got %" PetscInt_FMT, nl);
+  PetscCall(PetscOptionsReal("-dem_lattice_spacing", "Lattice spacing (m); default 1.05 x the largest diameter", NULL, dem->lat_a, &dem->lat_a, NULL));
+  SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region (m); default the domain's lower corner", NULL, dem->lat_origin, 3, &dem->lat_origin_set);
+  PetscCall(PetscOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2, in [0,1]", NULL, dem->lat_jitter, &dem->lat_jitter, NULL));
+  PetscCall(PetscOptionsReal("-dem_lattice_speed", "Amplitude of the deterministic random initial velocity (m/s)", NULL, dem->lat_speed, &dem->lat_speed, NULL));
+  PetscCall(PetscOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, dem->seed, &dem->seed, NULL));
+  PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles)", NULL, dem->init_file, dem->init_file, sizeof dem->init_file, NULL));
+  PetscOptionsEnd();
+  for (int k = 0; k < 3; k++) PetscCheck(dem->lat[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice count %" PetscInt_FMT " must be >= 0", dem->lat[k]);
+  PetscCheck(dem->lat_jitter >= 0 && dem->lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->lat_jitter);
+  PetscCheck(dem->lat_speed >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_speed %g must be >= 0", (double)dem->lat_speed);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscBool dem_in_box(const Domain *dom, const double *x)
+{
+  for (int k = 0; k < 3; k++) {
+    /* the last rank along an axis also owns its upper face */
+    const PetscBool last = dom->cstart[k] + dom->ccount[k] == dom->cells[k];
+    if (x[k] < dom->sublo[k] || (last ? x[k] > dom->subhi[k] : x[k] >= dom->subhi[k])) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+static PetscErrorCode DemInsertLattice(Dem dem)
+{
+  double   dmax = 0, a, gap;
+  PetscInt nsite = dem->lat[0] * dem->lat[1] * dem->lat[2];
+
+  PetscFunctionBeginUser;
+  for (PetscInt s = 0; s < dem->nshape; s++) dmax = PetscMax(dmax, 2 * dem->shp[s].r);
+  a = dem->lat_a > 0 ? dem->lat_a : 1.05 * dmax;
+  PetscCheck(a >= dmax, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_spacing %g must be >= the largest diameter %g", a, dmax);
+  gap = 0.5 * (a - dmax) * dem->lat_jitter;
+  if (!dem->lat_origin_set)
+    for (int k = 0; k < 3; k++) dem->lat_origin[k] = dem->dom->lo[k];
+  for (PetscInt n = 0; n < nsite; n++) {
+    const PetscInt ijk[3] = {n % dem->lat[0], (n / dem->lat[0]) % dem->lat[1], n / (dem->lat[0] * dem->lat[1])};
+    DemParticle    p;
+    double         u = dem_uniform(dem->seed, n, 0), acc = 0;
+    PetscCall(PetscMemzero(&p, sizeof p));
+    p.id    = n;
+    p.q[0]  = 1;
+    p.shape = dem->nshape - 1;
+    for (PetscInt s = 0; s < dem->nshape; s++) {
+      acc += dem->shape_frac[s];
+      if (u < acc) {
+        p.shape = s;
+        break;
+      }
+    }
+    for (int k = 0; k < 3; k++) {
+      p.x[k] = dem->lat_origin[k] + (ijk[k] + 0.5) * a + gap * (2 * dem_uniform(dem->seed, n, 1 + k) - 1);
+      p.v[k] = dem->lat_speed * (2 * dem_hash_frac((double)(n + 1), k + 1) - 1);
+    }
+    if (dem_in_box(dem->dom, p.x)) PetscCall(DemAddParticle(dem, &p));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The shape with radius r, created (with the -dem_density) if new. */
+static PetscErrorCode DemShapeForRadius(Dem dem, double r, PetscInt *s)
+{
+  PetscFunctionBeginUser;
+  for (*s = 0; *s < dem->nshape; (*s)++)
+    if (PetscAbsReal(dem->shp[*s].r - r) <= 1e-12 * r) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(dem->nshape < DEM_MAX_SHAPES, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: more than %d distinct radii", dem->init_file, DEM_MAX_SHAPES);
+  PetscCheck(r > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: radius %g must be > 0", dem->init_file, r);
+  dem->shp[dem->nshape]     = dem->shp[0];
+  dem->shp[dem->nshape++].r = r;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
+{
+  const char *names[6] = {"/particles/position", "/particles/velocity", "/particles/angular_velocity", "/particles/quaternion", "/particles/id", "/particles/radius"};
+  const int   width[6] = {3, 3, 3, 4, 1, 1};
+  PetscReal  *d[6];
+  PetscInt    rows[6], nc;
+
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 6; k++) {
+    PetscCall(IoReadDataset(dem->init_file, names[k], &rows[k], &nc, &d[k]));
+    PetscCheck(nc == width[k] && rows[k] == rows[0], dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " x %" PetscInt_FMT " values, expected %" PetscInt_FMT " x %d", dem->init_file, names[k], rows[k], nc, rows[0], width[k]);
+  }
+  for (PetscInt i = 0; i < rows[0]; i++) {
+    DemParticle p;
+    p.id = (PetscInt)d[4][i];
+    PetscCall(DemShapeForRadius(dem, d[5][i], &p.shape));
+    for (int k = 0; k < 3; k++) {
+      p.x[k] = d[0][3 * i + k];
+      p.v[k] = d[1][3 * i + k];
+      p.w[k] = d[2][3 * i + k];
+    }
+    for (int k = 0; k < 4; k++) p.q[k] = d[3][4 * i + k];
+    if (dem_in_box(dem->dom, p.x)) PetscCall(DemAddParticle(dem, &p));
+  }
+  for (int k = 0; k < 6; k++) PetscCall(PetscFree(d[k]));
+  *nfile = rows[0];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Inserts the lattice and/or the file's particles. */
+PetscErrorCode DemInsert(Dem dem)
+{
+  PetscInt want = 0, got = 0, nfile = 0;
+
+  PetscFunctionBeginUser;
+  if (dem->init_file[0]) {
+    PetscCall(DemInsertFile(dem, &nfile));
+    want += nfile;
+  }
+  if (dem->lat[0] * dem->lat[1] * dem->lat[2] > 0) {
+    PetscCall(DemInsertLattice(dem));
+    want += dem->lat[0] * dem->lat[1] * dem->lat[2];
+  }
+  /* a particle outside every rank's box would be lost silently: refuse */
+  PetscCallMPI(MPI_Allreduce(&dem->n, &got, 1, MPIU_INT, MPI_SUM, dem->comm));
+  PetscCheck(got == want, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " of %" PetscInt_FMT " inserted particles lie outside the domain box (-domain_lo/-domain_hi); enlarge it or move the lattice (-dem_lattice_origin)", want - got, want);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

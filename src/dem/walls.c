@@ -1,0 +1,151 @@
+/* Walls: infinite planes given by a point p and a unit normal n pointing into the granular side,
+ * optionally translating at a constant velocity; an axis-aligned box is six such planes facing
+ * inward. A particle touches a plane when its signed distance (x - p).n is below its radius;
+ * the contact uses the same kernels as a particle pair, with the wall as a partner of infinite
+ * mass and radius (m* = m, R* = r). Each wall keeps a list of the particles within r + skin,
+ * rebuilt with the Verlet list, and their tangential springs.
+ * Options: -dem_box xlo,ylo,zlo,xhi,yhi,zhi (m); -dem_plane_<k> px,py,pz,nx,ny,nz (m, -);
+ * -dem_plane_<k>_velocity vx,vy,vz (m/s), k = 0..9. */
+#include "dem/dem_impl.h"
+
+static PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3])
+{
+  DemWall *w;
+  double   nn = sqrt(dem_dot(n, n));
+
+  PetscFunctionBeginUser;
+  PetscCheck(dem->nwall < DEM_MAX_WALLS, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "at most %d walls", DEM_MAX_WALLS);
+  PetscCheck(nn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "wall %" PetscInt_FMT ": the normal must be non-zero", dem->nwall);
+  w = &dem->wall[dem->nwall++];
+  PetscCall(PetscMemzero(w, sizeof *w));
+  for (int k = 0; k < 3; k++) {
+    w->p[k] = p[k];
+    w->n[k] = n[k] / nn;
+    w->v[k] = v[k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemWallsSetFromOptions(Dem dem)
+{
+  PetscReal box[6], pl[6], vel[3];
+  PetscBool set, vset;
+  char      opt[64], optv[80];
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
+  SableOptionsRealN("-dem_box", "Closed box of six inward-facing walls: xlo,ylo,zlo,xhi,yhi,zhi (m)", NULL, box, 6, &set);
+  if (set) {
+    for (int k = 0; k < 3; k++) {
+      double p[3] = {0, 0, 0}, n[3] = {0, 0, 0}, z[3] = {0, 0, 0};
+      PetscCheck(box[k + 3] > box[k], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_box: upper bound %g must exceed lower bound %g on axis %d", (double)box[k + 3], (double)box[k], k);
+      p[k] = box[k];
+      n[k] = 1;
+      PetscCall(DemWallAdd(dem, p, n, z));
+      p[k] = box[k + 3];
+      n[k] = -1;
+      PetscCall(DemWallAdd(dem, p, n, z));
+    }
+  }
+  for (int k = 0; k < 10; k++) {
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_plane_%d", k));
+    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_velocity", k));
+    SableOptionsRealN(opt, "Infinite plane wall: point px,py,pz and normal nx,ny,nz into the granular side (m, -)", NULL, pl, 6, &set);
+    vel[0] = vel[1] = vel[2] = 0;
+    SableOptionsRealN(optv, "Translation velocity of the plane wall (m/s)", NULL, vel, 3, &vset);
+    PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
+    if (set) PetscCall(DemWallAdd(dem, pl, pl + 3, vel));
+  }
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Lists of particles within r + skin of each wall; springs carried over (inv: old -> new index). */
+PetscErrorCode DemWallsBuildLists(Dem dem, const PetscInt *inv)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt wi = 0; wi < dem->nwall; wi++) {
+    DemWall  *w    = &dem->wall[wi];
+    PetscInt *oidx = w->idx, ocnt = w->cnt;
+    double   *oh   = w->hist;
+    w->idx = NULL;
+    w->hist = NULL;
+    w->cnt = 0;
+    w->cap = 0;
+    for (PetscInt i = 0; i < dem->n; i++) {
+      const double d[3] = {dem->x[3 * i] - w->p[0], dem->x[3 * i + 1] - w->p[1], dem->x[3 * i + 2] - w->p[2]};
+      if (dem_dot(d, w->n) >= dem->shp[dem->shape[i]].r + dem->skin) continue;
+      if (w->cnt == w->cap) {
+        w->cap = 2 * w->cap + 256;
+        PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)w->cap, &w->idx));
+        PetscCall(PetscRealloc(3 * sizeof(double) * (size_t)w->cap, &w->hist));
+      }
+      w->idx[w->cnt] = i;
+      for (int k = 0; k < 3; k++) w->hist[3 * w->cnt + k] = 0;
+      w->cnt++;
+    }
+    /* carry springs: the new list is sorted by particle index, so bisect */
+    for (PetscInt a = 0; a < ocnt; a++) {
+      const double *h = oh + 3 * a;
+      if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+      const PetscInt i  = inv ? inv[oidx[a]] : oidx[a];
+      PetscInt       lo = 0, hi = w->cnt;
+      while (hi - lo > 1) {
+        const PetscInt mid = (lo + hi) / 2;
+        if (w->idx[mid] <= i) lo = mid;
+        else hi = mid;
+      }
+      if (w->cnt && w->idx[lo] == i)
+        for (int k = 0; k < 3; k++) w->hist[3 * lo + k] = h[k];
+    }
+    PetscCall(PetscFree(oidx));
+    PetscCall(PetscFree(oh));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Moves the walls by dt and adds their contact forces. */
+PetscErrorCode DemContactsWalls(Dem dem)
+{
+  const double dt = dem->dt;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
+  for (PetscInt wi = 0; wi < dem->nwall; wi++) {
+    DemWall     *w   = &dem->wall[wi];
+    const double nrm[3] = {-w->n[0], -w->n[1], -w->n[2]}; /* from the particle to the wall */
+    for (PetscInt a = 0; a < w->cnt; a++) {
+      const PetscInt       i  = w->idx[a];
+      const double        *xi = dem->x + 3 * i, *vi = dem->v + 3 * i, *wi_ = dem->w + 3 * i;
+      const double         r  = dem->shp[dem->shape[i]].r;
+      const double         d[3] = {xi[0] - w->p[0], xi[1] - w->p[1], xi[2] - w->p[2]};
+      const double         delta = r - dem_dot(d, w->n);
+      double              *xi_t  = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
+      const DemPairParams *p     = &dem->pw[dem->shape[i]];
+      if (delta <= 0) {
+        if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
+        continue;
+      }
+      const double l = r - 0.5 * delta;
+      double       vr[3], c[3], kt, gt, F[3];
+      dem_cross(wi_, nrm, c);
+      for (int k = 0; k < 3; k++) vr[k] = w->v[k] - vi[k] - l * c[k];
+      const double vn = dem_dot(vr, nrm);
+      const double fn = dem_normal_force(dem->law, p, delta, vn, &kt, &gt);
+      for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k];
+      if (p->mu > 0) {
+        double vt[3], ft[3];
+        for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
+        dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft);
+        if (dem->rotation) {
+          dem_cross(nrm, ft, c);
+          for (int k = 0; k < 3; k++) dem->tq[3 * i + k] -= l * c[k];
+        }
+        for (int k = 0; k < 3; k++) F[k] -= ft[k];
+      }
+      for (int k = 0; k < 3; k++) dem->f[3 * i + k] += F[k];
+    }
+  }
+  PetscCall(PetscLogEventEnd(DEM_Walls, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
