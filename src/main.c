@@ -12,15 +12,16 @@ static PetscBool sable_traceback = PETSC_FALSE;
 
 static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *func, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
-  PetscMPIInt rank = 0, size = 1;
+  PetscMPIInt rank = 0, size = 1, wsize = 1;
 
   (void)ctx;
   if (sable_traceback) return PetscTraceBackErrorHandler(comm, line, func, file, n, p, mess, NULL);
   if (p != PETSC_ERROR_INITIAL) return n;
   MPI_Comm_size(comm, &size);
   MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &wsize);
   if (!rank || size == 1) {
-    if (size == 1 && comm != PETSC_COMM_WORLD && comm != MPI_COMM_WORLD) {
+    if (size == 1 && wsize > 1) { /* one rank's error: say which */
       int wr = 0;
       MPI_Comm_rank(MPI_COMM_WORLD, &wr);
       fprintf(stderr, "sable: error (rank %d): %s\n", wr, mess ? mess : "unknown error");

@@ -16,6 +16,11 @@ static void dem_hertz_reduced(double c, double *e, double *tau)
   const double h = 2e-4;
   double       x = 0, u = 1, t = 0;
   for (;;) {
+    if (t > 50) { /* overdamped: the overlap never returns to zero in time, no rebound */
+      *tau = t;
+      *e   = 0;
+      return;
+    }
     double k[4][2], xs = x, us = u;
     for (int s = 0; s < 4; s++) {
       const double xx = xs > 0 ? xs : 0;
@@ -43,7 +48,7 @@ static void dem_hertz_reduced(double c, double *e, double *tau)
 
 PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau)
 {
-  double lo = 0, hi = 8, ee, tt;
+  double lo = 0, hi = 1, ee, tt;
 
   PetscFunctionBeginUser;
   if (e >= 1) {

@@ -57,6 +57,7 @@ PetscErrorCode DemSetParticle(Dem dem, PetscInt i, const DemParticle *p);
 /* Contact time and restitution the parameters give for a pair of shape s with shape t (t < 0:
  * the wall), at impact speed v (only the hertz law depends on v). */
 PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v, PetscReal *tc, PetscReal *e);
-/* Number of particle-particle pairs in contact found by the Verlet list and by an O(N^2)
- * search over the same positions; they must agree. */
-PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt *verlet, PetscInt *brute);
+/* Local particle-particle pairs in contact found by the Verlet list ([0]) and by an O(N^2)
+ * search over the same positions ([1]), with an order-independent fingerprint of the id pairs
+ * of each set; they must agree. Not collective. */
+PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]);

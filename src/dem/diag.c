@@ -138,19 +138,37 @@ PetscErrorCode DemWriteOutput(Dem dem, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt *verlet, PetscInt *brute)
+/* order-independent fingerprint of a pair of ids */
+static double dem_pair_key(PetscInt a, PetscInt b)
 {
-  DemStats st;
+  uint64_t z = (uint64_t)PetscMin(a, b) * 0x9E3779B97F4A7C15ULL ^ (uint64_t)PetscMax(a, b) * 0xC2B2AE3D27D4EB4FULL;
+  z          = (z ^ (z >> 31)) * 0x94D049BB133111EBULL;
+  return (double)(z >> 40); /* 24 bits: sums stay exact in double */
+}
 
+PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2])
+{
   PetscFunctionBeginUser;
-  PetscCall(DemGetStats(dem, &st));
-  *verlet = st.contacts;
-  *brute  = 0;
+  count[0] = count[1] = 0;
+  key[0] = key[1] = 0;
+  for (PetscInt i = 0; i < dem->n; i++)
+    for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
+      const PetscInt j    = dem->nl.nbr[a];
+      const double   rs   = dem->shp[dem->shape[i]].r + dem->shp[dem->shape[j]].r;
+      const double   d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
+      if (dem_dot(d, d) < rs * rs) {
+        count[0]++;
+        key[0] += dem_pair_key(dem->id[i], dem->id[j]);
+      }
+    }
   for (PetscInt i = 0; i < dem->n; i++)
     for (PetscInt j = i + 1; j < dem->n; j++) {
       const double rs   = dem->shp[dem->shape[i]].r + dem->shp[dem->shape[j]].r;
       const double d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
-      if (dem_dot(d, d) < rs * rs) (*brute)++;
+      if (dem_dot(d, d) < rs * rs) {
+        count[1]++;
+        key[1] += dem_pair_key(dem->id[i], dem->id[j]);
+      }
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

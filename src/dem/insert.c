@@ -137,7 +137,7 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
 /* Collective. Inserts the lattice and/or the file's particles. */
 PetscErrorCode DemInsert(Dem dem)
 {
-  PetscInt want = 0, got = 0, nfile = 0;
+  PetscInt want = 0, got = 0, nfile = 0, n0 = dem->n, added;
 
   PetscFunctionBeginUser;
   if (dem->init_file[0]) {
@@ -149,7 +149,8 @@ PetscErrorCode DemInsert(Dem dem)
     want += dem->lat[0] * dem->lat[1] * dem->lat[2];
   }
   /* a particle outside every rank's box would be lost silently: refuse */
-  PetscCallMPI(MPI_Allreduce(&dem->n, &got, 1, MPIU_INT, MPI_SUM, dem->comm));
+  added = dem->n - n0;
+  PetscCallMPI(MPI_Allreduce(&added, &got, 1, MPIU_INT, MPI_SUM, dem->comm));
   PetscCheck(got == want, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " of %" PetscInt_FMT " inserted particles lie outside the domain box (-domain_lo/-domain_hi); enlarge it or move the lattice (-dem_lattice_origin)", want - got, want);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
