@@ -144,6 +144,20 @@ static PetscErrorCode HullAddPoint(HullWork *w, PetscInt p, PetscInt **vis, Pets
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+const char *ConvexHullStatusText(ConvexHullStatus s)
+{
+  switch (s) {
+  case CONVEX_HULL_COINCIDENT:
+    return "all vertices coincide";
+  case CONVEX_HULL_COLLINEAR:
+    return "all vertices are collinear";
+  case CONVEX_HULL_COPLANAR:
+    return "all vertices are coplanar";
+  default:
+    return "ok";
+  }
+}
+
 PetscErrorCode ConvexHullBuild(PetscInt n, const PetscReal x[], ConvexHull *hull)
 {
   HullWork  w   = {x, 0, NULL, 0, 0};

@@ -19,3 +19,6 @@ typedef struct {
 
 /* Convex hull of n points (incremental, O(n^2)); hull->f is allocated when status is OK. */
 PetscErrorCode ConvexHullBuild(PetscInt n, const PetscReal x[], ConvexHull *hull);
+
+/* "all vertices are coplanar" and the like, for error messages. */
+const char *ConvexHullStatusText(ConvexHullStatus s);

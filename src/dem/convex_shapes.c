@@ -151,7 +151,7 @@ PetscErrorCode ConvexShapeCreateFromFile(const char path[], ConvexShape *shape)
   PetscCheck(n >= 4, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "convex vertex file %s: %" PetscInt_FMT " vertices in %" PetscInt_FMT " lines, at least 4 needed", path, n, lineno);
   PetscCall(ConvexHullBuild(n, x, &hull));
   if (hull.status != CONVEX_HULL_OK) PetscCall(PetscFree(x));
-  PetscCheck(hull.status == CONVEX_HULL_OK, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "convex vertex file %s: its %" PetscInt_FMT " vertices do not span a solid (largest spread %g <= tolerance %g: coincident, collinear or coplanar)", path, n, (double)hull.measure, (double)hull.tol);
+  PetscCheck(hull.status == CONVEX_HULL_OK, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "convex vertex file %s: its %" PetscInt_FMT " vertices do not span a solid: %s (largest spread %g <= tolerance %g)", path, n, ConvexHullStatusText(hull.status), (double)hull.measure, (double)hull.tol);
   PetscCall(PetscFree(hull.f));
   PetscCall(ConvexShapeCreateFromVertices(n, x, shape));
   PetscCall(PetscFree(x));

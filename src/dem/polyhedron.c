@@ -97,20 +97,6 @@ static void convex_jacobi3(PetscReal A[9], PetscReal lam[3], PetscReal Q[9])
   }
 }
 
-static const char *HullStatusText(ConvexHullStatus s)
-{
-  switch (s) {
-  case CONVEX_HULL_COINCIDENT:
-    return "all vertices coincide";
-  case CONVEX_HULL_COLLINEAR:
-    return "all vertices are collinear";
-  case CONVEX_HULL_COPLANAR:
-    return "all vertices are coplanar";
-  default:
-    return "ok";
-  }
-}
-
 /* Keep only hull vertices, compute mass properties, move to the principal frame. */
 static PetscErrorCode ShapeFromHull(PetscInt n, const PetscReal xyz[], const ConvexHull *hull, ConvexShape *s)
 {
@@ -162,7 +148,7 @@ PetscErrorCode ConvexShapeCreateFromVertices(PetscInt n, const PetscReal xyz[], 
   PetscCheck(n >= 4, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "convex polyhedron: %" PetscInt_FMT " vertices given, at least 4 needed", n);
   for (PetscInt i = 0; i < 3 * n; i++) PetscCheck(!PetscIsInfOrNanReal(xyz[i]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "convex polyhedron: vertex %" PetscInt_FMT " has a non-finite coordinate %g", i / 3, (double)xyz[i]);
   PetscCall(ConvexHullBuild(n, xyz, &hull));
-  PetscCheck(hull.status == CONVEX_HULL_OK, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "convex polyhedron: %s (%" PetscInt_FMT " vertices, largest spread %g <= tolerance %g); a solid needs 4 vertices not in one plane", HullStatusText(hull.status), n, (double)hull.measure, (double)hull.tol);
+  PetscCheck(hull.status == CONVEX_HULL_OK, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "convex polyhedron: %s (%" PetscInt_FMT " vertices, largest spread %g <= tolerance %g); a solid needs 4 vertices not in one plane", ConvexHullStatusText(hull.status), n, (double)hull.measure, (double)hull.tol);
   shape->kind = CONVEX_POLYHEDRON;
   PetscCall(ShapeFromHull(n, xyz, &hull, shape));
   PetscCall(PetscFree(hull.f));
