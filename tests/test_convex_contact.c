@@ -1,0 +1,236 @@
+/* Narrow phase of convex shapes against hand-computed contact geometry.
+ *
+ * Two cubes of edge a = 1 cm, A at the origin (axis-aligned), B above it overlapping by
+ * delta = a/100 in three touching modes, with B's centre offset sideways:
+ *   face-to-face   B axis-aligned: depth delta, normal +z, contact point at z = a/2 - delta/2
+ *                  inside the overlap patch (MPR returns a point of the patch, not its centre);
+ *   edge-to-face   B turned 45 deg about x (an edge along x down): depth delta, normal +z,
+ *                  point at z = a/2 - delta/2, y = y_B, x on the edge within A's face;
+ *   vertex-to-face B's body diagonal turned to -z (a corner down): depth delta, normal +z,
+ *                  point = (x_B, y_B, a/2 - delta/2) exactly.
+ * The vertex case is repeated with the whole scene rotated and translated (the answer must
+ * rotate with it) and with A and B swapped (the normal must flip). Two cubes whose bounding
+ * spheres overlap but which do not touch must give no contact. A cylinder standing on the cube
+ * checks the analytic cylinder support.
+ * Shape-plane: the cube on the floor z = 0 flat, on an edge, on a corner, each sunk by delta:
+ * depth delta, normal -z (from the cube into the wall), point (x_c, y_c, -delta/2); a cylinder
+ * on its end (point = disc centre), on its side (point under the axis midpoint), and tilted
+ * (depth = h/2 cos t + r sin t - z_c).
+ * Bound: 1e-9 a for MPR results (its portal tolerance is 1e-10 of the bounding radii);
+ * 1e-12 a for the closed-form plane contacts.
+ */
+#include "dem/convex.h"
+#include "dem/convex_quat.h"
+
+static int nfail = 0;
+
+static void check(const char *name, double measured, double bound)
+{
+  const int ok = measured <= bound;
+  if (!ok) nfail++;
+  printf("%s %s: %.3e (bound %.1e)\n", ok ? "PASS" : "FAIL", name, measured, bound);
+}
+
+static double dist3(const double a[3], const double b[3])
+{
+  double d[3];
+  convex_sub(a, b, d);
+  return convex_norm(d);
+}
+
+/* distance of t outside the interval [lo, hi] */
+static double outside(double t, double lo, double hi) { return t < lo ? lo - t : (t > hi ? t - hi : 0); }
+
+static const double a = 0.01, delta = 0.0001, tol_mpr = 1e-9 * 0.01, tol_plane = 1e-12 * 0.01;
+static const double ident[4] = {1, 0, 0, 0}, ez[3] = {0, 0, 1};
+
+/* Quaternion turning the body diagonal (1,1,1)/sqrt3 onto -z: a cube corner points down. */
+static void corner_down(double q[4])
+{
+  const double u[3] = {1 / sqrt(3.0), 1 / sqrt(3.0), 1 / sqrt(3.0)}, m[3] = {0, 0, -1};
+  double       ax[3];
+  convex_cross(u, m, ax);
+  const double s = convex_norm(ax);
+  for (int k = 0; k < 3; k++) ax[k] /= s;
+  convex_quat_from_axis_angle(ax, acos(convex_dot(u, m)), q);
+}
+
+static void edge_down(double q[4])
+{
+  const double ex[3] = {1, 0, 0};
+  convex_quat_from_axis_angle(ex, PETSC_PI / 4, q);
+}
+
+static void report(const char *mode, const ConvexContact *c, const double n_exp[3], double point_err)
+{
+  char buf[160];
+  snprintf(buf, sizeof buf, "%s: overlap found (1 - found)", mode);
+  check(buf, c->overlap ? 0 : 1, 0);
+  snprintf(buf, sizeof buf, "%s: |depth - delta| / a", mode);
+  check(buf, fabs(c->depth - delta) / a, tol_mpr / a);
+  snprintf(buf, sizeof buf, "%s: |normal - expected|", mode);
+  check(buf, dist3(c->normal, n_exp), tol_mpr / a);
+  snprintf(buf, sizeof buf, "%s: contact point error / a", mode);
+  check(buf, point_err / a, tol_mpr / a);
+}
+
+static PetscErrorCode TestCubeCube(const ConvexShape *cube)
+{
+  ConvexPose    A = {{0, 0, 0}, {1, 0, 0, 0}}, B;
+  ConvexContact c;
+  double        e;
+
+  PetscFunctionBeginUser;
+  B = (ConvexPose){{0.3 * a, 0.2 * a, a - delta}, {1, 0, 0, 0}};
+  PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
+  e = fabs(c.point[2] - (a / 2 - delta / 2)) + outside(c.point[0], B.x[0] - a / 2, a / 2) + outside(c.point[1], B.x[1] - a / 2, a / 2);
+  report("cube-cube face-to-face", &c, ez, e);
+  printf("      (face-to-face point (%.4f, %.4f) a; the overlap patch centre is (0.15, 0.10) a)\n", c.point[0] / a, c.point[1] / a);
+
+  B = (ConvexPose){{0.2 * a, 0.1 * a, a / 2 + a / sqrt(2.0) - delta}, {0}};
+  edge_down(B.q);
+  PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
+  e = fabs(c.point[2] - (a / 2 - delta / 2)) + fabs(c.point[1] - B.x[1]) + outside(c.point[0], B.x[0] - a / 2, a / 2);
+  report("cube-cube edge-to-face", &c, ez, e);
+
+  B = (ConvexPose){{0.1 * a, -0.15 * a, a / 2 + a * sqrt(3.0) / 2 - delta}, {0}};
+  corner_down(B.q);
+  PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
+  {
+    const double p[3] = {B.x[0], B.x[1], a / 2 - delta / 2};
+    report("cube-cube vertex-to-face", &c, ez, dist3(c.point, p));
+  }
+  {
+    ConvexContact c2;
+    const double  mz[3] = {0, 0, -1}, p[3] = {B.x[0], B.x[1], a / 2 - delta / 2};
+    PetscCall(ConvexCollide(cube, &B, cube, &A, &c2));
+    report("cube-cube vertex-to-face, A and B swapped", &c2, mz, dist3(c2.point, p));
+  }
+  { /* the same scene rotated by Q and shifted by T */
+    const double  ax0[3] = {-0.4, 0.7, 0.2}, T[3] = {0.31, -0.12, 2.5};
+    double        ax[3], Q[4], M[9], n_exp[3], p[3], pr[3], qa[4], qb[4];
+    ConvexPose    A2, B2;
+    ConvexContact c3;
+    for (int k = 0; k < 3; k++) ax[k] = ax0[k] / convex_norm(ax0);
+    convex_quat_from_axis_angle(ax, 2.1, Q);
+    convex_quat_to_matrix(Q, M);
+    convex_quat_mul(Q, A.q, qa);
+    convex_quat_mul(Q, B.q, qb);
+    convex_mat_vec(M, A.x, A2.x);
+    convex_mat_vec(M, B.x, B2.x);
+    for (int k = 0; k < 3; k++) {
+      A2.x[k] += T[k], B2.x[k] += T[k];
+      A2.q[k] = qa[k], B2.q[k] = qb[k];
+    }
+    A2.q[3] = qa[3], B2.q[3] = qb[3];
+    PetscCall(ConvexCollide(cube, &A2, cube, &B2, &c3));
+    convex_mat_vec(M, ez, n_exp);
+    p[0] = B.x[0], p[1] = B.x[1], p[2] = a / 2 - delta / 2;
+    convex_mat_vec(M, p, pr);
+    for (int k = 0; k < 3; k++) pr[k] += T[k];
+    report("cube-cube vertex-to-face, scene rotated", &c3, n_exp, dist3(c3.point, pr));
+  }
+  B = (ConvexPose){{1.02 * a, 1.02 * a, 0}, {0}}; /* bounding spheres overlap, cubes do not */
+  edge_down(B.q);
+  PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
+  check("cube-cube near miss (corner gap 0.02 a): no overlap (1 if found)", c.overlap ? 1 : 0, 0);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TestCylinderCube(const ConvexShape *cube)
+{
+  ConvexShape   cyl;
+  ConvexPose    A = {{0, 0, 0}, {1, 0, 0, 0}}, B;
+  ConvexContact c;
+  const double  r = 0.3 * a, h = 0.8 * a;
+
+  PetscFunctionBeginUser;
+  PetscCall(ConvexShapeCreateCylinder(r, h, &cyl));
+  B = (ConvexPose){{0.1 * a, 0.05 * a, a / 2 + h / 2 - delta}, {1, 0, 0, 0}};
+  PetscCall(ConvexCollide(cube, &A, &cyl, &B, &c));
+  {
+    const double ez_[3] = {0, 0, 1};
+    double       e      = fabs(c.point[2] - (a / 2 - delta / 2)) + outside(hypot(c.point[0] - B.x[0], c.point[1] - B.x[1]), 0, r);
+    report("cube-cylinder end-to-face", &c, ez_, e);
+  }
+  PetscCall(ConvexShapeDestroy(&cyl));
+  PetscFunctionReturn(0);
+}
+
+static void plane_check(const char *mode, const ConvexContact *c, double depth, const double p[3])
+{
+  char         buf[160];
+  const double mz[3] = {0, 0, -1};
+  snprintf(buf, sizeof buf, "%s: overlap found (1 - found)", mode);
+  check(buf, c->overlap ? 0 : 1, 0);
+  snprintf(buf, sizeof buf, "%s: |depth - expected| / a", mode);
+  check(buf, fabs(c->depth - depth) / a, tol_plane / a);
+  snprintf(buf, sizeof buf, "%s: |normal - (0,0,-1)|", mode);
+  check(buf, dist3(c->normal, mz), 1e-15);
+  if (p) {
+    snprintf(buf, sizeof buf, "%s: contact point error / a", mode);
+    check(buf, dist3(c->point, p) / a, tol_plane / a);
+  }
+}
+
+static PetscErrorCode TestPlane(const ConvexShape *cube)
+{
+  const double  p0[3] = {0, 0, 0}, x0 = 0.37 * a, y0 = -0.21 * a, r = 0.3 * a, h = 0.8 * a, t = 0.3;
+  const double  p[3] = {x0, y0, -delta / 2};
+  ConvexPose    B;
+  ConvexContact c;
+  ConvexShape   cyl;
+
+  PetscFunctionBeginUser;
+  B = (ConvexPose){{x0, y0, a / 2 - delta}, {1, 0, 0, 0}};
+  PetscCall(ConvexCollidePlane(cube, &B, p0, ez, &c));
+  plane_check("cube-plane flat", &c, delta, p);
+  B.x[2] = a / sqrt(2.0) - delta;
+  edge_down(B.q);
+  PetscCall(ConvexCollidePlane(cube, &B, p0, ez, &c));
+  plane_check("cube-plane edge", &c, delta, p);
+  B.x[2] = a * sqrt(3.0) / 2 - delta;
+  corner_down(B.q);
+  PetscCall(ConvexCollidePlane(cube, &B, p0, ez, &c));
+  plane_check("cube-plane corner", &c, delta, p);
+  B.x[2] += 2 * delta;
+  PetscCall(ConvexCollidePlane(cube, &B, p0, ez, &c));
+  check("cube-plane corner lifted by delta: no overlap (1 if found)", c.overlap ? 1 : 0, 0);
+
+  PetscCall(ConvexShapeCreateCylinder(r, h, &cyl));
+  B = (ConvexPose){{x0, y0, h / 2 - delta}, {1, 0, 0, 0}};
+  PetscCall(ConvexCollidePlane(&cyl, &B, p0, ez, &c));
+  plane_check("cylinder-plane on its end", &c, delta, p);
+  B.x[2] = r - delta;
+  edge_down(B.q); /* 45 deg about x: the axis is not vertical; use 90 deg for the side */
+  {
+    const double ex[3] = {1, 0, 0};
+    convex_quat_from_axis_angle(ex, PETSC_PI / 2, B.q);
+  }
+  PetscCall(ConvexCollidePlane(&cyl, &B, p0, ez, &c));
+  plane_check("cylinder-plane on its side", &c, delta, p);
+  {
+    const double ex[3] = {1, 0, 0};
+    convex_quat_from_axis_angle(ex, t, B.q);
+  }
+  B.x[2] = 0.5 * h * cos(t) + r * sin(t) - delta;
+  PetscCall(ConvexCollidePlane(&cyl, &B, p0, ez, &c));
+  plane_check("cylinder-plane tilted 0.3 rad", &c, delta, NULL);
+  PetscCall(ConvexShapeDestroy(&cyl));
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  ConvexShape cube;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, "convex narrow phase test"));
+  PetscCall(ConvexShapeCreateCube(a, &cube));
+  PetscCall(TestCubeCube(&cube));
+  PetscCall(TestCylinderCube(&cube));
+  PetscCall(TestPlane(&cube));
+  PetscCall(ConvexShapeDestroy(&cube));
+  PetscCall(PetscFinalize());
+  (void)ident;
+  return nfail ? 1 : 0;
+}
