@@ -2,10 +2,11 @@
  *
  * Two cubes of edge a = 1 cm, A at the origin (axis-aligned), B above it overlapping by
  * delta = a/100 in three touching modes, with B's centre offset sideways:
- *   face-to-face   B axis-aligned: depth delta, normal +z, contact point at z = a/2 - delta/2
- *                  inside the overlap patch (MPR returns a point of the patch, not its centre);
+ *   face-to-face   B axis-aligned: depth delta, normal +z, contact point at the centre of
+ *                  the overlap patch, at z = a/2 - delta/2;
  *   edge-to-face   B turned 45 deg about x (an edge along x down): depth delta, normal +z,
- *                  point at z = a/2 - delta/2, y = y_B, x on the edge within A's face;
+ *                  point at z = a/2 - delta/2, y = y_B, x mid-way along the part of the
+ *                  edge over A's face;
  *   vertex-to-face B's body diagonal turned to -z (a corner down): depth delta, normal +z,
  *                  point = (x_B, y_B, a/2 - delta/2) exactly.
  * The vertex case is repeated with the whole scene rotated and translated (the answer must
@@ -38,11 +39,8 @@ static double dist3(const double a[3], const double b[3])
   return convex_norm(d);
 }
 
-/* distance of t outside the interval [lo, hi] */
-static double outside(double t, double lo, double hi) { return t < lo ? lo - t : (t > hi ? t - hi : 0); }
-
 static const double a = 0.01, delta = 0.0001, tol_mpr = 1e-9 * 0.01, tol_plane = 1e-12 * 0.01;
-static const double ident[4] = {1, 0, 0, 0}, ez[3] = {0, 0, 1};
+static const double ez[3] = {0, 0, 1};
 
 /* Quaternion turning the body diagonal (1,1,1)/sqrt3 onto -z: a cube corner points down. */
 static void corner_down(double q[4])
@@ -78,20 +76,22 @@ static PetscErrorCode TestCubeCube(const ConvexShape *cube)
 {
   ConvexPose    A = {{0, 0, 0}, {1, 0, 0, 0}}, B;
   ConvexContact c;
-  double        e;
 
   PetscFunctionBeginUser;
   B = (ConvexPose){{0.3 * a, 0.2 * a, a - delta}, {1, 0, 0, 0}};
   PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
-  e = fabs(c.point[2] - (a / 2 - delta / 2)) + outside(c.point[0], B.x[0] - a / 2, a / 2) + outside(c.point[1], B.x[1] - a / 2, a / 2);
-  report("cube-cube face-to-face", &c, ez, e);
-  printf("      (face-to-face point (%.4f, %.4f) a; the overlap patch centre is (0.15, 0.10) a)\n", c.point[0] / a, c.point[1] / a);
+  { /* overlap patch [-0.2, 0.5] x [-0.3, 0.5] a: its centre */
+    const double p[3] = {0.15 * a, 0.10 * a, a / 2 - delta / 2};
+    report("cube-cube face-to-face", &c, ez, dist3(c.point, p));
+  }
 
   B = (ConvexPose){{0.2 * a, 0.1 * a, a / 2 + a / sqrt(2.0) - delta}, {0}};
   edge_down(B.q);
   PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
-  e = fabs(c.point[2] - (a / 2 - delta / 2)) + fabs(c.point[1] - B.x[1]) + outside(c.point[0], B.x[0] - a / 2, a / 2);
-  report("cube-cube edge-to-face", &c, ez, e);
+  { /* edge over x in [-0.3, 0.7] a, clipped by A's face to [-0.3, 0.5] a */
+    const double p[3] = {0.1 * a, B.x[1], a / 2 - delta / 2};
+    report("cube-cube edge-to-face", &c, ez, dist3(c.point, p));
+  }
 
   B = (ConvexPose){{0.1 * a, -0.15 * a, a / 2 + a * sqrt(3.0) / 2 - delta}, {0}};
   corner_down(B.q);
@@ -150,8 +150,8 @@ static PetscErrorCode TestCylinderCube(const ConvexShape *cube)
   PetscCall(ConvexCollide(cube, &A, &cyl, &B, &c));
   {
     const double ez_[3] = {0, 0, 1};
-    double       e      = fabs(c.point[2] - (a / 2 - delta / 2)) + outside(hypot(c.point[0] - B.x[0], c.point[1] - B.x[1]), 0, r);
-    report("cube-cylinder end-to-face", &c, ez_, e);
+    const double p[3]   = {B.x[0], B.x[1], a / 2 - delta / 2}; /* the disc lies inside the face */
+    report("cube-cylinder end-to-face", &c, ez_, dist3(c.point, p));
   }
   PetscCall(ConvexShapeDestroy(&cyl));
   PetscFunctionReturn(0);
@@ -231,6 +231,5 @@ int main(int argc, char **argv)
   PetscCall(TestPlane(&cube));
   PetscCall(ConvexShapeDestroy(&cube));
   PetscCall(PetscFinalize());
-  (void)ident;
   return nfail ? 1 : 0;
 }

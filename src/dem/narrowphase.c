@@ -8,25 +8,20 @@
  * depth and normal it returns are those of the portal face it converges to (exact for a
  * face-face, edge-face or vertex-face contact hit by that ray), not the minimum translation in
  * general. The portal tolerance is 1e-10 of the sum of the bounding radii (libccd's default,
- * 1e-4, is absolute). libccd's direction points from A to B; its position is the mean of the
- * support points of A and of B weighted by the barycentric coordinates of the origin.
+ * 1e-4, is absolute). libccd's direction points from A to B. Its position (a barycentric mix
+ * of support points that is biased towards the centres by O(depth)) is replaced by the
+ * centroid of the contact features (convex_feature.c) and kept only if that fails.
  *
  * Shape-plane, plane through p0 with unit normal n (wall below, domain above): the depth of
  * a body point y is (p0 - y).n. A polyhedron's depth is the maximum over its vertices; its
- * contact point is the depth-weighted mean of the penetrating vertices (a face resting flat
- * gives the face centre, an edge its midpoint; the point moves continuously as the body
- * tilts), lifted by depth/2 along n. A cylinder uses the same rule on its two rim circles in
- * closed form (see CylinderRimWeight).
+ * contact point lies under the depth-weighted mean of the penetrating vertices (a face resting
+ * flat gives the face centre, an edge its midpoint; the point moves continuously as the body
+ * tilts), at mid-overlap height, depth/2 below the plane. A cylinder uses the same rule on its
+ * two rim circles in closed form (see cylinder_rim_weight).
  */
 #include <ccd/ccd.h>
 #include "dem/convex_impl.h"
 #include "dem/convex_quat.h"
-
-typedef struct {
-  const ConvexShape *s;
-  PetscReal          x[3];
-  PetscReal          R[9];
-} ConvexBody;
 
 /* Body-frame support point of a shape in direction d (body frame). */
 static inline void convex_support_body(const ConvexShape *s, const PetscReal d[3], PetscReal out[3])
@@ -102,6 +97,7 @@ PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const C
     c->normal[k] = dir.v[k];
     c->point[k]  = pos.v[k];
   }
+  (void)ConvexFeaturePoint(&A, &B, c->normal, c->point); /* keeps MPR's point if it fails */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -171,7 +167,7 @@ static void PolyhedronPlane(const ConvexShape *s, const ConvexBody *B, const Pet
 PetscErrorCode ConvexCollidePlane(const ConvexShape *a, const ConvexPose *pa, const PetscReal p0[3], const PetscReal n[3], ConvexContact *c)
 {
   ConvexBody B;
-  PetscReal  d[3], depth, y[3];
+  PetscReal  d[3], depth, y[3], h;
 
   PetscFunctionBegin;
   PetscCall(PetscMemzero(c, sizeof(*c)));
@@ -184,9 +180,11 @@ PetscErrorCode ConvexCollidePlane(const ConvexShape *a, const ConvexPose *pa, co
   if (!(depth > 0)) PetscFunctionReturn(PETSC_SUCCESS);
   c->overlap = PETSC_TRUE;
   c->depth   = depth;
+  convex_sub(y, p0, d);
+  h = convex_dot(d, n) + 0.5 * depth; /* y's height above the mid-overlap plane */
   for (int k = 0; k < 3; k++) {
     c->normal[k] = -n[k];
-    c->point[k]  = y[k] + 0.5 * depth * n[k];
+    c->point[k]  = y[k] - h * n[k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
