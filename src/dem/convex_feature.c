@@ -11,7 +11,8 @@
  * the barycentric point of MPR is biased towards the centres by O(depth).
  * A cylinder's candidate points are 2 x 32 rim samples, starting on each rim at the support
  * point, so a point contact is exact and an end face resting flat gives a 32-gon.
- * Stack-only (no allocation); more than CONVEX_FEATURE_MAX points in a slab -> PETSC_FALSE.
+ * Stack-only (no allocation); a shape with more than CONVEX_FEATURE_MAX vertices -> PETSC_FALSE
+ * (the caller keeps MPR's point).
  */
 #include "dem/convex_impl.h"
 #include "dem/convex_quat.h"
@@ -19,6 +20,10 @@
 #define CONVEX_FEATURE_MAX 256
 #define CONVEX_CYL_SAMPLES 32
 #define CLIP_MAX           (2 * CONVEX_FEATURE_MAX + 8)
+
+/* cos and sin of 2 pi k / 32, k = 0..31 (rim samples of a cylinder) */
+static const PetscReal cyl_cos[CONVEX_CYL_SAMPLES] = {1, 0.98078528040323043, 0.92387953251128674, 0.83146961230254524, 0.70710678118654757, 0.55557023301960229, 0.38268343236508984, 0.19509032201612833, 6.123233995736766e-17, -0.19509032201612819, -0.38268343236508973, -0.55557023301960196, -0.70710678118654746, -0.83146961230254535, -0.92387953251128674, -0.98078528040323043, -1, -0.98078528040323043, -0.92387953251128685, -0.83146961230254546, -0.70710678118654768, -0.55557023301960218, -0.38268343236509034, -0.19509032201612866, -1.8369701987210297e-16, 0.1950903220161283, 0.38268343236509, 0.55557023301960184, 0.70710678118654735, 0.83146961230254524, 0.92387953251128652, 0.98078528040323032};
+static const PetscReal cyl_sin[CONVEX_CYL_SAMPLES] = {0, 0.19509032201612825, 0.38268343236508978, 0.55557023301960218, 0.70710678118654746, 0.83146961230254524, 0.92387953251128674, 0.98078528040323043, 1, 0.98078528040323043, 0.92387953251128674, 0.83146961230254546, 0.70710678118654757, 0.55557023301960218, 0.38268343236508989, 0.19509032201612861, 1.2246467991473532e-16, -0.19509032201612836, -0.38268343236508967, -0.55557023301960196, -0.70710678118654746, -0.83146961230254524, -0.92387953251128652, -0.98078528040323032, -1, -0.98078528040323043, -0.92387953251128663, -0.83146961230254546, -0.70710678118654768, -0.55557023301960218, -0.38268343236509039, -0.19509032201612872};
 
 typedef struct {
   PetscReal p[CLIP_MAX][2];
@@ -35,25 +40,35 @@ static inline PetscInt feature_count(const ConvexBody *B)
   return B->s->kind == CONVEX_CYLINDER ? 2 * CONVEX_CYL_SAMPLES : B->s->nv;
 }
 
-/* i-th candidate point of B in the world frame; dir is the direction B's feature faces. */
-static inline void feature_point(const ConvexBody *B, const PetscReal dir[3], PetscInt i, PetscReal w[3])
+/* Where a body's feature faces: dir in world and, for a cylinder, the unit radial direction
+ * (ux, uy) of its support point in the body frame. */
+typedef struct {
+  PetscReal ux, uy;
+} Facing;
+
+static inline Facing feature_facing(const ConvexBody *B, const PetscReal dir[3])
 {
-  PetscReal b[3];
+  Facing    f = {1, 0};
+  PetscReal db[3], len;
+  if (B->s->kind != CONVEX_CYLINDER) return f;
+  convex_mat_tvec(B->R, dir, db);
+  len = PetscSqrtReal(db[0] * db[0] + db[1] * db[1]);
+  if (len > 0) f.ux = db[0] / len, f.uy = db[1] / len;
+  return f;
+}
+
+/* i-th candidate point of B in the body frame. */
+static inline void feature_point(const ConvexBody *B, Facing f, PetscInt i, PetscReal b[3])
+{
   if (B->s->kind == CONVEX_CYLINDER) {
-    PetscReal       db[3], ux, uy, len, phi = 2 * PETSC_PI * (i % CONVEX_CYL_SAMPLES) / CONVEX_CYL_SAMPLES;
+    const PetscInt  j = i % CONVEX_CYL_SAMPLES;
     const PetscReal r = B->s->radius;
-    convex_mat_tvec(B->R, dir, db);
-    len = PetscSqrtReal(db[0] * db[0] + db[1] * db[1]);
-    ux  = len > 0 ? db[0] / len : 1;
-    uy  = len > 0 ? db[1] / len : 0;
-    b[0] = r * (PetscCosReal(phi) * ux - PetscSinReal(phi) * uy);
-    b[1] = r * (PetscCosReal(phi) * uy + PetscSinReal(phi) * ux);
-    b[2] = (i < CONVEX_CYL_SAMPLES ? 0.5 : -0.5) * B->s->height;
+    b[0]              = r * (cyl_cos[j] * f.ux - cyl_sin[j] * f.uy);
+    b[1]              = r * (cyl_cos[j] * f.uy + cyl_sin[j] * f.ux);
+    b[2]              = (i < CONVEX_CYL_SAMPLES ? 0.5 : -0.5) * B->s->height;
   } else {
     for (int k = 0; k < 3; k++) b[k] = B->s->v[3 * i + k];
   }
-  convex_mat_vec(B->R, b, w);
-  for (int k = 0; k < 3; k++) w[k] += B->x[k];
 }
 
 static inline PetscReal cross2(const PetscReal a[2], const PetscReal b[2], const PetscReal c[2])
@@ -155,38 +170,44 @@ static void segments2(const Poly2 *A, const Poly2 *B, PetscReal eps, PetscReal c
   }
 }
 
-/* Height range of B's candidates along n and the projected points within [lo, hi]. */
-static PetscBool collect(const ConvexBody *B, const PetscReal dir[3], const Frame *F, PetscReal lo, PetscReal hi, Poly2 *P)
+/* Candidate points of a body in frame F: height h along n and plane coordinates (u, v). */
+typedef struct {
+  PetscInt  k;
+  PetscReal h[CONVEX_FEATURE_MAX], u[CONVEX_FEATURE_MAX], v[CONVEX_FEATURE_MAX];
+} Cand;
+
+static PetscBool candidates(const ConvexBody *B, const PetscReal dir[3], const Frame *F, Cand *C)
 {
-  const PetscInt n = feature_count(B);
-  P->k             = 0;
-  for (PetscInt i = 0; i < n; i++) {
-    PetscReal w[3], r[3], h;
-    feature_point(B, dir, i, w);
-    convex_sub(w, F->o, r);
-    h = convex_dot(r, F->n);
-    if (h < lo - F->eps || h > hi + F->eps) continue;
-    if (P->k == CONVEX_FEATURE_MAX) return PETSC_FALSE;
-    P->p[P->k][0] = convex_dot(r, F->t1), P->p[P->k][1] = convex_dot(r, F->t2), P->k++;
+  const Facing f = feature_facing(B, dir);
+  PetscReal    nb[3], ub[3], vb[3], off[3], h0, u0, v0;
+
+  C->k = feature_count(B);
+  if (C->k > CONVEX_FEATURE_MAX) return PETSC_FALSE;
+  convex_mat_tvec(B->R, F->n, nb); /* project in the body frame: h = b.(R^T n) + (x - o).n */
+  convex_mat_tvec(B->R, F->t1, ub);
+  convex_mat_tvec(B->R, F->t2, vb);
+  convex_sub(B->x, F->o, off);
+  h0 = convex_dot(off, F->n), u0 = convex_dot(off, F->t1), v0 = convex_dot(off, F->t2);
+  for (PetscInt i = 0; i < C->k; i++) {
+    PetscReal b[3];
+    feature_point(B, f, i, b);
+    C->h[i] = h0 + convex_dot(b, nb), C->u[i] = u0 + convex_dot(b, ub), C->v[i] = v0 + convex_dot(b, vb);
   }
-  return P->k > 0 ? PETSC_TRUE : PETSC_FALSE;
+  return PETSC_TRUE;
 }
 
-static PetscReal extreme_height(const ConvexBody *B, const PetscReal dir[3], const Frame *F, PetscReal sign)
+/* The projected candidates with height in [lo, hi]. */
+static void collect(const Cand *C, const Frame *F, PetscReal lo, PetscReal hi, Poly2 *P)
 {
-  PetscReal best = -PETSC_MAX_REAL;
-  for (PetscInt i = 0; i < feature_count(B); i++) {
-    PetscReal w[3], r[3];
-    feature_point(B, dir, i, w);
-    convex_sub(w, F->o, r);
-    best = PetscMax(best, sign * convex_dot(r, F->n));
-  }
-  return sign * best;
+  P->k = 0;
+  for (PetscInt i = 0; i < C->k; i++)
+    if (C->h[i] >= lo - F->eps && C->h[i] <= hi + F->eps) P->p[P->k][0] = C->u[i], P->p[P->k][1] = C->v[i], P->k++;
 }
 
 PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal point[3])
 {
   Poly2           PA, PB;
+  Cand            CA, CB;
   Frame           F;
   const PetscReal mn[3] = {-n[0], -n[1], -n[2]}, e[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   PetscReal       hA, hB, c[2] = {0, 0}, eps2, len;
@@ -200,9 +221,13 @@ PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const Pet
   convex_cross(n, F.t1, F.t2);
   F.eps = 1e-10 * (A->s->bounding_radius + B->s->bounding_radius);
   eps2  = F.eps * (A->s->bounding_radius + B->s->bounding_radius);
-  hA    = extreme_height(A, n, &F, 1);
-  hB    = extreme_height(B, mn, &F, -1);
-  if (!collect(A, n, &F, hB, hA, &PA) || !collect(B, mn, &F, hB, hA, &PB)) return PETSC_FALSE;
+  if (!candidates(A, n, &F, &CA) || !candidates(B, mn, &F, &CB)) return PETSC_FALSE;
+  hA = -PETSC_MAX_REAL, hB = PETSC_MAX_REAL;
+  for (PetscInt i = 0; i < CA.k; i++) hA = PetscMax(hA, CA.h[i]);
+  for (PetscInt i = 0; i < CB.k; i++) hB = PetscMin(hB, CB.h[i]);
+  collect(&CA, &F, hB, hA, &PA);
+  collect(&CB, &F, hB, hA, &PB);
+  if (!PA.k || !PB.k) return PETSC_FALSE;
   hull2(&PA, F.eps, eps2);
   hull2(&PB, F.eps, eps2);
   if (PA.k == 1) c[0] = PA.p[0][0], c[1] = PA.p[0][1];
