@@ -9,6 +9,8 @@
  *                  edge over A's face;
  *   vertex-to-face B's body diagonal turned to -z (a corner down): depth delta, normal +z,
  *                  point = (x_B, y_B, a/2 - delta/2) exactly.
+ *   edge-to-edge   A turned 45 deg about y, B 45 deg about x: crossed edges, depth delta,
+ *                  normal +z, point at the crossing (0, y_B) at mid-overlap height.
  * The vertex case is repeated with the whole scene rotated and translated (the answer must
  * rotate with it) and with A and B swapped (the normal must flip). Two cubes whose bounding
  * spheres overlap but which do not touch must give no contact. A cylinder standing on the cube
@@ -72,6 +74,84 @@ static void report(const char *mode, const ConvexContact *c, const double n_exp[
   check(buf, point_err / a, tol_mpr / a);
 }
 
+
+static double urand(void) { return (double)rand() / RAND_MAX; }
+
+/* Uniform random unit quaternion (Shoemake 1992). */
+static void random_quat(double q[4])
+{
+  const double u1 = urand(), u2 = 2 * PETSC_PI * urand(), u3 = 2 * PETSC_PI * urand();
+  q[0] = sqrt(1 - u1) * sin(u2), q[1] = sqrt(1 - u1) * cos(u2), q[2] = sqrt(u1) * sin(u3), q[3] = sqrt(u1) * cos(u3);
+}
+
+/* How far world point p lies outside polyhedron s at pose P (max signed face distance). */
+static double outside_distance(const ConvexShape *s, const ConvexPose *P, const double p[3])
+{
+  double R[9], d[3], b[3], best = -1e300;
+  convex_quat_to_matrix(P->q, R);
+  convex_sub(p, P->x, d);
+  convex_mat_tvec(R, d, b);
+  for (PetscInt t = 0; t < s->nf; t++) {
+    const double *v0 = &s->v[3 * s->f[3 * t]];
+    double        e1[3], e2[3], nrm[3], r[3];
+    convex_sub(&s->v[3 * s->f[3 * t + 1]], v0, e1);
+    convex_sub(&s->v[3 * s->f[3 * t + 2]], v0, e2);
+    convex_cross(e1, e2, nrm);
+    convex_sub(b, v0, r);
+    best = PetscMax(best, convex_dot(r, nrm) / convex_norm(nrm));
+  }
+  return best;
+}
+
+/* Random near-contact pairs: B on a random ray at 0.99 of the touching distance (bisection).
+ * Swapping A and B must give the same depth and point and the opposite normal; the contact
+ * point must lie inside both bodies (it is mid-overlap). */
+static PetscErrorCode TestRandomPairs(const char *name, const ConvexShape *s, PetscInt npair)
+{
+  double e_depth = 0, e_normal = 0, e_point = 0, e_out = -1e300, size = 2 * s->bounding_radius;
+  char   buf[160];
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < npair; i++) {
+    ConvexPose    A = {{0, 0, 0}, {1, 0, 0, 0}}, B;
+    ConvexContact c, c2;
+    double        u[3], lo = 0, hi = size, nu;
+    random_quat(A.q);
+    random_quat(B.q);
+    do {
+      for (int k = 0; k < 3; k++) u[k] = 2 * urand() - 1;
+      nu = convex_norm(u);
+    } while (nu > 1 || nu < 1e-3);
+    for (int it = 0; it < 50; it++) {
+      const double mid = 0.5 * (lo + hi);
+      for (int k = 0; k < 3; k++) B.x[k] = mid * u[k] / nu;
+      PetscCall(ConvexCollide(s, &A, s, &B, &c));
+      if (c.overlap) lo = mid;
+      else hi = mid;
+    }
+    for (int k = 0; k < 3; k++) B.x[k] = 0.99 * lo * u[k] / nu;
+    PetscCall(ConvexCollide(s, &A, s, &B, &c));
+    PetscCall(ConvexCollide(s, &B, s, &A, &c2));
+    if (!c.overlap || !c2.overlap) {
+      e_depth = 1e300;
+      continue;
+    }
+    e_depth  = PetscMax(e_depth, fabs(c.depth - c2.depth) / size);
+    e_normal = PetscMax(e_normal, sqrt(PetscSqr(c.normal[0] + c2.normal[0]) + PetscSqr(c.normal[1] + c2.normal[1]) + PetscSqr(c.normal[2] + c2.normal[2])));
+    e_point  = PetscMax(e_point, dist3(c.point, c2.point) / size);
+    e_out    = PetscMax(e_out, PetscMax(outside_distance(s, &A, c.point), outside_distance(s, &B, c.point)) / c.depth);
+  }
+  snprintf(buf, sizeof buf, "%s random pairs (%d): A-B swap |depth difference| / size", name, (int)npair);
+  check(buf, e_depth, 1e-9);
+  snprintf(buf, sizeof buf, "%s random pairs: A-B swap |n_AB + n_BA|", name);
+  check(buf, e_normal, 1e-6);
+  snprintf(buf, sizeof buf, "%s random pairs: A-B swap |point difference| / size", name);
+  check(buf, e_point, 1e-6);
+  snprintf(buf, sizeof buf, "%s random pairs: max signed distance of the contact point outside A or B / depth", name);
+  check(buf, e_out, 0);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TestCubeCube(const ConvexShape *cube)
 {
   ConvexPose    A = {{0, 0, 0}, {1, 0, 0, 0}}, B;
@@ -93,6 +173,16 @@ static PetscErrorCode TestCubeCube(const ConvexShape *cube)
     report("cube-cube edge-to-face", &c, ez, dist3(c.point, p));
   }
 
+  { /* A turned 45 deg about y (top edge along y), B 45 deg about x (bottom edge along x) */
+    const double  ey[3] = {0, 1, 0}, p[3] = {0, 0.2 * a, a / sqrt(2.0) - delta / 2};
+    ConvexPose    A2    = {{0, 0, 0}, {0}};
+    ConvexContact c2;
+    convex_quat_from_axis_angle(ey, PETSC_PI / 4, A2.q);
+    B = (ConvexPose){{0.1 * a, 0.2 * a, sqrt(2.0) * a - delta}, {0}};
+    edge_down(B.q);
+    PetscCall(ConvexCollide(cube, &A2, cube, &B, &c2));
+    report("cube-cube edge-to-edge (crossed)", &c2, ez, dist3(c2.point, p));
+  }
   B = (ConvexPose){{0.1 * a, -0.15 * a, a / 2 + a * sqrt(3.0) / 2 - delta}, {0}};
   corner_down(B.q);
   PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
@@ -229,6 +319,11 @@ int main(int argc, char **argv)
   PetscCall(TestCubeCube(&cube));
   PetscCall(TestCylinderCube(&cube));
   PetscCall(TestPlane(&cube));
+  srand(2026);
+  PetscCall(TestRandomPairs("cube", &cube, 500));
+  PetscCall(ConvexShapeDestroy(&cube));
+  PetscCall(ConvexShapeCreateIcosahedron(a, &cube));
+  PetscCall(TestRandomPairs("icosahedron", &cube, 500));
   PetscCall(ConvexShapeDestroy(&cube));
   PetscCall(PetscFinalize());
   return nfail ? 1 : 0;

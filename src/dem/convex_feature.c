@@ -204,7 +204,7 @@ static void collect(const Cand *C, const Frame *F, PetscReal lo, PetscReal hi, P
     if (C->h[i] >= lo - F->eps && C->h[i] <= hi + F->eps) P->p[P->k][0] = C->u[i], P->p[P->k][1] = C->v[i], P->k++;
 }
 
-PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal point[3])
+PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, PetscReal point[3])
 {
   Poly2           PA, PB;
   Cand            CA, CB;
@@ -225,6 +225,10 @@ PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const Pet
   hA = -PETSC_MAX_REAL, hB = PETSC_MAX_REAL;
   for (PetscInt i = 0; i < CA.k; i++) hA = PetscMax(hA, CA.h[i]);
   for (PetscInt i = 0; i < CB.k; i++) hB = PetscMin(hB, CB.h[i]);
+  /* n is a supporting normal of A - B only if the slab is as thick as the overlap; else MPR
+   * stopped on a portal edge (its direction is then not a face normal) and the slab features
+   * are meaningless */
+  if (hA - hB > depth * (1 + 1e-6) + F.eps) return PETSC_FALSE;
   collect(&CA, &F, hB, hA, &PA);
   collect(&CB, &F, hB, hA, &PB);
   if (!PA.k || !PB.k) return PETSC_FALSE;

@@ -30,7 +30,8 @@ typedef struct {
   PetscReal          R[9];
 } ConvexBody;
 
-/* Contact point of two overlapping bodies given the contact normal n (unit, A to B): the
- * centroid of the intersection of their contact features (convex_feature.c). Returns
- * PETSC_FALSE, leaving point untouched, when the features do not intersect. */
-PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal point[3]);
+/* Contact point of two overlapping bodies given the contact normal n (unit, A to B) and the
+ * depth: the centroid of the intersection of their contact features (convex_feature.c).
+ * Returns PETSC_FALSE, leaving point untouched, when n is not a supporting normal of A - B
+ * (the support heights along n differ from depth) or the features do not intersect. */
+PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, PetscReal point[3]);

@@ -97,7 +97,7 @@ PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const C
     c->normal[k] = dir.v[k];
     c->point[k]  = pos.v[k];
   }
-  (void)ConvexFeaturePoint(&A, &B, c->normal, c->point); /* keeps MPR's point if it fails */
+  (void)ConvexFeaturePoint(&A, &B, c->normal, c->depth, c->point); /* keeps MPR's point if it fails */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
