@@ -19,8 +19,10 @@
  * depth delta, normal -z (from the cube into the wall), point (x_c, y_c, -delta/2); a cylinder
  * on its end (point = disc centre), on its side (point under the axis midpoint), and tilted
  * (depth = h/2 cos t + r sin t - z_c).
- * Bound: 1e-9 a for MPR results (its portal tolerance is 1e-10 of the bounding radii);
- * 1e-12 a for the closed-form plane contacts.
+ * Random near-contact pairs of cubes, icosahedra and cylinders (at 0.99 of the touching
+ * distance along a random ray) check A-B / B-A symmetry and that the point is inside both.
+ * Bound: 1e-9 a for MPR results on polyhedra (portal tolerance 1e-10 of the bounding radii);
+ * 1e-12 a for the closed-form plane contacts; measured (loose) bounds for cylinder pairs.
  */
 #include "dem/convex.h"
 #include "dem/convex_quat.h"
@@ -84,13 +86,15 @@ static void random_quat(double q[4])
   q[0] = sqrt(1 - u1) * sin(u2), q[1] = sqrt(1 - u1) * cos(u2), q[2] = sqrt(u1) * sin(u3), q[3] = sqrt(u1) * cos(u3);
 }
 
-/* How far world point p lies outside polyhedron s at pose P (max signed face distance). */
+/* How far world point p lies outside shape s at pose P (polyhedron: max signed face
+ * distance; cylinder: max of the end and side distances). */
 static double outside_distance(const ConvexShape *s, const ConvexPose *P, const double p[3])
 {
   double R[9], d[3], b[3], best = -1e300;
   convex_quat_to_matrix(P->q, R);
   convex_sub(p, P->x, d);
   convex_mat_tvec(R, d, b);
+  if (s->kind == CONVEX_CYLINDER) return PetscMax(fabs(b[2]) - s->height / 2, hypot(b[0], b[1]) - s->radius);
   for (PetscInt t = 0; t < s->nf; t++) {
     const double *v0 = &s->v[3 * s->f[3 * t]];
     double        e1[3], e2[3], nrm[3], r[3];
@@ -105,8 +109,8 @@ static double outside_distance(const ConvexShape *s, const ConvexPose *P, const 
 
 /* Random near-contact pairs: B on a random ray at 0.99 of the touching distance (bisection).
  * Swapping A and B must give the same depth and point and the opposite normal; the contact
- * point must lie inside both bodies (it is mid-overlap). */
-static PetscErrorCode TestRandomPairs(const char *name, const ConvexShape *s, PetscInt npair)
+ * point must lie inside both bodies (it is mid-overlap). Cylinders get looser bounds (main). */
+static PetscErrorCode TestRandomPairs(const char *name, const ConvexShape *s, PetscInt npair, const double bound[4])
 {
   double e_depth = 0, e_normal = 0, e_point = 0, e_out = -1e300, size = 2 * s->bounding_radius;
   char   buf[160];
@@ -142,13 +146,13 @@ static PetscErrorCode TestRandomPairs(const char *name, const ConvexShape *s, Pe
     e_out    = PetscMax(e_out, PetscMax(outside_distance(s, &A, c.point), outside_distance(s, &B, c.point)) / c.depth);
   }
   snprintf(buf, sizeof buf, "%s random pairs (%d): A-B swap |depth difference| / size", name, (int)npair);
-  check(buf, e_depth, 1e-9);
+  check(buf, e_depth, bound[0]);
   snprintf(buf, sizeof buf, "%s random pairs: A-B swap |n_AB + n_BA|", name);
-  check(buf, e_normal, 1e-6);
+  check(buf, e_normal, bound[1]);
   snprintf(buf, sizeof buf, "%s random pairs: A-B swap |point difference| / size", name);
-  check(buf, e_point, 1e-6);
+  check(buf, e_point, bound[2]);
   snprintf(buf, sizeof buf, "%s random pairs: max signed distance of the contact point outside A or B / depth", name);
-  check(buf, e_out, 0);
+  check(buf, e_out, bound[3]);
   PetscFunctionReturn(0);
 }
 
@@ -312,7 +316,12 @@ static PetscErrorCode TestPlane(const ConvexShape *cube)
 
 int main(int argc, char **argv)
 {
-  ConvexShape cube;
+  /* bounds: depth / size, normal, point / size, signed outside distance / depth. Polyhedra:
+   * MPR converges on a flat face of A - B (to roundoff). Cylinder: MPR's normal converges
+   * slowly on the rims (curved edges), so A-B and B-A stop on different portals; these bounds
+   * record the accuracy measured with libccd 2.0 (see CONVEX.md), not an ideal. */
+  const double exact[4] = {1e-9, 1e-6, 1e-6, 0}, curved[4] = {1e-4, 0.1, 0.05, 0.1};
+  ConvexShape  cube;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "convex narrow phase test"));
   PetscCall(ConvexShapeCreateCube(a, &cube));
@@ -320,10 +329,13 @@ int main(int argc, char **argv)
   PetscCall(TestCylinderCube(&cube));
   PetscCall(TestPlane(&cube));
   srand(2026);
-  PetscCall(TestRandomPairs("cube", &cube, 500));
+  PetscCall(TestRandomPairs("cube", &cube, 500, exact));
   PetscCall(ConvexShapeDestroy(&cube));
   PetscCall(ConvexShapeCreateIcosahedron(a, &cube));
-  PetscCall(TestRandomPairs("icosahedron", &cube, 500));
+  PetscCall(TestRandomPairs("icosahedron", &cube, 500, exact));
+  PetscCall(ConvexShapeDestroy(&cube));
+  PetscCall(ConvexShapeCreateCylinder(0.4 * a, a, &cube));
+  PetscCall(TestRandomPairs("cylinder", &cube, 500, curved));
   PetscCall(ConvexShapeDestroy(&cube));
   PetscCall(PetscFinalize());
   return nfail ? 1 : 0;
