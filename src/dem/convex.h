@@ -62,12 +62,14 @@ PetscErrorCode ConvexShapeCreateCylinder(PetscReal radius, PetscReal height, Con
 PetscErrorCode ConvexShapeDestroy(ConvexShape *shape);
 PetscErrorCode ConvexShapeView(const ConvexShape *shape, PetscViewer viewer);
 
-/* Narrow phase between two shapes (libccd MPR). Not collective; no allocation. Bodies whose
- * bounding spheres do not overlap are rejected before libccd is called. */
+/* Narrow phase between two shapes (libccd MPR for depth and normal; contact point from the
+ * contact features, see convex_feature.c). Not collective; no allocation; re-entrant. Bodies
+ * whose bounding spheres do not overlap are rejected before libccd is called. */
 PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, ConvexContact *c);
 
 /* Contact of a shape (A) with a plane wall (B) through point p0 with unit normal n pointing
  * out of the wall into the domain. depth = max over the body of (p0 - x).n; the contact point
- * is the centroid of the deepest features (vertices within 1e-9 of the size, a flat face
- * gives its centre), moved by depth/2 along n to lie midway; normal = -n (from A to B). */
+ * lies under the depth-weighted centroid of the penetrating vertices (a flat face gives its
+ * centre, an edge its midpoint; continuous as the body tilts), depth/2 below the plane;
+ * normal = -n (from A to B, as for pairs). Cylinder: same rule on its rims, closed form. */
 PetscErrorCode ConvexCollidePlane(const ConvexShape *a, const ConvexPose *pa, const PetscReal p0[3], const PetscReal n[3], ConvexContact *c);
