@@ -61,3 +61,8 @@ bench: deps
 
 clean:
 	rm -rf build build-debug bin
+
+# Stand-alone tools, not part of `all`: e.g. make build/tools/bench_convex
+$(BUILD)/tools/%: tools/%.c $(BUILD)/libsable.a $(HDRS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $< $(BUILD)/libsable.a $(LDLIBS) -o $@

@@ -1,0 +1,75 @@
+/* Convex particle shapes and their narrow-phase contact (public header).
+ *
+ * A ConvexShape is a "reference particle" in the sense of Grains3D (Rakotonirina & Wachs 2018,
+ * Part II §2-3): geometry and mass properties per unit density, stored once per shape type;
+ * particles carry only a position (centre of mass) and a unit quaternion q = (w,x,y,z) that
+ * rotates body-frame vectors into the world frame. In the body frame the centre of mass is the
+ * origin and the axes are the principal axes of inertia, so the inertia tensor is diagonal.
+ *
+ * Kinds: a convex polyhedron (vertex list + triangulated hull) or a right circular cylinder
+ * (axis along body z, analytic support function). Mass properties are exact (divergence
+ * theorem on the hull, see polyhedron.c); the narrow phase wraps libccd (narrowphase.c).
+ *
+ * Conventions for every contact returned here: A is the first body, B the second (a plane
+ * wall is always B); normal is the unit vector from A towards B; depth > 0 is the overlap
+ * (translating B by depth*normal separates the bodies); point is in the world frame, midway
+ * between the two surfaces inside the overlap. Force on A = -F_n normal, on B = +F_n normal.
+ * Units: whatever length unit the caller uses (SI in Sable); volume and inertia are per unit
+ * density, so mass = rho*volume and J = rho*inertia.
+ */
+#pragma once
+#include <petscsys.h>
+
+typedef enum { CONVEX_POLYHEDRON, CONVEX_CYLINDER } ConvexKind;
+
+typedef struct {
+  ConvexKind kind;
+  PetscInt   nv;              /* number of hull vertices (0 for a cylinder) */
+  PetscReal *v;               /* 3*nv body-frame vertex coordinates, principal frame */
+  PetscInt   nf;              /* number of hull triangles (0 for a cylinder) */
+  PetscInt  *f;               /* 3*nf vertex indices, counter-clockwise seen from outside */
+  PetscReal  radius, height;  /* cylinder only; axis along body z */
+  PetscReal  volume;          /* V */
+  PetscReal  inertia[3];      /* principal moments per unit density, about body x, y, z */
+  PetscReal  com_input[3];    /* centre of mass in the frame of the input vertices */
+  PetscReal  rot_input[9];    /* row-major R, input-frame vector = R * body-frame vector */
+  PetscReal  bounding_radius; /* max distance of the surface from the centre of mass */
+  PetscReal  d_eq;            /* volume-equivalent sphere diameter (6V/pi)^(1/3) */
+} ConvexShape;
+
+typedef struct {
+  PetscReal x[3]; /* world position of the centre of mass */
+  PetscReal q[4]; /* unit quaternion (w,x,y,z), body -> world */
+} ConvexPose;
+
+typedef struct {
+  PetscBool overlap;   /* PETSC_FALSE: the other fields are zero */
+  PetscReal depth;     /* overlap distance along normal, > 0 */
+  PetscReal normal[3]; /* unit, from A towards B */
+  PetscReal point[3];  /* world contact point, midway inside the overlap */
+} ConvexContact;
+
+/* Constructors. Not collective. They fill *shape (which the caller owns) and allocate its
+ * arrays; free them with ConvexShapeDestroy. Errors: fewer than 4 vertices, all vertices
+ * coincident / collinear / coplanar (relative tolerance 1e-10 of the extent), size <= 0. */
+PetscErrorCode ConvexShapeCreateFromVertices(PetscInt n, const PetscReal xyz[], ConvexShape *shape);
+PetscErrorCode ConvexShapeCreateFromFile(const char path[], ConvexShape *shape);
+PetscErrorCode ConvexShapeCreateCube(PetscReal edge, ConvexShape *shape);
+PetscErrorCode ConvexShapeCreateTetrahedron(PetscReal edge, ConvexShape *shape);
+PetscErrorCode ConvexShapeCreateOctahedron(PetscReal edge, ConvexShape *shape);
+PetscErrorCode ConvexShapeCreateIcosahedron(PetscReal edge, ConvexShape *shape);
+PetscErrorCode ConvexShapeCreateCylinder(PetscReal radius, PetscReal height, ConvexShape *shape);
+PetscErrorCode ConvexShapeDestroy(ConvexShape *shape);
+PetscErrorCode ConvexShapeView(const ConvexShape *shape, PetscViewer viewer);
+
+/* Narrow phase between two shapes (libccd MPR for depth and normal; contact point from the
+ * contact features, see convex_feature.c). Not collective; no allocation; re-entrant. Bodies
+ * whose bounding spheres do not overlap are rejected before libccd is called. */
+PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, ConvexContact *c);
+
+/* Contact of a shape (A) with a plane wall (B) through point p0 with unit normal n pointing
+ * out of the wall into the domain. depth = max over the body of (p0 - x).n; the contact point
+ * lies under the depth-weighted centroid of the penetrating vertices (a flat face gives its
+ * centre, an edge its midpoint; continuous as the body tilts), depth/2 below the plane;
+ * normal = -n (from A to B, as for pairs). Cylinder: same rule on its rims, closed form. */
+PetscErrorCode ConvexCollidePlane(const ConvexShape *a, const ConvexPose *pa, const PetscReal p0[3], const PetscReal n[3], ConvexContact *c);
