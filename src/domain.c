@@ -25,22 +25,20 @@ PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt sten
 {
   DMBoundaryType   bt[3];
   PetscInt         m[3];
-  PetscMPIInt      size;
-  const PetscInt  *l[3];
 
   PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(dom, sizeof *dom)); /* defaults: unit box, not periodic */
+  for (int k = 0; k < 3; k++) dom->hi[k] = 1;
   PetscCall(DomainReadBox(dom));
   for (int k = 0; k < 3; k++) {
     m[k]  = PetscMax(1, (PetscInt)PetscFloorReal(dom->len[k] / default_cell));
     bt[k] = dom->periodic[k] ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_GHOSTED;
   }
-  PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(DMDACreate3d(comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, m[0], m[1], m[2], PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, 1, stencil_width, NULL, NULL, NULL, &dom->da));
   PetscCall(DMSetFromOptions(dom->da));
   PetscCall(DMSetUp(dom->da));
   PetscCall(DMDAGetInfo(dom->da, NULL, &dom->cells[0], &dom->cells[1], &dom->cells[2], &dom->nranks[0], &dom->nranks[1], &dom->nranks[2], NULL, NULL, NULL, NULL, NULL, NULL));
   PetscCall(DMDAGetCorners(dom->da, &dom->cstart[0], &dom->cstart[1], &dom->cstart[2], &dom->ccount[0], &dom->ccount[1], &dom->ccount[2]));
-  PetscCall(DMDAGetOwnershipRanges(dom->da, &l[0], &l[1], &l[2]));
   for (int k = 0; k < 3; k++) {
     dom->h[k]     = dom->len[k] / dom->cells[k];
     dom->sublo[k] = dom->lo[k] + dom->cstart[k] * dom->h[k];

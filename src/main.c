@@ -7,6 +7,7 @@
 #include "dem/dem.h"
 #include "io/io.h"
 #include <errno.h>
+#include <sys/resource.h>
 
 static PetscBool sable_traceback = PETSC_FALSE;
 
@@ -84,7 +85,11 @@ static PetscErrorCode SableRun(void)
   PetscCall(PetscTime(&t1));
   PetscCall(DemGetTime(dem, &t, &step));
   PetscCall(DemGetBedFigures(dem, &phi, &coord));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "done: t = %g s, %" PetscInt_FMT " steps in %.2f s\n", (double)t, step, t1 - t0));
+  {
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "done: t = %g s, %" PetscInt_FMT " steps in %.3f s (rank 0 peak memory %.1f MB)\n", (double)t, step, t1 - t0, ru.ru_maxrss / 1024.0));
+  }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "bed: packing fraction %.4f, mean coordination number %.3f\n", (double)phi, (double)coord));
   PetscCall(IoGetIndexPath(io, &index));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "output: %s (open it in ParaView)\n", index));

@@ -74,7 +74,7 @@ PetscErrorCode IoGetIndexPath(Io io, const char **path)
 PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due)
 {
   PetscFunctionBeginUser;
-  *due = (io->interval > 0 && t >= io->next - 1e-12 * io->interval) ? PETSC_TRUE : PETSC_FALSE;
+  *due = (io->interval > 0 && t >= io->next - 1e-6 * io->interval) ? PETSC_TRUE : PETSC_FALSE;
   if (*due) io->next = (PetscFloorReal(t / io->interval + 1e-9) + 1) * io->interval;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
