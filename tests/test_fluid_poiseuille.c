@@ -24,7 +24,7 @@ static PetscErrorCode SetOpt(const char *name, const char *value)
 
 static PetscErrorCode RunChannel(PetscInt N, PetscReal *err, PetscInt *steps)
 {
-  Domain     dom;
+  Domain     dom = {0};
   Fluid      fl;
   FluidStats st;
   char       buf[32];

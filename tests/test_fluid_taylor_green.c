@@ -19,7 +19,7 @@ static void Exact(const PetscReal x[3], PetscReal v[3], void *ctx)
 
 static PetscErrorCode RunVortex(PetscInt N, const char *adv, PetscReal *linf, PetscReal *l2)
 {
-  Domain     dom;
+  Domain     dom = {0};
   Fluid      fl;
   FluidStats st;
   char       buf[32];

@@ -210,3 +210,10 @@ PetscErrorCode FluidApplyBoundaryValues(Fluid fl)
   PetscCall(FluidBoundaryFaceValues(fl, fl->u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode FluidInitPorosity(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(fl->eps, fl->eps_old));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

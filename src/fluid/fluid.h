@@ -81,3 +81,6 @@ PetscErrorCode FluidSetPorosityFunction(Fluid fluid, FluidScalarFn fn, void *ctx
 PetscErrorCode FluidSetVelocityFunction(Fluid fluid, FluidVectorFn fn, void *ctx);
 /* Collective. RMS and max over all face values (unused extra points excluded) of |u - fn|. */
 PetscErrorCode FluidVelocityError(Fluid fluid, FluidVectorFn fn, void *ctx, PetscReal *l2, PetscReal *linf);
+/* Collective. Declares the current porosity eps^{n+1} also the previous one (no d(eps)/dt in the
+ * next step): call once after setting the initial porosity. */
+PetscErrorCode FluidInitPorosity(Fluid fluid);
