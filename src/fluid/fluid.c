@@ -152,7 +152,7 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
 
   PetscFunctionBeginUser;
   if (!fl) PetscFunctionReturn(PETSC_SUCCESS);
-  Vec *v[] = {&fl->u, &fl->p, &fl->eps, &fl->eps_old, &fl->beta, &fl->us, &fl->src, &fl->uloc, &fl->ploc, &fl->epsloc, &fl->epsoldloc, &fl->uhat, &fl->advn, &fl->adv_old, &fl->vis, &fl->coef, &fl->coefloc, &fl->phi, &fl->rhs, &fl->philoc};
+  Vec *v[] = {&fl->u, &fl->p, &fl->eps, &fl->eps_old, &fl->beta, &fl->us, &fl->src, &fl->uloc, &fl->ploc, &fl->epsloc, &fl->epsoldloc, &fl->uhat, &fl->advn, &fl->adv_old, &fl->vis, &fl->coef, &fl->coefloc, &fl->vbc, &fl->phiu, &fl->phi, &fl->rhs, &fl->philoc};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) PetscCall(VecDestroy(v[i]));
   PetscCall(MatNullSpaceDestroy(&fl->nsp));
   PetscCall(MatDestroy(&fl->A));
@@ -160,6 +160,7 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
   PetscCall(KSPDestroy(&fl->ksp));
   PetscCall(MatDestroy(&fl->V));
   PetscCall(KSPDestroy(&fl->vksp));
+  PetscCall(DMDestroy(&fl->vda));
   PetscCall(DMDestroy(&fl->cda));
   PetscCall(DMDestroy(&fl->fda));
   PetscCall(PetscFree(*fluid));

@@ -53,8 +53,12 @@ struct _p_Fluid {
   PetscReal  dt_mat;
   PetscBool  singular;
   PetscInt   nsteps;
-  KSP        vksp; /* implicit viscous solve */
+  KSP        vksp; /* implicit viscous solve, created on first use */
+  DM         vda;  /* star-stencil copy of fda for its matrix */
   Mat        V;
+  Vec        vbc, phiu; /* boundary part of its right-hand side; solution work vector */
+  PetscObjectState veps_state, vbeta_state;
+  PetscReal  dt_vmat;
   PetscLogEvent ev_predict, ev_poisson, ev_correct;
 };
 
