@@ -63,6 +63,10 @@ PetscErrorCode FluidSetFromOptions(Fluid fl)
   PetscCheck(fl->cfl_max > 0 && fl->cfl_max <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_cfl_max %g must be in (0,1]", (double)fl->cfl_max);
   PetscCheck(fl->visc_max > 0 && fl->visc_max <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_viscous_number_max %g must be in (0,1]", (double)fl->visc_max);
   PetscCall(FluidSetFromOptionsBC(fl));
+  PetscCall(KSPDestroy(&fl->ksp));
+  PetscCall(KSPDestroy(&fl->vksp));
+  PetscCall(FluidPoissonCreateKSP(fl));
+  if (fl->visc == FLUID_VISC_IMPLICIT) PetscCall(FluidViscousCreateKSP(fl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -141,7 +145,9 @@ PetscErrorCode FluidSetUp(Fluid fl)
   PetscCall(VecDuplicate(fl->u, &fl->vis));
   PetscCall(DMCreateLocalVector(fl->fda, &fl->uloc));
   PetscCall(FluidBoundaryFaceValues(fl, fl->u));
+  PetscCheck(fl->ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
   PetscCall(FluidPoissonSetUp(fl));
+  if (fl->vksp) PetscCall(FluidViscousSetUp(fl));
   fl->setup = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

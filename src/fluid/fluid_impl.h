@@ -53,7 +53,7 @@ struct _p_Fluid {
   PetscReal  dt_mat;
   PetscBool  singular;
   PetscInt   nsteps;
-  KSP        vksp; /* implicit viscous solve, created on first use */
+  KSP        vksp; /* implicit viscous solve (only with -fluid_viscous implicit) */
   DM         vda;  /* star-stencil copy of fda for its matrix */
   Mat        V;
   Vec        vbc, phiu; /* boundary part of its right-hand side; solution work vector */
@@ -117,8 +117,11 @@ PetscErrorCode FluidLocalCell(Fluid fl, Vec a, Vec aloc, PetscBool odd_at_outlet
 PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out);
 PetscErrorCode FluidViscousTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscBool transpose_only, PetscScalar *out);
 /* viscous.c: implicit viscous predictor */
+PetscErrorCode FluidViscousCreateKSP(Fluid fl);
+PetscErrorCode FluidViscousSetUp(Fluid fl);
 PetscErrorCode FluidViscousSolve(Fluid fl, PetscReal dt, Vec rhs, Vec uhat);
 /* poisson.c */
+PetscErrorCode FluidPoissonCreateKSP(Fluid fl);
 PetscErrorCode FluidPoissonSetUp(Fluid fl);
 PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st);
 PetscErrorCode FluidDivergenceMax(Fluid fl, PetscReal dt, PetscReal *dmax);

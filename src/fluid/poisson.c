@@ -13,12 +13,29 @@
 #include "fluid/fluid_impl.h"
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: rebuild the matrix only when eps, beta or dt changed */
 
+/* Collective. The KSP and its options (-fluid_poisson_), read with the other -fluid_ options so
+ * that the unused-option check sees them. */
+PetscErrorCode FluidPoissonCreateKSP(Fluid fl)
+{
+  PC pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPCreate(fl->comm, &fl->ksp));
+  PetscCall(KSPSetOptionsPrefix(fl->ksp, "fluid_poisson_"));
+  PetscCall(KSPSetType(fl->ksp, KSPCG));
+  PetscCall(KSPGetPC(fl->ksp, &pc));
+  PetscCall(PCSetType(pc, PCHYPRE));
+  PetscCall(PCHYPRESetType(pc, "boomeramg"));
+  PetscCall(KSPSetTolerances(fl->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 500));
+  PetscCall(KSPSetFromOptions(fl->ksp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FluidPoissonSetUp(Fluid fl)
 {
   const PetscInt *l[3];
   PetscInt        np[3];
   DMBoundaryType  bt[3];
-  PC              pc;
 
   PetscFunctionBeginUser;
   PetscCall(DMDAGetInfo(fl->cda, NULL, NULL, NULL, NULL, &np[0], &np[1], &np[2], NULL, NULL, &bt[0], &bt[1], &bt[2], NULL));
@@ -28,14 +45,6 @@ PetscErrorCode FluidPoissonSetUp(Fluid fl)
   PetscCall(DMCreateMatrix(fl->pda, &fl->A));
   PetscCall(VecDuplicate(fl->u, &fl->coef));
   PetscCall(VecDuplicate(fl->uloc, &fl->coefloc));
-  PetscCall(KSPCreate(fl->comm, &fl->ksp));
-  PetscCall(KSPSetOptionsPrefix(fl->ksp, "fluid_poisson_"));
-  PetscCall(KSPSetType(fl->ksp, KSPCG));
-  PetscCall(KSPGetPC(fl->ksp, &pc));
-  PetscCall(PCSetType(pc, PCHYPRE));
-  PetscCall(PCHYPRESetType(pc, "boomeramg"));
-  PetscCall(KSPSetTolerances(fl->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 500));
-  PetscCall(KSPSetFromOptions(fl->ksp));
   if (fl->singular) {
     PetscCall(MatNullSpaceCreate(fl->comm, PETSC_TRUE, 0, NULL, &fl->nsp));
     PetscCall(MatSetNullSpace(fl->A, fl->nsp));

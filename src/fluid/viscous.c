@@ -11,12 +11,29 @@
 #include "fluid/fluid_impl.h"
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: rebuild only when eps, beta or dt changed */
 
-static PetscErrorCode FluidViscousSetUp(Fluid fl)
+/* Collective. The KSP and its options (-fluid_viscous_), read with the other -fluid_ options. */
+PetscErrorCode FluidViscousCreateKSP(Fluid fl)
+{
+  PC pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPCreate(fl->comm, &fl->vksp));
+  PetscCall(KSPSetOptionsPrefix(fl->vksp, "fluid_viscous_"));
+  PetscCall(KSPSetType(fl->vksp, KSPCG));
+  PetscCall(KSPGetPC(fl->vksp, &pc));
+  PetscCall(PCSetType(pc, PCJACOBI));
+  PetscCall(KSPSetTolerances(fl->vksp, 1e-10, 1e-50, PETSC_DEFAULT, 1000));
+  PetscCall(KSPSetInitialGuessNonzero(fl->vksp, PETSC_TRUE));
+  PetscCall(KSPSetFromOptions(fl->vksp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The matrix on a star-stencil copy of the face DMDA. */
+PetscErrorCode FluidViscousSetUp(Fluid fl)
 {
   const PetscInt *l[3];
   PetscInt        np[3], M[3];
   DMBoundaryType  bt[3];
-  PC              pc;
 
   PetscFunctionBeginUser;
   PetscCall(DMDAGetInfo(fl->fda, NULL, &M[0], &M[1], &M[2], &np[0], &np[1], &np[2], NULL, NULL, &bt[0], &bt[1], &bt[2], NULL));
@@ -27,14 +44,6 @@ static PetscErrorCode FluidViscousSetUp(Fluid fl)
   PetscCall(VecDuplicate(fl->u, &fl->vbc));
   PetscCall(VecDuplicate(fl->u, &fl->phiu));
   fl->dt_vmat = -1;
-  PetscCall(KSPCreate(fl->comm, &fl->vksp));
-  PetscCall(KSPSetOptionsPrefix(fl->vksp, "fluid_viscous_"));
-  PetscCall(KSPSetType(fl->vksp, KSPCG));
-  PetscCall(KSPGetPC(fl->vksp, &pc));
-  PetscCall(PCSetType(pc, PCJACOBI));
-  PetscCall(KSPSetTolerances(fl->vksp, 1e-10, 1e-50, PETSC_DEFAULT, 1000));
-  PetscCall(KSPSetInitialGuessNonzero(fl->vksp, PETSC_TRUE));
-  PetscCall(KSPSetFromOptions(fl->vksp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -134,7 +143,6 @@ PetscErrorCode FluidViscousSolve(Fluid fl, PetscReal dt, Vec rhs, Vec uhat)
   PetscReal          rnorm;
 
   PetscFunctionBeginUser;
-  if (!fl->vksp) PetscCall(FluidViscousSetUp(fl));
   PetscCall(PetscObjectStateGet((PetscObject)fl->eps, &se));
   PetscCall(PetscObjectStateGet((PetscObject)fl->beta, &sb));
   if (se != fl->veps_state || sb != fl->vbeta_state || dt != fl->dt_vmat) {
