@@ -77,3 +77,25 @@ PetscErrorCode FluidVelocityError(Fluid fl, FluidVectorFn fn, void *ctx, PetscRe
   *l2 = PetscSqrtReal(glob[0] / ng);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode FluidCellsToFaces(Fluid fl, Vec cell[3], Vec face)
+{
+  const FluidGrid *g = &fl->g;
+  PetscScalar     *out;
+  Vec              loc;
+  PetscInt         idx[3], f, c, o;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(fl->cda, &loc));
+  PetscCall(VecGetArray(face, &out));
+  for (int d = 0; d < 3; d++) {
+    const PetscScalar *a;
+    PetscCall(FluidLocalCell(fl, cell[d], loc, PETSC_FALSE, 0.0));
+    PetscCall(VecGetArrayRead(loc, &a));
+    FLUID_FOR_OWNED_FACES(g, idx, f, c, o) out[o + d] = 0.5 * (a[c] + a[c - g->cs[d]]);
+    PetscCall(VecRestoreArrayRead(loc, &a));
+  }
+  PetscCall(VecRestoreArray(face, &out));
+  PetscCall(DMRestoreLocalVector(fl->cda, &loc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -84,3 +84,8 @@ PetscErrorCode FluidVelocityError(Fluid fluid, FluidVectorFn fn, void *ctx, Pets
 /* Collective. Declares the current porosity eps^{n+1} also the previous one (no d(eps)/dt in the
  * next step): call once after setting the initial porosity. */
 PetscErrorCode FluidInitPorosity(Fluid fluid);
+/* Collective. Face values from cell-centred fields: component d of the face Vec (beta, u_s or
+ * source) is the mean of cell[d] over the two cells of the face (the boundary cell's own value
+ * on domain faces). For a scalar such as beta pass the same Vec three times. Cell Vecs are
+ * global Vecs of the cell DMDA (or of the domain's DMDA: same layout). */
+PetscErrorCode FluidCellsToFaces(Fluid fluid, Vec cell[3], Vec face);
