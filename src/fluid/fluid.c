@@ -10,6 +10,27 @@
 static const char *const FluidAdvectionNames[] = {"central", "tvd", "none", "FluidAdvection", "FLUID_ADV_", NULL};
 static const char *const FluidViscousNames[]   = {"explicit", "implicit", "FluidViscous", "FLUID_VISC_", NULL};
 
+/* One class id and one log event per phase for the whole run, registered on first use. */
+static PetscErrorCode FluidRegisterEvents(Fluid fl)
+{
+  static PetscBool     done = PETSC_FALSE;
+  static PetscClassId  cid;
+  static PetscLogEvent ev[3];
+
+  PetscFunctionBeginUser;
+  if (!done) {
+    PetscCall(PetscClassIdRegister("Fluid", &cid));
+    PetscCall(PetscLogEventRegister("FluidPredict", cid, &ev[0]));
+    PetscCall(PetscLogEventRegister("FluidPoisson", cid, &ev[1]));
+    PetscCall(PetscLogEventRegister("FluidCorrect", cid, &ev[2]));
+    done = PETSC_TRUE;
+  }
+  fl->ev_predict = ev[0];
+  fl->ev_poisson = ev[1];
+  fl->ev_correct = ev[2];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid)
 {
   Fluid fl;
@@ -28,9 +49,7 @@ PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid)
   fl->visc_max = 0.5;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) fl->bc[d][s].type = dom->periodic[d] ? FLUID_BC_PERIODIC : FLUID_BC_WALL;
-  PetscCall(PetscLogEventRegister("FluidPredict", DM_CLASSID, &fl->ev_predict));
-  PetscCall(PetscLogEventRegister("FluidPoisson", DM_CLASSID, &fl->ev_poisson));
-  PetscCall(PetscLogEventRegister("FluidCorrect", DM_CLASSID, &fl->ev_correct));
+  PetscCall(FluidRegisterEvents(fl));
   *fluid = fl;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
