@@ -4,9 +4,10 @@
  * solenoidal), the porosity-step channel (inlet/outlet, 32 x 16 x 4 cells, 100 steps) and a
  * periodic box (8^3 cells, 3-D Taylor-Green start, TVD advection, 30 steps). Each runs on all
  * ranks of PETSC_COMM_WORLD and, as the reference, on PETSC_COMM_SELF on every rank (one rank's
- * solution); the process grid PETSc chose is printed. The parallel fields, gathered in natural order, must equal
- * the one-rank fields to the solver tolerance (Poisson rtol 1e-12): max difference of the face
- * velocity relative to max |u|, and of the pressure (mean removed) relative to max |p|. */
+ * solution); the process grid PETSc chose is printed. The parallel fields, gathered in natural
+ * order, must equal the one-rank fields to the solver tolerance (Poisson rtol 1e-12): max
+ * difference of the face velocity relative to max |u|, and of the pressure (mean removed)
+ * relative to max |p|. */
 #include "fluid/fluid.h"
 
 typedef struct {
