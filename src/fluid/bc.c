@@ -1,0 +1,175 @@
+/* Fluid boundary conditions, one per domain face: periodic (from -domain_periodic_*), no-slip
+ * wall, free-slip wall, uniform velocity inlet, pressure outlet. They enter the discretisation
+ * only through two ghost layers of the local arrays, filled axis by axis (x, then y over the
+ * x-ghosts, then z) so that edge and corner ghosts do not depend on the decomposition:
+ *   normal component, boundary face b, ghost faces b -+ m:  wall/slip: -u(b +- m) (u(b) = 0),
+ *     inlet: U_n, outlet: u(b) (zero gradient; u(b) itself is an unknown of the projection);
+ *   tangential components, ghost cell mirrored from interior cell m': wall: -u, slip: +u,
+ *     inlet: 2 U_t - u, outlet: +u;
+ *   cell fields: even mirror, except odd about the outlet value at outlets for p and phi
+ *     (Dirichlet p = -fluid_outlet_pressure on the outlet face).
+ * Options: -fluid_bc_{x,y,z}{lo,hi} wall|slip|inlet|outlet, -fluid_bc_{x,y,z}{lo,hi}_velocity
+ * (m/s), -fluid_outlet_pressure (Pa). */
+#include "fluid/fluid_impl.h"
+
+static const char *const FluidBCNames[] = {"periodic", "wall", "slip", "inlet", "outlet", "FluidBCType", "FLUID_BC_", NULL};
+
+PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
+{
+  const char *side[2] = {"lo", "hi"}, *ax = "xyz";
+  char        opt[64], optv[64];
+  PetscBool   set, any_outlet = PETSC_FALSE;
+  PetscInt    n;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(fl->comm, NULL, "Fluid boundary conditions", NULL);
+  PetscCall(PetscOptionsReal("-fluid_outlet_pressure", "Pressure on outlet faces (Pa)", NULL, fl->p_out, &fl->p_out, NULL));
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      FluidBCType t = fl->bc[d][s].type;
+      PetscCall(PetscSNPrintf(opt, sizeof opt, "-fluid_bc_%c%s", ax[d], side[s]));
+      PetscCall(PetscSNPrintf(optv, sizeof optv, "-fluid_bc_%c%s_velocity", ax[d], side[s]));
+      PetscCall(PetscOptionsEnum(opt, "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", NULL, FluidBCNames, (PetscEnum)t, (PetscEnum *)&t, &set));
+      PetscCheck(!set || fl->dom->periodic[d] == (t == FLUID_BC_PERIODIC), fl->comm, PETSC_ERR_ARG_WRONG, "%s %s: the %c axis is %speriodic (-domain_periodic_%c); valid values here: %s", opt, FluidBCNames[t], ax[d], fl->dom->periodic[d] ? "" : "not ", ax[d], fl->dom->periodic[d] ? "periodic" : "wall, slip, inlet, outlet");
+      fl->bc[d][s].type = t;
+      n                 = 3;
+      PetscCall(PetscOptionsRealArray(optv, "Inlet velocity on this face (m/s; default 0,0,0)", NULL, fl->bc[d][s].vel, &n, &set));
+      PetscCheck(!set || n == 3, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes 3 comma-separated values, got %d", optv, (int)n);
+      PetscCheck(!set || t == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but %s is %s, not inlet", optv, opt, FluidBCNames[t]);
+      if (t == FLUID_BC_OUTLET) any_outlet = PETSC_TRUE;
+    }
+  PetscOptionsEnd();
+  fl->singular = any_outlet ? PETSC_FALSE : PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Fills the ghosts of one non-periodic face of the local face array. */
+static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, int d, int s)
+{
+  const FluidGrid *g = &fl->g;
+  const FluidBC   *bc = &fl->bc[d][s];
+  const int        a = (d + 1) % 3, b = (d + 2) % 3;
+  const PetscInt   N = g->N[d], bnd = s ? N : 0, sg = s ? 1 : -1;
+  PetscInt         idx[3];
+
+  for (idx[b] = g->gfs[b]; idx[b] < g->gfs[b] + g->gfm[b]; idx[b]++)
+    for (idx[a] = g->gfs[a]; idx[a] < g->gfs[a] + g->gfm[a]; idx[a]++) {
+      PetscInt q[3] = {idx[0], idx[1], idx[2]};
+      q[d]           = bnd;
+      const PetscInt f0 = FluidFaceOff(g, q[0], q[1], q[2]), st = g->fs[d];
+      /* normal component: boundary face value, then ghost faces bnd + sg*m */
+      if (bc->type == FLUID_BC_WALL || bc->type == FLUID_BC_SLIP) u[f0 + d] = 0;
+      if (bc->type == FLUID_BC_INLET) u[f0 + d] = bc->vel[d];
+      for (PetscInt m = 1; m <= 2; m++) {
+        PetscScalar *gh = &u[f0 + sg * m * st + d], in = u[f0 - sg * m * st + d];
+        switch (bc->type) {
+        case FLUID_BC_INLET: *gh = bc->vel[d]; break;
+        case FLUID_BC_OUTLET: *gh = u[f0 + d]; break;
+        default: *gh = -in; break;
+        }
+      }
+      /* tangential components: cell-centred along d; interior cell m' mirrors to ghost */
+      const PetscInt c0 = s ? FluidFaceOff(g, q[0], q[1], q[2]) - st : f0; /* first interior */
+      for (int c = 0; c < 3; c++) {
+        if (c == d) continue;
+        for (PetscInt m = 0; m <= 1; m++) {
+          PetscScalar in = u[c0 - sg * m * st + c], *gh = &u[c0 + sg * (m + 1) * st + c];
+          switch (bc->type) {
+          case FLUID_BC_WALL: *gh = -in; break;
+          case FLUID_BC_INLET: *gh = 2 * bc->vel[c] - in; break;
+          default: *gh = in; break;
+          }
+        }
+      }
+    }
+}
+
+PetscErrorCode FluidFillVelocityGhosts(Fluid fl, PetscScalar *u)
+{
+  const FluidGrid *g = &fl->g;
+
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++) {
+    if (FluidPeriodic(fl, d)) continue;
+    if (g->xs[d] == 0) FluidFillVelocityFace(fl, u, d, 0);
+    if (g->xs[d] + g->xm[d] == g->N[d]) FluidFillVelocityFace(fl, u, d, 1);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *v, PetscBool odd_at_outlet, PetscReal outlet_value)
+{
+  const FluidGrid *g = &fl->g;
+
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++) {
+    const int a = (d + 1) % 3, b = (d + 2) % 3;
+    if (FluidPeriodic(fl, d)) continue;
+    for (int s = 0; s < 2; s++) {
+      const PetscInt  sg  = s ? 1 : -1, first = s ? g->N[d] - 1 : 0;
+      const PetscBool odd = (PetscBool)(odd_at_outlet && fl->bc[d][s].type == FLUID_BC_OUTLET);
+      PetscInt        idx[3];
+      if (s == 0 && g->xs[d] != 0) continue;
+      if (s == 1 && g->xs[d] + g->xm[d] != g->N[d]) continue;
+      for (idx[b] = g->gcs[b]; idx[b] < g->gcs[b] + g->gcm[b]; idx[b]++)
+        for (idx[a] = g->gcs[a]; idx[a] < g->gcs[a] + g->gcm[a]; idx[a]++) {
+          PetscInt q[3] = {idx[0], idx[1], idx[2]};
+          q[d]          = first;
+          const PetscInt c0 = FluidCellOff(g, q[0], q[1], q[2]), st = g->cs[d];
+          for (PetscInt m = 0; m <= 1; m++) {
+            PetscScalar in = v[c0 - sg * m * st];
+            v[c0 + sg * (m + 1) * st] = odd ? 2 * outlet_value - in : in;
+          }
+        }
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc)
+{
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGlobalToLocal(fl->fda, u, INSERT_VALUES, uloc));
+  PetscCall(VecGetArray(uloc, &a));
+  PetscCall(FluidFillVelocityGhosts(fl, a));
+  PetscCall(VecRestoreArray(uloc, &a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidLocalCell(Fluid fl, Vec v, Vec vloc, PetscBool odd_at_outlet, PetscReal outlet_value)
+{
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGlobalToLocal(fl->cda, v, INSERT_VALUES, vloc));
+  PetscCall(VecGetArray(vloc, &a));
+  PetscCall(FluidFillCellGhosts(fl, a, odd_at_outlet, outlet_value));
+  PetscCall(VecRestoreArray(vloc, &a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Sets the fixed faces of a global face Vec: wall normal components 0, inlet normal components
+ * U_n, the unused extra points of tangential components 0. */
+PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u)
+{
+  const FluidGrid *g = &fl->g;
+  PetscScalar ****a;
+  PetscInt         idx[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMDAVecGetArrayDOF(fl->fda, u, &a));
+  for (idx[2] = g->xs[2]; idx[2] < g->xs[2] + g->fxm[2]; idx[2]++)
+    for (idx[1] = g->xs[1]; idx[1] < g->xs[1] + g->fxm[1]; idx[1]++)
+      for (idx[0] = g->xs[0]; idx[0] < g->xs[0] + g->fxm[0]; idx[0]++)
+        for (int d = 0; d < 3; d++) {
+          if (FluidFaceActive(fl, d, idx)) continue;
+          PetscScalar v = 0;
+          for (int s = 0; s < 2; s++)
+            if (fl->bc[d][s].type == FLUID_BC_INLET && idx[d] == (s ? g->N[d] : 0)) v = fl->bc[d][s].vel[d];
+          a[idx[2]][idx[1]][idx[0]][d] = v;
+        }
+  PetscCall(DMDAVecRestoreArrayDOF(fl->fda, u, &a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

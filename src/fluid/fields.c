@@ -1,0 +1,101 @@
+/* Fluid fields from analytic functions: porosity at cell centres, velocity at face centres
+ * (component d at the centre of the lower d-face), and the error of the face velocity against
+ * an analytic field. For initial conditions, cases and verification tests. Coordinates in m. */
+#include "fluid/fluid_impl.h"
+
+PetscErrorCode FluidSetPorosityFunction(Fluid fl, FluidScalarFn fn, void *ctx)
+{
+  const FluidGrid *g = &fl->g;
+  PetscScalar     *e;
+  PetscInt         idx[3], c, o;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(fl->eps, &e));
+  FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+  {
+    PetscReal x[3];
+    for (int d = 0; d < 3; d++) x[d] = g->lo[d] + (idx[d] + 0.5) * g->h[d];
+    e[o] = fn(x, ctx);
+  }
+  PetscCall(VecRestoreArray(fl->eps, &e));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static void FluidFaceCentre(const FluidGrid *g, const PetscInt idx[3], int d, PetscReal x[3])
+{
+  for (int e = 0; e < 3; e++) x[e] = g->lo[e] + (idx[e] + (e == d ? 0.0 : 0.5)) * g->h[e];
+}
+
+PetscErrorCode FluidSetVelocityFunction(Fluid fl, FluidVectorFn fn, void *ctx)
+{
+  const FluidGrid *g = &fl->g;
+  PetscScalar     *u;
+  PetscInt         idx[3], f, c, o;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(fl->u, &u));
+  FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+  for (int d = 0; d < 3; d++) {
+    PetscReal x[3], v[3];
+    FluidFaceCentre(g, idx, d, x);
+    fn(x, v, ctx);
+    u[o + d] = v[d];
+  }
+  PetscCall(VecRestoreArray(fl->u, &u));
+  PetscCall(FluidBoundaryFaceValues(fl, fl->u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidVelocityError(Fluid fl, FluidVectorFn fn, void *ctx, PetscReal *l2, PetscReal *linf)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *u;
+  PetscInt           idx[3], f, c, o, n = 0, ng;
+  PetscReal          s2 = 0, mx = 0, loc[2], glob[2];
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(fl->u, &u));
+  FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+  for (int d = 0; d < 3; d++) {
+    PetscReal x[3], v[3], err;
+    for (int e = 0; e < 3; e++)
+      if (!FluidPeriodic(fl, e) && e != d && idx[e] == g->N[e]) goto skip; /* unused extra point */
+    FluidFaceCentre(g, idx, d, x);
+    fn(x, v, ctx);
+    err = PetscAbsReal(PetscRealPart(u[o + d]) - v[d]);
+    s2 += err * err;
+    mx = PetscMax(mx, err);
+    n++;
+  skip:;
+  }
+  PetscCall(VecRestoreArrayRead(fl->u, &u));
+  loc[0] = s2;
+  loc[1] = (PetscReal)n;
+  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, fl->comm));
+  PetscCall(MPIU_Allreduce(&mx, linf, 1, MPIU_REAL, MPIU_MAX, fl->comm));
+  ng  = (PetscInt)glob[1];
+  *l2 = PetscSqrtReal(glob[0] / ng);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidCellsToFaces(Fluid fl, Vec cell[3], Vec face)
+{
+  const FluidGrid *g = &fl->g;
+  PetscScalar     *out;
+  Vec              loc;
+  PetscInt         idx[3], f, c, o;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(fl->cda, &loc));
+  PetscCall(VecGetArray(face, &out));
+  for (int d = 0; d < 3; d++) {
+    const PetscScalar *a;
+    PetscCall(FluidLocalCell(fl, cell[d], loc, PETSC_FALSE, 0.0));
+    PetscCall(VecGetArrayRead(loc, &a));
+    FLUID_FOR_OWNED_FACES(g, idx, f, c, o) out[o + d] = 0.5 * (a[c] + a[c - g->cs[d]]);
+    PetscCall(VecRestoreArrayRead(loc, &a));
+  }
+  PetscCall(VecRestoreArray(face, &out));
+  PetscCall(DMRestoreLocalVector(fl->cda, &loc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,245 @@
+/* Fluid life cycle: options, grids, fields and accessors (the equations are in fluid.h, the
+ * step in step.c). The cell DMDA copies the ownership ranges of the domain's DMDA so the fluid
+ * lives on the one decomposition of the run; the face DMDA has the same ranges plus one point
+ * on the last rank along non-periodic axes (the upper boundary faces). Options -fluid_density,
+ * -fluid_viscosity, -fluid_dt, -fluid_gravity, -fluid_pressure_gradient, -fluid_advection,
+ * -fluid_viscous, -fluid_cfl_max, -fluid_viscous_number_max, -fluid_adaptive_dt; boundary
+ * options in bc.c. */
+#include "fluid/fluid_impl.h"
+
+static const char *const FluidAdvectionNames[] = {"central", "tvd", "none", "FluidAdvection", "FLUID_ADV_", NULL};
+static const char *const FluidViscousNames[]   = {"explicit", "implicit", "FluidViscous", "FLUID_VISC_", NULL};
+
+/* One class id and one log event per phase for the whole run, registered on first use. */
+static PetscErrorCode FluidRegisterEvents(Fluid fl)
+{
+  static PetscBool     done = PETSC_FALSE;
+  static PetscClassId  cid;
+  static PetscLogEvent ev[3];
+
+  PetscFunctionBeginUser;
+  if (!done) {
+    PetscCall(PetscClassIdRegister("Fluid", &cid));
+    PetscCall(PetscLogEventRegister("FluidPredict", cid, &ev[0]));
+    PetscCall(PetscLogEventRegister("FluidPoisson", cid, &ev[1]));
+    PetscCall(PetscLogEventRegister("FluidCorrect", cid, &ev[2]));
+    done = PETSC_TRUE;
+  }
+  fl->ev_predict = ev[0];
+  fl->ev_poisson = ev[1];
+  fl->ev_correct = ev[2];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid)
+{
+  Fluid fl;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&fl));
+  PetscCall(PetscObjectGetComm((PetscObject)dom->da, &fl->comm));
+  fl->dom      = dom;
+  fl->rho      = 1000.0;
+  fl->mu       = 1.0e-3;
+  fl->dt       = 1.0e-3;
+  fl->p_out    = 0.0;
+  fl->adv      = FLUID_ADV_CENTRAL;
+  fl->visc     = FLUID_VISC_EXPLICIT;
+  fl->cfl_max  = 0.5;
+  fl->visc_max = 0.5;
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) fl->bc[d][s].type = dom->periodic[d] ? FLUID_BC_PERIODIC : FLUID_BC_WALL;
+  PetscCall(FluidRegisterEvents(fl));
+  *fluid = fl;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidSetFromOptions(Fluid fl)
+{
+  PetscBool set;
+  PetscInt  n;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(fl->comm, NULL, "Fluid (porosity-averaged Navier-Stokes)", NULL);
+  PetscCall(PetscOptionsReal("-fluid_density", "Fluid density rho_f (kg/m^3)", NULL, fl->rho, &fl->rho, NULL));
+  PetscCall(PetscOptionsReal("-fluid_viscosity", "Dynamic viscosity mu (Pa s)", NULL, fl->mu, &fl->mu, NULL));
+  PetscCall(PetscOptionsReal("-fluid_dt", "Fluid time step (s)", NULL, fl->dt, &fl->dt, NULL));
+  n = 3;
+  PetscCall(PetscOptionsRealArray("-fluid_gravity", "Gravity g, acts as rho eps g (m/s^2; default 0,0,0)", NULL, fl->gravity, &n, &set));
+  PetscCheck(!set || n == 3, fl->comm, PETSC_ERR_ARG_SIZ, "-fluid_gravity takes 3 comma-separated values, got %d", (int)n);
+  n = 3;
+  PetscCall(PetscOptionsRealArray("-fluid_pressure_gradient", "Imposed mean pressure gradient G, acts as the force -G per unit volume (Pa/m; default 0,0,0)", NULL, fl->dpdx, &n, &set));
+  PetscCheck(!set || n == 3, fl->comm, PETSC_ERR_ARG_SIZ, "-fluid_pressure_gradient takes 3 comma-separated values, got %d", (int)n);
+  PetscCall(PetscOptionsEnum("-fluid_advection", "Advection scheme: central (2nd order), tvd (van Leer limited upwind), none (Stokes)", NULL, FluidAdvectionNames, (PetscEnum)fl->adv, (PetscEnum *)&fl->adv, NULL));
+  PetscCall(PetscOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", NULL, FluidViscousNames, (PetscEnum)fl->visc, (PetscEnum *)&fl->visc, NULL));
+  PetscCall(PetscOptionsReal("-fluid_cfl_max", "Largest advective CFL number dt*sum|u_d|/h_d allowed (default 0.5)", NULL, fl->cfl_max, &fl->cfl_max, NULL));
+  PetscCall(PetscOptionsReal("-fluid_viscous_number_max", "Largest explicit viscous number 2 dt nu sum 1/h_d^2 allowed (default 0.5; stability needs <= 1)", NULL, fl->visc_max, &fl->visc_max, NULL));
+  PetscCall(PetscOptionsBool("-fluid_adaptive_dt", "Lower dt to the stability limit instead of stopping", NULL, fl->adaptive, &fl->adaptive, NULL));
+  PetscOptionsEnd();
+  PetscCheck(fl->rho > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_density %g must be > 0 (kg/m^3)", (double)fl->rho);
+  PetscCheck(fl->mu > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_viscosity %g must be > 0 (Pa s)", (double)fl->mu);
+  PetscCheck(fl->dt > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_dt %g must be > 0 (s)", (double)fl->dt);
+  PetscCheck(fl->cfl_max > 0 && fl->cfl_max <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_cfl_max %g must be in (0,1]", (double)fl->cfl_max);
+  PetscCheck(fl->visc_max > 0 && fl->visc_max <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_viscous_number_max %g must be in (0,1]", (double)fl->visc_max);
+  PetscCall(FluidSetFromOptionsBC(fl));
+  PetscCall(KSPDestroy(&fl->ksp));
+  PetscCall(KSPDestroy(&fl->vksp));
+  PetscCall(FluidPoissonCreateKSP(fl));
+  if (fl->visc == FLUID_VISC_IMPLICIT) PetscCall(FluidViscousCreateKSP(fl));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Every rank must own at least two cells per axis: the stencils reach two cells. */
+static PetscErrorCode FluidCheckDecomposition(Fluid fl, const PetscInt *l[3], const PetscInt np[3])
+{
+  const char *ax = "xyz";
+
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++)
+    for (PetscInt r = 0; r < np[d]; r++)
+      PetscCheck(l[d][r] >= 2, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid grid of %d cells along %c cannot be split over %d ranks: every rank needs >= 2 cells (rank column %d has %d); change -da_grid_%c or -da_processors_%c", (int)fl->dom->cells[d], ax[d], (int)np[d], (int)r, (int)l[d][r], ax[d], ax[d]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode FluidCreateDMs(Fluid fl)
+{
+  const PetscInt *l[3];
+  PetscInt       *lf[3], np[3], N[3];
+  DMBoundaryType  bt[3];
+  FluidGrid      *g = &fl->g;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(fl->dom->da, NULL, &N[0], &N[1], &N[2], &np[0], &np[1], &np[2], NULL, NULL, NULL, NULL, NULL, NULL));
+  PetscCall(DMDAGetOwnershipRanges(fl->dom->da, &l[0], &l[1], &l[2]));
+  PetscCall(FluidCheckDecomposition(fl, l, np));
+  for (int d = 0; d < 3; d++) {
+    bt[d] = FluidPeriodic(fl, d) ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_GHOSTED;
+    PetscCall(PetscMalloc1(np[d], &lf[d]));
+    for (PetscInt r = 0; r < np[d]; r++) lf[d][r] = l[d][r];
+    if (!FluidPeriodic(fl, d)) lf[d][np[d] - 1]++;
+    g->N[d]  = N[d];
+    g->h[d]  = fl->dom->h[d];
+    g->lo[d] = fl->dom->lo[d];
+  }
+  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, N[0], N[1], N[2], np[0], np[1], np[2], 1, 2, l[0], l[1], l[2], &fl->cda));
+  PetscCall(DMSetUp(fl->cda));
+  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, N[0] + (bt[0] == DM_BOUNDARY_PERIODIC ? 0 : 1), N[1] + (bt[1] == DM_BOUNDARY_PERIODIC ? 0 : 1), N[2] + (bt[2] == DM_BOUNDARY_PERIODIC ? 0 : 1), np[0], np[1], np[2], 3, 2, lf[0], lf[1], lf[2], &fl->fda));
+  PetscCall(DMSetUp(fl->fda));
+  for (int d = 0; d < 3; d++) PetscCall(PetscFree(lf[d]));
+  PetscCall(DMDAGetCorners(fl->cda, &g->xs[0], &g->xs[1], &g->xs[2], &g->xm[0], &g->xm[1], &g->xm[2]));
+  PetscCall(DMDAGetGhostCorners(fl->cda, &g->gcs[0], &g->gcs[1], &g->gcs[2], &g->gcm[0], &g->gcm[1], &g->gcm[2]));
+  PetscCall(DMDAGetCorners(fl->fda, NULL, NULL, NULL, &g->fxm[0], &g->fxm[1], &g->fxm[2]));
+  PetscCall(DMDAGetGhostCorners(fl->fda, &g->gfs[0], &g->gfs[1], &g->gfs[2], &g->gfm[0], &g->gfm[1], &g->gfm[2]));
+  g->cs[0] = 1;
+  g->cs[1] = g->gcm[0];
+  g->cs[2] = g->gcm[0] * g->gcm[1];
+  g->fs[0] = 3;
+  g->fs[1] = 3 * g->gfm[0];
+  g->fs[2] = 3 * g->gfm[0] * g->gfm[1];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidSetUp(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FluidCreateDMs(fl));
+  PetscCall(DMCreateGlobalVector(fl->cda, &fl->p));
+  PetscCall(VecDuplicate(fl->p, &fl->eps));
+  PetscCall(VecDuplicate(fl->p, &fl->eps_old));
+  PetscCall(VecDuplicate(fl->p, &fl->phi));
+  PetscCall(VecDuplicate(fl->p, &fl->rhs));
+  PetscCall(VecSet(fl->eps, 1.0));
+  PetscCall(VecSet(fl->eps_old, 1.0));
+  PetscCall(DMCreateLocalVector(fl->cda, &fl->ploc));
+  PetscCall(VecDuplicate(fl->ploc, &fl->epsloc));
+  PetscCall(VecDuplicate(fl->ploc, &fl->epsoldloc));
+  PetscCall(VecDuplicate(fl->ploc, &fl->philoc));
+  PetscCall(DMCreateGlobalVector(fl->fda, &fl->u));
+  PetscCall(VecDuplicate(fl->u, &fl->beta));
+  PetscCall(VecDuplicate(fl->u, &fl->us));
+  PetscCall(VecDuplicate(fl->u, &fl->src));
+  PetscCall(VecDuplicate(fl->u, &fl->uhat));
+  PetscCall(VecDuplicate(fl->u, &fl->adv_old));
+  PetscCall(VecDuplicate(fl->u, &fl->advn));
+  PetscCall(VecDuplicate(fl->u, &fl->vis));
+  PetscCall(DMCreateLocalVector(fl->fda, &fl->uloc));
+  PetscCall(FluidBoundaryFaceValues(fl, fl->u));
+  PetscCheck(fl->ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
+  PetscCall(FluidPoissonSetUp(fl));
+  if (fl->vksp) PetscCall(FluidViscousSetUp(fl));
+  fl->setup = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidDestroy(Fluid *fluid)
+{
+  Fluid fl = *fluid;
+
+  PetscFunctionBeginUser;
+  if (!fl) PetscFunctionReturn(PETSC_SUCCESS);
+  Vec *v[] = {&fl->u, &fl->p, &fl->eps, &fl->eps_old, &fl->beta, &fl->us, &fl->src, &fl->uloc, &fl->ploc, &fl->epsloc, &fl->epsoldloc, &fl->uhat, &fl->advn, &fl->adv_old, &fl->vis, &fl->coef, &fl->coefloc, &fl->vbc, &fl->phiu, &fl->phi, &fl->rhs, &fl->philoc};
+  for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) PetscCall(VecDestroy(v[i]));
+  PetscCall(MatNullSpaceDestroy(&fl->nsp));
+  PetscCall(MatDestroy(&fl->A));
+  PetscCall(DMDestroy(&fl->pda));
+  PetscCall(KSPDestroy(&fl->ksp));
+  PetscCall(MatDestroy(&fl->V));
+  PetscCall(KSPDestroy(&fl->vksp));
+  PetscCall(DMDestroy(&fl->vda));
+  PetscCall(DMDestroy(&fl->cda));
+  PetscCall(DMDestroy(&fl->fda));
+  PetscCall(PetscFree(*fluid));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidGetTimeStep(Fluid fl, PetscReal *dt)
+{
+  PetscFunctionBeginUser;
+  *dt = fl->dt;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidGetDMs(Fluid fl, DM *cda, DM *fda)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidGetDMs");
+  if (cda) *cda = fl->cda;
+  if (fda) *fda = fl->fda;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidGetPorosity(Fluid fl, Vec *v)        { PetscFunctionBeginUser; *v = fl->eps; PetscFunctionReturn(PETSC_SUCCESS); }
+PetscErrorCode FluidGetPorosityOld(Fluid fl, Vec *v)     { PetscFunctionBeginUser; *v = fl->eps_old; PetscFunctionReturn(PETSC_SUCCESS); }
+PetscErrorCode FluidGetDragCoefficient(Fluid fl, Vec *v) { PetscFunctionBeginUser; *v = fl->beta; PetscFunctionReturn(PETSC_SUCCESS); }
+PetscErrorCode FluidGetSolidVelocity(Fluid fl, Vec *v)   { PetscFunctionBeginUser; *v = fl->us; PetscFunctionReturn(PETSC_SUCCESS); }
+PetscErrorCode FluidGetMomentumSource(Fluid fl, Vec *v)  { PetscFunctionBeginUser; *v = fl->src; PetscFunctionReturn(PETSC_SUCCESS); }
+PetscErrorCode FluidGetVelocity(Fluid fl, Vec *v)        { PetscFunctionBeginUser; *v = fl->u; PetscFunctionReturn(PETSC_SUCCESS); }
+PetscErrorCode FluidGetPressure(Fluid fl, Vec *v)        { PetscFunctionBeginUser; *v = fl->p; PetscFunctionReturn(PETSC_SUCCESS); }
+
+PetscErrorCode FluidGetLocalFields(Fluid fl, Vec *uloc, Vec *ploc)
+{
+  PetscFunctionBeginUser;
+  if (uloc) {
+    PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+    *uloc = fl->uloc;
+  }
+  if (ploc) {
+    PetscCall(FluidLocalCell(fl, fl->p, fl->ploc, PETSC_TRUE, fl->p_out));
+    *ploc = fl->ploc;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidApplyBoundaryValues(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FluidBoundaryFaceValues(fl, fl->u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidInitPorosity(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(fl->eps, fl->eps_old));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

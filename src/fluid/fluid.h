@@ -1,0 +1,91 @@
+/* Fluid: porosity-averaged incompressible Navier-Stokes on a staggered (MAC) grid, Grains3D
+ * Part II eqs. (9)-(10):
+ *   d(eps)/dt + div(eps u) = 0
+ *   rho (d(eps u)/dt + div(eps u u)) = -grad p - beta (u - u_s) + f + 2 mu div(eps D(u))
+ * with porosity eps given as a cell field (set by tests or, later, by the coupling), a pointwise
+ * implicit linear sink beta (u - u_s) for the drag and an explicit momentum source f, both per
+ * unit volume. p and eps live at cell centres, velocity components on the cell faces, on the one
+ * decomposition of the run (Domain, DESIGN §1). Units SI.
+ *
+ * Life cycle: FluidCreate -> FluidSetFromOptions -> FluidSetUp -> (set eps, beta, u_s, f) ->
+ * FluidStep ... -> FluidDestroy. The caller sets eps^{n+1} in the porosity Vec before FluidStep;
+ * the fluid keeps eps^n itself for the d(eps)/dt term. */
+#pragma once
+#include "domain.h"
+#include "io/io.h"
+
+typedef struct _p_Fluid *Fluid;
+
+/* What one step did: Poisson iterations and final residual norm, max |div(eps u) + deps/dt| over
+ * the cells after the projection (1/s), the advective CFL number and the viscous number of the
+ * step, and the time step actually taken (s; smaller than asked when adaptive stepping cut it). */
+typedef struct {
+  PetscInt  poisson_its;
+  PetscReal poisson_rnorm;
+  PetscReal div_max;
+  PetscReal cfl, visc_number;
+  PetscReal dt;
+} FluidStats;
+
+/* Collective on the domain's communicator. The domain must outlive the fluid. */
+PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid);
+/* Collective. Reads the -fluid_ options (-help lists them with units and defaults). */
+PetscErrorCode FluidSetFromOptions(Fluid fluid);
+/* Collective. Creates the grids, fields (u = 0, p = 0, eps = 1, beta = 0) and the Poisson KSP
+ * (prefix -fluid_poisson_, hypre BoomerAMG by default). */
+PetscErrorCode FluidSetUp(Fluid fluid);
+PetscErrorCode FluidDestroy(Fluid *fluid);
+
+/* Collective. Advances by dt (s): predictor with the implicit sink, projection so that
+ * div(eps u) = -(eps^{n+1} - eps^n)/dt to solver tolerance, then eps^n <- eps^{n+1}.
+ * Errors (naming dt, the limit and the cell) when dt exceeds the CFL or viscous limit, unless
+ * -fluid_adaptive_dt is on, in which case it takes a smaller step reported in stats->dt. */
+PetscErrorCode FluidStep(Fluid fluid, PetscReal dt, FluidStats *stats);
+
+/* Grids: cell DMDA (one dof: p, eps) with the ownership of the domain, face DMDA (three dofs:
+ * component d is the velocity normal to the lower d-face of the cell with the same index; along
+ * a non-periodic axis it has one point more than the cells, owned by the last rank). */
+PetscErrorCode FluidGetDMs(Fluid fluid, DM *cda, DM *fda);
+/* The time step given by -fluid_dt (s), for drivers and tests. */
+PetscErrorCode FluidGetTimeStep(Fluid fluid, PetscReal *dt);
+/* Borrowed global Vecs, valid until FluidDestroy. eps: porosity eps^{n+1} (cell, set it before
+ * FluidStep); eps_old: eps^n (cell, read only); beta: drag coefficient per face component
+ * (kg m^-3 s^-1, face); u_s: solid velocity per face component (m/s); source: explicit momentum
+ * source per face component (N/m^3); u: face velocity (m/s); p: pressure (Pa). */
+PetscErrorCode FluidGetPorosity(Fluid fluid, Vec *eps);
+PetscErrorCode FluidGetPorosityOld(Fluid fluid, Vec *eps_old);
+PetscErrorCode FluidGetDragCoefficient(Fluid fluid, Vec *beta);
+PetscErrorCode FluidGetSolidVelocity(Fluid fluid, Vec *us);
+PetscErrorCode FluidGetMomentumSource(Fluid fluid, Vec *source);
+PetscErrorCode FluidGetVelocity(Fluid fluid, Vec *u);
+PetscErrorCode FluidGetPressure(Fluid fluid, Vec *p);
+/* Collective. Ghosted local copies for interpolation: the face velocity with boundary ghosts
+ * filled from the boundary conditions (two layers), and the pressure with its ghosts. Borrowed,
+ * valid until the next FluidStep. */
+PetscErrorCode FluidGetLocalFields(Fluid fluid, Vec *uloc, Vec *ploc);
+/* Collective. Call after changing the velocity Vec by hand (initial conditions): applies the
+ * boundary values to the boundary faces. */
+PetscErrorCode FluidApplyBoundaryValues(Fluid fluid);
+/* Collective. Writes eps, p and the cell-centred velocity into the open frame of io (the fluid
+ * mesh is declared on first use). */
+PetscErrorCode FluidWriteOutput(Fluid fluid, Io io);
+
+/* Analytic fields (fields.c): x is a point (m); a scalar function returns the value, a vector
+ * function fills v[3] (m/s). */
+typedef PetscReal (*FluidScalarFn)(const PetscReal x[3], void *ctx);
+typedef void (*FluidVectorFn)(const PetscReal x[3], PetscReal v[3], void *ctx);
+/* Not collective. Sets eps^{n+1} at the owned cell centres. */
+PetscErrorCode FluidSetPorosityFunction(Fluid fluid, FluidScalarFn fn, void *ctx);
+/* Not collective. Sets each velocity component at its owned face centres, then the boundary
+ * values on fixed faces. */
+PetscErrorCode FluidSetVelocityFunction(Fluid fluid, FluidVectorFn fn, void *ctx);
+/* Collective. RMS and max over all face values (unused extra points excluded) of |u - fn|. */
+PetscErrorCode FluidVelocityError(Fluid fluid, FluidVectorFn fn, void *ctx, PetscReal *l2, PetscReal *linf);
+/* Collective. Declares the current porosity eps^{n+1} also the previous one (no d(eps)/dt in the
+ * next step): call once after setting the initial porosity. */
+PetscErrorCode FluidInitPorosity(Fluid fluid);
+/* Collective. Face values from cell-centred fields: component d of the face Vec (beta, u_s or
+ * source) is the mean of cell[d] over the two cells of the face (the boundary cell's own value
+ * on domain faces). For a scalar such as beta pass the same Vec three times. Cell Vecs are
+ * global Vecs of the cell DMDA (or of the domain's DMDA: same layout). */
+PetscErrorCode FluidCellsToFaces(Fluid fluid, Vec cell[3], Vec face);

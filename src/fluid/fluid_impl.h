@@ -1,0 +1,127 @@
+/* Private to src/fluid: the Fluid object and the index arithmetic of the staggered grid.
+ * Layout: cell (i,j,k) holds p and eps at its centre; face point (i,j,k) of the face DMDA holds,
+ * in component d, the velocity normal to the lower d-face of cell (i,j,k). Kernels work on raw
+ * ghosted local arrays with linear offsets: a face point is an offset f into the face array
+ * (component d at f + d), a cell an offset c into the cell array; stepping along axis e is
+ * f +- fs[e], c +- cs[e]. Both DMDAs have stencil width 2 (the TVD limiter reaches two cells). */
+#pragma once
+#include "fluid/fluid.h"
+
+typedef enum { FLUID_BC_PERIODIC, FLUID_BC_WALL, FLUID_BC_SLIP, FLUID_BC_INLET, FLUID_BC_OUTLET } FluidBCType;
+typedef enum { FLUID_ADV_CENTRAL, FLUID_ADV_TVD, FLUID_ADV_NONE } FluidAdvection;
+typedef enum { FLUID_VISC_EXPLICIT, FLUID_VISC_IMPLICIT } FluidViscous;
+
+typedef struct {
+  FluidBCType type;
+  PetscReal   vel[3]; /* inlet velocity (m/s) */
+} FluidBC;
+
+/* Geometry of the ghosted local arrays of this rank. */
+typedef struct {
+  PetscInt N[3];             /* global cells per axis */
+  PetscInt xs[3], xm[3];     /* owned cells (also the owned face points, plus the extra face) */
+  PetscInt fxm[3];           /* owned face points per axis */
+  PetscInt gcs[3], gcm[3];   /* ghosted cell box */
+  PetscInt gfs[3], gfm[3];   /* ghosted face box */
+  PetscInt cs[3], fs[3];     /* strides of the cell and face local arrays */
+  PetscReal h[3], lo[3];
+} FluidGrid;
+
+struct _p_Fluid {
+  MPI_Comm       comm;
+  Domain        *dom;
+  FluidGrid      g;
+  DM             cda, fda;
+  FluidBC        bc[3][2];
+  PetscReal      rho, mu, dt, gravity[3], dpdx[3], p_out;
+  FluidAdvection adv;
+  FluidViscous   visc;
+  PetscReal      cfl_max, visc_max;
+  PetscBool      adaptive, setup;
+  /* fields (global) */
+  Vec u, p, eps, eps_old, beta, us, src;
+  /* work: ghosted locals, AB2 history of the advection term, predictor, projection */
+  Vec uloc, ploc, epsloc, epsoldloc, uhat, advn, adv_old, vis, phi, rhs, philoc;
+  PetscReal dt_old;
+  PetscBool have_adv_old;
+  DM         pda;  /* star-stencil copy of cda for the Poisson matrix (same ownership) */
+  Vec        coef, coefloc;
+  Mat        A;
+  KSP        ksp;
+  MatNullSpace nsp;
+  PetscObjectState eps_state, beta_state;
+  PetscReal  dt_mat;
+  PetscBool  singular;
+  PetscInt   nsteps;
+  KSP        vksp; /* implicit viscous solve (only with -fluid_viscous implicit) */
+  DM         vda;  /* star-stencil copy of fda for its matrix */
+  Mat        V;
+  Vec        vbc, phiu; /* boundary part of its right-hand side; solution work vector */
+  PetscObjectState veps_state, vbeta_state;
+  PetscReal  dt_vmat;
+  PetscLogEvent ev_predict, ev_poisson, ev_correct;
+};
+
+static inline PetscInt FluidCellOff(const FluidGrid *g, PetscInt i, PetscInt j, PetscInt k)
+{
+  return ((k - g->gcs[2]) * g->gcm[1] + (j - g->gcs[1])) * g->gcm[0] + (i - g->gcs[0]);
+}
+static inline PetscInt FluidFaceOff(const FluidGrid *g, PetscInt i, PetscInt j, PetscInt k)
+{
+  return 3 * (((k - g->gfs[2]) * g->gfm[1] + (j - g->gfs[1])) * g->gfm[0] + (i - g->gfs[0]));
+}
+static inline PetscBool FluidPeriodic(Fluid fl, int d) { return fl->bc[d][0].type == FLUID_BC_PERIODIC; }
+
+/* Whether component d at face point idx is an unknown of the momentum equation: not a wall or
+ * inlet face (fixed), not the unused extra point of a tangential component. */
+static inline PetscBool FluidFaceActive(Fluid fl, int d, const PetscInt idx[3])
+{
+  for (int e = 0; e < 3; e++) {
+    if (FluidPeriodic(fl, e)) continue;
+    if (e != d && idx[e] == fl->g.N[e]) return PETSC_FALSE;
+  }
+  if (FluidPeriodic(fl, d)) return PETSC_TRUE;
+  if (idx[d] == 0) return fl->bc[d][0].type == FLUID_BC_OUTLET;
+  if (idx[d] == fl->g.N[d]) return fl->bc[d][1].type == FLUID_BC_OUTLET;
+  return PETSC_TRUE;
+}
+
+/* Loops over the owned face points: local face offset f, local cell offset c, global offset o. */
+#define FLUID_FOR_OWNED_FACES(g, idx, f, c, o) \
+  for (idx[2] = (g)->xs[2], o = 0; idx[2] < (g)->xs[2] + (g)->fxm[2]; idx[2]++) \
+    for (idx[1] = (g)->xs[1]; idx[1] < (g)->xs[1] + (g)->fxm[1]; idx[1]++) \
+      for (idx[0] = (g)->xs[0], f = FluidFaceOff(g, idx[0], idx[1], idx[2]), c = FluidCellOff(g, idx[0], idx[1], idx[2]); idx[0] < (g)->xs[0] + (g)->fxm[0]; idx[0]++, f += 3, c++, o += 3)
+
+/* Loops over the owned cells: local cell offset c, global offset o. */
+#define FLUID_FOR_OWNED_CELLS(g, idx, c, o) \
+  for (idx[2] = (g)->xs[2], o = 0; idx[2] < (g)->xs[2] + (g)->xm[2]; idx[2]++) \
+    for (idx[1] = (g)->xs[1]; idx[1] < (g)->xs[1] + (g)->xm[1]; idx[1]++) \
+      for (idx[0] = (g)->xs[0], c = FluidCellOff(g, idx[0], idx[1], idx[2]); idx[0] < (g)->xs[0] + (g)->xm[0]; idx[0]++, c++, o++)
+
+/* div(eps u) in the cell at local offsets (f, c), eps on a face the mean of its two cells. */
+static inline PetscScalar fluid_mass_divergence(const FluidGrid *g, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c)
+{
+  PetscScalar s = 0;
+  for (int d = 0; d < 3; d++) s += (0.5 * (eps[c] + eps[c + g->cs[d]]) * u[f + g->fs[d] + d] - 0.5 * (eps[c] + eps[c - g->cs[d]]) * u[f + d]) / g->h[d];
+  return s;
+}
+
+/* bc.c */
+PetscErrorCode FluidSetFromOptionsBC(Fluid fl);
+PetscErrorCode FluidFillVelocityGhosts(Fluid fl, PetscScalar *u);
+PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *a, PetscBool odd_at_outlet, PetscReal outlet_value);
+PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u);
+PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc);
+PetscErrorCode FluidLocalCell(Fluid fl, Vec a, Vec aloc, PetscBool odd_at_outlet, PetscReal outlet_value);
+/* momentum.c: explicit terms per unit volume at the active faces of the owned points */
+PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out);
+PetscErrorCode FluidViscousTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscBool transpose_only, PetscScalar *out);
+/* viscous.c: implicit viscous predictor */
+PetscErrorCode FluidViscousCreateKSP(Fluid fl);
+PetscErrorCode FluidViscousSetUp(Fluid fl);
+PetscErrorCode FluidViscousSolve(Fluid fl, PetscReal dt, Vec rhs, Vec uhat);
+/* poisson.c */
+PetscErrorCode FluidPoissonCreateKSP(Fluid fl);
+PetscErrorCode FluidPoissonSetUp(Fluid fl);
+PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st);
+PetscErrorCode FluidDivergenceMax(Fluid fl, PetscReal dt, PetscReal *dmax);

@@ -1,0 +1,104 @@
+/* Explicit momentum terms on the staggered grid, per unit volume, at the active faces.
+ * Advection, conservative: A_d = rho sum_e [F_e(+) u_d(+) - F_e(-) u_d(-)] / h_e over the faces
+ * of the control volume around the d-face P, where F_e is the mass flux eps u_e averaged onto
+ * the control-volume face (eps on a velocity face is the mean of its two cells) and u_d there
+ * is central (mean of the two neighbours) or upwind-biased TVD with the van Leer limiter.
+ * Viscous, 2 mu div(eps D(u)): tau_dd = 2 mu eps (du_d/dx_d) at cell centres, tau_de = mu eps
+ * (du_d/dx_e + du_e/dx_d) at cell edges with eps the mean of the four cells around the edge.
+ * Both are second order on a uniform grid; boundary conditions arrive through the ghosts (bc.c).
+ * For the implicit viscous option only the transpose part mu eps du_e/dx_d of the shear stress
+ * is explicit (viscous.c treats the rest). Units: N/m^3. */
+#include "fluid/fluid_impl.h"
+
+/* Value of u_d on the interface between L and R = L+e given the neighbours LL = L-e and
+ * RR = R+e and the sign of the flux through it (van Leer limited slope, upwind side). */
+static inline PetscScalar fluid_tvd_face(PetscScalar LL, PetscScalar L, PetscScalar R, PetscScalar RR, PetscScalar F)
+{
+  PetscScalar up, dn, dd;
+  if (F >= 0) { up = L; dn = R; dd = L - LL; }
+  else { up = R; dn = L; dd = R - RR; }
+  const PetscScalar D = dn - up;
+  return up + (dd * D > 0 ? dd * D / (dd + D) : 0);
+}
+
+/* Mass flux eps u_e at the e-face of face point f (cell c). */
+static inline PetscScalar fluid_mass_flux(const FluidGrid *g, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, int e)
+{
+  return 0.5 * (eps[c] + eps[c - g->cs[e]]) * u[f + e];
+}
+
+static PetscScalar FluidAdvectionAt(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, int d)
+{
+  const FluidGrid *g   = &fl->g;
+  const PetscBool  tvd = (PetscBool)(fl->adv == FLUID_ADV_TVD);
+  PetscScalar      sum = 0;
+
+  for (int e = 0; e < 3; e++) {
+    const PetscInt fe = g->fs[e], ce = g->cs[e], fd = g->fs[d], cd = g->cs[d];
+    /* fluxes through the +e and -e faces of the control volume around face P */
+    const PetscScalar Fp = 0.5 * (fluid_mass_flux(g, u, eps, f + fe, c + ce, e) + fluid_mass_flux(g, u, eps, f + fe - fd, c + ce - cd, e));
+    const PetscScalar Fm = 0.5 * (fluid_mass_flux(g, u, eps, f, c, e) + fluid_mass_flux(g, u, eps, f - fd, c - cd, e));
+    const PetscScalar um2 = u[f - 2 * fe + d], um1 = u[f - fe + d], u0 = u[f + d], up1 = u[f + fe + d], up2 = u[f + 2 * fe + d];
+    PetscScalar       vp, vm;
+    if (tvd) {
+      vp = fluid_tvd_face(um1, u0, up1, up2, Fp);
+      vm = fluid_tvd_face(um2, um1, u0, up1, Fm);
+    } else {
+      vp = 0.5 * (u0 + up1);
+      vm = 0.5 * (um1 + u0);
+    }
+    sum += (Fp * vp - Fm * vm) / g->h[e];
+  }
+  return fl->rho * sum;
+}
+
+static PetscScalar FluidViscousAt(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, int d, PetscBool transpose_only)
+{
+  const FluidGrid *g   = &fl->g;
+  const PetscInt   fd  = g->fs[d], cd = g->cs[d];
+  const PetscReal  hd  = g->h[d];
+  PetscScalar      sum = 0;
+
+  if (!transpose_only) {
+    const PetscScalar tp = 2 * fl->mu * eps[c] * (u[f + fd + d] - u[f + d]) / hd;
+    const PetscScalar tm = 2 * fl->mu * eps[c - cd] * (u[f + d] - u[f - fd + d]) / hd;
+    sum += (tp - tm) / hd;
+  }
+  for (int e = 0; e < 3; e++) {
+    if (e == d) continue;
+    const PetscInt  fe = g->fs[e], ce = g->cs[e];
+    const PetscReal he = g->h[e];
+    PetscScalar     tau[2];
+    for (int s = 0; s < 2; s++) { /* edge Q = P + s e */
+      const PetscInt    fq = f + s * fe, cq = c + s * ce;
+      const PetscScalar ee = 0.25 * (eps[cq] + eps[cq - cd] + eps[cq - ce] + eps[cq - cd - ce]);
+      const PetscScalar tr = (u[fq + e] - u[fq - fd + e]) / hd;
+      const PetscScalar dn = transpose_only ? 0 : (u[fq + d] - u[fq - fe + d]) / he;
+      tau[s]               = fl->mu * ee * (dn + tr);
+    }
+    sum += (tau[1] - tau[0]) / he;
+  }
+  return sum;
+}
+
+PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out)
+{
+  const FluidGrid *g = &fl->g;
+  PetscInt         idx[3], f, c, o;
+
+  PetscFunctionBeginUser;
+  FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+  for (int d = 0; d < 3; d++) out[o + d] = (fl->adv != FLUID_ADV_NONE && FluidFaceActive(fl, d, idx)) ? FluidAdvectionAt(fl, u, eps, f, c, d) : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidViscousTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscBool transpose_only, PetscScalar *out)
+{
+  const FluidGrid *g = &fl->g;
+  PetscInt         idx[3], f, c, o;
+
+  PetscFunctionBeginUser;
+  FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+  for (int d = 0; d < 3; d++) out[o + d] = FluidFaceActive(fl, d, idx) ? FluidViscousAt(fl, u, eps, f, c, d, transpose_only) : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

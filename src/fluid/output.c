@@ -1,0 +1,33 @@
+/* Fluid output: porosity eps, pressure p and the cell-centred velocity (the mean of the two
+ * face values of each component) of the owned cells, written as fluid fields of the open
+ * frame (io.h). */
+#include "fluid/fluid_impl.h"
+
+PetscErrorCode FluidWriteOutput(Fluid fl, Io io)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *u, *e, *p;
+  PetscReal         *vel;
+  PetscInt           idx[3], c, o, n = g->xm[0] * g->xm[1] * g->xm[2];
+
+  PetscFunctionBeginUser;
+  PetscCall(IoSetFluidMesh(io, g->lo, g->h, g->N));
+  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+  PetscCall(PetscMalloc1(3 * n, &vel));
+  PetscCall(VecGetArrayRead(fl->uloc, &u));
+  FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+  {
+    const PetscInt f = FluidFaceOff(g, idx[0], idx[1], idx[2]);
+    for (int d = 0; d < 3; d++) vel[3 * o + d] = 0.5 * (u[f + d] + u[f + g->fs[d] + d]);
+  }
+  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(VecGetArrayRead(fl->eps, &e));
+  PetscCall(VecGetArrayRead(fl->p, &p));
+  PetscCall(IoWriteField(io, "eps", 1, g->xs, g->xm, e));
+  PetscCall(IoWriteField(io, "p", 1, g->xs, g->xm, p));
+  PetscCall(IoWriteField(io, "velocity", 3, g->xs, g->xm, vel));
+  PetscCall(VecRestoreArrayRead(fl->p, &p));
+  PetscCall(VecRestoreArrayRead(fl->eps, &e));
+  PetscCall(PetscFree(vel));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,222 @@
+/* Projection. After the predictor u^ (step.c) the velocity is corrected with the pressure
+ * increment phi,
+ *   (rho eps_f/dt + beta) (u - u^) = -grad phi,        p^{n+1} = p^n + phi,
+ * which keeps the drag sink implicit, and u must satisfy the discrete continuity equation
+ *   div(eps_f u) = -(eps^{n+1} - eps^n)/dt.
+ * Hence the variable-coefficient Poisson equation
+ *   div(c grad phi) = div(eps_f u^) + (eps^{n+1} - eps^n)/dt,   c = eps_f / (rho eps_f/dt + beta),
+ * with c = 0 on wall and inlet faces (Neumann) and phi = 0 on outlet faces (Dirichlet, by an odd
+ * ghost). The matrix is -div(c grad), symmetric positive (semi-)definite; with no outlet it has
+ * the constants as null space, removed from the right-hand side. The same face gradient is used
+ * in the matrix and in the correction, so continuity holds to the solver tolerance. KSP prefix
+ * -fluid_poisson_ (CG + hypre BoomerAMG, rtol 1e-8 by default); every solve is checked. */
+#include "fluid/fluid_impl.h"
+#include <petsc/private/petscimpl.h> /* PetscObjectStateGet: rebuild the matrix only when eps, beta or dt changed */
+
+/* Collective. The KSP and its options (-fluid_poisson_), read with the other -fluid_ options so
+ * that the unused-option check sees them. */
+PetscErrorCode FluidPoissonCreateKSP(Fluid fl)
+{
+  PC pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPCreate(fl->comm, &fl->ksp));
+  PetscCall(KSPSetOptionsPrefix(fl->ksp, "fluid_poisson_"));
+  PetscCall(KSPSetType(fl->ksp, KSPCG));
+  PetscCall(KSPGetPC(fl->ksp, &pc));
+  PetscCall(PCSetType(pc, PCHYPRE));
+  PetscCall(PCHYPRESetType(pc, "boomeramg"));
+  PetscCall(KSPSetTolerances(fl->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 500));
+  PetscCall(KSPSetFromOptions(fl->ksp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidPoissonSetUp(Fluid fl)
+{
+  const PetscInt *l[3];
+  PetscInt        np[3];
+  DMBoundaryType  bt[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(fl->cda, NULL, NULL, NULL, NULL, &np[0], &np[1], &np[2], NULL, NULL, &bt[0], &bt[1], &bt[2], NULL));
+  PetscCall(DMDAGetOwnershipRanges(fl->cda, &l[0], &l[1], &l[2]));
+  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_STAR, fl->g.N[0], fl->g.N[1], fl->g.N[2], np[0], np[1], np[2], 1, 1, l[0], l[1], l[2], &fl->pda));
+  PetscCall(DMSetUp(fl->pda));
+  PetscCall(DMCreateMatrix(fl->pda, &fl->A));
+  PetscCall(VecDuplicate(fl->u, &fl->coef));
+  PetscCall(VecDuplicate(fl->uloc, &fl->coefloc));
+  if (fl->singular) {
+    PetscCall(MatNullSpaceCreate(fl->comm, PETSC_TRUE, 0, NULL, &fl->nsp));
+    PetscCall(MatSetNullSpace(fl->A, fl->nsp));
+  }
+  fl->dt_mat = -1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Face coefficients c (0 on fixed faces) into fl->coef and its ghosted copy. */
+static PetscErrorCode FluidPoissonCoefficients(Fluid fl, PetscReal dt, const PetscScalar *eps)
+{
+  const FluidGrid   *g = &fl->g;
+  PetscInt           idx[3], f, c, o;
+  PetscScalar       *cf;
+  const PetscScalar *beta;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(fl->coef, &cf));
+  PetscCall(VecGetArrayRead(fl->beta, &beta));
+  FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+  for (int d = 0; d < 3; d++) {
+    const PetscScalar ef = 0.5 * (eps[c] + eps[c - g->cs[d]]);
+    cf[o + d]            = FluidFaceActive(fl, d, idx) ? ef / (fl->rho * ef / dt + beta[o + d]) : 0;
+  }
+  PetscCall(VecRestoreArrayRead(fl->beta, &beta));
+  PetscCall(VecRestoreArray(fl->coef, &cf));
+  PetscCall(DMGlobalToLocal(fl->fda, fl->coef, INSERT_VALUES, fl->coefloc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode FluidPoissonAssemble(Fluid fl, PetscReal dt, const PetscScalar *eps)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *cf;
+  PetscInt           idx[3], c, o;
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidPoissonCoefficients(fl, dt, eps));
+  PetscCall(MatZeroEntries(fl->A));
+  PetscCall(VecGetArrayRead(fl->coefloc, &cf));
+  FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+  {
+    MatStencil  row = {.k = idx[2], .j = idx[1], .i = idx[0]}, col[7];
+    PetscScalar v[7];
+    PetscInt    n = 1;
+    const PetscInt f = FluidFaceOff(g, idx[0], idx[1], idx[2]);
+    col[0] = row;
+    v[0]   = 0;
+    for (int d = 0; d < 3; d++) {
+      const PetscReal   ih2 = 1.0 / (g->h[d] * g->h[d]);
+      const PetscScalar cm = cf[f + d] * ih2, cp = cf[f + g->fs[d] + d] * ih2;
+      v[0] += cm + cp;
+      for (int s = 0; s < 2; s++) {
+        const PetscScalar cc = s ? cp : cm;
+        const PetscBool   in = (PetscBool)(FluidPeriodic(fl, d) || (s ? idx[d] < g->N[d] - 1 : idx[d] > 0));
+        if (!in) {
+          v[0] += cc; /* Dirichlet on an outlet face: ghost phi = -phi (c is 0 on fixed faces) */
+          continue;
+        }
+        col[n]   = row;
+        if (d == 0) col[n].i += s ? 1 : -1;
+        if (d == 1) col[n].j += s ? 1 : -1;
+        if (d == 2) col[n].k += s ? 1 : -1;
+        v[n++] = -cc;
+      }
+    }
+    PetscCall(MatSetValuesStencil(fl->A, 1, &row, n, col, v, ADD_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(fl->coefloc, &cf));
+  PetscCall(MatAssemblyBegin(fl->A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(fl->A, MAT_FINAL_ASSEMBLY));
+  PetscCall(KSPSetOperators(fl->ksp, fl->A, fl->A));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* rhs = -(div(eps_f u^) + (eps^{n+1} - eps^n)/dt) on the owned cells. */
+static PetscErrorCode FluidPoissonRHS(Fluid fl, PetscReal dt, const PetscScalar *u, const PetscScalar *eps, const PetscScalar *eps0)
+{
+  const FluidGrid *g = &fl->g;
+  PetscScalar     *b;
+  PetscInt         idx[3], c, o;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(fl->rhs, &b));
+  FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+  b[o] = -(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt);
+  PetscCall(VecRestoreArray(fl->rhs, &b));
+  if (fl->nsp) PetscCall(MatNullSpaceRemove(fl->nsp, fl->rhs));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* u = u^ - (c/eps_f) grad phi on the active faces; p += phi. */
+static PetscErrorCode FluidCorrect(Fluid fl, const PetscScalar *eps)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *uh, *cf, *phi;
+  PetscScalar       *u;
+  PetscInt           idx[3], f, c, o;
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidLocalCell(fl, fl->phi, fl->philoc, PETSC_TRUE, 0.0));
+  PetscCall(VecGetArrayRead(fl->uhat, &uh));
+  PetscCall(VecGetArrayRead(fl->coef, &cf));
+  PetscCall(VecGetArrayRead(fl->philoc, &phi));
+  PetscCall(VecGetArray(fl->u, &u));
+  FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+  for (int d = 0; d < 3; d++) {
+    const PetscScalar ef = 0.5 * (eps[c] + eps[c - g->cs[d]]);
+    u[o + d]             = uh[o + d] - (cf[o + d] / ef) * (phi[c] - phi[c - g->cs[d]]) / g->h[d];
+  }
+  PetscCall(VecRestoreArray(fl->u, &u));
+  PetscCall(VecRestoreArrayRead(fl->philoc, &phi));
+  PetscCall(VecRestoreArrayRead(fl->coef, &cf));
+  PetscCall(VecRestoreArrayRead(fl->uhat, &uh));
+  PetscCall(VecAXPY(fl->p, 1.0, fl->phi));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
+{
+  const PetscScalar *u, *eps, *eps0;
+  PetscObjectState   se, sb;
+  KSPConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(fl->ev_poisson, 0, 0, 0, 0));
+  PetscCall(FluidLocalVelocity(fl, fl->uhat, fl->uloc));
+  PetscCall(VecGetArrayRead(fl->uloc, &u));
+  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
+  PetscCall(VecGetArrayRead(fl->epsoldloc, &eps0));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->eps, &se));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->beta, &sb));
+  if (se != fl->eps_state || sb != fl->beta_state || dt != fl->dt_mat) {
+    PetscCall(FluidPoissonAssemble(fl, dt, eps));
+    fl->eps_state  = se;
+    fl->beta_state = sb;
+    fl->dt_mat     = dt;
+  }
+  PetscCall(FluidPoissonRHS(fl, dt, u, eps, eps0));
+  PetscCall(VecRestoreArrayRead(fl->epsoldloc, &eps0));
+  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(KSPSolve(fl->ksp, fl->rhs, fl->phi));
+  PetscCall(KSPGetConvergedReason(fl->ksp, &reason));
+  PetscCall(KSPGetIterationNumber(fl->ksp, &st->poisson_its));
+  PetscCall(KSPGetResidualNorm(fl->ksp, &st->poisson_rnorm));
+  PetscCheck(reason > 0, fl->comm, PETSC_ERR_NOT_CONVERGED, "fluid pressure Poisson solve failed: %s after %d iterations, residual %g; try -fluid_poisson_ksp_max_it, -fluid_poisson_ksp_rtol or -fluid_poisson_pc_type", KSPConvergedReasons[reason], (int)st->poisson_its, (double)st->poisson_rnorm);
+  PetscCall(PetscLogEventEnd(fl->ev_poisson, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(fl->ev_correct, 0, 0, 0, 0));
+  PetscCall(FluidCorrect(fl, eps));
+  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
+  PetscCall(PetscLogEventEnd(fl->ev_correct, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective: max over cells of |div(eps_f u) + (eps^{n+1} - eps^n)/dt| for the current u. */
+PetscErrorCode FluidDivergenceMax(Fluid fl, PetscReal dt, PetscReal *dmax)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *u, *eps, *eps0;
+  PetscInt           idx[3], c, o;
+  PetscReal          m = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+  PetscCall(VecGetArrayRead(fl->uloc, &u));
+  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
+  PetscCall(VecGetArrayRead(fl->epsoldloc, &eps0));
+  FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+  m = PetscMax(m, PetscAbsScalar(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt));
+  PetscCall(VecRestoreArrayRead(fl->epsoldloc, &eps0));
+  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
+  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(MPIU_Allreduce(&m, dmax, 1, MPIU_REAL, MPIU_MAX, fl->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,89 @@
+/* Cost of a fluid step in a periodic box, and the driver of tools/bench_fluid.sh.
+ * The box [0, 2 pi]^3 (-test_cells per axis, default 16) starts from the 3-D Taylor-Green field
+ * u = sin x cos y cos z, v = -cos x sin y cos z, w = 0 (rho = 1, mu = 1e-3, Re = 1000 on the
+ * box) so every step's predictor is far from solenoidal and the Poisson solve has real work.
+ * It takes -test_steps steps (default 10) of dt = 0.1 h with the Poisson solve to rtol 1e-8
+ * (KSP CG + BoomerAMG, overridable by -fluid_poisson_*), times each step, and prints the medians
+ * of the step time, of the time per cell and step, and of the Poisson iterations; the first
+ * step, which sets up BoomerAMG, is excluded from the medians and printed apart.
+ * As a test (no options) it checks that the Poisson iterations stay below 25 and that every
+ * step leaves |div u| below 1e-6 of the velocity scale 1/h. */
+#include "fluid/fluid.h"
+
+static void TaylorGreen3(const PetscReal x[3], PetscReal v[3], void *ctx)
+{
+  (void)ctx;
+  v[0] = PetscSinReal(x[0]) * PetscCosReal(x[1]) * PetscCosReal(x[2]);
+  v[1] = -PetscCosReal(x[0]) * PetscSinReal(x[1]) * PetscCosReal(x[2]);
+  v[2] = 0;
+}
+
+static int CmpReal(const void *a, const void *b)
+{
+  const PetscReal x = *(const PetscReal *)a, y = *(const PetscReal *)b;
+  return (x > y) - (x < y);
+}
+
+static PetscReal Median(PetscReal *v, PetscInt n)
+{
+  qsort(v, (size_t)n, sizeof *v, CmpReal);
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int main(int argc, char **argv)
+{
+  Domain      dom = {0};
+  Fluid       fl;
+  FluidStats  st;
+  PetscInt    N = 16, steps = 10, maxits = 0;
+  PetscReal   *tstep, *its, worst = 0, t0, first = 0, h, med_t, med_its;
+  char        buf[64];
+  PetscMPIInt size;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-test_cells", &N, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-test_steps", &steps, NULL));
+  PetscCheck(steps >= 2, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-test_steps %d must be >= 2", (int)steps);
+  PetscCall(PetscSNPrintf(buf, sizeof buf, "%.12g,%.12g,%.12g", 2 * PETSC_PI, 2 * PETSC_PI, 2 * PETSC_PI));
+  PetscCall(PetscOptionsSetValue(NULL, "-domain_lo", "0,0,0"));
+  PetscCall(PetscOptionsSetValue(NULL, "-domain_hi", buf));
+  PetscCall(PetscOptionsSetValue(NULL, "-domain_periodic_x", "1"));
+  PetscCall(PetscOptionsSetValue(NULL, "-domain_periodic_y", "1"));
+  PetscCall(PetscOptionsSetValue(NULL, "-domain_periodic_z", "1"));
+  PetscCall(PetscSNPrintf(buf, sizeof buf, "%d", (int)N));
+  PetscCall(PetscOptionsSetValue(NULL, "-da_grid_x", buf));
+  PetscCall(PetscOptionsSetValue(NULL, "-da_grid_y", buf));
+  PetscCall(PetscOptionsSetValue(NULL, "-da_grid_z", buf));
+  PetscCall(PetscOptionsSetValue(NULL, "-fluid_density", "1"));
+  PetscCall(PetscOptionsSetValue(NULL, "-fluid_viscosity", "1e-3"));
+  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
+  PetscCall(FluidCreate(&dom, &fl));
+  PetscCall(FluidSetFromOptions(fl));
+  PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
+  PetscCall(FluidSetUp(fl));
+  PetscCall(FluidSetVelocityFunction(fl, TaylorGreen3, NULL));
+  PetscCall(PetscMalloc2(steps, &tstep, steps, &its));
+  h = 2 * PETSC_PI / N;
+  for (PetscInt n = 0; n < steps; n++) {
+    PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
+    t0 = MPI_Wtime();
+    PetscCall(FluidStep(fl, 0.1 * h, &st));
+    PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
+    tstep[n] = MPI_Wtime() - t0;
+    its[n]   = (PetscReal)st.poisson_its;
+    maxits   = PetscMax(maxits, st.poisson_its);
+    worst    = PetscMax(worst, st.div_max * h);
+    if (!n) first = tstep[0];
+  }
+  med_t   = Median(tstep + 1, steps - 1);
+  med_its = Median(its + 1, steps - 1);
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "# bench ranks %d cells %d^3 steps %d: first step %.4g s; median step %.4g s, %.4g us per cell per step (x ranks: %.4g); median Poisson its %.1f (max %d)\n", (int)size, (int)N, (int)steps, (double)first, (double)med_t, (double)(1e6 * med_t / (N * N * N)), (double)(1e6 * med_t * size / (N * N * N)), (double)med_its, (int)maxits));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s bench_poisson_iterations_max: %d (< 25)\n", maxits < 25 ? "PASS" : "FAIL", (int)maxits));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s bench_divergence_rel: %.3e (< 1e-6)\n", worst < 1e-6 ? "PASS" : "FAIL", (double)worst));
+  PetscCall(PetscFree2(tstep, its));
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  PetscCall(PetscFinalize());
+  return 0;
+}
