@@ -206,7 +206,7 @@ PetscErrorCode DemRun(Dem dem, Io io)
       PetscCall(DemGetStats(dem, &st));
       PetscCall(PetscTime(&now));
       const double rate = (dem->step - s0) / PetscMax(now - t0, 1e-9);
-      PetscCall(PetscPrintf(dem->comm, "t %.4f s  step %" PetscInt_FMT "  %.0f steps/s  ETA %.0f s  KE %.4g J  contacts %" PetscInt_FMT "  max overlap/r %.3g\n", (double)dem->t, dem->step, rate, (dem->t_end - dem->t) / dem->dt / rate, (double)(st.ke + st.ke_rot), st.contacts + st.wall_contacts, (double)st.max_overlap));
+      PetscCall(PetscPrintf(dem->comm, "t %.4f s  step %" PetscInt_FMT "  %.0f steps/s  ETA %.0f s  KE %.4g J  contacts %" PetscInt_FMT "  max overlap/r %.3g\n", (double)dem->t, dem->step, rate, PetscMax(0.0, (dem->t_end - dem->t) / dem->dt / rate), (double)(st.ke + st.ke_rot), st.contacts + st.wall_contacts, (double)st.max_overlap));
       PetscCheck(PetscIsNormalReal(st.ke) || st.ke == 0, dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": kinetic energy is not finite; lower -dem_dt", dem->step);
       next += dem->progress_dt;
     }
