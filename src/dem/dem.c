@@ -221,6 +221,7 @@ PetscErrorCode DemDestroy(Dem *dem)
 {
   PetscFunctionBeginUser;
   if (!*dem) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DemSetExternal(*dem, PETSC_FALSE));
   PetscCall(DemNeighDestroy(*dem));
   for (PetscInt w = 0; w < (*dem)->nwall; w++) {
     PetscCall(PetscFree((*dem)->wall[w].idx));
