@@ -52,9 +52,11 @@ PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscRe
 /* Solid volume on the grid (sum over cells of (1 - eps) V_cell before the floor) and the sum of
  * the particle volumes (m^3). */
 PetscErrorCode CplGetSolidVolume(Cpl cpl, PetscReal *grid, PetscReal *particles);
-/* Mean pressure (Pa) and porosity over the cell layer whose centres are nearest to height z
- * along axis d, and the mean superficial velocity (m/s) through the face layer below it. */
-PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *p, PetscReal *eps, PetscReal *usup);
+/* The cell layer containing height z along axis d: its centre zc (m), mean pressure (Pa) and
+ * porosity, and the mean superficial velocity (m/s) through the face layer below it. */
+PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal *p, PetscReal *eps, PetscReal *usup);
+/* Mean porosity of the cells whose centres lie in [z0, z1] along axis d. */
+PetscErrorCode CplMeanPorosity(Cpl cpl, int d, PetscReal z0, PetscReal z1, PetscReal *eps);
 /* The total drag coefficient per particle K = 3 pi mu d F (kg/s) of the law at porosity eps and
  * Re_p = rho_f d eps |u - U| / mu; not collective, pure. */
 PetscReal CplDragFactor(CplDragLaw law, PetscReal eps, PetscReal re);

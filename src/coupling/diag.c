@@ -76,7 +76,7 @@ PetscErrorCode CplGetSolidVolume(Cpl cpl, PetscReal *grid, PetscReal *particles)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *pavg, PetscReal *eavg, PetscReal *usup)
+PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal *pavg, PetscReal *eavg, PetscReal *usup)
 {
   Vec                p, eps, u;
   const PetscScalar *pa, *e, *v;
@@ -87,6 +87,7 @@ PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *pavg, PetscRe
   PetscFunctionBeginUser;
   layer = (PetscInt)PetscFloorReal((z - cpl->dom->lo[d]) / cpl->dom->h[d]);
   layer = PetscMin(PetscMax(layer, 0), cpl->dom->cells[d] - 1);
+  if (zc) *zc = cpl->dom->lo[d] + (layer + 0.5) * cpl->dom->h[d];
   PetscCall(FluidGetPressure(cpl->fl, &p));
   PetscCall(FluidGetPorosity(cpl->fl, &eps));
   PetscCall(FluidGetVelocity(cpl->fl, &u));
@@ -121,5 +122,30 @@ PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *pavg, PetscRe
   *pavg = loc[0] / loc[3];
   *eavg = loc[1] / loc[3];
   *usup = loc[2] / loc[3];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplMeanPorosity(Cpl cpl, int d, PetscReal z0, PetscReal z1, PetscReal *eps)
+{
+  Vec                e;
+  const PetscScalar *a;
+  PetscInt           xs[3], xm[3], idx[3], c = 0;
+  PetscReal          loc[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidGetPorosity(cpl->fl, &e));
+  PetscCall(DMDAGetCorners(cpl->cda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArrayRead(e, &a));
+  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
+    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
+      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c++) {
+        const PetscReal z = cpl->dom->lo[d] + (idx[d] + 0.5) * cpl->dom->h[d];
+        if (z < z0 - 1e-9 * cpl->dom->h[d] || z > z1 + 1e-9 * cpl->dom->h[d]) continue;
+        loc[0] += a[c];
+        loc[1] += 1;
+      }
+  PetscCall(VecRestoreArrayRead(e, &a));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_REAL, MPIU_SUM, cpl->comm));
+  *eps = loc[0] / PetscMax(loc[1], 1);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

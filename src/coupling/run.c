@@ -37,21 +37,21 @@ static PetscErrorCode CplColumnDrop(Cpl cpl, PetscReal *dp)
   PetscReal p0, p1, e, u;
 
   PetscFunctionBeginUser;
-  PetscCall(CplGetLayer(cpl, 2, cpl->dom->lo[2], &p0, &e, &u));
-  PetscCall(CplGetLayer(cpl, 2, cpl->dom->hi[2], &p1, &e, &u));
+  PetscCall(CplGetLayer(cpl, 2, cpl->dom->lo[2], NULL, &p0, &e, &u));
+  PetscCall(CplGetLayer(cpl, 2, cpl->dom->hi[2], NULL, &p1, &e, &u));
   *dp = p0 - p1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode CplProbeReport(Cpl cpl)
 {
-  PetscReal p0, p1, e0, e1, u0, u1, eps, pred, dpdl;
+  PetscReal p0, p1, e0, e1, u0, u1, eps, pred, dpdl, z0, z1;
 
   PetscFunctionBeginUser;
-  PetscCall(CplGetLayer(cpl, 2, cpl->probe[0], &p0, &e0, &u0));
-  PetscCall(CplGetLayer(cpl, 2, cpl->probe[1], &p1, &e1, &u1));
-  eps  = 0.5 * (e0 + e1);
-  dpdl = (p0 - p1) / (cpl->probe[1] - cpl->probe[0]);
+  PetscCall(CplGetLayer(cpl, 2, cpl->probe[0], &z0, &p0, &e0, &u0));
+  PetscCall(CplGetLayer(cpl, 2, cpl->probe[1], &z1, &p1, &e1, &u1));
+  PetscCall(CplMeanPorosity(cpl, 2, z0, z1, &eps));
+  dpdl = (p0 - p1) / (z1 - z0);
   pred = CplPackedBedGradient(cpl->law, eps, u0, cpl->diam[0], cpl->rho, cpl->mu);
   PetscCall(PetscPrintf(cpl->comm, "packed bed: dp/L %.6g Pa/m, porosity %.5f, superficial velocity %.6g m/s, drag law predicts %.6g Pa/m (ratio %.5f)\n", (double)dpdl, (double)eps, (double)u0, (double)pred, (double)(dpdl / pred)));
   PetscFunctionReturn(PETSC_SUCCESS);
