@@ -65,7 +65,7 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(PetscOptionsInt("-cpl_substeps", "DEM steps per fluid step (>= 1); the fluid step is this times -dem_dt", NULL, cpl->substeps, &cpl->substeps, NULL));
   PetscCall(PetscOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d, > 0", NULL, cpl->kscale, &cpl->kscale, NULL));
   PetscCall(PetscOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log), in (0,1)", NULL, cpl->eps_floor, &cpl->eps_floor, NULL));
-  PetscCall(PetscOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at eps 0.4, Stokes), > 0", NULL, cpl->relax_max, &cpl->relax_max, NULL));
+  PetscCall(PetscOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit), > 0", NULL, cpl->relax_max, &cpl->relax_max, NULL));
   PetscCall(PetscOptionsReal("-cpl_t_end", "Simulated time of a coupled run (s)", NULL, cpl->t_end, &cpl->t_end, NULL));
   PetscCall(PetscOptionsReal("-cpl_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, cpl->progress_dt, &cpl->progress_dt, NULL));
   PetscCall(PetscOptionsRealArray("-cpl_probe_z", "Two heights z1,z2 (m) between which the run reports dp/L, porosity and the drag law's prediction", NULL, cpl->probe, &n, &cpl->probe_set));
@@ -123,7 +123,11 @@ PetscErrorCode CplSetUp(Cpl cpl)
     cpl->dt = cpl->substeps * dtd;
     PetscCheck(!fset || PetscAbsReal(dtf - cpl->dt) <= 1e-9 * cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_dt %g differs from -cpl_substeps %d x -dem_dt %g = %g: give one of them consistently (the fluid step is substeps x dt_dem)", (double)dtf, (int)cpl->substeps, (double)dtd, (double)cpl->dt);
   }
-  PetscCall(CplProjectPorosity(cpl, NULL));
+  {
+    CplStats st;
+    PetscCall(CplProjectPorosity(cpl, &st));
+    cpl->eps_min0 = st.eps_min;
+  }
   PetscCall(FluidInitPorosity(cpl->fl));
   PetscCall(CplPreflight(cpl, NULL, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -55,6 +55,10 @@ PetscErrorCode CplGetSolidVolume(Cpl cpl, PetscReal *grid, PetscReal *particles)
 /* The cell layer containing height z along axis d: its centre zc (m), mean pressure (Pa) and
  * porosity, and the mean superficial velocity (m/s) through the face layer below it. */
 PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal *p, PetscReal *eps, PetscReal *usup);
+/* Collective. Fluid velocity u (3 per local particle, m/s) and porosity eps (1 per particle) at
+ * the particles, as the drag sees them: kernel-weighted averages of the face velocities and of
+ * the cell porosity. */
+PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps);
 /* Mean porosity of the cells whose centres lie in [z0, z1] along axis d. */
 PetscErrorCode CplMeanPorosity(Cpl cpl, int d, PetscReal z0, PetscReal z1, PetscReal *eps);
 /* The total drag coefficient per particle K = 3 pi mu d F (kg/s) of the law at porosity eps and

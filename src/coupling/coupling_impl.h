@@ -29,7 +29,7 @@ struct _p_Cpl {
   PetscReal  rho, mu, g[3];
   /* state */
   PetscBool  frozen, correct;
-  PetscReal  dt, t, cell_vol;
+  PetscReal  dt, t, cell_vol, eps_min0;
   PetscInt   step;
   PetscInt   clipped_total;
   PetscReal  solid_grid; /* last projection, before the floor */
@@ -43,6 +43,5 @@ PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplSt
 PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal *vol, PetscReal *diam);
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st);
 PetscErrorCode CplSpreadFaces(Cpl cpl, const PetscReal *val, PetscBool scalar, Vec out);
-PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps);
 /* preflight.c */
 PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce);
