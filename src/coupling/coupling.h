@@ -25,6 +25,7 @@ typedef struct {
   PetscReal  eps_min;   /* smallest cell porosity after the floor */
   PetscInt   clipped;   /* cells whose porosity was raised to -cpl_porosity_floor */
   PetscReal  owed_norm; /* |momentum carried to the next step| (N s), see couple.c */
+  PetscReal  drag[3];   /* mean drag force on all particles over the step (N) */
 } CplStats;
 
 /* Collective. dom, dem and fluid must outlive the coupling. */

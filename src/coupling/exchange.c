@@ -120,6 +120,26 @@ static PetscErrorCode CplComputeOwed(Cpl cpl, PetscReal *norm)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Mean drag force on all particles over the step: the impulses received over dt. */
+static PetscErrorCode CplDragTotal(Cpl cpl, PetscReal drag[3])
+{
+  DemArrays   pa;
+  DemExternal ex;
+  PetscReal   loc[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(DemGetExternal(cpl->dem, &ex));
+  if (cpl->frozen) /* no DEM steps: the drag the fixed particles feel at the step's start */
+    for (PetscInt p = 0; p < pa.nlocal; p++)
+      for (int k = 0; k < 3; k++) loc[k] += ex.k[p] * (ex.u[3 * p + k] - pa.v[3 * p + k]);
+  else
+    for (PetscInt p = 0; p < pa.nlocal; p++)
+      for (int k = 0; k < 3; k++) loc[k] += ex.j[3 * p + k] / cpl->dt;
+  PetscCall(MPIU_Allreduce(loc, drag, 3, MPIU_REAL, MPIU_SUM, cpl->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CplStep(Cpl cpl, CplStats *st)
 {
   PetscFunctionBeginUser;
@@ -138,6 +158,7 @@ PetscErrorCode CplStep(Cpl cpl, CplStats *st)
   PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "the fluid cut its step to %g s (-fluid_adaptive_dt); a coupled run needs the fixed step %g s: lower -dem_dt or -cpl_substeps instead", (double)st->fluid.dt, (double)cpl->dt);
   PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
   PetscCall(CplComputeOwed(cpl, &st->owed_norm));
+  PetscCall(CplDragTotal(cpl, st->drag));
   PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
   cpl->t += cpl->dt;
   cpl->step++;

@@ -70,7 +70,7 @@ static PetscErrorCode CplOutput(Cpl cpl, Io io)
 static PetscErrorCode CplRunLoop(Cpl cpl, Io io)
 {
   PetscLogDouble t0, now;
-  PetscReal      next = cpl->progress_dt, w, dp = 0, avg = 0;
+  PetscReal      next = cpl->progress_dt, w, dp = 0, avg = 0, davg = 0;
   PetscInt       navg = 0;
   PetscBool      due;
   CplStats       st;
@@ -87,6 +87,7 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Io io)
     PetscCall(CplColumnDrop(cpl, &dp));
     if (cpl->t > 0.5 * cpl->t_end) {
       avg += dp;
+      davg += st.drag[2];
       navg++;
     }
     if (cpl->progress_dt > 0 && cpl->t >= next - 0.5 * cpl->dt) {
@@ -94,12 +95,12 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Io io)
       PetscCall(DemGetStats(cpl->dem, &ds));
       PetscCall(PetscTime(&now));
       const double rate = cpl->step / PetscMax(now - t0, 1e-9);
-      PetscCall(PetscPrintf(cpl->comm, "t %.5g  step %" PetscInt_FMT "  %.1f steps/s  ETA %.0f s  KE %.4g  contacts %" PetscInt_FMT "  eps_min %.3f  clipped %" PetscInt_FMT "  Poisson its %" PetscInt_FMT "  dp/W %.4f  |owed| %.3g\n", (double)cpl->t, cpl->step, rate, PetscMax(0.0, (cpl->t_end - cpl->t) / cpl->dt / rate), (double)ds.ke, ds.contacts + ds.wall_contacts, (double)st.eps_min, cpl->clipped_total, st.fluid.poisson_its, (double)(dp / w), (double)st.owed_norm));
+      PetscCall(PetscPrintf(cpl->comm, "t %.5g  step %" PetscInt_FMT "  %.1f steps/s  ETA %.0f s  KE %.4g  contacts %" PetscInt_FMT "  eps_min %.3f  clipped %" PetscInt_FMT "  Poisson its %" PetscInt_FMT "  dp/W %.4f  drag/W %.4f  |owed| %.3g\n", (double)cpl->t, cpl->step, rate, PetscMax(0.0, (cpl->t_end - cpl->t) / cpl->dt / rate), (double)ds.ke, ds.contacts + ds.wall_contacts, (double)st.eps_min, cpl->clipped_total, st.fluid.poisson_its, (double)(dp / w), (double)(st.drag[2] / (w * cpl->dom->len[0] * cpl->dom->len[1])), (double)st.owed_norm));
       PetscCheck(PetscIsNormalReal(ds.ke) || ds.ke == 0, cpl->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": particle kinetic energy is not finite", cpl->step);
       next += cpl->progress_dt;
     }
   }
-  PetscCall(PetscPrintf(cpl->comm, "column: pressure drop / bed buoyant weight per area %.5f (mean over the second half of the run; weight %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, (double)w, cpl->clipped_total));
+  PetscCall(PetscPrintf(cpl->comm, "column: pressure drop / bed buoyant weight per area %.5f, drag on the particles / buoyant weight %.5f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * cpl->dom->len[0] * cpl->dom->len[1])) : 0.0, (double)w, cpl->clipped_total));
   if (cpl->probe_set) PetscCall(CplProbeReport(cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
