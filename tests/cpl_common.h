@@ -11,8 +11,9 @@ typedef struct {
   Cpl    cpl;
 } TestCpl;
 
-/* Replaces the options database by opts; builds and sets up everything. */
-static PetscErrorCode TestCplCreate(const char *opts, TestCpl *t)
+/* Replaces the options database by opts; builds and sets up everything; add (may be NULL)
+ * adds particles before DemSetUp. */
+static PetscErrorCode TestCplCreateWith(const char *opts, PetscErrorCode (*add)(Dem), TestCpl *t)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsClear(NULL));
@@ -25,9 +26,17 @@ static PetscErrorCode TestCplCreate(const char *opts, TestCpl *t)
   PetscCall(FluidSetFromOptions(t->fl));
   PetscCall(CplCreate(&t->dom, t->dem, t->fl, &t->cpl));
   PetscCall(CplSetFromOptions(t->cpl));
+  if (add) PetscCall(add(t->dem));
   PetscCall(DemSetUp(t->dem));
   PetscCall(FluidSetUp(t->fl));
   PetscCall(CplSetUp(t->cpl));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode TestCplCreate(const char *opts, TestCpl *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TestCplCreateWith(opts, NULL, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
