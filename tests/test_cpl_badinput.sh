@@ -20,7 +20,8 @@ check() { # name, expected message (grep -E), options...
   fi
 }
 
-CASE=cases/packed_bed/packed_bed.opts check kernel_too_wide 'cube kernel side .* above the limit of 2: coarsen the grid .* or lower -cpl_kernel_scale' -cpl_kernel_scale 2.6
+CASE=cases/packed_bed/packed_bed.opts; check kernel_too_wide 'cube kernel side .* above the limit of 2: coarsen the grid .* or lower -cpl_kernel_scale' -cpl_kernel_scale 2.6
+CASE=
 check relaxation_time 'coupling step .* particle relaxation times .* above -cpl_relaxation_ratio_max 1' -dem_density 1.01 -cpl_substeps 400
 check inconsistent_dt '-fluid_dt 0.1 differs from -cpl_substeps 5 x -dem_dt' -fluid_dt 0.1
 check porosity_floor '-cpl_porosity_floor 1.5 must be in \(0,1\)' -cpl_porosity_floor 1.5
