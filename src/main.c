@@ -74,7 +74,7 @@ static PetscErrorCode SableRun(void)
   PetscCall(IoCreate(PETSC_COMM_WORLD, &io));
   PetscCall(IoSetFromOptions(io));
   PetscCall(CplRequested(&coupled));
-  if (coupled) { /* any -cpl_ or -fluid_ option: the coupled path (src/coupling/run.c) */
+  if (coupled || help) { /* any -cpl_ or -fluid_ option: the coupled path (src/coupling/run.c); -help lists all */
     PetscCall(CplRunCase(&dom, dem, io, help));
     PetscCall(DemDestroy(&dem));
     PetscCall(IoDestroy(&io));
