@@ -151,6 +151,7 @@ PetscErrorCode CplDestroy(Cpl *cpl)
   PetscCall(VecDestroy(&(*cpl)->jf));
   PetscCall(VecDestroy(&(*cpl)->owed));
   PetscCall(PetscFree4((*cpl)->side, (*cpl)->vol, (*cpl)->diam, (*cpl)->mass));
+  PetscCall(PetscFree((*cpl)->stc));
   PetscCall(PetscFree(*cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -35,6 +35,9 @@ struct _p_Cpl {
   PetscReal  solid_grid; /* last projection, before the floor */
   Vec        cloc, floc;        /* work: cell local, face local */
   Vec        kv, jf, owed;      /* face globals: sum K W v, spread impulse, momentum owed */
+  CplStencil *stc;              /* cached kernel stencils of the local particles */
+  PetscInt   stc_n, stc_cap;
+  PetscBool  stc_valid;
   PetscLogEvent ev_project, ev_drag, ev_exchange, ev_dem;
 };
 
@@ -42,6 +45,7 @@ struct _p_Cpl {
 PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplStencil *s);
 PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal *vol, PetscReal *diam);
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st);
+void           CplInvalidateStencils(Cpl cpl);
 PetscErrorCode CplSpreadFaces(Cpl cpl, const PetscReal *val, PetscBool scalar, Vec out);
 /* preflight.c */
 PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce);

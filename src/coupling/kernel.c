@@ -10,7 +10,9 @@
  * Along a non-periodic axis the cube is shifted inside the domain (a particle touching a wall
  * keeps all its volume in the fluid grid); along a periodic axis it wraps. Each rank spreads its
  * own particles into ghosted local arrays; DMLocalToGlobal with ADD_VALUES sums the parts that
- * fall in a neighbour's cells. Units SI. */
+ * fall in a neighbour's cells (so ghost particles, once the DEM has them, are not spread: their
+ * owner does it). The stencils are computed once per particle configuration and cached. Units
+ * SI. */
 #include "coupling/coupling_impl.h"
 
 /* 1-D overlap fractions of the segment [a, a + L] with the intervals [o + m h, o + (m+1) h]. */
@@ -99,13 +101,54 @@ static void cpl_component(const CplStencil *s, int d, PetscInt first[3], int n[3
   }
 }
 
+/* The stencils of all local particles, cached until CplInvalidateStencils (the coupling calls
+ * it whenever the DEM may have moved or re-sorted its particles); each is checked against the
+ * ghost boxes of both grids once, when computed. */
+static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil **out)
+{
+  CplBox bc, bf;
+
+  PetscFunctionBeginUser;
+  if (!cpl->stc_valid || cpl->stc_n != pa->nlocal) {
+    PetscCall(CplBoxOf(cpl->cda, &bc));
+    PetscCall(CplBoxOf(cpl->fda, &bf));
+    if (pa->nlocal > cpl->stc_cap) {
+      PetscCall(PetscFree(cpl->stc));
+      cpl->stc_cap = PetscMax(pa->nlocal, 2 * cpl->stc_cap);
+      PetscCall(PetscMalloc1(cpl->stc_cap, &cpl->stc));
+    }
+    for (PetscInt p = 0; p < pa->nlocal; p++) {
+      CplStencil *st1 = &cpl->stc[p];
+      PetscCall(CplStencilOf(cpl, pa->x + 3 * p, cpl->side[pa->shape[p]], st1));
+      PetscCall(CplCheckFits(&bc, st1->c0, st1->nc, pa->id[p]));
+      for (int d = 0; d < 3; d++) {
+        PetscInt      first[3];
+        int           n[3];
+        const double *w[3];
+        cpl_component(st1, d, first, n, w);
+        PetscCall(CplCheckFits(&bf, first, n, pa->id[p]));
+      }
+    }
+    cpl->stc_n     = pa->nlocal;
+    cpl->stc_valid = PETSC_TRUE;
+  }
+  *out = cpl->stc;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void CplInvalidateStencils(Cpl cpl)
+{
+  cpl->stc_valid = PETSC_FALSE;
+}
+
 /* Collective. Porosity eps^{n+1} of the fluid from the current particle positions: solid
  * fraction by the kernel, eps = 1 - solid, raised to -cpl_porosity_floor where below it. */
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
 {
-  DemArrays    pa;
-  CplBox       b;
-  PetscScalar *a, *e;
+  DemArrays         pa;
+  CplBox            b;
+  const CplStencil *stc;
+  PetscScalar      *a, *e;
   const PetscScalar *s;
   Vec          solid, eps;
   PetscInt     n, clipped = 0, cnt[2];
@@ -114,19 +157,18 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(cpl->ev_project, 0, 0, 0, 0));
   PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(CplStencils(cpl, &pa, &stc));
   PetscCall(CplBoxOf(cpl->cda, &b));
   PetscCall(VecZeroEntries(cpl->cloc));
   PetscCall(VecGetArray(cpl->cloc, &a));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
-    CplStencil      st1;
-    const PetscReal f = cpl->vol[pa.shape[p]] / cpl->cell_vol;
-    PetscCall(CplStencilOf(cpl, pa.x + 3 * p, cpl->side[pa.shape[p]], &st1));
-    PetscCall(CplCheckFits(&b, st1.c0, st1.nc, pa.id[p]));
-    for (int k = 0; k < st1.nc[2]; k++)
-      for (int j = 0; j < st1.nc[1]; j++) {
-        const double wjk = f * st1.wc[2][k] * st1.wc[1][j];
-        PetscInt     o   = cpl_off(&b, st1.c0[0], st1.c0[1] + j, st1.c0[2] + k);
-        for (int i = 0; i < st1.nc[0]; i++) a[o + i] += wjk * st1.wc[0][i];
+    const CplStencil *st1 = &stc[p];
+    const PetscReal   f   = cpl->vol[pa.shape[p]] / cpl->cell_vol;
+    for (int k = 0; k < st1->nc[2]; k++)
+      for (int j = 0; j < st1->nc[1]; j++) {
+        const double wjk = f * st1->wc[2][k] * st1->wc[1][j];
+        PetscInt     o   = cpl_off(&b, st1->c0[0], st1->c0[1] + j, st1->c0[2] + k);
+        for (int i = 0; i < st1->nc[0]; i++) a[o + i] += wjk * st1->wc[0][i];
       }
   }
   PetscCall(VecRestoreArray(cpl->cloc, &a));
@@ -165,25 +207,24 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
  * 3 values per local particle, or one (scalar) used for all three components. */
 PetscErrorCode CplSpreadFaces(Cpl cpl, const PetscReal *val, PetscBool scalar, Vec out)
 {
-  DemArrays    pa;
-  CplBox       b;
-  PetscScalar *a;
+  DemArrays         pa;
+  CplBox            b;
+  const CplStencil *stc;
+  PetscScalar      *a;
 
   PetscFunctionBeginUser;
   PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(CplStencils(cpl, &pa, &stc));
   PetscCall(CplBoxOf(cpl->fda, &b));
   PetscCall(VecZeroEntries(cpl->floc));
   PetscCall(VecGetArray(cpl->floc, &a));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
-    CplStencil st1;
-    PetscCall(CplStencilOf(cpl, pa.x + 3 * p, cpl->side[pa.shape[p]], &st1));
     for (int d = 0; d < 3; d++) {
       PetscInt      first[3];
       int           n[3];
       const double *w[3];
       const double  q = (scalar ? val[p] : val[3 * p + d]) / cpl->cell_vol;
-      cpl_component(&st1, d, first, n, w);
-      PetscCall(CplCheckFits(&b, first, n, pa.id[p]));
+      cpl_component(&stc[p], d, first, n, w);
       for (int k = 0; k < n[2]; k++)
         for (int j = 0; j < n[1]; j++) {
           const double wjk = q * w[2][k] * w[1][j];
@@ -207,9 +248,11 @@ PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps)
   CplBox             bf, bc;
   Vec                uloc, e;
   const PetscScalar *ua, *ea;
+  const CplStencil  *stc;
 
   PetscFunctionBeginUser;
   PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(CplStencils(cpl, &pa, &stc));
   PetscCall(CplBoxOf(cpl->fda, &bf));
   PetscCall(CplBoxOf(cpl->cda, &bc));
   PetscCall(FluidGetLocalFields(cpl->fl, &uloc, NULL));
@@ -218,20 +261,17 @@ PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps)
   PetscCall(VecGetArrayRead(uloc, &ua));
   PetscCall(VecGetArrayRead(cpl->cloc, &ea));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
-    CplStencil st1;
-    double     s = 0;
-    PetscCall(CplStencilOf(cpl, pa.x + 3 * p, cpl->side[pa.shape[p]], &st1));
-    PetscCall(CplCheckFits(&bc, st1.c0, st1.nc, pa.id[p]));
-    for (int k = 0; k < st1.nc[2]; k++)
-      for (int j = 0; j < st1.nc[1]; j++)
-        for (int i = 0; i < st1.nc[0]; i++) s += st1.wc[2][k] * st1.wc[1][j] * st1.wc[0][i] * ea[cpl_off(&bc, st1.c0[0] + i, st1.c0[1] + j, st1.c0[2] + k)];
+    const CplStencil *st1 = &stc[p];
+    double            s   = 0;
+    for (int k = 0; k < st1->nc[2]; k++)
+      for (int j = 0; j < st1->nc[1]; j++)
+        for (int i = 0; i < st1->nc[0]; i++) s += st1->wc[2][k] * st1->wc[1][j] * st1->wc[0][i] * ea[cpl_off(&bc, st1->c0[0] + i, st1->c0[1] + j, st1->c0[2] + k)];
     eps[p] = s;
     for (int d = 0; d < 3; d++) {
       PetscInt      first[3];
       int           n[3];
       const double *w[3];
-      cpl_component(&st1, d, first, n, w);
-      PetscCall(CplCheckFits(&bf, first, n, pa.id[p]));
+      cpl_component(st1, d, first, n, w);
       s = 0;
       for (int k = 0; k < n[2]; k++)
         for (int j = 0; j < n[1]; j++)
