@@ -100,7 +100,7 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Io io)
       next += cpl->progress_dt;
     }
   }
-  PetscCall(PetscPrintf(cpl->comm, "column: pressure drop / bed buoyant weight per area %.5f, drag on the particles / buoyant weight %.5f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * cpl->dom->len[0] * cpl->dom->len[1])) : 0.0, (double)w, cpl->clipped_total));
+  PetscCall(PetscPrintf(cpl->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * cpl->dom->len[0] * cpl->dom->len[1])) : 0.0, (double)w, cpl->clipped_total));
   if (cpl->probe_set) PetscCall(CplProbeReport(cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
