@@ -79,6 +79,12 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   /* the fluid's own options, read again for the drag law (same defaults as the fluid) */
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_density", &cpl->rho, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_viscosity", &cpl->mu, NULL));
+  {
+    PetscReal fg[3] = {0, 0, 0};
+    PetscInt  nfg   = 3;
+    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-fluid_gravity", fg, &nfg, NULL));
+    PetscCheck(fg[0] == 0 && fg[1] == 0 && fg[2] == 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_gravity %g,%g,%g must be 0,0,0 in a coupled run: the fluid pressure is hydrodynamic and the buoyancy acts on the particles (eq. 11); set gravity with -dem_gravity", (double)fg[0], (double)fg[1], (double)fg[2]);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
