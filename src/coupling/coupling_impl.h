@@ -41,6 +41,18 @@ struct _p_Cpl {
   PetscLogEvent ev_project, ev_drag, ev_exchange, ev_dem;
 };
 
+/* Whether face point idx, component d, is shared by two cells: not on the boundary of a
+ * non-periodic axis (walls, inlets, outlets: the boundary takes the drag there), not an unused
+ * extra point of the face grid. The exchange bookkeeping runs over these faces only. */
+static inline PetscBool CplInteriorFace(const Domain *dom, int d, const PetscInt idx[3])
+{
+  for (int e = 0; e < 3; e++) {
+    if (dom->periodic[e]) continue;
+    if (idx[e] == dom->cells[e] || (e == d && idx[e] == 0)) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
 /* kernel.c */
 PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplStencil *s);
 PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal *vol, PetscReal *diam);

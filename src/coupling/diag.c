@@ -2,16 +2,6 @@
  * owed, solid volume on the grid against the particles', layer averages for pressure drops. */
 #include "coupling/coupling_impl.h"
 
-/* Whether face point idx, component d, is shared by two cells (see exchange.c). */
-static PetscBool CplDiagInterior(const Domain *dom, int d, const PetscInt idx[3])
-{
-  for (int e = 0; e < 3; e++) {
-    if (dom->periodic[e]) continue;
-    if (idx[e] == dom->cells[e] || (e == d && idx[e] == 0)) return PETSC_FALSE;
-  }
-  return PETSC_TRUE;
-}
-
 typedef struct {
   PetscInt gs[3], gm[3];
 } CplGhost;
@@ -46,7 +36,7 @@ PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscRe
     for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
       for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c += 3)
         for (int d = 0; d < 3; d++) {
-          if (!CplDiagInterior(cpl->dom, d, idx)) continue;
+          if (!CplInteriorFace(cpl->dom, d, idx)) continue;
           const PetscReal ef = 0.5 * (e[cpl_diag_off(&g, idx, d, 0)] + e[cpl_diag_off(&g, idx, d, 1)]);
           loc[3 + d] += cpl->rho * ef * v[c + d] * cpl->cell_vol;
           loc[6 + d] += o[c + d];

@@ -22,9 +22,10 @@ PetscReal CplDragFactor(CplDragLaw law, PetscReal eps, PetscReal re)
   switch (law) {
   case CPL_DRAG_BEETSTRA: {
     PetscReal F = 10 * phi / (eps * eps) + eps * eps * (1 + 1.5 * PetscSqrtReal(phi));
-    if (re > 1e-300) {
-      const PetscReal num = 1 / eps + 3 * eps * phi + 8.4 * PetscPowReal(re, -0.343);
-      const PetscReal den = 1 + PetscPowReal(10.0, 3 * phi) * PetscPowReal(re, -(0.5 + 2 * phi));
+    if (re > 1e-300) { /* Re^-0.343 and 10^(3 phi) Re^-(0.5 + 2 phi) from one logarithm */
+      const PetscReal lre = PetscLogReal(re);
+      const PetscReal num = 1 / eps + 3 * eps * phi + 8.4 * PetscExpReal(-0.343 * lre);
+      const PetscReal den = 1 + PetscExpReal(3 * phi * 2.302585092994046 - (0.5 + 2 * phi) * lre);
       F += 0.413 * re / (24 * eps * eps) * num / den;
     }
     return F;

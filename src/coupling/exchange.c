@@ -70,18 +70,6 @@ static PetscErrorCode CplSetFluidDrag(Cpl cpl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Whether face point idx, component d, is a dynamic face shared by two cells (not on the
- * boundary of a non-periodic axis, not an unused extra point). */
-static PetscBool CplInteriorFace(const Domain *dom, int d, const PetscInt idx[3])
-{
-  for (int e = 0; e < 3; e++) {
-    if (dom->periodic[e]) continue;
-    if (idx[e] == dom->cells[e]) return PETSC_FALSE;
-    if (e == d && idx[e] == 0) return PETSC_FALSE;
-  }
-  return PETSC_TRUE;
-}
-
 /* owed = V_cell (beta (u - u_s) dt - sum_p J_p W / V_cell) at interior faces, 0 elsewhere. */
 static PetscErrorCode CplComputeOwed(Cpl cpl, PetscReal *norm)
 {
