@@ -64,8 +64,17 @@ static PetscErrorCode SableRun(void)
   PetscCall(PetscOptionsBool("-sable_traceback", "Print PETSc's full traceback on errors", NULL, sable_traceback, &sable_traceback, NULL));
   PetscOptionsEnd();
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "Sable %s — CFD-DEM for fluidized beds and granular flows\n", SABLE_VERSION));
-  /* dry case: the background grid's cell is a few diameters (coarse, only decomposes space) */
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 0.05, 1, &dom));
+  /* dry case: the background grid only decomposes space; its cell is 4 largest diameters by
+     default, so a rank box is never thinner than the halo (2 r_max + skin) */
+  {
+    PetscReal r[32], rmax = 0.0069;
+    PetscInt  nr = 32;
+    PetscBool set;
+    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-dem_radius", r, &nr, &set));
+    if (set)
+      for (PetscInt i = 0; i < nr; i++) rmax = i ? PetscMax(rmax, r[i]) : r[i];
+    PetscCall(DomainCreate(PETSC_COMM_WORLD, 8 * PetscAbsReal(rmax) + 1e-300, 1, &dom));
+  }
   PetscCall(DemCreate(&dom, &dem));
   PetscCall(DemSetFromOptions(dem));
   PetscCall(IoCreate(PETSC_COMM_WORLD, &io));

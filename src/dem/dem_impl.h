@@ -1,5 +1,6 @@
 /* DEM private state. Particles are a structure of arrays, xyz interleaved per particle
- * (x[3*i+k]): local particles 0..n-1 (ghosts will follow them). Geometry and mass live once per
+ * (x[3*i+k]): local particles 0..n-1, then ghost copies of other ranks' (or periodic images of
+ * our own) particles n..n+ng-1. Geometry and mass live once per
  * shape. The half Verlet list is CSR over local particles; for laws with history each list entry
  * carries its tangential spring, which follows the pair through list rebuilds and re-sorts.
  * Invariant: between rebuilds no particle has moved more than skin/2 from x0, and no wall more
@@ -29,8 +30,26 @@ typedef struct { /* material of one side of a contact */
   PetscBool kn_set, kt_set, E_set;
 } DemMaterial;
 
+/* A tangential spring saved across a rebuild, keyed by ids (partner < 0: wall -1-partner). */
 typedef struct {
-  /* cells over the local box (plus margin): counting sort */
+  PetscInt owner, partner;
+  double   xi[3];
+} DemSpring;
+
+/* Ghost exchange with the 26 neighbours (exchange.c). Direction d = (dx+1) + 3(dy+1) + 9(dz+1). */
+typedef struct {
+  PetscMPIInt rank[27];              /* neighbour rank per direction, -1 if none */
+  double      shift[27][3];          /* periodic shift added to coordinates sent that way */
+  PetscInt   *send[27], nsend[27], capsend[27]; /* local indices sent as ghosts per direction */
+  PetscInt    nrecv[27], recvstart[27];         /* ghosts received per direction */
+  double     *sbuf, *rbuf;
+  size_t      capsbuf, caprbuf;
+  PetscBool   active;                /* any neighbour at all (else exchange is a no-op) */
+  PetscInt    migrated;              /* particles sent away at the last rebuild (diagnostic) */
+} DemExchange;
+
+typedef struct {
+  /* cells over the local box (plus halo): counting sort */
   PetscInt   nc[3], ncell;
   double     lo[3], inv[3];
   PetscInt  *cstart, *cof, *order;
@@ -44,7 +63,7 @@ struct _p_Dem {
   MPI_Comm  comm;
   Domain   *dom;
   /* particles */
-  PetscInt  n, cap;
+  PetscInt  n, ng, cap;
   double   *x, *v, *w, *f, *tq, *q, *x0;
   PetscInt *id, *shape;
   PetscInt  next_id;
@@ -62,7 +81,11 @@ struct _p_Dem {
   PetscInt  nwall;
   /* neighbours */
   DemNeigh  nl;
-  PetscReal skin, reach; /* reach = 2 r_max + skin */
+  PetscReal skin, reach; /* reach = 2 r_max + skin = halo width */
+  PetscBool full_list;   /* -dem_deterministic: full rows summed in id order */
+  DemExchange ex;
+  PetscInt  check_every;
+  DemStats  initial; /* count and checksum at set-up, for -dem_check_every */
   PetscInt  sort_interval;
   PetscBool need_build;
   /* time */
@@ -82,14 +105,21 @@ PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* con
 PetscErrorCode DemParticlesReserve(Dem dem, PetscInt n);           /* particles.c */
 PetscErrorCode DemParticlesPermute(Dem dem, const PetscInt *perm); /* particles.c */
 PetscErrorCode DemNeighBuild(Dem dem);                             /* neighbours.c */
+PetscErrorCode DemExchangeSetUp(Dem dem);                          /* exchange.c */
+PetscErrorCode DemExchangeDestroy(Dem dem);                        /* exchange.c */
+PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* exchange.c */
+PetscErrorCode DemGhostsCreate(Dem dem);                           /* exchange.c */
+PetscErrorCode DemGhostsUpdate(Dem dem);                           /* exchange.c */
+PetscErrorCode DemSpringsSort(DemSpring *r, PetscInt n);           /* neighbours.c */
+const DemSpring *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, PetscInt partner); /* neighbours.c */
 PetscErrorCode DemNeighDestroy(Dem dem);                           /* neighbours.c */
 PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c */
 PetscErrorCode DemContactsWalls(Dem dem);                          /* walls.c */
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls.c */
-PetscErrorCode DemWallsBuildLists(Dem dem, const PetscInt *inv);   /* walls.c */
+PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec); /* walls.c */
 PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
 PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
 PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
 PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
 
-extern PetscLogEvent DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
+extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;

@@ -26,12 +26,14 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
     r[4] += (double)dem->id[i];
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
       const PetscInt j  = dem->nl.nbr[a];
+      /* a pair seen from both sides (full list, or a ghost partner) counts half on each */
+      const PetscBool both = (PetscBool)(dem->full_list || j >= dem->n);
       const double   rs = s->r + dem->shp[dem->shape[j]].r;
       const double   d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
       const double   delta = rs - sqrt(dem_dot(d, d));
       if (delta <= 0) continue;
-      c[1]++;
-      r[3] += dem_spring_energy(dem, &dem->pp[dem->shape[i] * dem->nshape + dem->shape[j]], delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
+      if (!both || dem->id[i] < dem->id[j]) c[1]++;
+      r[3] += (both ? 0.5 : 1.0) * dem_spring_energy(dem, &dem->pp[dem->shape[i] * dem->nshape + dem->shape[j]], delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
       rmax = PetscMax(rmax, delta / PetscMin(s->r, dem->shp[dem->shape[j]].r));
     }
   }
@@ -156,7 +158,7 @@ PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]
       const PetscInt j    = dem->nl.nbr[a];
       const double   rs   = dem->shp[dem->shape[i]].r + dem->shp[dem->shape[j]].r;
       const double   d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
-      if (dem_dot(d, d) < rs * rs) {
+      if (dem_dot(d, d) < rs * rs && (!(dem->full_list || j >= dem->n) || dem->id[i] < dem->id[j])) {
         count[0]++;
         key[0] += dem_pair_key(dem->id[i], dem->id[j]);
       }

@@ -60,18 +60,14 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Lists of particles within r + skin of each wall; springs carried over (inv: old -> new index). */
-PetscErrorCode DemWallsBuildLists(Dem dem, const PetscInt *inv)
+/* Lists of the local particles within r + skin of each wall; springs restored from the id-keyed
+ * records (partner = -1 - wall index). */
+PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
 {
   PetscFunctionBeginUser;
   for (PetscInt wi = 0; wi < dem->nwall; wi++) {
-    DemWall  *w    = &dem->wall[wi];
-    PetscInt *oidx = w->idx, ocnt = w->cnt;
-    double   *oh   = w->hist;
-    w->idx = NULL;
-    w->hist = NULL;
-    w->cnt = 0;
-    w->cap = 0;
+    DemWall *w = &dem->wall[wi];
+    w->cnt     = 0;
     for (PetscInt i = 0; i < dem->n; i++) {
       const double d[3] = {dem->x[3 * i] - w->p[0], dem->x[3 * i + 1] - w->p[1], dem->x[3 * i + 2] - w->p[2]};
       if (dem_dot(d, w->n) >= dem->shp[dem->shape[i]].r + dem->skin) continue;
@@ -80,26 +76,11 @@ PetscErrorCode DemWallsBuildLists(Dem dem, const PetscInt *inv)
         PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)w->cap, &w->idx));
         PetscCall(PetscRealloc(3 * sizeof(double) * (size_t)w->cap, &w->hist));
       }
+      const DemSpring *r = nrec ? DemSpringFind(recs, nrec, dem->id[i], -1 - wi) : NULL;
       w->idx[w->cnt] = i;
-      for (int k = 0; k < 3; k++) w->hist[3 * w->cnt + k] = 0;
+      for (int k = 0; k < 3; k++) w->hist[3 * w->cnt + k] = r ? r->xi[k] : 0;
       w->cnt++;
     }
-    /* carry springs: the new list is sorted by particle index, so bisect */
-    for (PetscInt a = 0; a < ocnt; a++) {
-      const double *h = oh + 3 * a;
-      if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-      const PetscInt i  = inv ? inv[oidx[a]] : oidx[a];
-      PetscInt       lo = 0, hi = w->cnt;
-      while (hi - lo > 1) {
-        const PetscInt mid = (lo + hi) / 2;
-        if (w->idx[mid] <= i) lo = mid;
-        else hi = mid;
-      }
-      if (w->cnt && w->idx[lo] == i)
-        for (int k = 0; k < 3; k++) w->hist[3 * lo + k] = h[k];
-    }
-    PetscCall(PetscFree(oidx));
-    PetscCall(PetscFree(oh));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
