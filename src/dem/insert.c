@@ -68,6 +68,7 @@ static PetscErrorCode DemInsertLattice(Dem dem)
   gap = 0.5 * (a - dmax) * dem->lat_jitter;
   if (!dem->lat_origin_set)
     for (int k = 0; k < 3; k++) dem->lat_origin[k] = dem->dom->lo[k];
+  PetscCall(DemParticlesReserve(dem, dem->n + nsite)); /* exact, not by doubling (upper bound on one rank) */
   for (PetscInt n = 0; n < nsite; n++) {
     const PetscInt ijk[3] = {n % dem->lat[0], (n / dem->lat[0]) % dem->lat[1], n / (dem->lat[0] * dem->lat[1])};
     DemParticle    p;
@@ -109,28 +110,41 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
 {
   const char *names[6] = {"/particles/position", "/particles/velocity", "/particles/angular_velocity", "/particles/quaternion", "/particles/id", "/particles/radius"};
   const int   width[6] = {3, 3, 3, 4, 1, 1};
-  PetscReal  *d[6];
-  PetscInt    rows[6], nc;
+  PetscReal  *d;
+  PetscInt    rows = 0, nc, r, *mine, nmine = 0, n0 = dem->n;
 
   PetscFunctionBeginUser;
+  /* one dataset at a time, keeping only this rank's rows: the peak is one column of the file */
   for (int k = 0; k < 6; k++) {
-    PetscCall(IoReadDataset(dem->init_file, names[k], &rows[k], &nc, &d[k]));
-    PetscCheck(nc == width[k] && rows[k] == rows[0], dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " x %" PetscInt_FMT " values, expected %" PetscInt_FMT " x %d", dem->init_file, names[k], rows[k], nc, rows[0], width[k]);
-  }
-  for (PetscInt i = 0; i < rows[0]; i++) {
-    DemParticle p;
-    p.id = (PetscInt)d[4][i];
-    PetscCall(DemShapeForRadius(dem, d[5][i], &p.shape));
-    for (int k = 0; k < 3; k++) {
-      p.x[k] = d[0][3 * i + k];
-      p.v[k] = d[1][3 * i + k];
-      p.w[k] = d[2][3 * i + k];
+    PetscCall(IoReadDataset(dem->init_file, names[k], &r, &nc, &d));
+    PetscCheck(nc == width[k] && (k == 0 || r == rows), dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " x %" PetscInt_FMT " values, expected %" PetscInt_FMT " x %d", dem->init_file, names[k], r, nc, k ? rows : r, width[k]);
+    if (k == 0) {
+      rows = r;
+      PetscCall(PetscMalloc1(rows + 1, &mine));
+      for (PetscInt i = 0; i < rows; i++)
+        if (dem_in_box(dem->dom, d + 3 * i)) mine[nmine++] = i;
+      PetscCall(DemParticlesReserve(dem, n0 + nmine));
+      for (PetscInt a = 0; a < nmine; a++) {
+        DemParticle p;
+        PetscCall(PetscMemzero(&p, sizeof p));
+        for (int c = 0; c < 3; c++) p.x[c] = d[3 * mine[a] + c];
+        p.q[0] = 1;
+        PetscCall(DemAddParticle(dem, &p));
+      }
     }
-    for (int k = 0; k < 4; k++) p.q[k] = d[3][4 * i + k];
-    if (dem_in_box(dem->dom, p.x)) PetscCall(DemAddParticle(dem, &p));
+    for (PetscInt a = 0; a < nmine && k > 0; a++) {
+      const PetscInt i = n0 + a, row = mine[a];
+      if (k == 1) for (int c = 0; c < 3; c++) dem->v[3 * i + c] = d[3 * row + c];
+      if (k == 2) for (int c = 0; c < 3; c++) dem->w[3 * i + c] = d[3 * row + c];
+      if (k == 3) for (int c = 0; c < 4; c++) dem->q[4 * i + c] = d[4 * row + c];
+      if (k == 4) dem->id[i] = (PetscInt)d[row];
+      if (k == 5) PetscCall(DemShapeForRadius(dem, d[row], &dem->shape[i]));
+    }
+    PetscCall(PetscFree(d));
   }
-  for (int k = 0; k < 6; k++) PetscCall(PetscFree(d[k]));
-  *nfile = rows[0];
+  for (PetscInt a = 0; a < nmine; a++) dem->next_id = PetscMax(dem->next_id, dem->id[n0 + a] + 1);
+  PetscCall(PetscFree(mine));
+  *nfile = rows;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

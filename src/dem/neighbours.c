@@ -156,7 +156,7 @@ static PetscErrorCode DemPairList(Dem dem)
         const double  d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
         if (dem_dot(d, d) >= rc * rc) continue;
         if (m == nl->cap) {
-          nl->cap = 2 * nl->cap + 1024;
+          nl->cap = nl->cap + nl->cap / 4 + 1024;
           PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)nl->cap, &nl->nbr));
         }
         nl->nbr[m++] = j;
@@ -173,30 +173,38 @@ static PetscErrorCode DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, 
 {
   DemNeigh *nl = &dem->nl;
   PetscInt  n  = 0;
+  /* a pair listed once is saved from both sides when particles may move to another rank, so
+     that each takes its own side of the spring along */
+  const PetscBool twice = (PetscBool)(!dem->full_list && dem->ex.active);
 
   PetscFunctionBeginUser;
-  *cap = 64;
-  if (nl->hist && nl->start) *cap += 2 * nl->start[dem->n];
-  for (PetscInt w = 0; w < dem->nwall; w++) *cap += dem->wall[w].cnt;
-  PetscCall(PetscMalloc1(*cap, recs));
-  if (nl->hist && nl->start)
-    for (PetscInt i = 0; i < dem->n; i++)
-      for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
-        const double *h = nl->hist + 3 * a;
-        if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-        (*recs)[n++] = (DemSpring){dem->id[i], dem->id[nl->nbr[a]], {h[0], h[1], h[2]}};
-        /* a pair listed once is saved from both sides: if the two particles end up on two
-           ranks, each takes its own side of the spring along */
-        if (!dem->full_list && nl->nbr[a] < dem->n) (*recs)[n++] = (DemSpring){dem->id[nl->nbr[a]], dem->id[i], {-h[0], -h[1], -h[2]}};
-      }
-  if (dem->law != DEM_LAW_LINEAR_NOHIST)
-    for (PetscInt w = 0; w < dem->nwall; w++)
-      for (PetscInt a = 0; a < dem->wall[w].cnt; a++) {
-        const double *h = dem->wall[w].hist + 3 * a;
-        if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-        (*recs)[n] = (DemSpring){dem->id[dem->wall[w].idx[a]], -1 - w, {h[0], h[1], h[2]}};
-        n++;
-      }
+  for (int pass = 0; pass < 2; pass++) { /* count, then fill: the records are a transient peak */
+    if (pass) {
+      *cap = n + 64;
+      PetscCall(PetscMalloc1(*cap, recs));
+    }
+    n = 0;
+    if (nl->hist && nl->start)
+      for (PetscInt i = 0; i < dem->n; i++)
+        for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
+          const double  *h = nl->hist + 3 * a;
+          const PetscInt j = nl->nbr[a];
+          if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+          if (pass) (*recs)[n] = (DemSpring){dem->id[i], dem->id[j], {h[0], h[1], h[2]}};
+          n++;
+          if (!twice || j >= dem->n) continue;
+          if (pass) (*recs)[n] = (DemSpring){dem->id[j], dem->id[i], {-h[0], -h[1], -h[2]}};
+          n++;
+        }
+    if (dem->law != DEM_LAW_LINEAR_NOHIST)
+      for (PetscInt w = 0; w < dem->nwall; w++)
+        for (PetscInt a = 0; a < dem->wall[w].cnt; a++) {
+          const double *h = dem->wall[w].hist + 3 * a;
+          if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+          if (pass) (*recs)[n] = (DemSpring){dem->id[dem->wall[w].idx[a]], -1 - w, {h[0], h[1], h[2]}};
+          n++;
+        }
+  }
   *nrec = n;
   PetscCall(DemSpringsSort(*recs, n));
   PetscFunctionReturn(PETSC_SUCCESS);
