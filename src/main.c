@@ -1,11 +1,13 @@
 /* sable: the driver. Reads the options, builds the one decomposition (Domain), decides which
- * modules the scene needs, runs, reports. User mistakes end with one line
+ * modules the scene needs, runs, reports. A case with any -cpl_ or -fluid_ option is a coupled
+ * CFD-DEM run (src/coupling/run.c); otherwise the dry DEM path below. User mistakes end with one line
  *   sable: error: <what, which option, which value, which range>
  * and exit status 1 (PETSc's traceback is kept for internal errors, with -sable_traceback). */
 #include "sable.h"
 #include "domain.h"
 #include "dem/dem.h"
 #include "io/io.h"
+#include "coupling/coupling.h"
 #include <errno.h>
 #include <sys/resource.h>
 
@@ -52,7 +54,7 @@ static PetscErrorCode SableRun(void)
   Domain    dom;
   Dem       dem;
   Io        io;
-  PetscBool help;
+  PetscBool help, coupled;
   PetscReal phi, coord, t;
   PetscInt  step;
   PetscLogDouble t0, t1;
@@ -77,8 +79,17 @@ static PetscErrorCode SableRun(void)
   }
   PetscCall(DemCreate(&dom, &dem));
   PetscCall(DemSetFromOptions(dem));
+  PetscCall(DemExternalSetFromOptions(dem));
   PetscCall(IoCreate(PETSC_COMM_WORLD, &io));
   PetscCall(IoSetFromOptions(io));
+  PetscCall(CplRequested(&coupled));
+  if (coupled || help) { /* any -cpl_ or -fluid_ option: the coupled path (src/coupling/run.c); -help lists all */
+    PetscCall(CplRunCase(&dom, dem, io, help));
+    PetscCall(DemDestroy(&dem));
+    PetscCall(IoDestroy(&io));
+    PetscCall(DomainDestroy(&dom));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   if (help) { /* every object has printed its options */
     PetscCall(DemDestroy(&dem));
     PetscCall(IoDestroy(&io));

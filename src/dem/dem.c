@@ -235,6 +235,7 @@ PetscErrorCode DemDestroy(Dem *dem)
 {
   PetscFunctionBeginUser;
   if (!*dem) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DemSetExternal(*dem, PETSC_FALSE));
   PetscCall(DemNeighDestroy(*dem));
   PetscCall(DemExchangeDestroy(*dem));
   for (PetscInt w = 0; w < (*dem)->nwall; w++) {

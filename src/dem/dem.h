@@ -61,3 +61,37 @@ PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v
  * search over the same positions ([1]), with an order-independent fingerprint of the id pairs
  * of each set; they must agree. Not collective. */
 PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]);
+
+/* Coupling hooks (external.c). DemGetArrays: read-only views of the particle arrays, local
+ * particles first, then ghosts (nghost = 0 until ghost particles exist); valid until the next
+ * DemStep or DemAddParticle (a list rebuild may re-sort, a growth may move them). */
+typedef struct {
+  PetscInt         nlocal, nghost;
+  const PetscReal *x, *v;      /* position (m), velocity (m/s), xyz interleaved */
+  const PetscInt  *id, *shape;
+} DemArrays;
+PetscErrorCode DemGetArrays(Dem dem, DemArrays *a);
+/* Radius (m) and mass (kg, known after DemSetUp) of shape s; number of shapes. */
+PetscErrorCode DemGetShape(Dem dem, PetscInt s, PetscReal *radius, PetscReal *mass);
+PetscErrorCode DemGetShapeCount(Dem dem, PetscInt *n);
+PetscErrorCode DemGetGravity(Dem dem, PetscReal g[3]);
+/* Per-local-particle arrays a coupling writes (they follow re-sorts; valid as DemGetArrays):
+ * every translational half kick of length h becomes, with m the mass and F the contact and
+ * gravity force,
+ *   v <- (v + h ((F + fext)/m + k u/m)) / (1 + h k/m),   j <- j + h k (u - v),
+ * i.e. a drag k (u - v) implicit in v, and j accumulates the drag impulse the particle actually
+ * received (zero it when a coupling step starts). */
+typedef struct {
+  PetscReal *fext; /* constant external force (N), 3 per particle */
+  PetscReal *k;    /* drag coefficient (kg/s), 1 per particle */
+  PetscReal *u;    /* fluid velocity the drag pulls towards (m/s), 3 per particle */
+  PetscReal *j;    /* drag impulse received (N s), 3 per particle */
+} DemExternal;
+/* Not collective. Allocates (zeroed) or frees the arrays above. */
+PetscErrorCode DemSetExternal(Dem dem, PetscBool on);
+PetscErrorCode DemGetExternal(Dem dem, DemExternal *e);
+/* A frozen DEM integrates nothing (a packed bed). Option -dem_frozen, read by
+ * DemExternalSetFromOptions (the driver calls it after DemSetFromOptions). */
+PetscErrorCode DemExternalSetFromOptions(Dem dem);
+PetscErrorCode DemSetFrozen(Dem dem, PetscBool frozen);
+PetscErrorCode DemGetFrozen(Dem dem, PetscBool *frozen);

@@ -97,6 +97,9 @@ struct _p_Dem {
   PetscBool lat_origin_set;
   PetscInt  seed;
   char      init_file[PETSC_MAX_PATH_LEN];
+  /* external forces from a coupling (external.c); NULL unless DemSetExternal was called */
+  double   *fext, *kdrag, *udrag, *jdrag;
+  PetscBool external, frozen;
 };
 
 /* internal functions, by file */
@@ -121,5 +124,6 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c *
 PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
 PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
 PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
+void           DemExternalKick(Dem dem, double h);                 /* external.c */
 
 extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;

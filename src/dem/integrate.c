@@ -5,7 +5,9 @@
  *   w likewise with T/I (spheres: isotropic inertia, so Euler's equations reduce to this);
  *   dq/dt = 1/2 (0, w) q  (w in the world frame, q maps body to world), renormalised each
  *   step by one Newton step of 1/sqrt(|q|^2), exact to O((w dt)^4) since |q| stays 1 + O((w dt)^2).
- * The first half also tracks the largest displacement since the last list build. */
+ * The first half also tracks the largest displacement since the last list build.
+ * With a coupling attached (external.c) the translational kicks are DemExternalKick's (drag
+ * implicit); a frozen DEM (-dem_frozen) moves nothing. */
 #include "dem/dem_impl.h"
 
 PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
@@ -17,9 +19,12 @@ PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
   double         d2max = 0;
 
   PetscFunctionBeginUser;
+  *maxdisp2 = 0;
+  if (dem->frozen) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(DEM_Integrate, 0, 0, 0, 0));
+  if (dem->external) DemExternalKick(dem, h);
   for (PetscInt i = 0; i < n; i++) {
-    const double im = dem->shp[shape[i]].invm;
+    const double im = dem->external ? 0 : dem->shp[shape[i]].invm;
     double       d2 = 0;
     for (int k = 0; k < 3; k++) {
       v[3 * i + k] += h * f[3 * i + k] * im;
@@ -63,11 +68,14 @@ PetscErrorCode DemIntegrateSecondHalf(Dem dem)
   const PetscInt n = dem->n, *shape = dem->shape;
 
   PetscFunctionBeginUser;
+  if (dem->frozen) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(DEM_Integrate, 0, 0, 0, 0));
-  for (PetscInt i = 0; i < n; i++) {
-    const double im = dem->shp[shape[i]].invm;
-    for (int k = 0; k < 3; k++) v[3 * i + k] += h * f[3 * i + k] * im;
-  }
+  if (dem->external) DemExternalKick(dem, h);
+  else
+    for (PetscInt i = 0; i < n; i++) {
+      const double im = dem->shp[shape[i]].invm;
+      for (int k = 0; k < 3; k++) v[3 * i + k] += h * f[3 * i + k] * im;
+    }
   if (dem->rotation)
     for (PetscInt i = 0; i < n; i++) {
       const double ii = dem->shp[shape[i]].invi;

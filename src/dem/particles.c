@@ -3,23 +3,24 @@
  * the neighbour module carries the contact springs across (neighbours.c). */
 #include "dem/dem_impl.h"
 
-/* every real per-particle array and its width */
+/* every real per-particle array and its width (the coupling arrays only when switched on) */
 static int DemRealArrays(Dem dem, double ***a, int *m)
 {
-  double **p[] = {&dem->x, &dem->v, &dem->w, &dem->f, &dem->tq, &dem->q, &dem->x0};
-  int      w[] = {3, 3, 3, 3, 3, 4, 3};
-  for (int k = 0; k < 7; k++) {
+  double **p[] = {&dem->x, &dem->v, &dem->w, &dem->f, &dem->tq, &dem->q, &dem->x0, &dem->fext, &dem->kdrag, &dem->udrag, &dem->jdrag};
+  int      w[] = {3, 3, 3, 3, 3, 4, 3, 3, 1, 3, 3};
+  int      na  = dem->external ? 11 : 7;
+  for (int k = 0; k < na; k++) {
     a[k] = p[k];
     m[k] = w[k];
   }
-  return 7;
+  return na;
 }
 
 PetscErrorCode DemParticlesReserve(Dem dem, PetscInt n)
 {
   PetscInt cap;
-  double **a[8];
-  int      m[8], na;
+  double **a[12];
+  int      m[12], na;
 
   PetscFunctionBeginUser;
   if (n <= dem->cap) PetscFunctionReturn(PETSC_SUCCESS);
@@ -38,8 +39,8 @@ PetscErrorCode DemParticlesPermute(Dem dem, const PetscInt *perm)
   double   *tmp;
   PetscInt *itmp;
   PetscInt  n = dem->n;
-  double  **a[8];
-  int       m[8], na = DemRealArrays(dem, a, m);
+  double  **a[12];
+  int       m[12], na = DemRealArrays(dem, a, m);
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(4 * (size_t)n + 1, &tmp));
@@ -75,6 +76,10 @@ PetscErrorCode DemAddParticle(Dem dem, const DemParticle *p)
     dem->f[3 * i + k] = dem->tq[3 * i + k] = 0;
   }
   for (int k = 0; k < 4; k++) dem->q[4 * i + k] = p->q[k];
+  if (dem->external) {
+    dem->kdrag[i] = 0;
+    for (int k = 0; k < 3; k++) dem->fext[3 * i + k] = dem->udrag[3 * i + k] = dem->jdrag[3 * i + k] = 0;
+  }
   if (p->q[0] == 0 && p->q[1] == 0 && p->q[2] == 0 && p->q[3] == 0) dem->q[4 * i] = 1; /* identity */
   dem->id[i]    = p->id;
   dem->shape[i] = p->shape;

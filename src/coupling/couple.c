@@ -1,0 +1,172 @@
+/* The coupling object and its step. One coupling step of length dt = substeps x dt_dem:
+ *  1. at the particles (positions x^n): fluid velocity u_p and porosity eps_p from the kernel,
+ *     drag coefficient K_p of the law (drag.c), buoyancy -rho_f V_p g as an external force;
+ *  2. the DEM takes its substeps; each half kick treats K (u_p - U) implicitly and records the
+ *     impulse J_p the particle actually received (dem/external.c);
+ *  3. porosity eps^{n+1} from x^{n+1}; on the faces beta = sum K W / V_cell and
+ *     beta u_s = sum K U W / V_cell (U at t^{n+1}); the fluid takes its step with the sink
+ *     beta (u - u_s) implicit, plus the explicit source described next;
+ *  4. exact exchange: the fluid lost T_f = beta_f (u_f^{n+1} - u_s,f) V_cell dt at each face,
+ *     the particles gained G_f = sum_p J_p W_pf. The difference T_f - G_f is owed to the fluid:
+ *     it is given back as the source (T_f - G_f)/(V_cell dt) of the next fluid step. So at every
+ *     step end, particle momentum + fluid momentum + momentum owed is constant to roundoff
+ *     (test_cpl_momentum), and the owed part is the change of drag over one step, which
+ *     vanishes in steady flow. Faces on non-periodic domain faces (walls, inlets) take no part:
+ *     there the boundary absorbs the drag, and nothing is owed.
+ * A frozen bed (-dem_frozen) takes no DEM steps; its particles are fixed obstacles: the fluid
+ * loses momentum to them and nothing is owed. */
+#include "coupling/coupling_impl.h"
+
+static const char *const CplDragNames[] = {"beetstra", "difelice", "gidaspow", "CplDragLaw", "CPL_DRAG_", NULL};
+
+PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
+{
+  static PetscBool     done = PETSC_FALSE;
+  static PetscClassId  cid;
+  static PetscLogEvent ev[4];
+  Cpl                  c;
+
+  PetscFunctionBeginUser;
+  if (!done) {
+    PetscCall(PetscClassIdRegister("Coupling", &cid));
+    PetscCall(PetscLogEventRegister("CplProject", cid, &ev[0]));
+    PetscCall(PetscLogEventRegister("CplDrag", cid, &ev[1]));
+    PetscCall(PetscLogEventRegister("CplExchange", cid, &ev[2]));
+    PetscCall(PetscLogEventRegister("CplDemSubsteps", cid, &ev[3]));
+    done = PETSC_TRUE;
+  }
+  PetscCall(PetscNew(&c));
+  c->comm        = PetscObjectComm((PetscObject)dom->da);
+  c->dom         = dom;
+  c->dem         = dem;
+  c->fl          = fl;
+  c->law         = CPL_DRAG_BEETSTRA;
+  c->substeps    = 2;
+  c->kscale      = 1;
+  c->eps_floor   = 0.2;
+  c->relax_max   = 1;
+  c->rho         = 1000; /* the fluid's defaults of -fluid_density, -fluid_viscosity */
+  c->mu          = 1e-3;
+  c->ev_project  = ev[0];
+  c->ev_drag     = ev[1];
+  c->ev_exchange = ev[2];
+  c->ev_dem      = ev[3];
+  *cpl           = c;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplSetFromOptions(Cpl cpl)
+{
+  PetscInt n = 2;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
+  PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu)", NULL, CplDragNames, (PetscEnum)cpl->law, (PetscEnum *)&cpl->law, NULL));
+  PetscCall(PetscOptionsInt("-cpl_substeps", "DEM steps per fluid step (>= 1); the fluid step is this times -dem_dt", NULL, cpl->substeps, &cpl->substeps, NULL));
+  PetscCall(PetscOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d, > 0", NULL, cpl->kscale, &cpl->kscale, NULL));
+  PetscCall(PetscOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log), in (0,1)", NULL, cpl->eps_floor, &cpl->eps_floor, NULL));
+  PetscCall(PetscOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit), > 0", NULL, cpl->relax_max, &cpl->relax_max, NULL));
+  PetscCall(PetscOptionsReal("-cpl_t_end", "Simulated time of a coupled run (s)", NULL, cpl->t_end, &cpl->t_end, NULL));
+  PetscCall(PetscOptionsReal("-cpl_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, cpl->progress_dt, &cpl->progress_dt, NULL));
+  PetscCall(PetscOptionsRealArray("-cpl_probe_z", "Two heights z1,z2 (m) between which the run reports dp/L, porosity and the drag law's prediction", NULL, cpl->probe, &n, &cpl->probe_set));
+  PetscOptionsEnd();
+  PetscCheck(!cpl->probe_set || n == 2, cpl->comm, PETSC_ERR_ARG_SIZ, "-cpl_probe_z takes 2 heights z1,z2, got %d", (int)n);
+  PetscCheck(cpl->substeps >= 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_substeps %d must be >= 1", (int)cpl->substeps);
+  PetscCheck(cpl->kscale > 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_kernel_scale %g must be > 0", (double)cpl->kscale);
+  PetscCheck(cpl->eps_floor > 0 && cpl->eps_floor < 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_floor %g must be in (0,1)", (double)cpl->eps_floor);
+  PetscCheck(cpl->relax_max > 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_relaxation_ratio_max %g must be > 0", (double)cpl->relax_max);
+  PetscCheck(cpl->t_end >= 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_t_end %g must be >= 0 (s)", (double)cpl->t_end);
+  /* the fluid's own options, read again for the drag law (same defaults as the fluid) */
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_density", &cpl->rho, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_viscosity", &cpl->mu, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CplSetUpShapes(Cpl cpl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DemGetShapeCount(cpl->dem, &cpl->nshape));
+  PetscCall(PetscMalloc4(cpl->nshape, &cpl->side, cpl->nshape, &cpl->vol, cpl->nshape, &cpl->diam, cpl->nshape, &cpl->mass));
+  for (PetscInt s = 0; s < cpl->nshape; s++) {
+    PetscCall(CplKernelSide(cpl, s, &cpl->side[s], &cpl->vol[s], &cpl->diam[s]));
+    PetscCall(DemGetShape(cpl->dem, s, NULL, &cpl->mass[s]));
+    for (int e = 0; e < 3; e++)
+      PetscCheck(cpl->dom->periodic[e] || cpl->side[s] <= cpl->dom->len[e], cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel side %g exceeds the domain length %g on axis %d; lower -cpl_kernel_scale %g", (double)cpl->side[s], (double)cpl->dom->len[e], e, (double)cpl->kscale);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplSetUp(Cpl cpl)
+{
+  PetscReal dtd, dtf;
+  PetscBool fset;
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidGetDMs(cpl->fl, &cpl->cda, &cpl->fda));
+  PetscCall(DMCreateLocalVector(cpl->cda, &cpl->cloc));
+  PetscCall(DMCreateLocalVector(cpl->fda, &cpl->floc));
+  PetscCall(DMCreateGlobalVector(cpl->fda, &cpl->kv));
+  PetscCall(VecDuplicate(cpl->kv, &cpl->jf));
+  PetscCall(VecDuplicate(cpl->kv, &cpl->owed));
+  PetscCall(VecZeroEntries(cpl->owed));
+  cpl->cell_vol = cpl->dom->h[0] * cpl->dom->h[1] * cpl->dom->h[2];
+  PetscCall(DemGetGravity(cpl->dem, cpl->g));
+  PetscCall(DemGetFrozen(cpl->dem, &cpl->frozen));
+  cpl->correct = (PetscBool)!cpl->frozen;
+  PetscCall(DemSetExternal(cpl->dem, PETSC_TRUE));
+  PetscCall(CplSetUpShapes(cpl));
+  PetscCall(DemGetTimeStep(cpl->dem, &dtd));
+  PetscCall(FluidGetTimeStep(cpl->fl, &dtf));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-fluid_dt", &fset));
+  if (cpl->frozen) cpl->dt = dtf;
+  else {
+    cpl->dt = cpl->substeps * dtd;
+    PetscCheck(!fset || PetscAbsReal(dtf - cpl->dt) <= 1e-9 * cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_dt %g differs from -cpl_substeps %d x -dem_dt %g = %g: give one of them consistently (the fluid step is substeps x dt_dem)", (double)dtf, (int)cpl->substeps, (double)dtd, (double)cpl->dt);
+  }
+  {
+    CplStats st;
+    PetscCall(CplProjectPorosity(cpl, &st));
+    cpl->eps_min0 = st.eps_min;
+  }
+  PetscCall(FluidInitPorosity(cpl->fl));
+  PetscCall(CplPreflight(cpl, NULL, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplView(Cpl cpl, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->law], (int)cpl->substeps, (double)cpl->dt, (double)cpl->kscale, (double)cpl->eps_floor, cpl->frozen ? ", frozen bed (no DEM steps)" : ""));
+  PetscCall(CplPreflight(cpl, viewer, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplDestroy(Cpl *cpl)
+{
+  PetscFunctionBeginUser;
+  if (!*cpl) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecDestroy(&(*cpl)->cloc));
+  PetscCall(VecDestroy(&(*cpl)->floc));
+  PetscCall(VecDestroy(&(*cpl)->kv));
+  PetscCall(VecDestroy(&(*cpl)->jf));
+  PetscCall(VecDestroy(&(*cpl)->owed));
+  PetscCall(PetscFree4((*cpl)->side, (*cpl)->vol, (*cpl)->diam, (*cpl)->mass));
+  PetscCall(PetscFree((*cpl)->stc));
+  PetscCall(PetscFree(*cpl));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetTime(Cpl cpl, PetscReal *t, PetscInt *step)
+{
+  PetscFunctionBeginUser;
+  if (t) *t = cpl->t;
+  if (step) *step = cpl->step;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetTimeStep(Cpl cpl, PetscReal *dt)
+{
+  PetscFunctionBeginUser;
+  *dt = cpl->dt;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

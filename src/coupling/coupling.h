@@ -1,0 +1,77 @@
+/* Coupling: two-way CFD-DEM exchange between the Dem and the Fluid of a run (Grains3D Part II
+ * §4.3, eqs. 9-15; DESIGN §8). Only this module (and the drivers) sees both sides.
+ *   - cube kernel (Bernard et al.): each particle's volume is a cube centred on it whose exact
+ *     overlap with the cells gives the porosity, and with the face control volumes of the
+ *     staggered grid the drag coefficient and the momentum exchange; the fluid velocity at a
+ *     particle is the same weighted average (the transpose of the spreading);
+ *   - drag F = K (u - U), K = 3 pi mu d F(eps, Re_p), Re_p = rho_f d eps |u - U| / mu, with F from
+ *     Beetstra et al. (eq. 15, default), Di Felice or Gidaspow (Ergun / Wen-Yu), -cpl_drag;
+ *   - particles: M dU/dt = M (1 - rho_f/rho_p) g + contacts + F (eq. 11); fluid: -F (eq. 10);
+ *   - one fluid step per -cpl_substeps DEM steps; drag implicit on both sides; the momentum the
+ *     particles receive equals the momentum the fluid loses (couple.c explains how).
+ * Life cycle: CplCreate -> CplSetFromOptions -> CplSetUp (after DemSetUp and FluidSetUp) ->
+ * CplStep ... -> CplDestroy. Options use the prefix -cpl_. */
+#pragma once
+#include "dem/dem.h"
+#include "fluid/fluid.h"
+
+typedef struct _p_Cpl *Cpl;
+
+typedef enum { CPL_DRAG_BEETSTRA, CPL_DRAG_DIFELICE, CPL_DRAG_GIDASPOW } CplDragLaw;
+
+/* What one coupling step did. */
+typedef struct {
+  FluidStats fluid;     /* the fluid step */
+  PetscReal  eps_min;   /* smallest cell porosity after the floor */
+  PetscInt   clipped;   /* cells whose porosity was raised to -cpl_porosity_floor */
+  PetscReal  owed_norm; /* |momentum carried to the next step| (N s), see couple.c */
+  PetscReal  drag[3];   /* mean drag force on all particles over the step (N) */
+} CplStats;
+
+/* Collective. dom, dem and fluid must outlive the coupling. */
+PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fluid, Cpl *cpl);
+/* Collective. Reads -cpl_drag, -cpl_substeps, -cpl_kernel_scale, -cpl_porosity_floor,
+ * -cpl_relaxation_ratio_max, -cpl_t_end, -cpl_progress_interval, -cpl_probe_z. */
+PetscErrorCode CplSetFromOptions(Cpl cpl);
+/* Collective. After DemSetUp and FluidSetUp: attaches the drag arrays to the DEM, projects
+ * the initial porosity, runs the pre-flight checks (a hard violation is an error). */
+PetscErrorCode CplSetUp(Cpl cpl);
+/* Prints the pre-flight figures: dt_dem / contact time, coupling step / particle relaxation
+ * time, cell size / diameter, kernel side / cell size. */
+PetscErrorCode CplView(Cpl cpl, PetscViewer viewer);
+PetscErrorCode CplDestroy(Cpl *cpl);
+
+/* Collective. One fluid step of length substeps x dt_dem (frozen bed: -fluid_dt), with the DEM
+ * sub-cycled inside it. */
+PetscErrorCode CplStep(Cpl cpl, CplStats *st);
+PetscErrorCode CplGetTime(Cpl cpl, PetscReal *t, PetscInt *step);
+PetscErrorCode CplGetTimeStep(Cpl cpl, PetscReal *dt);
+
+/* Diagnostics (collective). Momentum (N s) of the particles, of the fluid (sum over faces of
+ * rho eps_f u V_cell) and the exchange still owed to the fluid. */
+PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscReal owed[3]);
+/* Solid volume on the grid (sum over cells of (1 - eps) V_cell before the floor) and the sum of
+ * the particle volumes (m^3). */
+PetscErrorCode CplGetSolidVolume(Cpl cpl, PetscReal *grid, PetscReal *particles);
+/* The cell layer containing height z along axis d: its centre zc (m), mean pressure (Pa) and
+ * porosity, and the mean superficial velocity (m/s) through the face layer below it. */
+PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal *p, PetscReal *eps, PetscReal *usup);
+/* Collective. Fluid velocity u (3 per local particle, m/s) and porosity eps (1 per particle) at
+ * the particles, as the drag sees them: kernel-weighted averages of the face velocities and of
+ * the cell porosity. */
+PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps);
+/* Mean porosity of the cells whose centres lie in [z0, z1] along axis d. */
+PetscErrorCode CplMeanPorosity(Cpl cpl, int d, PetscReal z0, PetscReal z1, PetscReal *eps);
+/* The total drag coefficient per particle K = 3 pi mu d F (kg/s) of the law at porosity eps and
+ * Re_p = rho_f d eps |u - U| / mu; not collective, pure. */
+PetscReal CplDragFactor(CplDragLaw law, PetscReal eps, PetscReal re);
+/* Pressure gradient magnitude (Pa/m) the law predicts for a uniform bed of spheres of diameter d
+ * at porosity eps and superficial velocity U: n K U / eps, n = (1 - eps) / (pi d^3 / 6). */
+PetscReal CplPackedBedGradient(CplDragLaw law, PetscReal eps, PetscReal usup, PetscReal d, PetscReal rho, PetscReal mu);
+
+/* The coupled driver (run.c): builds Fluid and Cpl beside the given Dem (options read, not set
+ * up), runs to -cpl_t_end with progress lines and output through io. With help set it only reads
+ * the options (so -help lists them). Collective. */
+PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help);
+/* Whether the options ask for a coupled run (any -cpl_ or -fluid_ option given). */
+PetscErrorCode CplRequested(PetscBool *on);

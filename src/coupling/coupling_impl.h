@@ -1,0 +1,51 @@
+/* Coupling private state. Work arrays are ghosted local Vecs of the fluid's cell DMDA (1 dof)
+ * and face DMDA (3 dofs, component d on the lower d-face of the cell with the same index), both
+ * with stencil width 2 and the domain's ownership, so a particle whose cube reaches one cell
+ * beyond its rank's box spreads into the ghost region and DMLocalToGlobal(ADD_VALUES) sums it
+ * into the owner's cell. Per-particle stencils are recomputed when needed (cheap, separable). */
+#pragma once
+#include "coupling/coupling.h"
+
+typedef struct { /* cube kernel of one particle: separable 1-D overlap fractions */
+  PetscInt c0[3], f0[3]; /* first cell, first face control volume, per axis */
+  int      nc[3], nf[3];
+  double   wc[3][4], wf[3][4];
+} CplStencil;
+
+struct _p_Cpl {
+  MPI_Comm   comm;
+  Domain    *dom;
+  Dem        dem;
+  Fluid      fl;
+  DM         cda, fda;
+  /* options */
+  CplDragLaw law;
+  PetscInt   substeps;
+  PetscReal  kscale, eps_floor, relax_max, t_end, progress_dt, probe[2];
+  PetscBool  probe_set;
+  PetscReal *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
+  PetscInt   nshape;
+  /* fluid properties (the fluid's options) */
+  PetscReal  rho, mu, g[3];
+  /* state */
+  PetscBool  frozen, correct;
+  PetscReal  dt, t, cell_vol, eps_min0;
+  PetscInt   step;
+  PetscInt   clipped_total;
+  PetscReal  solid_grid; /* last projection, before the floor */
+  Vec        cloc, floc;        /* work: cell local, face local */
+  Vec        kv, jf, owed;      /* face globals: sum K W v, spread impulse, momentum owed */
+  CplStencil *stc;              /* cached kernel stencils of the local particles */
+  PetscInt   stc_n, stc_cap;
+  PetscBool  stc_valid;
+  PetscLogEvent ev_project, ev_drag, ev_exchange, ev_dem;
+};
+
+/* kernel.c */
+PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplStencil *s);
+PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal *vol, PetscReal *diam);
+PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st);
+void           CplInvalidateStencils(Cpl cpl);
+PetscErrorCode CplSpreadFaces(Cpl cpl, const PetscReal *val, PetscBool scalar, Vec out);
+/* preflight.c */
+PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce);

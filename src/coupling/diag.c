@@ -1,0 +1,151 @@
+/* Coupling diagnostics for tests and progress lines: momentum of both phases and the exchange
+ * owed, solid volume on the grid against the particles', layer averages for pressure drops. */
+#include "coupling/coupling_impl.h"
+
+/* Whether face point idx, component d, is shared by two cells (see exchange.c). */
+static PetscBool CplDiagInterior(const Domain *dom, int d, const PetscInt idx[3])
+{
+  for (int e = 0; e < 3; e++) {
+    if (dom->periodic[e]) continue;
+    if (idx[e] == dom->cells[e] || (e == d && idx[e] == 0)) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+typedef struct {
+  PetscInt gs[3], gm[3];
+} CplGhost;
+
+static inline PetscInt cpl_diag_off(const CplGhost *g, const PetscInt i[3], int d, int shift)
+{
+  return ((i[2] - (d == 2 ? shift : 0) - g->gs[2]) * g->gm[1] + (i[1] - (d == 1 ? shift : 0) - g->gs[1])) * g->gm[0] + (i[0] - (d == 0 ? shift : 0) - g->gs[0]);
+}
+
+PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscReal owed[3])
+{
+  DemArrays          pa;
+  Vec                u, eps;
+  const PetscScalar *v, *e, *o;
+  PetscInt           xs[3], xm[3], idx[3], c = 0;
+  CplGhost           g;
+  PetscReal          loc[9] = {0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  for (PetscInt p = 0; p < pa.nlocal; p++)
+    for (int k = 0; k < 3; k++) loc[k] += cpl->mass[pa.shape[p]] * pa.v[3 * p + k];
+  PetscCall(FluidGetVelocity(cpl->fl, &u));
+  PetscCall(FluidGetPorosity(cpl->fl, &eps));
+  PetscCall(DMGlobalToLocal(cpl->cda, eps, INSERT_VALUES, cpl->cloc));
+  PetscCall(DMDAGetGhostCorners(cpl->cda, &g.gs[0], &g.gs[1], &g.gs[2], &g.gm[0], &g.gm[1], &g.gm[2]));
+  PetscCall(DMDAGetCorners(cpl->fda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArrayRead(u, &v));
+  PetscCall(VecGetArrayRead(cpl->cloc, &e));
+  PetscCall(VecGetArrayRead(cpl->owed, &o));
+  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
+    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
+      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c += 3)
+        for (int d = 0; d < 3; d++) {
+          if (!CplDiagInterior(cpl->dom, d, idx)) continue;
+          const PetscReal ef = 0.5 * (e[cpl_diag_off(&g, idx, d, 0)] + e[cpl_diag_off(&g, idx, d, 1)]);
+          loc[3 + d] += cpl->rho * ef * v[c + d] * cpl->cell_vol;
+          loc[6 + d] += o[c + d];
+        }
+  PetscCall(VecRestoreArrayRead(cpl->owed, &o));
+  PetscCall(VecRestoreArrayRead(cpl->cloc, &e));
+  PetscCall(VecRestoreArrayRead(u, &v));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 9, MPIU_REAL, MPIU_SUM, cpl->comm));
+  for (int k = 0; k < 3; k++) {
+    pp[k]   = loc[k];
+    pf[k]   = loc[3 + k];
+    owed[k] = loc[6 + k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetSolidVolume(Cpl cpl, PetscReal *grid, PetscReal *particles)
+{
+  DemArrays pa;
+  PetscReal v = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  for (PetscInt p = 0; p < pa.nlocal; p++) v += cpl->vol[pa.shape[p]];
+  PetscCall(MPIU_Allreduce(&v, particles, 1, MPIU_REAL, MPIU_SUM, cpl->comm));
+  *grid = cpl->solid_grid;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal *pavg, PetscReal *eavg, PetscReal *usup)
+{
+  Vec                p, eps, u;
+  const PetscScalar *pa, *e, *v;
+  PetscInt           xs[3], xm[3], fxs[3], fxm[3], idx[3], c = 0, f = 0, layer;
+  CplGhost           g;
+  PetscReal          loc[4] = {0};
+
+  PetscFunctionBeginUser;
+  layer = (PetscInt)PetscFloorReal((z - cpl->dom->lo[d]) / cpl->dom->h[d]);
+  layer = PetscMin(PetscMax(layer, 0), cpl->dom->cells[d] - 1);
+  if (zc) *zc = cpl->dom->lo[d] + (layer + 0.5) * cpl->dom->h[d];
+  PetscCall(FluidGetPressure(cpl->fl, &p));
+  PetscCall(FluidGetPorosity(cpl->fl, &eps));
+  PetscCall(FluidGetVelocity(cpl->fl, &u));
+  PetscCall(DMGlobalToLocal(cpl->cda, eps, INSERT_VALUES, cpl->cloc));
+  PetscCall(DMDAGetGhostCorners(cpl->cda, &g.gs[0], &g.gs[1], &g.gs[2], &g.gm[0], &g.gm[1], &g.gm[2]));
+  PetscCall(DMDAGetCorners(cpl->cda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(DMDAGetCorners(cpl->fda, &fxs[0], &fxs[1], &fxs[2], &fxm[0], &fxm[1], &fxm[2]));
+  PetscCall(VecGetArrayRead(p, &pa));
+  PetscCall(VecGetArrayRead(cpl->cloc, &e));
+  PetscCall(VecGetArrayRead(u, &v));
+  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
+    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
+      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c++)
+        if (idx[d] == layer) {
+          loc[0] += pa[c];
+          loc[1] += e[cpl_diag_off(&g, idx, d, 0)];
+          loc[3] += 1;
+        }
+  for (idx[2] = fxs[2]; idx[2] < fxs[2] + fxm[2]; idx[2]++)
+    for (idx[1] = fxs[1]; idx[1] < fxs[1] + fxm[1]; idx[1]++)
+      for (idx[0] = fxs[0]; idx[0] < fxs[0] + fxm[0]; idx[0]++, f += 3) {
+        PetscBool in = (PetscBool)(idx[d] == layer);
+        for (int k = 0; k < 3; k++) in = (PetscBool)(in && (k == d || idx[k] < cpl->dom->cells[k]));
+        if (!in) continue;
+        const PetscReal ef = layer > 0 || cpl->dom->periodic[d] ? 0.5 * (e[cpl_diag_off(&g, idx, d, 0)] + e[cpl_diag_off(&g, idx, d, 1)]) : e[cpl_diag_off(&g, idx, d, 0)];
+        loc[2] += ef * v[f + d];
+      }
+  PetscCall(VecRestoreArrayRead(u, &v));
+  PetscCall(VecRestoreArrayRead(cpl->cloc, &e));
+  PetscCall(VecRestoreArrayRead(p, &pa));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 4, MPIU_REAL, MPIU_SUM, cpl->comm));
+  *pavg = loc[0] / loc[3];
+  *eavg = loc[1] / loc[3];
+  *usup = loc[2] / loc[3];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplMeanPorosity(Cpl cpl, int d, PetscReal z0, PetscReal z1, PetscReal *eps)
+{
+  Vec                e;
+  const PetscScalar *a;
+  PetscInt           xs[3], xm[3], idx[3], c = 0;
+  PetscReal          loc[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidGetPorosity(cpl->fl, &e));
+  PetscCall(DMDAGetCorners(cpl->cda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArrayRead(e, &a));
+  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
+    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
+      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c++) {
+        const PetscReal z = cpl->dom->lo[d] + (idx[d] + 0.5) * cpl->dom->h[d];
+        if (z < z0 - 1e-9 * cpl->dom->h[d] || z > z1 + 1e-9 * cpl->dom->h[d]) continue;
+        loc[0] += a[c];
+        loc[1] += 1;
+      }
+  PetscCall(VecRestoreArrayRead(e, &a));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_REAL, MPIU_SUM, cpl->comm));
+  *eps = loc[0] / PetscMax(loc[1], 1);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

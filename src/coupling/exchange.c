@@ -1,0 +1,168 @@
+/* One coupling step (the algorithm and the exact momentum exchange are described in couple.c):
+ * drag at the particles, DEM substeps, porosity and face drag fields, fluid step, then the
+ * momentum owed to the fluid for the next step. */
+#include "coupling/coupling_impl.h"
+
+/* Drag coefficient, fluid velocity and buoyancy at the particles; zeroes the impulses. */
+static PetscErrorCode CplSetParticleDrag(Cpl cpl)
+{
+  DemArrays   pa;
+  DemExternal ex;
+  PetscReal  *eps;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(cpl->ev_drag, 0, 0, 0, 0));
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(DemGetExternal(cpl->dem, &ex));
+  PetscCall(PetscMalloc1(pa.nlocal + 1, &eps));
+  PetscCall(CplInterpolate(cpl, ex.u, eps));
+  for (PetscInt p = 0; p < pa.nlocal; p++) {
+    const PetscInt  s = pa.shape[p];
+    const PetscReal d = cpl->diam[s];
+    PetscReal       w2 = 0;
+    for (int k = 0; k < 3; k++) w2 += PetscSqr(ex.u[3 * p + k] - pa.v[3 * p + k]);
+    const PetscReal re = cpl->rho * d * eps[p] * PetscSqrtReal(w2) / cpl->mu;
+    ex.k[p] = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps[p], re);
+    PetscCheck(PetscIsNormalReal(ex.k[p]), PETSC_COMM_SELF, PETSC_ERR_FP, "particle %" PetscInt_FMT ": drag coefficient %g at porosity %g, Re_p %g is not finite", pa.id[p], (double)ex.k[p], (double)eps[p], (double)re);
+    for (int k = 0; k < 3; k++) {
+      ex.fext[3 * p + k] = -cpl->rho * cpl->vol[s] * cpl->g[k];
+      ex.j[3 * p + k]    = 0;
+    }
+  }
+  PetscCall(PetscFree(eps));
+  PetscCall(PetscLogEventEnd(cpl->ev_drag, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* beta and u_s on the faces from K and the particle velocities at the new positions; the
+ * source is the momentum owed from the previous step. */
+static PetscErrorCode CplSetFluidDrag(Cpl cpl)
+{
+  DemArrays          pa;
+  DemExternal        ex;
+  Vec                beta, us, src;
+  PetscReal         *kv;
+  PetscScalar       *u;
+  const PetscScalar *b, *m;
+  PetscInt           n;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(DemGetExternal(cpl->dem, &ex));
+  PetscCall(FluidGetDragCoefficient(cpl->fl, &beta));
+  PetscCall(FluidGetSolidVelocity(cpl->fl, &us));
+  PetscCall(FluidGetMomentumSource(cpl->fl, &src));
+  PetscCall(CplSpreadFaces(cpl, ex.k, PETSC_TRUE, beta));
+  PetscCall(PetscMalloc1(3 * pa.nlocal + 1, &kv));
+  for (PetscInt p = 0; p < 3 * pa.nlocal; p++) kv[p] = ex.k[p / 3] * pa.v[p];
+  PetscCall(CplSpreadFaces(cpl, kv, PETSC_FALSE, cpl->kv));
+  PetscCall(PetscFree(kv));
+  PetscCall(VecGetLocalSize(us, &n));
+  PetscCall(VecGetArrayRead(beta, &b));
+  PetscCall(VecGetArrayRead(cpl->kv, &m));
+  PetscCall(VecGetArray(us, &u));
+  for (PetscInt i = 0; i < n; i++) u[i] = b[i] > 0 ? m[i] / b[i] : 0;
+  PetscCall(VecRestoreArray(us, &u));
+  PetscCall(VecRestoreArrayRead(cpl->kv, &m));
+  PetscCall(VecRestoreArrayRead(beta, &b));
+  PetscCall(VecCopy(cpl->owed, src));
+  PetscCall(VecScale(src, 1.0 / (cpl->cell_vol * cpl->dt)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Whether face point idx, component d, is a dynamic face shared by two cells (not on the
+ * boundary of a non-periodic axis, not an unused extra point). */
+static PetscBool CplInteriorFace(const Domain *dom, int d, const PetscInt idx[3])
+{
+  for (int e = 0; e < 3; e++) {
+    if (dom->periodic[e]) continue;
+    if (idx[e] == dom->cells[e]) return PETSC_FALSE;
+    if (e == d && idx[e] == 0) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+/* owed = V_cell (beta (u - u_s) dt - sum_p J_p W / V_cell) at interior faces, 0 elsewhere. */
+static PetscErrorCode CplComputeOwed(Cpl cpl, PetscReal *norm)
+{
+  DemExternal        ex;
+  Vec                beta, us, u;
+  const PetscScalar *b, *s, *v, *j;
+  PetscScalar       *o;
+  PetscInt           xs[3], xm[3], idx[3], c = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(cpl->owed));
+  *norm = 0;
+  if (!cpl->correct) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DemGetExternal(cpl->dem, &ex));
+  PetscCall(CplSpreadFaces(cpl, ex.j, PETSC_FALSE, cpl->jf));
+  PetscCall(FluidGetDragCoefficient(cpl->fl, &beta));
+  PetscCall(FluidGetSolidVelocity(cpl->fl, &us));
+  PetscCall(FluidGetVelocity(cpl->fl, &u));
+  PetscCall(DMDAGetCorners(cpl->fda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArrayRead(beta, &b));
+  PetscCall(VecGetArrayRead(us, &s));
+  PetscCall(VecGetArrayRead(u, &v));
+  PetscCall(VecGetArrayRead(cpl->jf, &j));
+  PetscCall(VecGetArray(cpl->owed, &o));
+  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
+    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
+      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c += 3)
+        for (int d = 0; d < 3; d++)
+          if (CplInteriorFace(cpl->dom, d, idx)) o[c + d] = cpl->cell_vol * (b[c + d] * (v[c + d] - s[c + d]) * cpl->dt - j[c + d]);
+  PetscCall(VecRestoreArray(cpl->owed, &o));
+  PetscCall(VecRestoreArrayRead(cpl->jf, &j));
+  PetscCall(VecRestoreArrayRead(u, &v));
+  PetscCall(VecRestoreArrayRead(us, &s));
+  PetscCall(VecRestoreArrayRead(beta, &b));
+  PetscCall(VecNorm(cpl->owed, NORM_2, norm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Mean drag force on all particles over the step: the impulses received over dt. */
+static PetscErrorCode CplDragTotal(Cpl cpl, PetscReal drag[3])
+{
+  DemArrays   pa;
+  DemExternal ex;
+  PetscReal   loc[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(DemGetExternal(cpl->dem, &ex));
+  if (cpl->frozen) /* no DEM steps: the drag the fixed particles feel at the step's start */
+    for (PetscInt p = 0; p < pa.nlocal; p++)
+      for (int k = 0; k < 3; k++) loc[k] += ex.k[p] * (ex.u[3 * p + k] - pa.v[3 * p + k]);
+  else
+    for (PetscInt p = 0; p < pa.nlocal; p++)
+      for (int k = 0; k < 3; k++) loc[k] += ex.j[3 * p + k] / cpl->dt;
+  PetscCall(MPIU_Allreduce(loc, drag, 3, MPIU_REAL, MPIU_SUM, cpl->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplStep(Cpl cpl, CplStats *st)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(st, sizeof *st));
+  CplInvalidateStencils(cpl); /* the driver may have moved particles since the last step */
+  PetscCall(CplSetParticleDrag(cpl));
+  if (!cpl->frozen) {
+    CplInvalidateStencils(cpl);
+    PetscCall(PetscLogEventBegin(cpl->ev_dem, 0, 0, 0, 0));
+    for (PetscInt s = 0; s < cpl->substeps; s++) PetscCall(DemStep(cpl->dem));
+    PetscCall(PetscLogEventEnd(cpl->ev_dem, 0, 0, 0, 0));
+  }
+  PetscCall(CplProjectPorosity(cpl, st));
+  PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
+  PetscCall(CplSetFluidDrag(cpl));
+  PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
+  PetscCall(FluidStep(cpl->fl, cpl->dt, &st->fluid));
+  PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "the fluid cut its step to %g s (-fluid_adaptive_dt); a coupled run needs the fixed step %g s: lower -dem_dt or -cpl_substeps instead", (double)st->fluid.dt, (double)cpl->dt);
+  PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
+  PetscCall(CplComputeOwed(cpl, &st->owed_norm));
+  PetscCall(CplDragTotal(cpl, st->drag));
+  PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
+  cpl->t += cpl->dt;
+  cpl->step++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,285 @@
+/* Cube projection kernel (Bernard et al., as used in Grains3D Part II §4.3). A particle of
+ * volume V is a cube of side a = kscale (pi/6)^(1/3) d (kscale = 1: the cube has the sphere's
+ * volume) centred on it, of uniform solid density V / a^3. Its exact overlap with a box is a
+ * product of 1-D overlaps, so the weights are separable: W(cell) = w0(i) w1(j) w2(k), each 1-D set
+ * summing to one (the last weight is one minus the others, so the sum is one to a rounding).
+ *   solid fraction of a cell:  sum_p V_p W_pc / V_cell           (porosity = 1 - that)
+ *   face field q of component d: sum_p q_p W^d_pf / V_cell, W^d using the face control volume
+ *     [x_f - h/2, x_f + h/2] along d and the cell extent along the other axes;
+ *   value at a particle: u_p = sum_f W^d_pf u_f  (the transpose of the spreading).
+ * Along a non-periodic axis the cube is shifted inside the domain (a particle touching a wall
+ * keeps all its volume in the fluid grid); along a periodic axis it wraps. Each rank spreads its
+ * own particles into ghosted local arrays; DMLocalToGlobal with ADD_VALUES sums the parts that
+ * fall in a neighbour's cells (so ghost particles, once the DEM has them, are not spread: their
+ * owner does it). The stencils are computed once per particle configuration and cached. Units
+ * SI. */
+#include "coupling/coupling_impl.h"
+
+/* 1-D overlap fractions of the segment [a, a + L] with the intervals [o + m h, o + (m+1) h]. */
+static PetscErrorCode cpl_weights_1d(double a, double L, double o, double h, PetscInt *m0, int *n, double w[4])
+{
+  const PetscInt first = (PetscInt)PetscFloorReal((a - o) / h);
+  PetscInt       last  = (PetscInt)PetscFloorReal((a + L - o) / h);
+  double         sum   = 0;
+
+  PetscFunctionBeginUser;
+  if (last > first && o + last * h >= a + L) last--; /* the segment ends exactly on a boundary */
+  PetscCheck(last - first < 4, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel of side %g spans more than 4 cells of size %g; lower -cpl_kernel_scale", a, h);
+  *m0 = first;
+  *n  = (int)(last - first + 1);
+  for (int k = 0; k < *n - 1; k++) {
+    const double lo = o + (first + k) * h, hi = lo + h;
+    w[k] = (PetscMin(a + L, hi) - PetscMax(a, lo)) / L;
+    sum += w[k];
+  }
+  w[*n - 1] = 1.0 - sum;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal *vol, PetscReal *diam)
+{
+  PetscReal r;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetShape(cpl->dem, shape, &r, NULL));
+  if (diam) *diam = 2 * r;
+  if (vol) *vol = 4.0 / 3.0 * PETSC_PI * r * r * r;
+  if (side) *side = cpl->kscale * PetscCbrtReal(PETSC_PI / 6.0) * 2 * r;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplStencil *s)
+{
+  const Domain *dom = cpl->dom;
+
+  PetscFunctionBeginUser;
+  for (int e = 0; e < 3; e++) {
+    double xc = x[e], a;
+    if (dom->periodic[e]) xc = dom->lo[e] + (xc - dom->lo[e]) - dom->len[e] * PetscFloorReal((xc - dom->lo[e]) / dom->len[e]);
+    a = xc - 0.5 * side;
+    if (!dom->periodic[e]) a = PetscMin(PetscMax(a, dom->lo[e]), dom->hi[e] - side);
+    PetscCall(cpl_weights_1d(a, side, dom->lo[e], dom->h[e], &s->c0[e], &s->nc[e], s->wc[e]));
+    PetscCall(cpl_weights_1d(a, side, dom->lo[e] - 0.5 * dom->h[e], dom->h[e], &s->f0[e], &s->nf[e], s->wf[e]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Ghost box of a DMDA and the check that a stencil fits in it (a particle far outside its
+ * rank's box would need migration, issue 3). */
+typedef struct {
+  PetscInt gs[3], gm[3], dof;
+} CplBox;
+
+static PetscErrorCode CplBoxOf(DM da, CplBox *b)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetGhostCorners(da, &b->gs[0], &b->gs[1], &b->gs[2], &b->gm[0], &b->gm[1], &b->gm[2]));
+  PetscCall(DMDAGetInfo(da, NULL, NULL, NULL, NULL, NULL, NULL, NULL, &b->dof, NULL, NULL, NULL, NULL, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CplCheckFits(const CplBox *b, const PetscInt first[3], const int n[3], PetscInt id)
+{
+  PetscFunctionBeginUser;
+  for (int e = 0; e < 3; e++)
+    PetscCheck(first[e] >= b->gs[e] && first[e] + n[e] <= b->gs[e] + b->gm[e], PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "particle %" PetscInt_FMT ": its kernel reaches cell %" PetscInt_FMT " on axis %d, beyond this rank's ghost cells [%" PetscInt_FMT ", %" PetscInt_FMT "): the particle left its rank's box (needs particle migration) or the kernel is wider than one cell", id, first[e] < b->gs[e] ? first[e] : first[e] + n[e] - 1, e, b->gs[e], b->gs[e] + b->gm[e]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static inline PetscInt cpl_off(const CplBox *b, PetscInt i, PetscInt j, PetscInt k)
+{
+  return ((k - b->gs[2]) * b->gm[1] + (j - b->gs[1])) * b->gm[0] + (i - b->gs[0]);
+}
+
+/* The axis-d-component view of a stencil: faces along d, cells along the others. */
+static void cpl_component(const CplStencil *s, int d, PetscInt first[3], int n[3], const double *w[3])
+{
+  for (int e = 0; e < 3; e++) {
+    first[e] = e == d ? s->f0[e] : s->c0[e];
+    n[e]     = e == d ? s->nf[e] : s->nc[e];
+    w[e]     = e == d ? s->wf[e] : s->wc[e];
+  }
+}
+
+/* The stencils of all local particles, cached until CplInvalidateStencils (the coupling calls
+ * it whenever the DEM may have moved or re-sorted its particles); each is checked against the
+ * ghost boxes of both grids once, when computed. */
+static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil **out)
+{
+  CplBox bc, bf;
+
+  PetscFunctionBeginUser;
+  if (!cpl->stc_valid || cpl->stc_n != pa->nlocal) {
+    PetscCall(CplBoxOf(cpl->cda, &bc));
+    PetscCall(CplBoxOf(cpl->fda, &bf));
+    if (pa->nlocal > cpl->stc_cap) {
+      PetscCall(PetscFree(cpl->stc));
+      cpl->stc_cap = PetscMax(pa->nlocal, 2 * cpl->stc_cap);
+      PetscCall(PetscMalloc1(cpl->stc_cap, &cpl->stc));
+    }
+    for (PetscInt p = 0; p < pa->nlocal; p++) {
+      CplStencil *st1 = &cpl->stc[p];
+      PetscCall(CplStencilOf(cpl, pa->x + 3 * p, cpl->side[pa->shape[p]], st1));
+      PetscCall(CplCheckFits(&bc, st1->c0, st1->nc, pa->id[p]));
+      for (int d = 0; d < 3; d++) {
+        PetscInt      first[3];
+        int           n[3];
+        const double *w[3];
+        cpl_component(st1, d, first, n, w);
+        PetscCall(CplCheckFits(&bf, first, n, pa->id[p]));
+      }
+    }
+    cpl->stc_n     = pa->nlocal;
+    cpl->stc_valid = PETSC_TRUE;
+  }
+  *out = cpl->stc;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void CplInvalidateStencils(Cpl cpl)
+{
+  cpl->stc_valid = PETSC_FALSE;
+}
+
+/* Collective. Porosity eps^{n+1} of the fluid from the current particle positions: solid
+ * fraction by the kernel, eps = 1 - solid, raised to -cpl_porosity_floor where below it. */
+PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
+{
+  DemArrays         pa;
+  CplBox            b;
+  const CplStencil *stc;
+  PetscScalar      *a, *e;
+  const PetscScalar *s;
+  Vec          solid, eps;
+  PetscInt     n, clipped = 0, cnt[2];
+  PetscReal    emin = 1, sum;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(cpl->ev_project, 0, 0, 0, 0));
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(CplStencils(cpl, &pa, &stc));
+  PetscCall(CplBoxOf(cpl->cda, &b));
+  PetscCall(VecZeroEntries(cpl->cloc));
+  PetscCall(VecGetArray(cpl->cloc, &a));
+  for (PetscInt p = 0; p < pa.nlocal; p++) {
+    const CplStencil *st1 = &stc[p];
+    const PetscReal   f   = cpl->vol[pa.shape[p]] / cpl->cell_vol;
+    for (int k = 0; k < st1->nc[2]; k++)
+      for (int j = 0; j < st1->nc[1]; j++) {
+        const double wjk = f * st1->wc[2][k] * st1->wc[1][j];
+        PetscInt     o   = cpl_off(&b, st1->c0[0], st1->c0[1] + j, st1->c0[2] + k);
+        for (int i = 0; i < st1->nc[0]; i++) a[o + i] += wjk * st1->wc[0][i];
+      }
+  }
+  PetscCall(VecRestoreArray(cpl->cloc, &a));
+  PetscCall(DMGetGlobalVector(cpl->cda, &solid));
+  PetscCall(VecZeroEntries(solid));
+  PetscCall(DMLocalToGlobal(cpl->cda, cpl->cloc, ADD_VALUES, solid));
+  PetscCall(VecSum(solid, &sum));
+  cpl->solid_grid = sum * cpl->cell_vol;
+  PetscCall(FluidGetPorosity(cpl->fl, &eps));
+  PetscCall(VecGetLocalSize(eps, &n));
+  PetscCall(VecGetArrayRead(solid, &s));
+  PetscCall(VecGetArray(eps, &e));
+  for (PetscInt c = 0; c < n; c++) {
+    e[c] = 1.0 - s[c];
+    if (e[c] < cpl->eps_floor) {
+      e[c] = cpl->eps_floor;
+      clipped++;
+    }
+    emin = PetscMin(emin, e[c]);
+  }
+  PetscCall(VecRestoreArray(eps, &e));
+  PetscCall(VecRestoreArrayRead(solid, &s));
+  PetscCall(DMRestoreGlobalVector(cpl->cda, &solid));
+  cnt[0] = clipped;
+  PetscCall(MPIU_Allreduce(cnt, cnt + 1, 1, MPIU_INT, MPI_SUM, cpl->comm));
+  cpl->clipped_total += cnt[1];
+  if (st) {
+    st->clipped = cnt[1];
+    PetscCall(MPIU_Allreduce(&emin, &st->eps_min, 1, MPIU_REAL, MPIU_MIN, cpl->comm));
+  }
+  PetscCall(PetscLogEventEnd(cpl->ev_project, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. out (a global face Vec) <- sum_p val_p^d W^d_pf / V_cell per component d; val has
+ * 3 values per local particle, or one (scalar) used for all three components. */
+PetscErrorCode CplSpreadFaces(Cpl cpl, const PetscReal *val, PetscBool scalar, Vec out)
+{
+  DemArrays         pa;
+  CplBox            b;
+  const CplStencil *stc;
+  PetscScalar      *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(CplStencils(cpl, &pa, &stc));
+  PetscCall(CplBoxOf(cpl->fda, &b));
+  PetscCall(VecZeroEntries(cpl->floc));
+  PetscCall(VecGetArray(cpl->floc, &a));
+  for (PetscInt p = 0; p < pa.nlocal; p++) {
+    for (int d = 0; d < 3; d++) {
+      PetscInt      first[3];
+      int           n[3];
+      const double *w[3];
+      const double  q = (scalar ? val[p] : val[3 * p + d]) / cpl->cell_vol;
+      cpl_component(&stc[p], d, first, n, w);
+      for (int k = 0; k < n[2]; k++)
+        for (int j = 0; j < n[1]; j++) {
+          const double wjk = q * w[2][k] * w[1][j];
+          PetscInt     o   = 3 * cpl_off(&b, first[0], first[1] + j, first[2] + k) + d;
+          for (int i = 0; i < n[0]; i++) a[o + 3 * i] += wjk * w[0][i];
+        }
+    }
+  }
+  PetscCall(VecRestoreArray(cpl->floc, &a));
+  PetscCall(VecZeroEntries(out));
+  PetscCall(DMLocalToGlobal(cpl->fda, cpl->floc, ADD_VALUES, out));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Fluid velocity u (3 per local particle, m/s) and porosity eps (1 per particle) at
+ * the particles: kernel-weighted averages of the face velocities (boundary faces carry their
+ * boundary values) and of the current cell porosity. */
+PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps)
+{
+  DemArrays          pa;
+  CplBox             bf, bc;
+  Vec                uloc, e;
+  const PetscScalar *ua, *ea;
+  const CplStencil  *stc;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(CplStencils(cpl, &pa, &stc));
+  PetscCall(CplBoxOf(cpl->fda, &bf));
+  PetscCall(CplBoxOf(cpl->cda, &bc));
+  PetscCall(FluidGetLocalFields(cpl->fl, &uloc, NULL));
+  PetscCall(FluidGetPorosity(cpl->fl, &e));
+  PetscCall(DMGlobalToLocal(cpl->cda, e, INSERT_VALUES, cpl->cloc));
+  PetscCall(VecGetArrayRead(uloc, &ua));
+  PetscCall(VecGetArrayRead(cpl->cloc, &ea));
+  for (PetscInt p = 0; p < pa.nlocal; p++) {
+    const CplStencil *st1 = &stc[p];
+    double            s   = 0;
+    for (int k = 0; k < st1->nc[2]; k++)
+      for (int j = 0; j < st1->nc[1]; j++)
+        for (int i = 0; i < st1->nc[0]; i++) s += st1->wc[2][k] * st1->wc[1][j] * st1->wc[0][i] * ea[cpl_off(&bc, st1->c0[0] + i, st1->c0[1] + j, st1->c0[2] + k)];
+    eps[p] = s;
+    for (int d = 0; d < 3; d++) {
+      PetscInt      first[3];
+      int           n[3];
+      const double *w[3];
+      cpl_component(st1, d, first, n, w);
+      s = 0;
+      for (int k = 0; k < n[2]; k++)
+        for (int j = 0; j < n[1]; j++)
+          for (int i = 0; i < n[0]; i++) s += w[2][k] * w[1][j] * w[0][i] * ua[3 * cpl_off(&bf, first[0] + i, first[1] + j, first[2] + k) + d];
+      u[3 * p + d] = s;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(cpl->cloc, &ea));
+  PetscCall(VecRestoreArrayRead(uloc, &ua));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

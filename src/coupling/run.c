@@ -1,0 +1,140 @@
+/* The coupled driver: a run is coupled when any -cpl_ or -fluid_ option is given (main.c keeps
+ * the dry path otherwise). It builds the Fluid and the coupling beside the driver's Dem, prints
+ * the modules and the pre-flight figures, runs to -cpl_t_end, writes particles and fluid in the
+ * same output frames, and reports the pressure drop across the column against the bed's buoyant
+ * weight per area (the fluidization check), averaged over the second half of the run, and with
+ * -cpl_probe_z the packed-bed figures (dp/L between two heights, the porosity there and the drag
+ * law's own prediction). Gravity is along z. */
+#include "coupling/coupling_impl.h"
+
+PetscErrorCode CplRequested(PetscBool *on)
+{
+  char *all;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(NULL, &all));
+  *on = (PetscBool)(!strncmp(all, "-cpl_", 5) || !strncmp(all, "-fluid_", 7) || strstr(all, " -cpl_") || strstr(all, " -fluid_"));
+  PetscCall(PetscFree(all));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Buoyant weight of the bed per cross-section area (Pa), gravity along z. */
+static PetscErrorCode CplBedWeight(Cpl cpl, PetscReal *w)
+{
+  DemArrays pa;
+  PetscReal loc = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  for (PetscInt p = 0; p < pa.nlocal; p++) loc += (cpl->mass[pa.shape[p]] - cpl->rho * cpl->vol[pa.shape[p]]) * PetscAbsReal(cpl->g[2]);
+  PetscCall(MPIU_Allreduce(&loc, w, 1, MPIU_REAL, MPIU_SUM, cpl->comm));
+  *w /= cpl->dom->len[0] * cpl->dom->len[1];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CplColumnDrop(Cpl cpl, PetscReal *dp)
+{
+  PetscReal p0, p1, e, u;
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetLayer(cpl, 2, cpl->dom->lo[2], NULL, &p0, &e, &u));
+  PetscCall(CplGetLayer(cpl, 2, cpl->dom->hi[2], NULL, &p1, &e, &u));
+  *dp = p0 - p1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CplProbeReport(Cpl cpl)
+{
+  PetscReal p0, p1, e0, e1, u0, u1, eps, pred, dpdl, z0, z1;
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetLayer(cpl, 2, cpl->probe[0], &z0, &p0, &e0, &u0));
+  PetscCall(CplGetLayer(cpl, 2, cpl->probe[1], &z1, &p1, &e1, &u1));
+  PetscCall(CplMeanPorosity(cpl, 2, z0, z1, &eps));
+  dpdl = (p0 - p1) / (z1 - z0);
+  pred = CplPackedBedGradient(cpl->law, eps, u0, cpl->diam[0], cpl->rho, cpl->mu);
+  PetscCall(PetscPrintf(cpl->comm, "packed bed: dp/L %.10g Pa/m, porosity %.10f, superficial velocity %.6g m/s, drag law predicts %.6g Pa/m (ratio %.5f)\n", (double)dpdl, (double)eps, (double)u0, (double)pred, (double)(dpdl / pred)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CplOutput(Cpl cpl, Io io)
+{
+  PetscFunctionBeginUser;
+  PetscCall(IoFrameBegin(io, cpl->t, cpl->step));
+  PetscCall(DemWriteOutput(cpl->dem, io));
+  PetscCall(FluidWriteOutput(cpl->fl, io));
+  PetscCall(IoFrameEnd(io));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CplRunLoop(Cpl cpl, Io io)
+{
+  PetscLogDouble t0, now;
+  PetscReal      next = cpl->progress_dt, w, dp = 0, avg = 0, davg = 0;
+  PetscInt       navg = 0;
+  PetscBool      due;
+  CplStats       st;
+
+  PetscFunctionBeginUser;
+  PetscCall(CplBedWeight(cpl, &w));
+  PetscCall(PetscTime(&t0));
+  PetscCall(IoDue(io, cpl->t, &due));
+  if (due) PetscCall(CplOutput(cpl, io));
+  while (cpl->t < cpl->t_end - 0.5 * cpl->dt) {
+    PetscCall(CplStep(cpl, &st));
+    PetscCall(IoDue(io, cpl->t, &due));
+    if (due) PetscCall(CplOutput(cpl, io));
+    PetscCall(CplColumnDrop(cpl, &dp));
+    if (cpl->t > 0.5 * cpl->t_end) {
+      avg += dp;
+      davg += st.drag[2];
+      navg++;
+    }
+    if (cpl->progress_dt > 0 && cpl->t >= next - 0.5 * cpl->dt) {
+      DemStats ds;
+      PetscCall(DemGetStats(cpl->dem, &ds));
+      PetscCall(PetscTime(&now));
+      const double rate = cpl->step / PetscMax(now - t0, 1e-9);
+      PetscCall(PetscPrintf(cpl->comm, "t %.5g  step %" PetscInt_FMT "  %.1f steps/s  ETA %.0f s  KE %.4g  contacts %" PetscInt_FMT "  eps_min %.3f  clipped %" PetscInt_FMT "  Poisson its %" PetscInt_FMT "  dp/W %.4f  drag/W %.4f  |owed| %.3g\n", (double)cpl->t, cpl->step, rate, PetscMax(0.0, (cpl->t_end - cpl->t) / cpl->dt / rate), (double)ds.ke, ds.contacts + ds.wall_contacts, (double)st.eps_min, cpl->clipped_total, st.fluid.poisson_its, (double)(dp / w), (double)(st.drag[2] / (w * cpl->dom->len[0] * cpl->dom->len[1])), (double)st.owed_norm));
+      PetscCheck(PetscIsNormalReal(ds.ke) || ds.ke == 0, cpl->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": particle kinetic energy is not finite", cpl->step);
+      next += cpl->progress_dt;
+    }
+  }
+  PetscCall(PetscPrintf(cpl->comm, "column: pressure drop / bed buoyant weight per area %.5f, drag on the particles / buoyant weight %.5f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * cpl->dom->len[0] * cpl->dom->len[1])) : 0.0, (double)w, cpl->clipped_total));
+  if (cpl->probe_set) PetscCall(CplProbeReport(cpl));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
+{
+  Fluid          fl;
+  Cpl            cpl;
+  PetscBool      frozen;
+  PetscLogDouble t0, t1;
+  const char    *index;
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidCreate(dom, &fl));
+  PetscCall(FluidSetFromOptions(fl));
+  PetscCall(CplCreate(dom, dem, fl, &cpl));
+  PetscCall(CplSetFromOptions(cpl));
+  if (!help) {
+    PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
+    PetscCall(DemGetFrozen(dem, &frozen));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on%s; fluid on; coupling on; convex shapes off; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", fluid grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", frozen ? " (frozen: no particle integration)" : "", dom->nranks[0], dom->nranks[1], dom->nranks[2], dom->cells[0], dom->cells[1], dom->cells[2]));
+    PetscCall(DemSetUp(dem));
+    PetscCall(FluidSetUp(fl));
+    PetscCall(CplSetUp(cpl));
+    PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
+    PetscCall(CplView(cpl, PETSC_VIEWER_STDOUT_WORLD));
+    PetscCall(PetscTime(&t0));
+    PetscCall(CplRunLoop(cpl, io));
+    PetscCall(PetscTime(&t1));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s\n", (double)cpl->t, cpl->step, t1 - t0));
+    PetscCall(IoGetIndexPath(io, &index));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "output: %s (open it in ParaView)\n", index));
+  }
+  PetscCall(CplDestroy(&cpl));
+  PetscCall(FluidDestroy(&fl));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

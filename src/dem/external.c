@@ -1,0 +1,111 @@
+/* External forces on the particles, for a fluid coupling (the DEM never sees the fluid).
+ * A coupling writes, per local particle, a constant force fext (e.g. buoyancy), a drag
+ * coefficient k and a fluid velocity u; each translational half kick of length h then solves
+ *   m dv/dt = F + fext + k (u - v)
+ * with the drag backward-Euler (implicit in v), so any k h/m is stable:
+ *   v' = (v + h ((F + fext)/m + k u/m)) / (1 + h k/m),
+ * and adds the impulse actually received, h k (u - v'), to j. The arrays live beside the other
+ * per-particle arrays (particles.c permutes them on re-sorts) and exist only while switched on.
+ * A frozen DEM (-dem_frozen) integrates nothing: its particles are fixed obstacles. */
+#include "dem/dem_impl.h"
+
+void DemExternalKick(Dem dem, double h)
+{
+  double        *v = dem->v, *j = dem->jdrag;
+  const double  *f = dem->f, *fe = dem->fext, *kd = dem->kdrag, *u = dem->udrag;
+  const PetscInt n = dem->n, *shape = dem->shape;
+
+  for (PetscInt i = 0; i < n; i++) {
+    const double im = dem->shp[shape[i]].invm, hk = h * kd[i];
+    const double den = 1.0 / (1.0 + hk * im);
+    for (int k = 0; k < 3; k++) {
+      const double vn = (v[3 * i + k] + h * (f[3 * i + k] + fe[3 * i + k]) * im + hk * im * u[3 * i + k]) * den;
+      v[3 * i + k] = vn;
+      j[3 * i + k] += hk * (u[3 * i + k] - vn);
+    }
+  }
+}
+
+PetscErrorCode DemSetExternal(Dem dem, PetscBool on)
+{
+  double **a[4] = {&dem->fext, &dem->kdrag, &dem->udrag, &dem->jdrag};
+  int      w[4] = {3, 1, 3, 3};
+
+  PetscFunctionBeginUser;
+  if (on == dem->external) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int k = 0; k < 4; k++) {
+    if (on) PetscCall(PetscCalloc1((size_t)w[k] * (size_t)dem->cap + 1, a[k]));
+    else PetscCall(PetscFree(*a[k]));
+  }
+  dem->external = on;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetExternal(Dem dem, DemExternal *e)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(dem->external, PETSC_COMM_SELF, PETSC_ERR_ORDER, "call DemSetExternal(dem, PETSC_TRUE) before DemGetExternal");
+  e->fext = dem->fext;
+  e->k    = dem->kdrag;
+  e->u    = dem->udrag;
+  e->j    = dem->jdrag;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetArrays(Dem dem, DemArrays *a)
+{
+  PetscFunctionBeginUser;
+  a->nlocal = dem->n;
+  a->nghost = 0;
+  a->x      = dem->x;
+  a->v      = dem->v;
+  a->id     = dem->id;
+  a->shape  = dem->shape;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetShape(Dem dem, PetscInt s, PetscReal *radius, PetscReal *mass)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(s >= 0 && s < dem->nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", s, dem->nshape);
+  if (radius) *radius = dem->shp[s].r;
+  if (mass) *mass = dem->shp[s].m;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetShapeCount(Dem dem, PetscInt *n)
+{
+  PetscFunctionBeginUser;
+  *n = dem->nshape;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetGravity(Dem dem, PetscReal g[3])
+{
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 3; k++) g[k] = dem->g[k];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemExternalSetFromOptions(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(dem->comm, NULL, "DEM frozen bed", NULL);
+  PetscCall(PetscOptionsBool("-dem_frozen", "Integrate no particles (fixed obstacles, e.g. a packed bed)", NULL, dem->frozen, &dem->frozen, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemSetFrozen(Dem dem, PetscBool frozen)
+{
+  PetscFunctionBeginUser;
+  dem->frozen = frozen;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetFrozen(Dem dem, PetscBool *frozen)
+{
+  PetscFunctionBeginUser;
+  *frozen = dem->frozen;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,58 @@
+/* Shared by the coupling tests: a coupled set-up (Domain, Dem, Fluid, Cpl) from an options
+ * string, and its tear-down. */
+#pragma once
+#include "check.h"
+#include "coupling/coupling.h"
+
+typedef struct {
+  Domain dom;
+  Dem    dem;
+  Fluid  fl;
+  Cpl    cpl;
+} TestCpl;
+
+/* Replaces the options database by opts; builds and sets up everything; add (may be NULL)
+ * adds particles before DemSetUp. */
+static PetscErrorCode TestCplCreateWith(const char *opts, PetscErrorCode (*add)(Dem), TestCpl *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, opts));
+  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &t->dom));
+  PetscCall(DemCreate(&t->dom, &t->dem));
+  PetscCall(DemSetFromOptions(t->dem));
+  PetscCall(DemExternalSetFromOptions(t->dem));
+  PetscCall(FluidCreate(&t->dom, &t->fl));
+  PetscCall(FluidSetFromOptions(t->fl));
+  PetscCall(CplCreate(&t->dom, t->dem, t->fl, &t->cpl));
+  PetscCall(CplSetFromOptions(t->cpl));
+  if (add) PetscCall(add(t->dem));
+  PetscCall(DemSetUp(t->dem));
+  PetscCall(FluidSetUp(t->fl));
+  PetscCall(CplSetUp(t->cpl));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode TestCplCreate(const char *opts, TestCpl *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TestCplCreateWith(opts, NULL, t));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode TestCplDestroy(TestCpl *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CplDestroy(&t->cpl));
+  PetscCall(FluidDestroy(&t->fl));
+  PetscCall(DemDestroy(&t->dem));
+  PetscCall(DomainDestroy(&t->dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode TestCplRun(TestCpl *t, PetscInt nsteps, CplStats *st)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt s = 0; s < nsteps; s++) PetscCall(CplStep(t->cpl, st));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

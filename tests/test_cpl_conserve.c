@@ -1,0 +1,63 @@
+/* Conservation in a closed periodic box (dimensionless: d = 1, rho_f = 1, rho_p = 2, mu = 0.1,
+ * no gravity, the fluid at rest, 64 spheres on a jittered lattice with random velocities).
+ * References are exact identities of the scheme:
+ *  1. solid volume on the grid (sum over cells of (1 - eps) V_cell) equals the particles'
+ *     volume to 1e-12 relative, at the start and after the particles moved;
+ *  2. particle momentum + fluid momentum + the exchange still owed to the fluid is constant to
+ *     1e-10 relative to sum |m v| over 40 coupling steps, while the fluid picks up momentum
+ *     (the drag is implicit on both sides; couple.c explains the bookkeeping);
+ *  3. the same on 2 and 4 ranks, where particles near a rank boundary spread into the
+ *     neighbour's cells through the ghost cells.
+ * The Poisson solve of a fully periodic box is singular; hypre's default Gaussian elimination on the
+ * coarsest level then fails now and then on 2 ranks (a fluid-side limitation, reported), so this
+ * test relaxes the coarsest level instead. */
+/* ranks: 1 2 4 */
+#include "cpl_common.h"
+
+static const char *Opts = "-domain_lo 0,0,0 -domain_hi 8,8,8 -domain_periodic_x -domain_periodic_y -domain_periodic_z "
+                          "-da_grid_x 8 -da_grid_y 8 -da_grid_z 8 "
+                          "-dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 1e-3 -dem_gravity 0,0,0 "
+                          "-dem_lattice 4,4,4 -dem_lattice_spacing 2 -dem_lattice_jitter 1 -dem_lattice_speed 0.5 "
+                          "-fluid_density 1 -fluid_viscosity 0.1 -cpl_substeps 5 "
+                          "-fluid_poisson_pc_hypre_boomeramg_relax_type_coarse symmetric-SOR/Jacobi";
+
+static PetscErrorCode Total(TestCpl *t, PetscReal P[3], PetscReal *pf_norm, PetscReal *scale)
+{
+  PetscReal pp[3], pf[3], ow[3];
+  DemArrays pa;
+  PetscReal s = 0, m;
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetMomentum(t->cpl, pp, pf, ow));
+  for (int k = 0; k < 3; k++) P[k] = pp[k] + pf[k] + ow[k];
+  *pf_norm = PetscSqrtReal(pf[0] * pf[0] + pf[1] * pf[1] + pf[2] * pf[2]);
+  PetscCall(DemGetArrays(t->dem, &pa));
+  for (PetscInt p = 0; p < pa.nlocal; p++) {
+    PetscCall(DemGetShape(t->dem, pa.shape[p], NULL, &m));
+    s += m * PetscSqrtReal(pa.v[3 * p] * pa.v[3 * p] + pa.v[3 * p + 1] * pa.v[3 * p + 1] + pa.v[3 * p + 2] * pa.v[3 * p + 2]);
+  }
+  PetscCall(MPIU_Allreduce(&s, scale, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  TestCpl   t;
+  CplStats  st;
+  PetscReal g0, p0, g1, p1, P0[3], P1[3], pf0, pf1, s0, s1, err = 0;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(TestCplCreate(Opts, &t));
+  PetscCall(CplGetSolidVolume(t.cpl, &g0, &p0));
+  PetscCall(Total(&t, P0, &pf0, &s0));
+  PetscCall(TestCplRun(&t, 40, &st));
+  PetscCall(CplGetSolidVolume(t.cpl, &g1, &p1));
+  PetscCall(Total(&t, P1, &pf1, &s1));
+  for (int k = 0; k < 3; k++) err = PetscMax(err, PetscAbsReal(P1[k] - P0[k]) / s0);
+  check((PetscBool)(PetscAbsReal(g0 / p0 - 1) < 1e-12 && PetscAbsReal(g1 / p1 - 1) < 1e-12), "solid volume on the grid vs particles: rel. error %.2e at start, %.2e after 40 steps (< 1e-12)", (double)PetscAbsReal(g0 / p0 - 1), (double)PetscAbsReal(g1 / p1 - 1));
+  check((PetscBool)(err < 1e-10), "particle + fluid + owed momentum over 40 steps: max change / sum|m v| %.2e (< 1e-10)", (double)err);
+  check((PetscBool)(pf1 > 1e-2 * s0 && s1 < s0), "momentum went to the fluid: |P_fluid| / sum|m v|(0) %.3f (> 0.01), particles slowed: sum|m v| %.4g -> %.4g", (double)(pf1 / s0), (double)s0, (double)s1);
+  PetscCall(TestCplDestroy(&t));
+  PetscCall(PetscFinalize());
+  return check_failures ? 1 : 0;
+}
