@@ -48,6 +48,8 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *s);
  * number (particle-particle contacts per particle). Collective. */
 PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord);
 PetscErrorCode DemWriteOutput(Dem dem, Io io);
+/* Whether the scene has non-spherical (convex) shapes, known after DemSetFromOptions. */
+PetscErrorCode DemHasConvexShapes(Dem dem, PetscBool *convex);
 
 /* Access for tests and drivers: add particles (before DemSetUp or between steps), read them. */
 PetscErrorCode DemAddParticle(Dem dem, const DemParticle *p);

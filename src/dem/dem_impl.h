@@ -7,22 +7,41 @@
 #pragma once
 #include "dem/dem.h"
 #include "dem/contact.h"
+#include "dem/convex.h"
 
 #define DEM_MAX_SHAPES 32
 #define DEM_MAX_WALLS  16
 
 typedef struct {
   double r, rho, m, inertia, invm, invi; /* sphere radius (m), density, mass, moment of inertia */
+  /* convex shapes (shapes.c): r is the bounding radius; NULL cvx means a sphere */
+  const ConvexShape *cvx;
+  double J[3], invJ[3]; /* principal moments of inertia (kg m^2), body axes */
+  double vol, req;      /* volume (m^3), equivalent radius for the contact laws (m) */
 } DemShape;
 
 typedef struct {
   double p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity */
   double moved;            /* distance moved since the last list build (m) */
+  /* finite rectangle p + s e1 + t e2, s,t in [0,1], touched from the front only (-dem_rect_k) */
+  PetscBool finite;
+  double    e1[3], e2[3];
   /* list of particles within reach, with their tangential springs */
   PetscInt *idx;
   double   *hist;
   PetscInt  cnt, cap;
 } DemWall;
+
+/* Whether a contact at point pt of a particle centred at xc is on the wall: always for an
+ * infinite plane; for a rectangle, pt projects inside it and xc is on its front side. */
+static inline PetscBool DemWallCovers(const DemWall *w, const double *pt, const double *xc)
+{
+  if (!w->finite) return PETSC_TRUE;
+  const double d[3] = {pt[0] - w->p[0], pt[1] - w->p[1], pt[2] - w->p[2]};
+  const double c[3] = {xc[0] - w->p[0], xc[1] - w->p[1], xc[2] - w->p[2]};
+  const double s = dem_dot(d, w->e1) / dem_dot(w->e1, w->e1), t = dem_dot(d, w->e2) / dem_dot(w->e2, w->e2);
+  return (PetscBool)(s >= 0 && s <= 1 && t >= 0 && t <= 1 && dem_dot(c, w->n) > 0);
+}
 
 typedef struct { /* material of one side of a contact */
   PetscReal kn, kt, e, mu, E, nu;
@@ -57,6 +76,9 @@ struct _p_Dem {
   PetscReal     tdamp_ratio, vimpact;
   DemPairParams pp[DEM_MAX_SHAPES * DEM_MAX_SHAPES], pw[DEM_MAX_SHAPES];
   PetscBool     rotation; /* any friction: torques and spins are integrated */
+  /* convex shapes (shapes.c): the table owns them; convex = the scene has any */
+  ConvexShape   cvx[DEM_MAX_SHAPES];
+  PetscBool     convex, random_orient;
   /* walls */
   DemWall   wall[DEM_MAX_WALLS];
   PetscInt  nwall;
@@ -91,5 +113,14 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c *
 PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
 PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
 PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
+PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c */
+PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
+PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
+PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* contacts_convex.c */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* contacts_convex.c */
+PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* diag_convex.c */
+PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* diag_convex.c */
+PetscErrorCode DemRotateFirstHalf(Dem dem);                        /* rotation.c */
+PetscErrorCode DemRotateSecondHalf(Dem dem);                       /* rotation.c */
 
 extern PetscLogEvent DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;

@@ -5,7 +5,10 @@
  * mass and radius (m* = m, R* = r). Each wall keeps a list of the particles within r + skin,
  * rebuilt with the Verlet list, and their tangential springs.
  * Options: -dem_box xlo,ylo,zlo,xhi,yhi,zhi (m); -dem_plane_<k> px,py,pz,nx,ny,nz (m, -);
- * -dem_plane_<k>_velocity vx,vy,vz (m/s), k = 0..9. */
+ * -dem_plane_<k>_velocity vx,vy,vz (m/s), k = 0..9; -dem_rect_<k> x0,y0,z0,x1,y1,z1,x2,y2,z2 (m),
+ * k = 0..9: a finite rectangle with corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0), facing
+ * the side (p1 - p0) x (p2 - p0) points to, touched only where the contact projects inside it
+ * and by particles whose centre is in front (hopper plates, a bottom with an orifice). */
 #include "dem/dem_impl.h"
 
 static PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3])
@@ -22,6 +25,29 @@ static PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], 
     w->p[k] = p[k];
     w->n[k] = n[k] / nn;
     w->v[k] = v[k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r[9])
+{
+  double   e1[3], e2[3], n[3], z[3] = {0, 0, 0};
+  DemWall *w;
+
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 3; k++) {
+    e1[k] = r[3 + k] - r[k];
+    e2[k] = r[6 + k] - r[k];
+  }
+  dem_cross(e1, e2, n);
+  const double l1 = sqrt(dem_dot(e1, e1)), l2 = sqrt(dem_dot(e2, e2));
+  PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
+  PetscCall(DemWallAdd(dem, r, n, z));
+  w         = &dem->wall[dem->nwall - 1];
+  w->finite = PETSC_TRUE;
+  for (int k = 0; k < 3; k++) {
+    w->e1[k] = e1[k];
+    w->e2[k] = e2[k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -56,6 +82,12 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
     if (set) PetscCall(DemWallAdd(dem, pl, pl + 3, vel));
   }
+  for (int k = 0; k < 10; k++) {
+    PetscReal r[9];
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_rect_%d", k));
+    SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2 (m); faces the side (p1-p0)x(p2-p0) points to", NULL, r, 9, &set);
+    if (set) PetscCall(DemWallAddRect(dem, opt, r));
+  }
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -75,6 +107,7 @@ PetscErrorCode DemWallsBuildLists(Dem dem, const PetscInt *inv)
     for (PetscInt i = 0; i < dem->n; i++) {
       const double d[3] = {dem->x[3 * i] - w->p[0], dem->x[3 * i + 1] - w->p[1], dem->x[3 * i + 2] - w->p[2]};
       if (dem_dot(d, w->n) >= dem->shp[dem->shape[i]].r + dem->skin) continue;
+      if (w->finite && dem_dot(d, w->n) < -dem->skin) continue; /* behind a rectangle */
       if (w->cnt == w->cap) {
         w->cap = 2 * w->cap + 256;
         PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)w->cap, &w->idx));
@@ -122,7 +155,7 @@ PetscErrorCode DemContactsWalls(Dem dem)
       const double         delta = r - dem_dot(d, w->n);
       double              *xi_t  = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
       const DemPairParams *p     = &dem->pw[dem->shape[i]];
-      if (delta <= 0) {
+      if (delta <= 0 || !DemWallCovers(w, xi, xi)) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
