@@ -17,6 +17,16 @@
 #include "dem/dem_impl.h"
 #include "dem/convex_quat.h"
 
+/* q (c, s e_k): the quaternion product with a rotation about body axis k (sparse form) */
+static inline void dem_quat_mul_axis(double *q, int k, double c, double s)
+{
+  static const int    a[3][4]   = {{1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}}; /* component of q e_k */
+  static const double sgn[3][4] = {{-1, 1, 1, -1}, {-1, -1, 1, 1}, {-1, 1, -1, 1}};
+  double              r[4];
+  for (int m = 0; m < 4; m++) r[m] = c * q[m] + s * sgn[k][m] * q[a[k][m]];
+  for (int m = 0; m < 4; m++) q[m] = r[m];
+}
+
 /* One exact rotation of the body about its axis k for time tau: q <- q (c, s e_k), L_b <- R_k^T L_b. */
 static inline void dem_rotor_axis(int k, double tau, const double *invJ, double *q, double *L)
 {
@@ -24,13 +34,19 @@ static inline void dem_rotor_axis(int k, double tau, const double *invJ, double 
   const double u = 0.25 * tau * L[k] * invJ[k], u2 = u * u, den = 1.0 / (1.0 + u2);
   const double cb = (1.0 - u2) * den, sb = 2.0 * u * den; /* cos, sin of the half angle */
   const double c = cb * cb - sb * sb, s = 2.0 * cb * sb;  /* of the angle */
-  double       p[4] = {cb, 0, 0, 0}, r[4];
-  p[1 + k] = sb;
-  convex_quat_mul(q, p, r);
-  for (int m = 0; m < 4; m++) q[m] = r[m];
+  dem_quat_mul_axis(q, k, cb, sb);
   const double la = L[a], lb = L[b];
   L[a] = c * la + s * lb;
   L[b] = -s * la + c * lb;
+}
+
+/* Rotation matrix of a unit quaternion (row-major, body -> world). */
+static inline void dem_quat_matrix(const double *q, double *R)
+{
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  R[0] = 1 - 2 * (y * y + z * z), R[1] = 2 * (x * y - w * z), R[2] = 2 * (x * z + w * y);
+  R[3] = 2 * (x * y + w * z), R[4] = 1 - 2 * (x * x + z * z), R[5] = 2 * (y * z - w * x);
+  R[6] = 2 * (x * z - w * y), R[7] = 2 * (y * z + w * x), R[8] = 1 - 2 * (x * x + y * y);
 }
 
 /* w <- w + h R J^-1 R^T T (the half kick, in terms of the world spin) */
@@ -51,7 +67,7 @@ PetscErrorCode DemRotateFirstHalf(Dem dem)
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *sh = &dem->shp[dem->shape[i]];
     double         *q = dem->q + 4 * i, *w = dem->w + 3 * i, R[9], wb[3], L[3];
-    convex_quat_to_matrix(q, R);
+    dem_quat_matrix(q, R);
     dem_kick(R, sh->invJ, h, dem->tq + 3 * i, w);
     convex_mat_tvec(R, w, wb);
     for (int k = 0; k < 3; k++) L[k] = sh->J[k] * wb[k];
@@ -62,7 +78,7 @@ PetscErrorCode DemRotateFirstHalf(Dem dem)
     dem_rotor_axis(0, h, sh->invJ, q, L);
     const double s = 1.0 / sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     for (int k = 0; k < 4; k++) q[k] *= s;
-    convex_quat_to_matrix(q, R);
+    dem_quat_matrix(q, R);
     for (int k = 0; k < 3; k++) wb[k] = L[k] * sh->invJ[k];
     convex_mat_vec(R, wb, w);
   }
@@ -78,7 +94,7 @@ PetscErrorCode DemRotateSecondHalf(Dem dem)
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *sh = &dem->shp[dem->shape[i]];
     double          R[9];
-    convex_quat_to_matrix(dem->q + 4 * i, R);
+    dem_quat_matrix(dem->q + 4 * i, R);
     dem_kick(R, sh->invJ, h, dem->tq + 3 * i, dem->w + 3 * i);
   }
   PetscCall(PetscLogFlops(40.0 * dem->n));
