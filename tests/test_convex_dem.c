@@ -9,7 +9,9 @@
  * 3. Tumbling bodies colliding with each other in free space (boxes and icosahedra, e = 1, no
  *    friction, linear law, dt = Tc/100): total linear and angular momentum (orbital + spin)
  *    conserved to 1e-10 (forces and torques are equal and opposite about the common contact
- *    point), energy drift (mean of the last tenth against the first) below 1e-4 over 1e5 steps. */
+ *    point), energy drift (mean of the last tenth against the first) below 1e-4 over 1e5 steps.
+ * 4. A finite rectangle wall (-dem_rect_0, 3a x 3a): a cube (and a sphere) dropped on it rests
+ *    at a/2 (r) above it; one dropped beside it falls past it. */
 #include "check.h"
 #include "dem/convex_quat.h"
 
@@ -202,6 +204,29 @@ static PetscErrorCode Collisions(double vs, double ws, double ebound)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode RectDrop(const char *shape, double rest)
+{
+  char   opts[1024];
+  Domain dom;
+  Dem    dem;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.5 -domain_hi 0.05,0.05,0.05 %s -dem_density %g -dem_contact_law linear -dem_kn 2e4 -dem_restitution 0.3 -dem_friction 0.5 -dem_dt 1e-5 -dem_rect_0 %g,%g,0,%g,%g,0,%g,%g,0", shape, RHO, -1.5 * A, -1.5 * A, 1.5 * A, -1.5 * A, -1.5 * A, 1.5 * A));
+  PetscCall(TestDemCreate(opts, &dom, &dem));
+  DemParticle on = {.id = 0, .shape = 0, .x = {0, 0, 1.5 * A}, .q = {1, 0, 0, 0}}, off = {.id = 1, .shape = 0, .x = {4 * A, 0, 1.5 * A}, .q = {1, 0, 0, 0}};
+  PetscCall(DemAddParticle(dem, &on));
+  PetscCall(DemAddParticle(dem, &off));
+  PetscCall(DemSetUp(dem));
+  for (int s = 0; s < 30000; s++) PetscCall(DemStep(dem));
+  on  = TestGet(dem, 0);
+  off = TestGet(dem, 1);
+  const double err = PetscAbsReal(on.x[2] - rest), bound = 2 * RHO * A * A * A * 9.81 / 2e4;
+  check((PetscBool)(err < bound), "%s on a finite rectangle rests at %g m: error %.2e m (bound %.2e m)", shape, rest, err, bound);
+  check((PetscBool)(off.x[2] < -0.3), "%s beside a finite rectangle falls past it: z = %.3f m after 0.3 s (bound < -0.3 m)", shape, off.x[2]);
+  PetscCall(TestDemDestroy(&dom, &dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   const double c = cos(PETSC_PI / 8), s = sin(PETSC_PI / 8);
@@ -218,6 +243,13 @@ int main(int argc, char **argv)
     PetscCall(DropCube(names[k], q, &zerr, &tilt, &bound));
     check((PetscBool)(zerr < bound), "cube dropped on its %s rests at z = a/2: error %.2e m (bound 2 m g/kn = %.2e m)", names[k], zerr, bound);
     check((PetscBool)(tilt < 1e-3), "cube dropped on its %s rests on a face: tilt %.2e rad (bound 1e-3)", names[k], tilt);
+  }
+  {
+    char cube[128], sphere[128];
+    PetscCall(PetscSNPrintf(cube, sizeof cube, "-dem_shape cube -dem_shape_size %g", A));
+    PetscCall(PetscSNPrintf(sphere, sizeof sphere, "-dem_radius %g", 0.5 * A));
+    PetscCall(RectDrop(cube, 0.5 * A));
+    PetscCall(RectDrop(sphere, 0.5 * A));
   }
   PetscCall(FreeFlight());
   PetscCall(Collisions(0.03, 3, 1e-4));

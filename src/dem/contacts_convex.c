@@ -117,8 +117,9 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
   for (PetscInt wi = 0; wi < dem->nwall; wi++) {
-    DemWall *w = &dem->wall[wi];
-    in.xj      = w->p;
+    DemWall      *w = &dem->wall[wi];
+    DemPairParams pwl;
+    in.xj = w->p;
     in.vj      = w->v;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt i    = w->idx[a];
@@ -132,7 +133,7 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      in.p  = &dem->pw[dem->shape[i]];
+      in.p  = DemWallParams(dem, w, dem->shape[i], &pwl);
       in.c  = &c;
       in.xi = dem->x + 3 * i;
       in.vi = dem->v + 3 * i;

@@ -183,6 +183,7 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscCheck(dem->skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->skin);
   dem->reach    = 2 * rmax + dem->skin;
   dem->rotation = (PetscBool)(dem->mat.mu > 0 || dem->wmat.mu > 0 || dem->convex);
+  for (PetscInt w = 0; w < dem->nwall; w++) dem->rotation = (PetscBool)(dem->rotation || dem->wall[w].mu > 0);
   PetscCall(DemNeighBuild(dem));
   PetscCall(DemComputeForces(dem));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -26,6 +26,7 @@ typedef struct {
   /* finite rectangle p + s e1 + t e2, s,t in [0,1], touched from the front only (-dem_rect_k) */
   PetscBool finite;
   double    e1[3], e2[3];
+  double    mu; /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
   /* list of particles within reach, with their tangential springs */
   PetscInt *idx;
   double   *hist;
@@ -42,6 +43,9 @@ static inline PetscBool DemWallCovers(const DemWall *w, const double *pt, const 
   const double s = dem_dot(d, w->e1) / dem_dot(w->e1, w->e1), t = dem_dot(d, w->e2) / dem_dot(w->e2, w->e2);
   return (PetscBool)(s >= 0 && s <= 1 && t >= 0 && t <= 1 && dem_dot(c, w->n) > 0);
 }
+
+/* Pair parameters of shape s with wall w (a copy with the wall's own friction, if it has one). */
+#define DemWallParams(dem, w, s, tmp) ((w)->mu < 0 ? &(dem)->pw[s] : ((*(tmp) = (dem)->pw[s]), (tmp)->mu = (w)->mu, (tmp)))
 
 typedef struct { /* material of one side of a contact */
   PetscReal kn, kt, e, mu, E, nu;

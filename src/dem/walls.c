@@ -21,6 +21,7 @@ static PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], 
   PetscCheck(nn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "wall %" PetscInt_FMT ": the normal must be non-zero", dem->nwall);
   w = &dem->wall[dem->nwall++];
   PetscCall(PetscMemzero(w, sizeof *w));
+  w->mu = -1; /* the wall material's friction */
   for (int k = 0; k < 3; k++) {
     w->p[k] = p[k];
     w->n[k] = n[k] / nn;
@@ -52,6 +53,26 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Per-wall friction override: n values for walls first.. (a box: xlo,ylo,zlo,xhi,yhi,zhi).
+ * Called inside the walls' options block. */
+static PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first)
+{
+  PetscReal mu[6];
+  PetscInt  got = n;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsRealArray(opt, "Friction coefficient of this wall, overriding -dem_wall_friction (box: xlo,ylo,zlo,xhi,yhi,zhi)", NULL, mu, &got, &set));
+  if (!set) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(got == n, dem->comm, PETSC_ERR_ARG_SIZ, "%s takes %" PetscInt_FMT " values, got %" PetscInt_FMT, opt, n, got);
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCheck(mu[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", opt, (double)mu[k]);
+    /* box walls were added as xlo, xhi, ylo, yhi, zlo, zhi */
+    dem->wall[first + (n == 6 ? 2 * (k % 3) + k / 3 : k)].mu = mu[k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemWallsSetFromOptions(Dem dem)
 {
   PetscReal box[6], pl[6], vel[3];
@@ -72,6 +93,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
       n[k] = -1;
       PetscCall(DemWallAdd(dem, p, n, z));
     }
+    PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, dem->nwall - 6));
   }
   for (int k = 0; k < 10; k++) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_plane_%d", k));
@@ -81,12 +103,16 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     SableOptionsRealN(optv, "Translation velocity of the plane wall (m/s)", NULL, vel, 3, &vset);
     PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
     if (set) PetscCall(DemWallAdd(dem, pl, pl + 3, vel));
+    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
+    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
   }
   for (int k = 0; k < 10; k++) {
     PetscReal r[9];
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_rect_%d", k));
     SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2 (m); faces the side (p1-p0)x(p2-p0) points to", NULL, r, 9, &set);
     if (set) PetscCall(DemWallAddRect(dem, opt, r));
+    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
+    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
   }
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -147,6 +173,7 @@ PetscErrorCode DemContactsWalls(Dem dem)
   for (PetscInt wi = 0; wi < dem->nwall; wi++) {
     DemWall     *w   = &dem->wall[wi];
     const double nrm[3] = {-w->n[0], -w->n[1], -w->n[2]}; /* from the particle to the wall */
+    DemPairParams pwl;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt       i  = w->idx[a];
       const double        *xi = dem->x + 3 * i, *vi = dem->v + 3 * i, *wi_ = dem->w + 3 * i;
@@ -154,7 +181,7 @@ PetscErrorCode DemContactsWalls(Dem dem)
       const double         d[3] = {xi[0] - w->p[0], xi[1] - w->p[1], xi[2] - w->p[2]};
       const double         delta = r - dem_dot(d, w->n);
       double              *xi_t  = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
-      const DemPairParams *p     = &dem->pw[dem->shape[i]];
+      const DemPairParams *p     = DemWallParams(dem, w, dem->shape[i], &pwl);
       if (delta <= 0 || !DemWallCovers(w, xi, xi)) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
