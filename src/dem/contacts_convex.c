@@ -9,6 +9,13 @@
  * A wall is a partner of infinite mass with velocity v_wall and no spin; its contact comes from
  * ConvexCollidePlane (n = -wall normal). Bounding spheres that do not overlap are rejected
  * before libccd; a pair that does not touch has its tangential spring reset (as for spheres).
+ * Separating-axis cache: most pairs of the list whose bounding spheres overlap do not touch,
+ * and a body pair apart along some axis u, (x_j - x_i).u > h_i(u) + h_j(-u) (h: support
+ * extent about the centre), usually stays apart along it for many steps. Each list entry keeps
+ * the last such axis (tried first), the centre line is tried next, and only then libccd; when
+ * libccd finds no contact, the face directions of both bodies are searched for an axis to keep.
+ * A test costs two support scans (about a tenth of an MPR call). The cache is exact (an axis
+ * either separates or the full test runs) and is cleared at every list build.
  * The contact laws use R = d_eq/2 per shape (shapes.c). Units SI. */
 #include "dem/dem_impl.h"
 
@@ -47,6 +54,54 @@ static inline void dem_convex_force(const DemConvexIn *in, double *xi_t, double 
   dem_cross(Fi, rj, Tj); /* r_j x (-F_i) */
 }
 
+/* Support extent of a shape about its centre along the body-frame direction d. */
+static inline double dem_extent(const ConvexShape *c, const double d[3])
+{
+  if (c->kind == CONVEX_CYLINDER) return c->radius * sqrt(d[0] * d[0] + d[1] * d[1]) + 0.5 * c->height * fabs(d[2]);
+  double best = -PETSC_MAX_REAL;
+  for (PetscInt k = 0; k < c->nv; k++) {
+    const double t = c->v[3 * k] * d[0] + c->v[3 * k + 1] * d[1] + c->v[3 * k + 2] * d[2];
+    best           = t > best ? t : best;
+  }
+  return best;
+}
+
+/* Body i at the origin with rotation Ri, body j at d with Rj: are they apart along the world
+ * axis u (either sense)? */
+static inline PetscBool dem_apart(const ConvexShape *ci, const double *Ri, const ConvexShape *cj, const double *Rj, const double d[3], const double u[3])
+{
+  const double du = dem_dot(d, u), s = du >= 0 ? 1.0 : -1.0;
+  double       ui[3], uj[3];
+  for (int k = 0; k < 3; k++) { /* R^T (s u) and R^T (-s u) */
+    ui[k] = s * (Ri[k] * u[0] + Ri[3 + k] * u[1] + Ri[6 + k] * u[2]);
+    uj[k] = -s * (Rj[k] * u[0] + Rj[3 + k] * u[1] + Rj[6 + k] * u[2]);
+  }
+  return (PetscBool)(s * du > dem_extent(ci, ui) + dem_extent(cj, uj));
+}
+
+static inline void dem_rotation(const double *q, double *R)
+{
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  R[0] = 1 - 2 * (y * y + z * z), R[1] = 2 * (x * y - w * z), R[2] = 2 * (x * z + w * y);
+  R[3] = 2 * (x * y + w * z), R[4] = 1 - 2 * (x * x + z * z), R[5] = 2 * (y * z - w * x);
+  R[6] = 2 * (x * z - w * y), R[7] = 2 * (y * z + w * x), R[8] = 1 - 2 * (x * x + y * y);
+}
+
+/* After libccd found no contact: a face direction of either body that separates them (into u),
+ * or u = 0. */
+static void dem_find_axis(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double u[3])
+{
+  const DemShape *sh[2] = {si, sj};
+  const double   *R[2]  = {Ri, Rj};
+  for (int b = 0; b < 2; b++)
+    for (PetscInt f = 0; f < sh[b]->nfn; f++) {
+      const double *n = sh[b]->fn + 3 * f;
+      for (int k = 0; k < 3; k++) u[k] = R[b][3 * k] * n[0] + R[b][3 * k + 1] * n[1] + R[b][3 * k + 2] * n[2];
+      if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) return;
+    }
+  u[0] = u[1] = u[2] = 0;
+}
+
 static inline void dem_pose(const Dem dem, PetscInt i, ConvexPose *pose)
 {
   for (int k = 0; k < 3; k++) pose->x[k] = dem->x[3 * i + k];
@@ -56,16 +111,23 @@ static inline void dem_pose(const Dem dem, PetscInt i, ConvexPose *pose)
 PetscErrorCode DemContactsPairsConvex(Dem dem)
 {
   const DemNeigh *nl = &dem->nl;
-  double         *f = dem->f, *tq = dem->tq, *hist = nl->hist;
+  double         *f = dem->f, *tq = dem->tq, *hist = nl->hist, *ax;
   DemConvexIn     in = {.law = dem->law, .dt = dem->dt};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
+  if (!dem->sepax || dem->sepax_build != nl->builds) { /* a new list: a new, empty cache */
+    PetscCall(PetscFree(dem->sepax));
+    PetscCall(PetscCalloc1(3 * (size_t)nl->start[dem->n] + 3, &dem->sepax));
+    dem->sepax_build = nl->builds;
+  }
+  ax = dem->sepax;
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *si = &dem->shp[dem->shape[i]];
     ConvexPose      pi, pj;
-    double          fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
+    double          fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0}, Ri[9];
     dem_pose(dem, i, &pi);
+    dem_rotation(pi.q, Ri);
     in.xi = dem->x + 3 * i;
     in.vi = dem->v + 3 * i;
     in.wi = dem->w + 3 * i;
@@ -81,8 +143,18 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
+      double *u = ax + 3 * a, Rj[9];
       dem_pose(dem, j, &pj);
-      PetscCall(ConvexCollide(si->cvx, &pi, sj->cvx, &pj, &c));
+      dem_rotation(pj.q, Rj);
+      if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) c.overlap = PETSC_FALSE;
+      else if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, d)) {
+        c.overlap = PETSC_FALSE;
+        for (int k = 0; k < 3; k++) u[k] = d[k];
+      } else {
+        PetscCall(ConvexCollide(si->cvx, &pi, sj->cvx, &pj, &c));
+        if (c.overlap) u[0] = u[1] = u[2] = 0;
+        else dem_find_axis(si, Ri, sj, Rj, d, u);
+      }
       if (!c.overlap) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;

@@ -18,6 +18,9 @@ typedef struct {
   const ConvexShape *cvx;
   double J[3], invJ[3]; /* principal moments of inertia (kg m^2), body axes */
   double vol, req;      /* volume (m^3), equivalent radius for the contact laws (m) */
+  double  *fn;          /* distinct face normals of a polyhedron (body frame, 3 each), for sepaxis */
+  PetscInt nfn;
+  PetscBool iso;        /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
 } DemShape;
 
 typedef struct {
@@ -83,6 +86,8 @@ struct _p_Dem {
   /* convex shapes (shapes.c): the table owns them; convex = the scene has any */
   ConvexShape   cvx[DEM_MAX_SHAPES];
   PetscBool     convex, random_orient;
+  double       *sepax;       /* per Verlet-list entry: a separating axis (world), 0 = none */
+  PetscInt      sepax_build; /* the list build it belongs to */
   /* walls */
   DemWall   wall[DEM_MAX_WALLS];
   PetscInt  nwall;

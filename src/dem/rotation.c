@@ -13,7 +13,9 @@
  * stays bounded, O(dt^2) (symplectic). The rotation angle is taken from its Cayley form,
  * half-angle 2 atan(phi/4) instead of phi/2 (no sin/cos; the exact flow of a Hamiltonian
  * differing from L_k^2/2J_k by O(phi^3), which keeps both properties). The spin is stored in
- * the world frame (w = R J^-1 L_b), as the contact kernels use it; q maps body to world. */
+ * the world frame (w = R J^-1 L_b), as the contact kernels use it; q maps body to world.
+ * Isotropic bodies (J1 = J2 = J3: cube, regular polyhedra) have w constant in free flight; their
+ * free rotor is the single exact rotation by |w| dt about w, q <- (c, s w/|w|) q (Cayley angle). */
 #include "dem/dem_impl.h"
 #include "dem/convex_quat.h"
 
@@ -49,6 +51,22 @@ static inline void dem_quat_matrix(const double *q, double *R)
   R[6] = 2 * (x * z - w * y), R[7] = 2 * (y * z + w * x), R[8] = 1 - 2 * (x * x + y * y);
 }
 
+/* Isotropic body: half kick w += hJ T, then rotation by |w| dt about w: q <- (cb, sb w/|w|) q. */
+static inline void dem_rotor_iso(double dt, double hJ, const double *T, double *q, double *w)
+{
+  for (int k = 0; k < 3; k++) w[k] += hJ * T[k];
+  const double wn = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  if (wn == 0) return;
+  const double u = 0.25 * dt * wn, den = 1.0 / (1.0 + u * u), cb = (1.0 - u * u) * den, sb = 2.0 * u * den / wn;
+  const double p[4] = {cb, sb * w[0], sb * w[1], sb * w[2]}, o[4] = {q[0], q[1], q[2], q[3]};
+  q[0] = p[0] * o[0] - p[1] * o[1] - p[2] * o[2] - p[3] * o[3];
+  q[1] = p[0] * o[1] + p[1] * o[0] + p[2] * o[3] - p[3] * o[2];
+  q[2] = p[0] * o[2] - p[1] * o[3] + p[2] * o[0] + p[3] * o[1];
+  q[3] = p[0] * o[3] + p[1] * o[2] - p[2] * o[1] + p[3] * o[0];
+  const double s = 1.0 / sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  for (int k = 0; k < 4; k++) q[k] *= s;
+}
+
 /* w <- w + h R J^-1 R^T T (the half kick, in terms of the world spin) */
 static inline void dem_kick(const double *R, const double *invJ, double h, const double *T, double *w)
 {
@@ -67,6 +85,10 @@ PetscErrorCode DemRotateFirstHalf(Dem dem)
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *sh = &dem->shp[dem->shape[i]];
     double         *q = dem->q + 4 * i, *w = dem->w + 3 * i, R[9], wb[3], L[3];
+    if (sh->iso) {
+      dem_rotor_iso(dt, h * sh->invJ[0], dem->tq + 3 * i, q, w);
+      continue;
+    }
     dem_quat_matrix(q, R);
     dem_kick(R, sh->invJ, h, dem->tq + 3 * i, w);
     convex_mat_tvec(R, w, wb);
@@ -94,6 +116,10 @@ PetscErrorCode DemRotateSecondHalf(Dem dem)
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *sh = &dem->shp[dem->shape[i]];
     double          R[9];
+    if (sh->iso) {
+      for (int k = 0; k < 3; k++) dem->w[3 * i + k] += h * sh->invJ[0] * dem->tq[3 * i + k];
+      continue;
+    }
     dem_quat_matrix(dem->q + 4 * i, R);
     dem_kick(R, sh->invJ, h, dem->tq + 3 * i, dem->w + 3 * i);
   }

@@ -144,6 +144,33 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Distinct face directions of a polyhedron (n and -n count once), for the separating-axis cache
+ * of contacts_convex.c. A cylinder has none (its axis test uses the centre line only). */
+static PetscErrorCode DemShapeFaceAxes(DemShape *sh)
+{
+  const ConvexShape *c = sh->cvx;
+
+  PetscFunctionBeginUser;
+  sh->nfn = 0;
+  if (c->kind != CONVEX_POLYHEDRON) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscFree(sh->fn));
+  PetscCall(PetscMalloc1(3 * c->nf, &sh->fn));
+  for (PetscInt t = 0; t < c->nf; t++) {
+    const double *a = c->v + 3 * c->f[3 * t], *b = c->v + 3 * c->f[3 * t + 1], *d = c->v + 3 * c->f[3 * t + 2];
+    double        e1[3], e2[3], n[3], len;
+    PetscBool     dup = PETSC_FALSE;
+    for (int k = 0; k < 3; k++) e1[k] = b[k] - a[k], e2[k] = d[k] - a[k];
+    dem_cross(e1, e2, n);
+    len = sqrt(dem_dot(n, n));
+    for (int k = 0; k < 3; k++) n[k] /= len;
+    for (PetscInt m = 0; m < sh->nfn && !dup; m++) dup = (PetscBool)(PetscAbsReal(dem_dot(n, sh->fn + 3 * m)) > 1 - 1e-9);
+    if (dup) continue;
+    for (int k = 0; k < 3; k++) sh->fn[3 * sh->nfn + k] = n[k];
+    sh->nfn++;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Mass properties from the density (after dem.c has set those of the spheres). */
 PetscErrorCode DemShapesSetUp(Dem dem)
 {
@@ -168,6 +195,8 @@ PetscErrorCode DemShapesSetUp(Dem dem)
       sh->invJ[k] = 1.0 / sh->J[k];
     }
     sh->inertia = (sh->J[0] + sh->J[1] + sh->J[2]) / 3.0; /* only for reports */
+    PetscCall(DemShapeFaceAxes(sh));
+    sh->iso = (PetscBool)(PetscAbsReal(sh->J[0] - sh->J[2]) <= 1e-12 * sh->J[2] && PetscAbsReal(sh->J[1] - sh->J[2]) <= 1e-12 * sh->J[2]);
     sh->invi    = 1.0 / sh->inertia;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -176,9 +205,12 @@ PetscErrorCode DemShapesSetUp(Dem dem)
 PetscErrorCode DemShapesDestroy(Dem dem)
 {
   PetscFunctionBeginUser;
+  PetscCall(PetscFree(dem->sepax));
   for (PetscInt s = 0; s < DEM_MAX_SHAPES; s++) {
     PetscCall(ConvexShapeDestroy(&dem->cvx[s]));
+    if (dem->shp[s].cvx) PetscCall(PetscFree(dem->shp[s].fn));
     dem->shp[s].cvx = NULL;
+    dem->shp[s].nfn = 0;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

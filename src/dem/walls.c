@@ -57,8 +57,8 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
  * Called inside the walls' options block. */
 static PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first)
 {
-  PetscReal mu[6];
-  PetscInt  got = n;
+  PetscReal mu[7];
+  PetscInt  got = 7; /* room for one value too many, to report it */
   PetscBool set;
 
   PetscFunctionBeginUser;
