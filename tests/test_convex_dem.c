@@ -236,6 +236,21 @@ int main(int argc, char **argv)
   const char  *names[3] = {"flat", "edge", "corner"};
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  { /* shape table: -dem_shape_deq scales each shape to the volume of the sphere of diameter d */
+    Domain       dom;
+    Dem          dem;
+    const double d = 0.007, vref = PETSC_PI * d * d * d / 6;
+    double       err = 0;
+    PetscCall(TestDemCreate("-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_shape cube,tetrahedron,octahedron,icosahedron,cylinder -dem_shape_deq 0.007,0.007,0.007,0.007,0.007 -dem_kn 1e4", &dom, &dem));
+    PetscCall(DemSetUp(dem));
+    for (PetscInt k = 0; k < 5; k++) {
+      PetscReal v, de;
+      PetscCall(DemGetShapeGeometry(dem, k, &v, &de));
+      err = PetscMax(err, PetscMax(PetscAbsReal(v - vref) / vref, PetscAbsReal(de - d) / d));
+    }
+    check((PetscBool)(err < 1e-12), "-dem_shape_deq: volume and d_eq of 5 built-ins scaled to d = 7 mm, largest error %.1e relative (bound 1e-12)", err);
+    PetscCall(TestDemDestroy(&dom, &dem));
+  }
   for (int k = 0; k < 3; k++) {
     double zerr = 0, tilt = 0, bound = 0, q[4], n = 0;
     for (int j = 0; j < 4; j++) n += qs[k][j] * qs[k][j];

@@ -221,3 +221,12 @@ PetscErrorCode DemHasConvexShapes(Dem dem, PetscBool *convex)
   *convex = dem->convex;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode DemGetShapeGeometry(Dem dem, PetscInt s, PetscReal *volume, PetscReal *d_eq)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(s >= 0 && s < dem->nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", s, dem->nshape);
+  if (volume) *volume = dem->shp[s].vol;
+  if (d_eq) *d_eq = 2 * dem->shp[s].req;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
