@@ -54,7 +54,7 @@ static PetscErrorCode SableRun(void)
   Domain    dom;
   Dem       dem;
   Io        io;
-  PetscBool help, coupled;
+  PetscBool help, coupled, convex;
   PetscReal phi, coord, t;
   PetscInt  step;
   PetscLogDouble t0, t1;
@@ -97,7 +97,8 @@ static PetscErrorCode SableRun(void)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on; fluid off (dry case); coupling off; convex shapes off; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", dom.nranks[0], dom.nranks[1], dom.nranks[2]));
+  PetscCall(DemHasConvexShapes(dem, &convex));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom.nranks[0], dom.nranks[1], dom.nranks[2]));
   PetscCall(DemSetUp(dem));
   PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(PetscTime(&t0));

@@ -112,6 +112,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
     }
     dem->nshape = nr;
   }
+  PetscCall(DemShapesSetFromOptions(dem)); /* -dem_shape: non-spherical shapes (shapes.c) */
   PetscCheck(!fset || nf == dem->nshape, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius_fraction has %" PetscInt_FMT " values for %" PetscInt_FMT " radii", nf, dem->nshape);
   for (PetscInt s = 0; s < dem->nshape; s++) {
     dem->shape_frac[s] = fset ? fr[s] : 1.0;
@@ -154,8 +155,13 @@ static PetscErrorCode DemComputeForces(Dem dem)
     for (int k = 0; k < 3; k++) dem->f[3 * i + k] = m * dem->g[k];
   }
   if (dem->rotation) PetscCall(PetscArrayzero(dem->tq, 3 * dem->n));
-  PetscCall(DemContactsPairs(dem));
-  PetscCall(DemContactsWalls(dem));
+  if (dem->convex) { /* convex shapes: libccd narrow phase (contacts_convex.c) */
+    PetscCall(DemContactsPairsConvex(dem));
+    PetscCall(DemContactsWallsConvex(dem));
+  } else {
+    PetscCall(DemContactsPairs(dem));
+    PetscCall(DemContactsWalls(dem));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -173,12 +179,14 @@ PetscErrorCode DemSetUp(Dem dem)
     sh->invi     = 1.0 / sh->inertia;
     rmax         = PetscMax(rmax, sh->r);
   }
+  PetscCall(DemShapesSetUp(dem)); /* convex shapes: mass, inertia tensor (shapes.c) */
   PetscCall(DemMaterialsSetUp(dem));
   PetscCall(DemCheckTimeStep(dem));
   if (dem->skin < 0) dem->skin = 0.2 * rmax;
   PetscCheck(dem->skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->skin);
   dem->reach    = 2 * rmax + dem->skin;
-  dem->rotation = (PetscBool)(dem->mat.mu > 0 || dem->wmat.mu > 0);
+  dem->rotation = (PetscBool)(dem->mat.mu > 0 || dem->wmat.mu > 0 || dem->convex);
+  for (PetscInt w = 0; w < dem->nwall; w++) dem->rotation = (PetscBool)(dem->rotation || dem->wall[w].mu > 0);
   PetscCall(DemExchangeSetUp(dem));
   PetscCall(DemNeighBuild(dem));
   PetscCall(DemGetStats(dem, &dem->initial));
@@ -238,6 +246,7 @@ PetscErrorCode DemDestroy(Dem *dem)
   PetscCall(DemSetExternal(*dem, PETSC_FALSE));
   PetscCall(DemNeighDestroy(*dem));
   PetscCall(DemExchangeDestroy(*dem));
+  PetscCall(DemShapesDestroy(*dem));
   for (PetscInt w = 0; w < (*dem)->nwall; w++) {
     PetscCall(PetscFree((*dem)->wall[w].idx));
     PetscCall(PetscFree((*dem)->wall[w].hist));

@@ -8,22 +8,48 @@
 #pragma once
 #include "dem/dem.h"
 #include "dem/contact.h"
+#include "dem/convex.h"
 
 #define DEM_MAX_SHAPES 32
 #define DEM_MAX_WALLS  16
 
 typedef struct {
   double r, rho, m, inertia, invm, invi; /* sphere radius (m), density, mass, moment of inertia */
+  /* convex shapes (shapes.c): r is the bounding radius; NULL cvx means a sphere */
+  const ConvexShape *cvx;
+  double J[3], invJ[3]; /* principal moments of inertia (kg m^2), body axes */
+  double vol, req;      /* volume (m^3), equivalent radius for the contact laws (m) */
+  double  *fn;          /* distinct face normals of a polyhedron (body frame, 3 each), for sepaxis */
+  PetscInt nfn;
+  PetscBool iso;        /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
 } DemShape;
 
 typedef struct {
   double p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity */
   double moved;            /* distance moved since the last list build (m) */
+  /* finite rectangle p + s e1 + t e2, s,t in [0,1], touched from the front only (-dem_rect_k) */
+  PetscBool finite;
+  double    e1[3], e2[3];
+  double    mu; /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
   /* list of particles within reach, with their tangential springs */
   PetscInt *idx;
   double   *hist;
   PetscInt  cnt, cap;
 } DemWall;
+
+/* Whether a contact at point pt of a particle centred at xc is on the wall: always for an
+ * infinite plane; for a rectangle, pt projects inside it and xc is on its front side. */
+static inline PetscBool DemWallCovers(const DemWall *w, const double *pt, const double *xc)
+{
+  if (!w->finite) return PETSC_TRUE;
+  const double d[3] = {pt[0] - w->p[0], pt[1] - w->p[1], pt[2] - w->p[2]};
+  const double c[3] = {xc[0] - w->p[0], xc[1] - w->p[1], xc[2] - w->p[2]};
+  const double s = dem_dot(d, w->e1) / dem_dot(w->e1, w->e1), t = dem_dot(d, w->e2) / dem_dot(w->e2, w->e2);
+  return (PetscBool)(s >= 0 && s <= 1 && t >= 0 && t <= 1 && dem_dot(c, w->n) > 0);
+}
+
+/* Pair parameters of shape s with wall w (a copy with the wall's own friction, if it has one). */
+#define DemWallParams(dem, w, s, tmp) ((w)->mu < 0 ? &(dem)->pw[s] : ((*(tmp) = (dem)->pw[s]), (tmp)->mu = (w)->mu, (tmp)))
 
 typedef struct { /* material of one side of a contact */
   PetscReal kn, kt, e, mu, E, nu;
@@ -76,6 +102,11 @@ struct _p_Dem {
   PetscReal     tdamp_ratio, vimpact;
   DemPairParams pp[DEM_MAX_SHAPES * DEM_MAX_SHAPES], pw[DEM_MAX_SHAPES];
   PetscBool     rotation; /* any friction: torques and spins are integrated */
+  /* convex shapes (shapes.c): the table owns them; convex = the scene has any */
+  ConvexShape   cvx[DEM_MAX_SHAPES];
+  PetscBool     convex, random_orient;
+  double       *sepax;       /* per Verlet-list entry: a separating axis (world), 0 = none */
+  PetscInt      sepax_build; /* the list build it belongs to */
   /* walls */
   DemWall   wall[DEM_MAX_WALLS];
   PetscInt  nwall;
@@ -125,5 +156,14 @@ PetscErrorCode DemInsert(Dem dem);                                 /* insert.c *
 PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
 PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
 void           DemExternalKick(Dem dem, double h);                 /* external.c */
+PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c */
+PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
+PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
+PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* contacts_convex.c */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* contacts_convex.c */
+PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* diag_convex.c */
+PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* diag_convex.c */
+PetscErrorCode DemRotateFirstHalf(Dem dem);                        /* rotation.c */
+PetscErrorCode DemRotateSecondHalf(Dem dem);                       /* rotation.c */
 
 extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;

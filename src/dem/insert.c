@@ -4,7 +4,8 @@
  *   position jitter, uniform in +-jitter (a - d_max)/2 per axis;
  *   velocity v_c = V (2 h_c - 1), h_c = frac(43758.5453 sin(12.9898 (id+1) + 78.233 c)),
  *   c = 1, 2, 3 — the symmetry-breaking velocity of the LIGGGHTS peer decks, so both codes start
- *   from the same state; shapes drawn by number fraction (-dem_radius_fraction).
+ *   from the same state; shapes drawn by number fraction (-dem_radius_fraction); with
+ *   -dem_lattice_random_orientation, a uniformly random orientation (for convex shapes).
  * Or: particles from an HDF5 file that Sable wrote (-dem_init_file), the last frame's state. */
 #include "dem/dem_impl.h"
 
@@ -24,6 +25,17 @@ static double dem_uniform(PetscInt seed, PetscInt site, int stream)
   return (double)(z >> 11) * (1.0 / 9007199254740992.0);
 }
 
+/* A uniformly distributed unit quaternion (Shoemake, Graphics Gems III, 1992) from streams 4-6. */
+static void dem_random_quat(PetscInt seed, PetscInt site, double q[4])
+{
+  const double u1 = dem_uniform(seed, site, 4), a = 2 * PETSC_PI * dem_uniform(seed, site, 5), b = 2 * PETSC_PI * dem_uniform(seed, site, 6);
+  const double s1 = sqrt(1 - u1), s2 = sqrt(u1);
+  q[0] = s2 * cos(b);
+  q[1] = s1 * sin(a);
+  q[2] = s1 * cos(a);
+  q[3] = s2 * sin(b);
+}
+
 PetscErrorCode DemInsertSetFromOptions(Dem dem)
 {
   PetscBool set;
@@ -37,6 +49,7 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region (m); default the domain's lower corner", NULL, dem->lat_origin, 3, &dem->lat_origin_set);
   PetscCall(PetscOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2, in [0,1]", NULL, dem->lat_jitter, &dem->lat_jitter, NULL));
   PetscCall(PetscOptionsReal("-dem_lattice_speed", "Amplitude of the deterministic random initial velocity (m/s)", NULL, dem->lat_speed, &dem->lat_speed, NULL));
+  PetscCall(PetscOptionsBool("-dem_lattice_random_orientation", "Uniformly random initial orientations (convex shapes)", NULL, dem->random_orient, &dem->random_orient, NULL));
   PetscCall(PetscOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, dem->seed, &dem->seed, NULL));
   PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles)", NULL, dem->init_file, dem->init_file, sizeof dem->init_file, NULL));
   PetscOptionsEnd();
@@ -88,6 +101,7 @@ static PetscErrorCode DemInsertLattice(Dem dem)
       p.x[k] = dem->lat_origin[k] + (ijk[k] + 0.5) * a + gap * (2 * dem_uniform(dem->seed, n, 1 + k) - 1);
       p.v[k] = dem->lat_speed * (2 * dem_hash_frac((double)(n + 1), k + 1) - 1);
     }
+    if (dem->random_orient) dem_random_quat(dem->seed, n, p.q);
     if (dem_in_box(dem->dom, p.x)) PetscCall(DemAddParticle(dem, &p));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -101,6 +115,7 @@ static PetscErrorCode DemShapeForRadius(Dem dem, double r, PetscInt *s)
     if (PetscAbsReal(dem->shp[*s].r - r) <= 1e-12 * r) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(dem->nshape < DEM_MAX_SHAPES, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: more than %d distinct radii", dem->init_file, DEM_MAX_SHAPES);
   PetscCheck(r > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: radius %g must be > 0", dem->init_file, r);
+  PetscCheck(!dem->convex, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_init_file %s: bounding radius %g matches none of the -dem_shape shapes", dem->init_file, r);
   dem->shp[dem->nshape]     = dem->shp[0];
   dem->shp[dem->nshape++].r = r;
   PetscFunctionReturn(PETSC_SUCCESS);
