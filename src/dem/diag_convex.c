@@ -46,8 +46,10 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
       dem_pose_of(dem, j, &pj);
       PetscCall(ConvexCollide(s->cvx, &pi, t->cvx, &pj, &cc));
       if (!cc.overlap) continue;
-      c[1]++;
-      r[3] += dem_elastic(dem, &dem->pp[dem->shape[i] * dem->nshape + dem->shape[j]], cc.depth, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
+      /* a pair seen from both sides (full list, or a ghost partner) counts half on each */
+      const PetscBool both = (PetscBool)(dem->full_list || j >= dem->n);
+      if (!both || dem->id[i] < dem->id[j]) c[1]++;
+      r[3] += (both ? 0.5 : 1.0) * dem_elastic(dem, &dem->pp[dem->shape[i] * dem->nshape + dem->shape[j]], cc.depth, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
       *rmax = PetscMax(*rmax, cc.depth / PetscMin(s->req, t->req));
     }
   }
