@@ -4,7 +4,8 @@
  * 3 near an edge, 7 near a corner — one message of doubles per direction, non-blocking. Three
  * named operations:
  *   migration (at list rebuilds): a particle whose centre left the box goes to the neighbour that
- *     owns it, with its full state and its tangential springs; periodic axes wrap positions;
+ *     owns it, with its full state, its tangential springs and, when a coupling is attached, its
+ *     external force, drag and received impulse; periodic axes wrap positions;
  *   ghost creation (at list rebuilds): copies of halo particles, positions shifted across periodic
  *     boundaries; the send lists are kept;
  *   forward update (every other step): the owners' kinematics overwrite the ghosts' in place.
@@ -17,6 +18,7 @@
 
 #define GHOST_WIDTH 15 /* id, shape, x[3], v[3], w[3], q[4] */
 #define MIG_HEAD    22 /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
+#define MIG_EXT     10 /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
 
 static void dem_dir_offsets(int d, int o[3])
 {
@@ -132,6 +134,7 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
   DemExchange *ex = &dem->ex;
   PetscInt    *dir, *keep, nkeep = 0, cnt[27] = {0};
   size_t       soff[28], roff[28], pos[27];
+  const size_t hw = MIG_HEAD + (dem->external ? MIG_EXT : 0); /* header width */
 
   PetscFunctionBeginUser;
   if (!ex->active) PetscFunctionReturn(PETSC_SUCCESS);
@@ -150,8 +153,8 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
     PetscInt         ns = 0;
     for (; s && s < *recs + *nrec && s->owner == dem->id[i]; s++) ns++;
     cnt[dir[i]]++;
-    soff[dir[i]] += MIG_HEAD + 4 * ns;
-    total += MIG_HEAD + 4 * ns;
+    soff[dir[i]] += hw + 4 * ns;
+    total += hw + 4 * ns;
   }
   for (int d = 0, acc = 0; d < 27; d++) { /* prefix sums */
     const size_t sz = soff[d];
@@ -178,11 +181,19 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
     }
     for (int k = 0; k < 4; k++) b[11 + k] = dem->q[4 * i + k];
     b[21] = (double)ns;
-    for (PetscInt a = 0; a < ns; a++) {
-      b[MIG_HEAD + 4 * a] = (double)s0[a].partner;
-      for (int k = 0; k < 3; k++) b[MIG_HEAD + 4 * a + 1 + k] = s0[a].xi[k];
+    if (dem->external) { /* the coupling's per-particle state, so its impulse count stays exact */
+      b[MIG_HEAD + 3] = dem->kdrag[i];
+      for (int k = 0; k < 3; k++) {
+        b[MIG_HEAD + k]     = dem->fext[3 * i + k];
+        b[MIG_HEAD + 4 + k] = dem->udrag[3 * i + k];
+        b[MIG_HEAD + 7 + k] = dem->jdrag[3 * i + k];
+      }
     }
-    pos[dir[i]] += MIG_HEAD + 4 * ns;
+    for (PetscInt a = 0; a < ns; a++) {
+      b[hw + 4 * a] = (double)s0[a].partner;
+      for (int k = 0; k < 3; k++) b[hw + 4 * a + 1 + k] = s0[a].xi[k];
+    }
+    pos[dir[i]] += hw + 4 * ns;
   }
   ex->migrated = dem->n - nkeep;
   dem->n       = nkeep;
@@ -207,6 +218,14 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
       dem->f[3 * i + k]  = b[15 + k];
       dem->tq[3 * i + k] = b[18 + k];
     }
+    if (dem->external) {
+      dem->kdrag[i] = b[MIG_HEAD + 3];
+      for (int k = 0; k < 3; k++) {
+        dem->fext[3 * i + k]  = b[MIG_HEAD + k];
+        dem->udrag[3 * i + k] = b[MIG_HEAD + 4 + k];
+        dem->jdrag[3 * i + k] = b[MIG_HEAD + 7 + k];
+      }
+    }
     if (*nrec + ns > *caprec) {
       *caprec = 2 * (*nrec + ns) + 64;
       PetscCall(PetscRealloc(sizeof(DemSpring) * (size_t)*caprec, recs));
@@ -214,10 +233,10 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
     for (PetscInt a = 0; a < ns; a++) {
       DemSpring *r = *recs + (*nrec)++;
       r->owner     = p.id;
-      r->partner   = (PetscInt)b[MIG_HEAD + 4 * a];
-      for (int k = 0; k < 3; k++) r->xi[k] = b[MIG_HEAD + 4 * a + 1 + k];
+      r->partner   = (PetscInt)b[hw + 4 * a];
+      for (int k = 0; k < 3; k++) r->xi[k] = b[hw + 4 * a + 1 + k];
     }
-    o += MIG_HEAD + 4 * (size_t)ns;
+    o += hw + 4 * (size_t)ns;
   }
   PetscCall(DemSpringsSort(*recs, *nrec));
   PetscFunctionReturn(PETSC_SUCCESS);
