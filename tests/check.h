@@ -32,11 +32,7 @@ static inline PetscErrorCode TestDemCreateOn(MPI_Comm comm, const char *opts, Do
 static inline PetscErrorCode TestDemCreate(const char *opts, Domain *dom, Dem *dem)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, opts));
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 0.05, 1, dom));
-  PetscCall(DemCreate(dom, dem));
-  PetscCall(DemSetFromOptions(*dem));
+  PetscCall(TestDemCreateOn(PETSC_COMM_WORLD, opts, dom, dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
