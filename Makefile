@@ -11,7 +11,7 @@ else
   BUILD ?= build
   OPT = -O3 -march=native -fno-math-errno -DNDEBUG
 endif
-BIN = bin
+BIN ?= bin
 CC = mpicc
 PKGS = petsc ccd hdf5-openmpi
 CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra $(OPT) \

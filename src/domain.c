@@ -2,7 +2,7 @@
  * is the union of its owned cells, so particle and fluid ownership coincide by construction. */
 #include "domain.h"
 
-static PetscErrorCode DomainReadBox(Domain *dom)
+static PetscErrorCode DomainReadBox(Domain *dom, PetscReal *cell)
 {
   PetscBool set;
 
@@ -13,11 +13,39 @@ static PetscErrorCode DomainReadBox(Domain *dom)
   PetscCall(PetscOptionsBool("-domain_periodic_x", "Periodic along x", NULL, dom->periodic[0], &dom->periodic[0], NULL));
   PetscCall(PetscOptionsBool("-domain_periodic_y", "Periodic along y", NULL, dom->periodic[1], &dom->periodic[1], NULL));
   PetscCall(PetscOptionsBool("-domain_periodic_z", "Periodic along z", NULL, dom->periodic[2], &dom->periodic[2], NULL));
+  PetscCall(PetscOptionsReal("-domain_cell", "Default cell size of the grid (m); -da_grid_x/y/z override it", NULL, *cell, cell, NULL));
   PetscOptionsEnd();
   for (int k = 0; k < 3; k++) {
     dom->len[k] = dom->hi[k] - dom->lo[k];
     PetscCheck(dom->len[k] > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-domain_hi[%d] = %g must exceed -domain_lo[%d] = %g", k, (double)dom->hi[k], k, (double)dom->lo[k]);
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* PETSc's own message for a process grid that does not fit is terse; say which option and why. */
+static PetscErrorCode DomainCheckProcessGrid(MPI_Comm comm, const PetscInt m[3])
+{
+  const char *opt[3] = {"-da_processors_x", "-da_processors_y", "-da_processors_z"}, *grid[3] = {"-da_grid_x", "-da_grid_y", "-da_grid_z"};
+  PetscInt    p[3] = {0, 0, 0}, prod = 1, cells, pc[3] = {0, 0, 0};
+  PetscBool   set[3], gset, all = PETSC_TRUE;
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  for (int k = 0; k < 3; k++) {
+    PetscCall(PetscOptionsGetInt(NULL, NULL, opt[k], &p[k], &set[k]));
+    cells = m[k];
+    PetscCall(PetscOptionsGetInt(NULL, NULL, grid[k], &cells, &gset));
+    if (!set[k]) {
+      all = PETSC_FALSE;
+      continue;
+    }
+    pc[k] = cells;
+    prod *= PetscMax(p[k], 1);
+  }
+  PetscCheck(all ? prod == size : size % prod == 0, comm, PETSC_ERR_ARG_INCOMP, "the process grid -da_processors_x/y/z (%" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", 0 = free) does not fit the %d MPI ranks: the product must %s %d", p[0], p[1], p[2], (int)size, all ? "equal" : "divide", (int)size);
+  for (int k = 0; k < 3; k++)
+    PetscCheck(!set[k] || (p[k] >= 1 && p[k] <= pc[k]), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT " must be in [1, %" PetscInt_FMT "], the cells along that axis (-domain_cell or -da_grid_%c)", opt[k], p[k], pc[k], "xyz"[k]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -29,11 +57,13 @@ PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt sten
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(dom, sizeof *dom)); /* defaults: unit box, not periodic */
   for (int k = 0; k < 3; k++) dom->hi[k] = 1;
-  PetscCall(DomainReadBox(dom));
+  PetscCall(DomainReadBox(dom, &default_cell));
+  PetscCheck(default_cell > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-domain_cell %g must be > 0 (m)", (double)default_cell);
   for (int k = 0; k < 3; k++) {
     m[k]  = PetscMax(1, (PetscInt)PetscFloorReal(dom->len[k] / default_cell));
     bt[k] = dom->periodic[k] ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_GHOSTED;
   }
+  PetscCall(DomainCheckProcessGrid(comm, m));
   PetscCall(DMDACreate3d(comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, m[0], m[1], m[2], PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, 1, stencil_width, NULL, NULL, NULL, &dom->da));
   PetscCall(DMSetFromOptions(dom->da));
   PetscCall(DMSetUp(dom->da));

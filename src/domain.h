@@ -2,7 +2,7 @@
  * [lo, hi] decides the process grid and each rank's box; the fluid uses it as its grid, a dry
  * case uses it as a coarse background grid, and the DEM owns the particles whose centre lies in
  * the rank's box. Options: -domain_lo, -domain_hi (m), -domain_periodic_x/y/z, and PETSc's own
- * -da_grid_x/y/z and -da_processors_x/y/z. */
+ * -da_grid_x/y/z and -da_processors_x/y/z; -domain_cell sets the default cell size. */
 #pragma once
 #include "sable.h"
 
@@ -17,7 +17,7 @@ typedef struct {
   PetscInt  nranks[3];            /* process grid */
 } Domain;
 
-/* Collective. Reads the -domain_ options; the default cell count per axis is len/default_cell
- * (at least 1). stencil_width is the DMDA ghost width the caller needs. */
+/* Collective. Reads the -domain_ options; the default cell count per axis is len/cell (at least
+ * 1), cell = -domain_cell or else default_cell. stencil_width is the DMDA ghost width the caller needs. */
 PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt stencil_width, Domain *dom);
 PetscErrorCode DomainDestroy(Domain *dom);

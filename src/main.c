@@ -54,7 +54,7 @@ static PetscErrorCode SableRun(void)
   Domain    dom;
   Dem       dem;
   Io        io;
-  PetscBool help, coupled;
+  PetscBool help, coupled, convex;
   PetscReal phi, coord, t;
   PetscInt  step;
   PetscLogDouble t0, t1;
@@ -66,8 +66,17 @@ static PetscErrorCode SableRun(void)
   PetscCall(PetscOptionsBool("-sable_traceback", "Print PETSc's full traceback on errors", NULL, sable_traceback, &sable_traceback, NULL));
   PetscOptionsEnd();
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "Sable %s — CFD-DEM for fluidized beds and granular flows\n", SABLE_VERSION));
-  /* dry case: the background grid's cell is a few diameters (coarse, only decomposes space) */
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 0.05, 1, &dom));
+  /* dry case: the background grid only decomposes space; its cell is 4 largest diameters by
+     default, so a rank box is never thinner than the halo (2 r_max + skin) */
+  {
+    PetscReal r[32], rmax = 0.0069;
+    PetscInt  nr = 32;
+    PetscBool set;
+    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-dem_radius", r, &nr, &set));
+    if (set)
+      for (PetscInt i = 0; i < nr; i++) rmax = i ? PetscMax(rmax, r[i]) : r[i];
+    PetscCall(DomainCreate(PETSC_COMM_WORLD, 8 * PetscAbsReal(rmax) + 1e-300, 1, &dom));
+  }
   PetscCall(DemCreate(&dom, &dem));
   PetscCall(DemSetFromOptions(dem));
   PetscCall(DemExternalSetFromOptions(dem));
@@ -88,7 +97,8 @@ static PetscErrorCode SableRun(void)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on; fluid off (dry case); coupling off; convex shapes off; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", dom.nranks[0], dom.nranks[1], dom.nranks[2]));
+  PetscCall(DemHasConvexShapes(dem, &convex));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom.nranks[0], dom.nranks[1], dom.nranks[2]));
   PetscCall(DemSetUp(dem));
   PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(PetscTime(&t0));

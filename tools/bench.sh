@@ -8,7 +8,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-O=bench-out; mkdir -p $O
+O=bench-out; mkdir -p $O; rm -f $O/results.txt
 A=0.01449
 sizes=${*:-10k 100k}
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
@@ -20,7 +20,10 @@ for s in $sizes; do
   LX=$(echo "$NX * $A" | bc -l); LY=$(echo "$NY * $A" | bc -l); LZ=$(echo "($NZ + 5) * $A" | bc -l)
   GEO="-domain_lo 0,0,0 -domain_hi $LX,$LY,$LZ -dem_box 0,0,0,$LX,$LY,$LZ -dem_lattice $NX,$NY,$NZ -dem_progress_interval 0"
   fall=$(for r in 1 2 3; do bin/sable -options_file cases/settle/settle.opts $GEO -dem_t_end 0.02 -io_interval 0 | steps_time; done | median)
-  bin/sable -options_file cases/settle/settle.opts $GEO -dem_t_end 0.8 -io_interval 0.8 -io_dir $O/settle_$s > $O/settle_$s.log
+  # BENCH_REUSE=1 keeps a settled bed from an earlier bench run (the starting state only)
+  if [ "${BENCH_REUSE:-0}" != 1 ] || [ ! -f $O/settle_$s/sable_000001.h5 ]; then
+    bin/sable -options_file cases/settle/settle.opts $GEO -dem_t_end 0.8 -io_interval 0.8 -io_dir $O/settle_$s > $O/settle_$s.log
+  fi
   last=$(ls $O/settle_$s/*.h5 | tail -n 1)
   grep '^bed:' $O/settle_$s.log
   for r in 1 2 3; do

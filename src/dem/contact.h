@@ -8,7 +8,7 @@
  *            c_h from the exact restitution map of the reduced Hertz ODE (contact_params.c).
  * Tangential:
  *   no history (Grains3D): Ft = -min(mu |Fn|, gt m* |vt|) vt/|vt|;
- *   history (linear / Mindlin): xi += vt dt kept in the tangent plane, Ft = -kt xi - gt m* vt,
+ *   history (linear / Mindlin): xi projected on the tangent plane, xi += vt dt, Ft = -kt xi - gt m* vt,
  *            capped at mu |Fn| with xi reset to the capped spring (Cundall-Strack slip).
  * Forces returned act on the partner; i receives the opposite (Newton's third law).
  * Units SI. No allocation, no branching on options other than the law. */
@@ -68,17 +68,10 @@ static inline void dem_tangential_force(const DemPairParams *p, double fn, doubl
     for (int k = 0; k < 3; k++) ft[k] = -mag * vt[k];
     return;
   }
-  /* keep the spring in the current tangent plane, preserving its length (rigid rotation) */
-  const double x2 = dem_dot(xi, xi);
-  if (x2 > 0.0) {
-    const double xn = dem_dot(xi, nrm);
-    for (int k = 0; k < 3; k++) xi[k] -= xn * nrm[k];
-    const double y2 = dem_dot(xi, xi);
-    if (y2 > 0.0) {
-      const double s = sqrt(x2 / y2);
-      for (int k = 0; k < 3; k++) xi[k] *= s;
-    }
-  }
+  /* keep the spring in the current tangent plane by projection (as LAMMPS' granular history
+     models do; the length lost is second order in the rotation per step) */
+  const double xn = dem_dot(xi, nrm);
+  for (int k = 0; k < 3; k++) xi[k] -= xn * nrm[k];
   for (int k = 0; k < 3; k++) xi[k] += vt[k] * dt;
   for (int k = 0; k < 3; k++) ft[k] = -kt * xi[k] - gt * p->meff * vt[k];
   const double f2 = dem_dot(ft, ft);

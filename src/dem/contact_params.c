@@ -117,9 +117,9 @@ PetscErrorCode DemMaterialsSetUp(Dem dem)
     const DemShape *a = &dem->shp[s];
     for (PetscInt t = 0; t < dem->nshape; t++) {
       const DemShape *b = &dem->shp[t];
-      PetscCall(DemPairFill(dem, &dem->mat, &dem->mat, a->m, a->r, b->m, b->r, chp, &dem->pp[s * dem->nshape + t]));
+      PetscCall(DemPairFill(dem, &dem->mat, &dem->mat, a->m, a->req, b->m, b->req, chp, &dem->pp[s * dem->nshape + t]));
     }
-    PetscCall(DemPairFill(dem, &dem->mat, &dem->wmat, a->m, a->r, 0, 0, chw, &dem->pw[s]));
+    PetscCall(DemPairFill(dem, &dem->mat, &dem->wmat, a->m, a->req, 0, 0, chw, &dem->pw[s]));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,5 +1,8 @@
 /* Particle-particle contact forces over the half Verlet list (each pair once; Newton's third
- * law adds the opposite force to the partner). Spheres: n = (x_j - x_i)/|x_j - x_i|, overlap
+ * law adds the opposite force to a local partner; in the full list (-dem_deterministic) and for
+ * ghost partners only the row particle receives its force, the partner's rank computes the
+ * other half). Every expression is antisymmetric under exchanging i and j, so both sides of a
+ * pair computed on two ranks get exactly opposite forces. Spheres: n = (x_j - x_i)/|x_j - x_i|, overlap
  * delta = r_i + r_j - |x_j - x_i|, contact point at r_i - delta/2 from i along n. The spring of
  * a pair that is not touching is reset to zero (a new contact starts unloaded). Torques only
  * when the scene has friction (dem->rotation). */
@@ -15,6 +18,7 @@ PetscErrorCode DemContactsPairs(Dem dem)
   const DemLaw    law = dem->law;
   const PetscBool rot = dem->rotation;
   const double    dt = dem->dt;
+  const PetscInt  nhalf = dem->full_list ? 0 : n; /* partners below this index get the reaction */
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
@@ -57,17 +61,15 @@ PetscErrorCode DemContactsPairs(Dem dem)
         if (rot) {
           double c[3];
           dem_cross(nrm, ft, c); /* torque on i: (l_i n) x (-ft); on j: (-l_j n) x ft */
-          for (int k = 0; k < 3; k++) {
-            ti[k] -= li * c[k];
-            tq[3 * j + k] -= lj * c[k];
-          }
+          for (int k = 0; k < 3; k++) ti[k] -= li * c[k];
+          if (j < nhalf)
+            for (int k = 0; k < 3; k++) tq[3 * j + k] -= lj * c[k];
         }
         for (int k = 0; k < 3; k++) F[k] -= ft[k];
       }
-      for (int k = 0; k < 3; k++) {
-        fi[k] += F[k];
-        f[3 * j + k] -= F[k];
-      }
+      for (int k = 0; k < 3; k++) fi[k] += F[k];
+      if (j < nhalf)
+        for (int k = 0; k < 3; k++) f[3 * j + k] -= F[k];
     }
     for (int k = 0; k < 3; k++) {
       f[3 * i + k] += fi[k];

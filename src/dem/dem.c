@@ -5,7 +5,7 @@
  * every pair type (Tc of the hertz law at -dem_impact_velocity). */
 #include "dem/dem_impl.h"
 
-PetscLogEvent        DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
+PetscLogEvent        DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
 static PetscClassId  DEM_CLASSID;
 static PetscBool     dem_registered = PETSC_FALSE;
 static const char   *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
@@ -18,6 +18,7 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
   if (!dem_registered) {
     PetscCall(PetscClassIdRegister("DEM", &DEM_CLASSID));
     PetscCall(PetscLogEventRegister("DemNeighbours", DEM_CLASSID, &DEM_Neighbours));
+    PetscCall(PetscLogEventRegister("DemExchange", DEM_CLASSID, &DEM_Exchange));
     PetscCall(PetscLogEventRegister("DemContacts", DEM_CLASSID, &DEM_Contacts));
     PetscCall(PetscLogEventRegister("DemWalls", DEM_CLASSID, &DEM_Walls));
     PetscCall(PetscLogEventRegister("DemIntegrate", DEM_CLASSID, &DEM_Integrate));
@@ -98,6 +99,8 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, dem->progress_dt, &dem->progress_dt, NULL));
   SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
   PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, NULL));
+  PetscCall(PetscOptionsBool("-dem_deterministic", "Full neighbour rows summed in id order: results bitwise independent of the rank count (about 2x the contact cost)", NULL, dem->full_list, &dem->full_list, NULL));
+  PetscCall(PetscOptionsInt("-dem_check_every", "Debug: check the global particle count and id checksum every this many steps (0 = never)", NULL, dem->check_every, &dem->check_every, NULL));
   PetscCall(PetscOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, dem->sort_interval, &dem->sort_interval, NULL));
   PetscOptionsEnd();
   if (rset) {
@@ -109,6 +112,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
     }
     dem->nshape = nr;
   }
+  PetscCall(DemShapesSetFromOptions(dem)); /* -dem_shape: non-spherical shapes (shapes.c) */
   PetscCheck(!fset || nf == dem->nshape, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius_fraction has %" PetscInt_FMT " values for %" PetscInt_FMT " radii", nf, dem->nshape);
   for (PetscInt s = 0; s < dem->nshape; s++) {
     dem->shape_frac[s] = fset ? fr[s] : 1.0;
@@ -151,8 +155,13 @@ static PetscErrorCode DemComputeForces(Dem dem)
     for (int k = 0; k < 3; k++) dem->f[3 * i + k] = m * dem->g[k];
   }
   if (dem->rotation) PetscCall(PetscArrayzero(dem->tq, 3 * dem->n));
-  PetscCall(DemContactsPairs(dem));
-  PetscCall(DemContactsWalls(dem));
+  if (dem->convex) { /* convex shapes: libccd narrow phase (contacts_convex.c) */
+    PetscCall(DemContactsPairsConvex(dem));
+    PetscCall(DemContactsWallsConvex(dem));
+  } else {
+    PetscCall(DemContactsPairs(dem));
+    PetscCall(DemContactsWalls(dem));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -170,13 +179,17 @@ PetscErrorCode DemSetUp(Dem dem)
     sh->invi     = 1.0 / sh->inertia;
     rmax         = PetscMax(rmax, sh->r);
   }
+  PetscCall(DemShapesSetUp(dem)); /* convex shapes: mass, inertia tensor (shapes.c) */
   PetscCall(DemMaterialsSetUp(dem));
   PetscCall(DemCheckTimeStep(dem));
   if (dem->skin < 0) dem->skin = 0.2 * rmax;
   PetscCheck(dem->skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->skin);
   dem->reach    = 2 * rmax + dem->skin;
-  dem->rotation = (PetscBool)(dem->mat.mu > 0 || dem->wmat.mu > 0);
+  dem->rotation = (PetscBool)(dem->mat.mu > 0 || dem->wmat.mu > 0 || dem->convex);
+  for (PetscInt w = 0; w < dem->nwall; w++) dem->rotation = (PetscBool)(dem->rotation || dem->wall[w].mu > 0);
+  PetscCall(DemExchangeSetUp(dem));
   PetscCall(DemNeighBuild(dem));
+  PetscCall(DemGetStats(dem, &dem->initial));
   PetscCall(DemComputeForces(dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -194,11 +207,20 @@ PetscErrorCode DemStep(Dem dem)
     wl->moved += sqrt(dem_dot(wl->v, wl->v)) * dem->dt;
     wmax = PetscMax(wmax, wl->moved);
   }
-  if (dem->need_build || 4 * d2 > dem->skin * dem->skin || 2 * wmax > dem->skin) PetscCall(DemNeighBuild(dem));
+  /* every rank rebuilds when one needs to: the ghosts must be re-created everywhere */
+  int need = dem->need_build || 4 * d2 > dem->skin * dem->skin || 2 * wmax > dem->skin, any = need;
+  if (dem->ex.active) PetscCallMPI(MPI_Allreduce(&need, &any, 1, MPI_INT, MPI_LOR, dem->comm));
+  if (any) PetscCall(DemNeighBuild(dem));
+  else PetscCall(DemGhostsUpdate(dem));
   PetscCall(DemComputeForces(dem));
   PetscCall(DemIntegrateSecondHalf(dem));
   dem->t += dem->dt;
   dem->step++;
+  if (dem->check_every > 0 && dem->step % dem->check_every == 0) {
+    DemStats st;
+    PetscCall(DemGetStats(dem, &st));
+    PetscCheck(st.n == dem->initial.n && st.checksum == dem->initial.checksum, dem->comm, PETSC_ERR_PLIB, "step %" PetscInt_FMT ": %" PetscInt_FMT " particles with id checksum %.17g, expected %" PetscInt_FMT " and %.17g: a particle was lost or duplicated", dem->step, st.n, st.checksum, dem->initial.n, dem->initial.checksum);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -223,6 +245,8 @@ PetscErrorCode DemDestroy(Dem *dem)
   if (!*dem) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(DemSetExternal(*dem, PETSC_FALSE));
   PetscCall(DemNeighDestroy(*dem));
+  PetscCall(DemExchangeDestroy(*dem));
+  PetscCall(DemShapesDestroy(*dem));
   for (PetscInt w = 0; w < (*dem)->nwall; w++) {
     PetscCall(PetscFree((*dem)->wall[w].idx));
     PetscCall(PetscFree((*dem)->wall[w].hist));

@@ -48,6 +48,12 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *s);
  * number (particle-particle contacts per particle). Collective. */
 PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord);
 PetscErrorCode DemWriteOutput(Dem dem, Io io);
+/* Whether the scene has non-spherical (convex) shapes, known after DemSetFromOptions. */
+PetscErrorCode DemHasConvexShapes(Dem dem, PetscBool *convex);
+/* True volume (m^3) and volume-equivalent diameter (m) of shape s, for the fluid coupling (the
+ * cube kernel takes the volume, drag the equivalent diameter); a sphere gives 4/3 pi r^3, 2r.
+ * Valid after DemSetUp. Not collective. */
+PetscErrorCode DemGetShapeGeometry(Dem dem, PetscInt s, PetscReal *volume, PetscReal *d_eq);
 
 /* Access for tests and drivers: add particles (before DemSetUp or between steps), read them. */
 PetscErrorCode DemAddParticle(Dem dem, const DemParticle *p);

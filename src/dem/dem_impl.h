@@ -1,5 +1,6 @@
 /* DEM private state. Particles are a structure of arrays, xyz interleaved per particle
- * (x[3*i+k]): local particles 0..n-1 (ghosts will follow them). Geometry and mass live once per
+ * (x[3*i+k]): local particles 0..n-1, then ghost copies of other ranks' (or periodic images of
+ * our own) particles n..n+ng-1. Geometry and mass live once per
  * shape. The half Verlet list is CSR over local particles; for laws with history each list entry
  * carries its tangential spring, which follows the pair through list rebuilds and re-sorts.
  * Invariant: between rebuilds no particle has moved more than skin/2 from x0, and no wall more
@@ -7,30 +8,74 @@
 #pragma once
 #include "dem/dem.h"
 #include "dem/contact.h"
+#include "dem/convex.h"
 
 #define DEM_MAX_SHAPES 32
 #define DEM_MAX_WALLS  16
 
 typedef struct {
   double r, rho, m, inertia, invm, invi; /* sphere radius (m), density, mass, moment of inertia */
+  /* convex shapes (shapes.c): r is the bounding radius; NULL cvx means a sphere */
+  const ConvexShape *cvx;
+  double J[3], invJ[3]; /* principal moments of inertia (kg m^2), body axes */
+  double vol, req;      /* volume (m^3), equivalent radius for the contact laws (m) */
+  double  *fn;          /* distinct face normals of a polyhedron (body frame, 3 each), for sepaxis */
+  PetscInt nfn;
+  PetscBool iso;        /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
 } DemShape;
 
 typedef struct {
   double p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity */
   double moved;            /* distance moved since the last list build (m) */
+  /* finite rectangle p + s e1 + t e2, s,t in [0,1], touched from the front only (-dem_rect_k) */
+  PetscBool finite;
+  double    e1[3], e2[3];
+  double    mu; /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
   /* list of particles within reach, with their tangential springs */
   PetscInt *idx;
   double   *hist;
   PetscInt  cnt, cap;
 } DemWall;
 
+/* Whether a contact at point pt of a particle centred at xc is on the wall: always for an
+ * infinite plane; for a rectangle, pt projects inside it and xc is on its front side. */
+static inline PetscBool DemWallCovers(const DemWall *w, const double *pt, const double *xc)
+{
+  if (!w->finite) return PETSC_TRUE;
+  const double d[3] = {pt[0] - w->p[0], pt[1] - w->p[1], pt[2] - w->p[2]};
+  const double c[3] = {xc[0] - w->p[0], xc[1] - w->p[1], xc[2] - w->p[2]};
+  const double s = dem_dot(d, w->e1) / dem_dot(w->e1, w->e1), t = dem_dot(d, w->e2) / dem_dot(w->e2, w->e2);
+  return (PetscBool)(s >= 0 && s <= 1 && t >= 0 && t <= 1 && dem_dot(c, w->n) > 0);
+}
+
+/* Pair parameters of shape s with wall w (a copy with the wall's own friction, if it has one). */
+#define DemWallParams(dem, w, s, tmp) ((w)->mu < 0 ? &(dem)->pw[s] : ((*(tmp) = (dem)->pw[s]), (tmp)->mu = (w)->mu, (tmp)))
+
 typedef struct { /* material of one side of a contact */
   PetscReal kn, kt, e, mu, E, nu;
   PetscBool kn_set, kt_set, E_set;
 } DemMaterial;
 
+/* A tangential spring saved across a rebuild, keyed by ids (partner < 0: wall -1-partner). */
 typedef struct {
-  /* cells over the local box (plus margin): counting sort */
+  PetscInt owner, partner;
+  double   xi[3];
+} DemSpring;
+
+/* Ghost exchange with the 26 neighbours (exchange.c). Direction d = (dx+1) + 3(dy+1) + 9(dz+1). */
+typedef struct {
+  PetscMPIInt rank[27];              /* neighbour rank per direction, -1 if none */
+  double      shift[27][3];          /* periodic shift added to coordinates sent that way */
+  PetscInt   *send[27], nsend[27], capsend[27]; /* local indices sent as ghosts per direction */
+  PetscInt    nrecv[27], recvstart[27];         /* ghosts received per direction */
+  double     *sbuf, *rbuf;
+  size_t      capsbuf, caprbuf;
+  PetscBool   active;                /* any neighbour at all (else exchange is a no-op) */
+  PetscInt    migrated;              /* particles sent away at the last rebuild (diagnostic) */
+} DemExchange;
+
+typedef struct {
+  /* cells over the local box (plus halo): counting sort */
   PetscInt   nc[3], ncell;
   double     lo[3], inv[3];
   PetscInt  *cstart, *cof, *order;
@@ -44,7 +89,7 @@ struct _p_Dem {
   MPI_Comm  comm;
   Domain   *dom;
   /* particles */
-  PetscInt  n, cap;
+  PetscInt  n, ng, cap;
   double   *x, *v, *w, *f, *tq, *q, *x0;
   PetscInt *id, *shape;
   PetscInt  next_id;
@@ -57,12 +102,21 @@ struct _p_Dem {
   PetscReal     tdamp_ratio, vimpact;
   DemPairParams pp[DEM_MAX_SHAPES * DEM_MAX_SHAPES], pw[DEM_MAX_SHAPES];
   PetscBool     rotation; /* any friction: torques and spins are integrated */
+  /* convex shapes (shapes.c): the table owns them; convex = the scene has any */
+  ConvexShape   cvx[DEM_MAX_SHAPES];
+  PetscBool     convex, random_orient;
+  double       *sepax;       /* per Verlet-list entry: a separating axis (world), 0 = none */
+  PetscInt      sepax_build; /* the list build it belongs to */
   /* walls */
   DemWall   wall[DEM_MAX_WALLS];
   PetscInt  nwall;
   /* neighbours */
   DemNeigh  nl;
-  PetscReal skin, reach; /* reach = 2 r_max + skin */
+  PetscReal skin, reach; /* reach = 2 r_max + skin = halo width */
+  PetscBool full_list;   /* -dem_deterministic: full rows summed in id order */
+  DemExchange ex;
+  PetscInt  check_every;
+  DemStats  initial; /* count and checksum at set-up, for -dem_check_every */
   PetscInt  sort_interval;
   PetscBool need_build;
   /* time */
@@ -85,15 +139,31 @@ PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* con
 PetscErrorCode DemParticlesReserve(Dem dem, PetscInt n);           /* particles.c */
 PetscErrorCode DemParticlesPermute(Dem dem, const PetscInt *perm); /* particles.c */
 PetscErrorCode DemNeighBuild(Dem dem);                             /* neighbours.c */
+PetscErrorCode DemExchangeSetUp(Dem dem);                          /* exchange.c */
+PetscErrorCode DemExchangeDestroy(Dem dem);                        /* exchange.c */
+PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* exchange.c */
+PetscErrorCode DemGhostsCreate(Dem dem);                           /* exchange.c */
+PetscErrorCode DemGhostsUpdate(Dem dem);                           /* exchange.c */
+PetscErrorCode DemSpringsSort(DemSpring *r, PetscInt n);           /* neighbours.c */
+const DemSpring *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, PetscInt partner); /* neighbours.c */
 PetscErrorCode DemNeighDestroy(Dem dem);                           /* neighbours.c */
 PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c */
 PetscErrorCode DemContactsWalls(Dem dem);                          /* walls.c */
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls.c */
-PetscErrorCode DemWallsBuildLists(Dem dem, const PetscInt *inv);   /* walls.c */
+PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec); /* walls.c */
 PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
 PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
 PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
 PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
 void           DemExternalKick(Dem dem, double h);                 /* external.c */
+PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c */
+PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
+PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
+PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* contacts_convex.c */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* contacts_convex.c */
+PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* diag_convex.c */
+PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* diag_convex.c */
+PetscErrorCode DemRotateFirstHalf(Dem dem);                        /* rotation.c */
+PetscErrorCode DemRotateSecondHalf(Dem dem);                       /* rotation.c */
 
-extern PetscLogEvent DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
+extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;

@@ -18,7 +18,8 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
   PetscInt c[3] = {dem->n, 0, 0}, cg[3];
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->n; i++) {
+  if (dem->convex) PetscCall(DemConvexStatsLocal(dem, r, c, &rmax)); /* diag_convex.c */
+  for (PetscInt i = 0; i < dem->n && !dem->convex; i++) {
     const DemShape *s = &dem->shp[dem->shape[i]];
     r[0] += 0.5 * s->m * dem_dot(dem->v + 3 * i, dem->v + 3 * i);
     r[1] += 0.5 * s->inertia * dem_dot(dem->w + 3 * i, dem->w + 3 * i);
@@ -26,22 +27,24 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
     r[4] += (double)dem->id[i];
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
       const PetscInt j  = dem->nl.nbr[a];
+      /* a pair seen from both sides (full list, or a ghost partner) counts half on each */
+      const PetscBool both = (PetscBool)(dem->full_list || j >= dem->n);
       const double   rs = s->r + dem->shp[dem->shape[j]].r;
       const double   d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
       const double   delta = rs - sqrt(dem_dot(d, d));
       if (delta <= 0) continue;
-      c[1]++;
-      r[3] += dem_spring_energy(dem, &dem->pp[dem->shape[i] * dem->nshape + dem->shape[j]], delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
+      if (!both || dem->id[i] < dem->id[j]) c[1]++;
+      r[3] += (both ? 0.5 : 1.0) * dem_spring_energy(dem, &dem->pp[dem->shape[i] * dem->nshape + dem->shape[j]], delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
       rmax = PetscMax(rmax, delta / PetscMin(s->r, dem->shp[dem->shape[j]].r));
     }
   }
-  for (PetscInt w = 0; w < dem->nwall; w++) {
+  for (PetscInt w = 0; w < dem->nwall && !dem->convex; w++) {
     const DemWall *wl = &dem->wall[w];
     for (PetscInt a = 0; a < wl->cnt; a++) {
       const PetscInt i = wl->idx[a];
       const double   d[3] = {dem->x[3 * i] - wl->p[0], dem->x[3 * i + 1] - wl->p[1], dem->x[3 * i + 2] - wl->p[2]};
       const double   rr = dem->shp[dem->shape[i]].r, delta = rr - dem_dot(d, wl->n);
-      if (delta <= 0) continue;
+      if (delta <= 0 || !DemWallCovers(wl, dem->x + 3 * i, dem->x + 3 * i)) continue;
       c[2]++;
       r[3] += dem_spring_energy(dem, &dem->pw[dem->shape[i]], delta, dem->law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);
       rmax = PetscMax(rmax, delta / rr);
@@ -82,7 +85,7 @@ PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord)
     const PetscInt cx = PetscMin(gx - 1, PetscMax(0, (PetscInt)((x[0] - dom->lo[0]) / dom->len[0] * gx)));
     const PetscInt cy = PetscMin(gy - 1, PetscMax(0, (PetscInt)((x[1] - dom->lo[1]) / dom->len[1] * gy)));
     top[cx + gx * cy] = PetscMax(top[cx + gx * cy], x[2] + r - dom->lo[2]);
-    vol += 4.0 / 3.0 * PETSC_PI * r * r * r;
+    vol += dem->shp[dem->shape[i]].vol;
   }
   PetscCallMPI(MPI_Allreduce(top, gtop, (PetscMPIInt)(gx * gy), MPI_DOUBLE, MPI_MAX, dem->comm));
   PetscCallMPI(MPI_Allreduce(&vol, &vg, 1, MPI_DOUBLE, MPI_SUM, dem->comm));
@@ -106,7 +109,7 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
 
   PetscFunctionBeginUser;
   PetscCall(DemGetStats(dem, &st));
-  PetscCall(PetscViewerASCIIPrintf(v, "DEM: %" PetscInt_FMT " spheres, %" PetscInt_FMT " shape(s), %s; rotation %s; %" PetscInt_FMT " wall(s)\n", st.n, dem->nshape, law[dem->law], dem->rotation ? "on" : "off (no friction)", dem->nwall));
+  PetscCall(PetscViewerASCIIPrintf(v, "DEM: %" PetscInt_FMT " %s, %" PetscInt_FMT " shape(s), %s; rotation %s; %" PetscInt_FMT " wall(s)\n", st.n, dem->convex ? "convex particles" : "spheres", dem->nshape, law[dem->law], dem->rotation ? "on" : "off (no friction)", dem->nwall));
   for (PetscInt s = 0; s < dem->nshape; s++)
     for (PetscInt t = -1; t < dem->nshape; t++) {
       PetscReal tc, e;
@@ -133,6 +136,8 @@ PetscErrorCode DemWriteOutput(Dem dem, Io io)
   PetscCall(IoWriteParticles(io, "quaternion", dem->n, 4, dem->q));
   PetscCall(IoWriteParticles(io, "radius", dem->n, 1, r));
   PetscCall(IoWriteParticlesInt(io, "id", dem->n, dem->id));
+  PetscCall(IoWriteParticlesInt(io, "shape", dem->n, dem->shape));
+  if (dem->convex) PetscCall(DemConvexWriteSurface(dem, io)); /* diag_convex.c */
   PetscCall(PetscFree(r));
   PetscCall(PetscLogEventEnd(DEM_Output, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -156,7 +161,7 @@ PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]
       const PetscInt j    = dem->nl.nbr[a];
       const double   rs   = dem->shp[dem->shape[i]].r + dem->shp[dem->shape[j]].r;
       const double   d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
-      if (dem_dot(d, d) < rs * rs) {
+      if (dem_dot(d, d) < rs * rs && (!(dem->full_list || j >= dem->n) || dem->id[i] < dem->id[j])) {
         count[0]++;
         key[0] += dem_pair_key(dem->id[i], dem->id[j]);
       }

@@ -4,7 +4,8 @@
  *   position jitter, uniform in +-jitter (a - d_max)/2 per axis;
  *   velocity v_c = V (2 h_c - 1), h_c = frac(43758.5453 sin(12.9898 (id+1) + 78.233 c)),
  *   c = 1, 2, 3 — the symmetry-breaking velocity of the LIGGGHTS peer decks, so both codes start
- *   from the same state; shapes drawn by number fraction (-dem_radius_fraction).
+ *   from the same state; shapes drawn by number fraction (-dem_radius_fraction); with
+ *   -dem_lattice_random_orientation, a uniformly random orientation (for convex shapes).
  * Or: particles from an HDF5 file that Sable wrote (-dem_init_file), the last frame's state. */
 #include "dem/dem_impl.h"
 
@@ -24,6 +25,17 @@ static double dem_uniform(PetscInt seed, PetscInt site, int stream)
   return (double)(z >> 11) * (1.0 / 9007199254740992.0);
 }
 
+/* A uniformly distributed unit quaternion (Shoemake, Graphics Gems III, 1992) from streams 4-6. */
+static void dem_random_quat(PetscInt seed, PetscInt site, double q[4])
+{
+  const double u1 = dem_uniform(seed, site, 4), a = 2 * PETSC_PI * dem_uniform(seed, site, 5), b = 2 * PETSC_PI * dem_uniform(seed, site, 6);
+  const double s1 = sqrt(1 - u1), s2 = sqrt(u1);
+  q[0] = s2 * cos(b);
+  q[1] = s1 * sin(a);
+  q[2] = s1 * cos(a);
+  q[3] = s2 * sin(b);
+}
+
 PetscErrorCode DemInsertSetFromOptions(Dem dem)
 {
   PetscBool set;
@@ -37,6 +49,7 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region (m); default the domain's lower corner", NULL, dem->lat_origin, 3, &dem->lat_origin_set);
   PetscCall(PetscOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2, in [0,1]", NULL, dem->lat_jitter, &dem->lat_jitter, NULL));
   PetscCall(PetscOptionsReal("-dem_lattice_speed", "Amplitude of the deterministic random initial velocity (m/s)", NULL, dem->lat_speed, &dem->lat_speed, NULL));
+  PetscCall(PetscOptionsBool("-dem_lattice_random_orientation", "Uniformly random initial orientations (convex shapes)", NULL, dem->random_orient, &dem->random_orient, NULL));
   PetscCall(PetscOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, dem->seed, &dem->seed, NULL));
   PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles)", NULL, dem->init_file, dem->init_file, sizeof dem->init_file, NULL));
   PetscOptionsEnd();
@@ -68,6 +81,7 @@ static PetscErrorCode DemInsertLattice(Dem dem)
   gap = 0.5 * (a - dmax) * dem->lat_jitter;
   if (!dem->lat_origin_set)
     for (int k = 0; k < 3; k++) dem->lat_origin[k] = dem->dom->lo[k];
+  PetscCall(DemParticlesReserve(dem, dem->n + nsite)); /* exact, not by doubling (upper bound on one rank) */
   for (PetscInt n = 0; n < nsite; n++) {
     const PetscInt ijk[3] = {n % dem->lat[0], (n / dem->lat[0]) % dem->lat[1], n / (dem->lat[0] * dem->lat[1])};
     DemParticle    p;
@@ -87,6 +101,7 @@ static PetscErrorCode DemInsertLattice(Dem dem)
       p.x[k] = dem->lat_origin[k] + (ijk[k] + 0.5) * a + gap * (2 * dem_uniform(dem->seed, n, 1 + k) - 1);
       p.v[k] = dem->lat_speed * (2 * dem_hash_frac((double)(n + 1), k + 1) - 1);
     }
+    if (dem->random_orient) dem_random_quat(dem->seed, n, p.q);
     if (dem_in_box(dem->dom, p.x)) PetscCall(DemAddParticle(dem, &p));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -100,6 +115,7 @@ static PetscErrorCode DemShapeForRadius(Dem dem, double r, PetscInt *s)
     if (PetscAbsReal(dem->shp[*s].r - r) <= 1e-12 * r) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(dem->nshape < DEM_MAX_SHAPES, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: more than %d distinct radii", dem->init_file, DEM_MAX_SHAPES);
   PetscCheck(r > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: radius %g must be > 0", dem->init_file, r);
+  PetscCheck(!dem->convex, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_init_file %s: bounding radius %g matches none of the -dem_shape shapes", dem->init_file, r);
   dem->shp[dem->nshape]     = dem->shp[0];
   dem->shp[dem->nshape++].r = r;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -109,28 +125,41 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
 {
   const char *names[6] = {"/particles/position", "/particles/velocity", "/particles/angular_velocity", "/particles/quaternion", "/particles/id", "/particles/radius"};
   const int   width[6] = {3, 3, 3, 4, 1, 1};
-  PetscReal  *d[6];
-  PetscInt    rows[6], nc;
+  PetscReal  *d;
+  PetscInt    rows = 0, nc, r, *mine, nmine = 0, n0 = dem->n;
 
   PetscFunctionBeginUser;
+  /* one dataset at a time, keeping only this rank's rows: the peak is one column of the file */
   for (int k = 0; k < 6; k++) {
-    PetscCall(IoReadDataset(dem->init_file, names[k], &rows[k], &nc, &d[k]));
-    PetscCheck(nc == width[k] && rows[k] == rows[0], dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " x %" PetscInt_FMT " values, expected %" PetscInt_FMT " x %d", dem->init_file, names[k], rows[k], nc, rows[0], width[k]);
-  }
-  for (PetscInt i = 0; i < rows[0]; i++) {
-    DemParticle p;
-    p.id = (PetscInt)d[4][i];
-    PetscCall(DemShapeForRadius(dem, d[5][i], &p.shape));
-    for (int k = 0; k < 3; k++) {
-      p.x[k] = d[0][3 * i + k];
-      p.v[k] = d[1][3 * i + k];
-      p.w[k] = d[2][3 * i + k];
+    PetscCall(IoReadDataset(dem->init_file, names[k], &r, &nc, &d));
+    PetscCheck(nc == width[k] && (k == 0 || r == rows), dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " x %" PetscInt_FMT " values, expected %" PetscInt_FMT " x %d", dem->init_file, names[k], r, nc, k ? rows : r, width[k]);
+    if (k == 0) {
+      rows = r;
+      PetscCall(PetscMalloc1(rows + 1, &mine));
+      for (PetscInt i = 0; i < rows; i++)
+        if (dem_in_box(dem->dom, d + 3 * i)) mine[nmine++] = i;
+      PetscCall(DemParticlesReserve(dem, n0 + nmine));
+      for (PetscInt a = 0; a < nmine; a++) {
+        DemParticle p;
+        PetscCall(PetscMemzero(&p, sizeof p));
+        for (int c = 0; c < 3; c++) p.x[c] = d[3 * mine[a] + c];
+        p.q[0] = 1;
+        PetscCall(DemAddParticle(dem, &p));
+      }
     }
-    for (int k = 0; k < 4; k++) p.q[k] = d[3][4 * i + k];
-    if (dem_in_box(dem->dom, p.x)) PetscCall(DemAddParticle(dem, &p));
+    for (PetscInt a = 0; a < nmine && k > 0; a++) {
+      const PetscInt i = n0 + a, row = mine[a];
+      if (k == 1) for (int c = 0; c < 3; c++) dem->v[3 * i + c] = d[3 * row + c];
+      if (k == 2) for (int c = 0; c < 3; c++) dem->w[3 * i + c] = d[3 * row + c];
+      if (k == 3) for (int c = 0; c < 4; c++) dem->q[4 * i + c] = d[4 * row + c];
+      if (k == 4) dem->id[i] = (PetscInt)d[row];
+      if (k == 5) PetscCall(DemShapeForRadius(dem, d[row], &dem->shape[i]));
+    }
+    PetscCall(PetscFree(d));
   }
-  for (int k = 0; k < 6; k++) PetscCall(PetscFree(d[k]));
-  *nfile = rows[0];
+  for (PetscInt a = 0; a < nmine; a++) dem->next_id = PetscMax(dem->next_id, dem->id[n0 + a] + 1);
+  PetscCall(PetscFree(mine));
+  *nfile = rows;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

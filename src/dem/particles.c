@@ -24,7 +24,7 @@ PetscErrorCode DemParticlesReserve(Dem dem, PetscInt n)
 
   PetscFunctionBeginUser;
   if (n <= dem->cap) PetscFunctionReturn(PETSC_SUCCESS);
-  cap = PetscMax(n, 2 * dem->cap + 64);
+  cap = PetscMax(n, dem->cap + dem->cap / 4 + 64);
   na  = DemRealArrays(dem, a, m);
   for (int k = 0; k < na; k++) PetscCall(PetscRealloc(sizeof(double) * m[k] * (size_t)cap, a[k]));
   PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)cap, &dem->id));

@@ -5,7 +5,10 @@
  * mass and radius (m* = m, R* = r). Each wall keeps a list of the particles within r + skin,
  * rebuilt with the Verlet list, and their tangential springs.
  * Options: -dem_box xlo,ylo,zlo,xhi,yhi,zhi (m); -dem_plane_<k> px,py,pz,nx,ny,nz (m, -);
- * -dem_plane_<k>_velocity vx,vy,vz (m/s), k = 0..9. */
+ * -dem_plane_<k>_velocity vx,vy,vz (m/s), k = 0..9; -dem_rect_<k> x0,y0,z0,x1,y1,z1,x2,y2,z2 (m),
+ * k = 0..9: a finite rectangle with corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0), facing
+ * the side (p1 - p0) x (p2 - p0) points to, touched only where the contact projects inside it
+ * and by particles whose centre is in front (hopper plates, a bottom with an orifice). */
 #include "dem/dem_impl.h"
 
 static PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3])
@@ -18,10 +21,54 @@ static PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], 
   PetscCheck(nn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "wall %" PetscInt_FMT ": the normal must be non-zero", dem->nwall);
   w = &dem->wall[dem->nwall++];
   PetscCall(PetscMemzero(w, sizeof *w));
+  w->mu = -1; /* the wall material's friction */
   for (int k = 0; k < 3; k++) {
     w->p[k] = p[k];
     w->n[k] = n[k] / nn;
     w->v[k] = v[k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r[9])
+{
+  double   e1[3], e2[3], n[3], z[3] = {0, 0, 0};
+  DemWall *w;
+
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 3; k++) {
+    e1[k] = r[3 + k] - r[k];
+    e2[k] = r[6 + k] - r[k];
+  }
+  dem_cross(e1, e2, n);
+  const double l1 = sqrt(dem_dot(e1, e1)), l2 = sqrt(dem_dot(e2, e2));
+  PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
+  PetscCall(DemWallAdd(dem, r, n, z));
+  w         = &dem->wall[dem->nwall - 1];
+  w->finite = PETSC_TRUE;
+  for (int k = 0; k < 3; k++) {
+    w->e1[k] = e1[k];
+    w->e2[k] = e2[k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Per-wall friction override: n values for walls first.. (a box: xlo,ylo,zlo,xhi,yhi,zhi).
+ * Called inside the walls' options block. */
+static PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first)
+{
+  PetscReal mu[7];
+  PetscInt  got = 7; /* room for one value too many, to report it */
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsRealArray(opt, "Friction coefficient of this wall, overriding -dem_wall_friction (box: xlo,ylo,zlo,xhi,yhi,zhi)", NULL, mu, &got, &set));
+  if (!set) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(got == n, dem->comm, PETSC_ERR_ARG_SIZ, "%s takes %" PetscInt_FMT " values, got %" PetscInt_FMT, opt, n, got);
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCheck(mu[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", opt, (double)mu[k]);
+    /* box walls were added as xlo, xhi, ylo, yhi, zlo, zhi */
+    dem->wall[first + (n == 6 ? 2 * (k % 3) + k / 3 : k)].mu = mu[k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -46,6 +93,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
       n[k] = -1;
       PetscCall(DemWallAdd(dem, p, n, z));
     }
+    PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, dem->nwall - 6));
   }
   for (int k = 0; k < 10; k++) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_plane_%d", k));
@@ -55,51 +103,43 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     SableOptionsRealN(optv, "Translation velocity of the plane wall (m/s)", NULL, vel, 3, &vset);
     PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
     if (set) PetscCall(DemWallAdd(dem, pl, pl + 3, vel));
+    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
+    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
+  }
+  for (int k = 0; k < 10; k++) {
+    PetscReal r[9];
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_rect_%d", k));
+    SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2 (m); faces the side (p1-p0)x(p2-p0) points to", NULL, r, 9, &set);
+    if (set) PetscCall(DemWallAddRect(dem, opt, r));
+    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
+    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
   }
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Lists of particles within r + skin of each wall; springs carried over (inv: old -> new index). */
-PetscErrorCode DemWallsBuildLists(Dem dem, const PetscInt *inv)
+/* Lists of the local particles within r + skin of each wall; springs restored from the id-keyed
+ * records (partner = -1 - wall index). */
+PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
 {
   PetscFunctionBeginUser;
   for (PetscInt wi = 0; wi < dem->nwall; wi++) {
-    DemWall  *w    = &dem->wall[wi];
-    PetscInt *oidx = w->idx, ocnt = w->cnt;
-    double   *oh   = w->hist;
-    w->idx = NULL;
-    w->hist = NULL;
-    w->cnt = 0;
-    w->cap = 0;
+    DemWall *w = &dem->wall[wi];
+    w->cnt     = 0;
     for (PetscInt i = 0; i < dem->n; i++) {
       const double d[3] = {dem->x[3 * i] - w->p[0], dem->x[3 * i + 1] - w->p[1], dem->x[3 * i + 2] - w->p[2]};
       if (dem_dot(d, w->n) >= dem->shp[dem->shape[i]].r + dem->skin) continue;
+      if (w->finite && dem_dot(d, w->n) < -dem->skin) continue; /* behind a rectangle */
       if (w->cnt == w->cap) {
         w->cap = 2 * w->cap + 256;
         PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)w->cap, &w->idx));
         PetscCall(PetscRealloc(3 * sizeof(double) * (size_t)w->cap, &w->hist));
       }
+      const DemSpring *r = nrec ? DemSpringFind(recs, nrec, dem->id[i], -1 - wi) : NULL;
       w->idx[w->cnt] = i;
-      for (int k = 0; k < 3; k++) w->hist[3 * w->cnt + k] = 0;
+      for (int k = 0; k < 3; k++) w->hist[3 * w->cnt + k] = r ? r->xi[k] : 0;
       w->cnt++;
     }
-    /* carry springs: the new list is sorted by particle index, so bisect */
-    for (PetscInt a = 0; a < ocnt; a++) {
-      const double *h = oh + 3 * a;
-      if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-      const PetscInt i  = inv ? inv[oidx[a]] : oidx[a];
-      PetscInt       lo = 0, hi = w->cnt;
-      while (hi - lo > 1) {
-        const PetscInt mid = (lo + hi) / 2;
-        if (w->idx[mid] <= i) lo = mid;
-        else hi = mid;
-      }
-      if (w->cnt && w->idx[lo] == i)
-        for (int k = 0; k < 3; k++) w->hist[3 * lo + k] = h[k];
-    }
-    PetscCall(PetscFree(oidx));
-    PetscCall(PetscFree(oh));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -114,6 +154,7 @@ PetscErrorCode DemContactsWalls(Dem dem)
   for (PetscInt wi = 0; wi < dem->nwall; wi++) {
     DemWall     *w   = &dem->wall[wi];
     const double nrm[3] = {-w->n[0], -w->n[1], -w->n[2]}; /* from the particle to the wall */
+    DemPairParams pwl;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt       i  = w->idx[a];
       const double        *xi = dem->x + 3 * i, *vi = dem->v + 3 * i, *wi_ = dem->w + 3 * i;
@@ -121,8 +162,8 @@ PetscErrorCode DemContactsWalls(Dem dem)
       const double         d[3] = {xi[0] - w->p[0], xi[1] - w->p[1], xi[2] - w->p[2]};
       const double         delta = r - dem_dot(d, w->n);
       double              *xi_t  = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
-      const DemPairParams *p     = &dem->pw[dem->shape[i]];
-      if (delta <= 0) {
+      const DemPairParams *p     = DemWallParams(dem, w, dem->shape[i], &pwl);
+      if (delta <= 0 || !DemWallCovers(w, xi, xi)) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }

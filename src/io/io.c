@@ -2,8 +2,9 @@
  *   /particles/<name>  [N] or [N, ncomp], rows in rank order (ids identify particles)
  *   /fluid/<name>      [nz, ny, nx] or [nz, ny, nx, ncomp], cell centred
  *   attribute "time" on the root group.
- * The XDMF index lists, per frame, a Polyvertex grid for particles and a 3DCoRectMesh for the
- * fluid, inside a temporal collection. */
+ *   /surface/points [P, 3], /surface/tag [P], /surface/triangles [T, 3] (global point indices)
+ * The XDMF index lists, per frame, a Polyvertex grid for particles, a Triangle grid for the
+ * surface (when written) and a 3DCoRectMesh for the fluid, inside a temporal collection. */
 #include "io/io.h"
 #include <hdf5.h>
 #include <errno.h>
@@ -23,6 +24,7 @@ typedef struct {
   PetscInt  np;                         /* global particle count */
   IoSet     part[IO_MAX_SETS], fluid[IO_MAX_SETS];
   PetscInt  npart, nfluid;
+  long long nsurfp, nsurft;             /* surface points and triangles (0: none) */
 } IoFrame;
 
 struct _p_Io {
@@ -208,6 +210,34 @@ PetscErrorCode IoWriteParticlesInt(Io io, const char *name, PetscInt nlocal, con
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode IoWriteSurface(Io io, PetscInt np, const PetscReal *xyz, const PetscInt *tag, PetscInt nt, const PetscInt *tri)
+{
+  long long n[2] = {np, nt}, off[2] = {0, 0}, tot[2] = {0, 0}, *gtri, *gtag;
+  hsize_t   dims[2], start[2] = {0, 0}, count[2];
+  IoFrame  *fr = &io->frames[io->nframes];
+  hid_t     g;
+
+  PetscFunctionBeginUser;
+  PetscCheck(!fr->nsurft, io->comm, PETSC_ERR_ORDER, "IoWriteSurface: at most one surface per frame");
+  PetscCallMPI(MPI_Exscan(n, off, 2, MPI_LONG_LONG, MPI_SUM, io->comm));
+  PetscCallMPI(MPI_Allreduce(n, tot, 2, MPI_LONG_LONG, MPI_SUM, io->comm));
+  PetscCall(PetscMalloc2(3 * nt + 1, &gtri, np + 1, &gtag));
+  for (PetscInt k = 0; k < 3 * nt; k++) gtri[k] = off[0] + tri[k];
+  for (PetscInt k = 0; k < np; k++) gtag[k] = tag[k];
+  g = H5Gcreate2(io->file, "surface", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  SableCallH5(g);
+  dims[0] = (hsize_t)tot[0], dims[1] = 3, start[0] = (hsize_t)off[0], count[0] = (hsize_t)np, count[1] = 3;
+  PetscCall(IoWriteBlock(g, "points", H5T_NATIVE_DOUBLE, 2, dims, start, count, xyz));
+  PetscCall(IoWriteBlock(g, "tag", H5T_NATIVE_LLONG, 1, dims, start, count, gtag));
+  dims[0] = (hsize_t)tot[1], start[0] = (hsize_t)off[1], count[0] = (hsize_t)nt;
+  PetscCall(IoWriteBlock(g, "triangles", H5T_NATIVE_LLONG, 2, dims, start, count, gtri));
+  SableCallH5(H5Gclose(g));
+  PetscCall(PetscFree2(gtri, gtag));
+  fr->nsurfp = tot[0];
+  fr->nsurft = tot[1];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode IoSetFluidMesh(Io io, const PetscReal lo[3], const PetscReal h[3], const PetscInt cells[3])
 {
   PetscFunctionBeginUser;
@@ -263,6 +293,12 @@ static void IoXdmfFrame(Io io, FILE *fp, const IoFrame *fr)
     for (PetscInt i = 0; i < fr->npart; i++)
       if (strcmp(fr->part[i].name, "position")) IoXdmfAttribute(fp, fr->file, "particles", &fr->part[i], "Node", d);
     fprintf(fp, "      </Grid>\n");
+  }
+  if (fr->nsurft) {
+    fprintf(fp, "      <Grid Name=\"surface\" GridType=\"Uniform\">\n");
+    fprintf(fp, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%lld\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/triangles</DataItem>\n        </Topology>\n", fr->nsurft, fr->nsurft, fr->file);
+    fprintf(fp, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/surface/points</DataItem>\n        </Geometry>\n", fr->nsurfp, fr->file);
+    fprintf(fp, "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\"%lld\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/tag</DataItem>\n        </Attribute>\n      </Grid>\n", fr->nsurfp, fr->file);
   }
   if (fr->nfluid) {
     PetscSNPrintf(d, sizeof d, "%d %d %d", (int)io->fcells[2], (int)io->fcells[1], (int)io->fcells[0]);

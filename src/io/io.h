@@ -24,6 +24,11 @@ PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step);
  * written for the frame to show particles). */
 PetscErrorCode IoWriteParticles(Io io, const char *name, PetscInt nlocal, PetscInt ncomp, const PetscReal *data);
 PetscErrorCode IoWriteParticlesInt(Io io, const char *name, PetscInt nlocal, const PetscInt *data);
+/* Collective. A triangle surface for the frame (the drawn shapes of non-spherical particles):
+ * np points xyz (3 each) with an integer tag per point (the particle id) and nt triangles whose
+ * corner indices count from this rank's first point. Written under /surface, shown in the XDMF
+ * as the grid "surface". At most once per frame. */
+PetscErrorCode IoWriteSurface(Io io, PetscInt np, const PetscReal *xyz, const PetscInt *tag, PetscInt nt, const PetscInt *tri);
 /* Collective, once before the first frame: the fluid mesh (uniform cells from lo, spacing h). */
 PetscErrorCode IoSetFluidMesh(Io io, const PetscReal lo[3], const PetscReal h[3], const PetscInt cells[3]);
 /* Collective. A cell-centred field block: count[0..2] cells from start[0..2], x fastest, the

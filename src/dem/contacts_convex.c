@@ -1,0 +1,225 @@
+/* Contact forces for convex particles (pairs over the half Verlet list, and plane walls).
+ *
+ * The narrow phase (convex.h: libccd MPR for depth and normal, the contact features for the
+ * point) gives for a touching pair the overlap delta, the unit normal n from i to its partner j
+ * and the world contact point p. The same laws as for spheres (contact.h) act at p:
+ *   r_i = p - x_i, r_j = p - x_j,  v_rel = (v_j + w_j x r_j) - (v_i + w_i x r_i),
+ *   v_n = v_rel . n,  v_t = v_rel - v_n n,  F_i = -F_n n - F_t,  F_j = -F_i,
+ *   T_i = r_i x F_i,  T_j = r_j x F_j   (the lever arm gives torque even without friction).
+ * A wall is a partner of infinite mass with velocity v_wall and no spin; its contact comes from
+ * ConvexCollidePlane (n = -wall normal). Bounding spheres that do not overlap are rejected
+ * before libccd; a pair that does not touch has its tangential spring reset (as for spheres).
+ * Separating-axis cache: most pairs of the list whose bounding spheres overlap do not touch,
+ * and a body pair apart along some axis u, (x_j - x_i).u > h_i(u) + h_j(-u) (h: support
+ * extent about the centre), usually stays apart along it for many steps. Each list entry keeps
+ * the last such axis (tried first), the centre line is tried next, and only then libccd; when
+ * libccd finds no contact, the face directions of both bodies are searched for an axis to keep.
+ * A test costs two support scans (about a tenth of an MPR call). The cache is exact (an axis
+ * either separates or the full test runs) and is cleared at every list build.
+ * The contact laws use R = d_eq/2 per shape (shapes.c). Units SI. */
+#include "dem/dem_impl.h"
+
+typedef struct {
+  DemLaw               law;
+  const DemPairParams *p;
+  const ConvexContact *c;
+  const double        *xi, *vi, *wi; /* particle i */
+  const double        *xj, *vj, *wj; /* partner j (a wall: its point, velocity, zero spin) */
+  double               dt;
+} DemConvexIn;
+
+/* Force on i and torques on i and j of one contact. xi_t: the pair's spring or NULL. */
+static inline void dem_convex_force(const DemConvexIn *in, double *xi_t, double Fi[3], double Ti[3], double Tj[3])
+{
+  const double *nrm = in->c->normal;
+  double        ri[3], rj[3], ui[3], uj[3], vr[3], kt, gt;
+
+  for (int k = 0; k < 3; k++) {
+    ri[k] = in->c->point[k] - in->xi[k];
+    rj[k] = in->c->point[k] - in->xj[k];
+  }
+  dem_cross(in->wi, ri, ui);
+  dem_cross(in->wj, rj, uj);
+  for (int k = 0; k < 3; k++) vr[k] = in->vj[k] + uj[k] - in->vi[k] - ui[k];
+  const double vn = dem_dot(vr, nrm);
+  const double fn = dem_normal_force(in->law, in->p, in->c->depth, vn, &kt, &gt);
+  for (int k = 0; k < 3; k++) Fi[k] = -fn * nrm[k];
+  if (in->p->mu > 0) {
+    double vt[3], ft[3];
+    for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
+    dem_tangential_force(in->p, fn, kt, gt, nrm, vt, xi_t, in->dt, ft); /* ft acts on j */
+    for (int k = 0; k < 3; k++) Fi[k] -= ft[k];
+  } else if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
+  dem_cross(ri, Fi, Ti);
+  dem_cross(Fi, rj, Tj); /* r_j x (-F_i) */
+}
+
+/* Support extent of a shape about its centre along the body-frame direction d. */
+static inline double dem_extent(const ConvexShape *c, const double d[3])
+{
+  if (c->kind == CONVEX_CYLINDER) return c->radius * sqrt(d[0] * d[0] + d[1] * d[1]) + 0.5 * c->height * fabs(d[2]);
+  double best = -PETSC_MAX_REAL;
+  for (PetscInt k = 0; k < c->nv; k++) {
+    const double t = c->v[3 * k] * d[0] + c->v[3 * k + 1] * d[1] + c->v[3 * k + 2] * d[2];
+    best           = t > best ? t : best;
+  }
+  return best;
+}
+
+/* Body i at the origin with rotation Ri, body j at d with Rj: are they apart along the world
+ * axis u (either sense)? */
+static inline PetscBool dem_apart(const ConvexShape *ci, const double *Ri, const ConvexShape *cj, const double *Rj, const double d[3], const double u[3])
+{
+  const double du = dem_dot(d, u), s = du >= 0 ? 1.0 : -1.0;
+  double       ui[3], uj[3];
+  for (int k = 0; k < 3; k++) { /* R^T (s u) and R^T (-s u) */
+    ui[k] = s * (Ri[k] * u[0] + Ri[3 + k] * u[1] + Ri[6 + k] * u[2]);
+    uj[k] = -s * (Rj[k] * u[0] + Rj[3 + k] * u[1] + Rj[6 + k] * u[2]);
+  }
+  return (PetscBool)(s * du > dem_extent(ci, ui) + dem_extent(cj, uj));
+}
+
+static inline void dem_rotation(const double *q, double *R)
+{
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  R[0] = 1 - 2 * (y * y + z * z), R[1] = 2 * (x * y - w * z), R[2] = 2 * (x * z + w * y);
+  R[3] = 2 * (x * y + w * z), R[4] = 1 - 2 * (x * x + z * z), R[5] = 2 * (y * z - w * x);
+  R[6] = 2 * (x * z - w * y), R[7] = 2 * (y * z + w * x), R[8] = 1 - 2 * (x * x + y * y);
+}
+
+/* After libccd found no contact: a face direction of either body that separates them (into u),
+ * or u = 0. */
+static void dem_find_axis(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double u[3])
+{
+  const DemShape *sh[2] = {si, sj};
+  const double   *R[2]  = {Ri, Rj};
+  for (int b = 0; b < 2; b++)
+    for (PetscInt f = 0; f < sh[b]->nfn; f++) {
+      const double *n = sh[b]->fn + 3 * f;
+      for (int k = 0; k < 3; k++) u[k] = R[b][3 * k] * n[0] + R[b][3 * k + 1] * n[1] + R[b][3 * k + 2] * n[2];
+      if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) return;
+    }
+  u[0] = u[1] = u[2] = 0;
+}
+
+static inline void dem_pose(const Dem dem, PetscInt i, ConvexPose *pose)
+{
+  for (int k = 0; k < 3; k++) pose->x[k] = dem->x[3 * i + k];
+  for (int k = 0; k < 4; k++) pose->q[k] = dem->q[4 * i + k];
+}
+
+PetscErrorCode DemContactsPairsConvex(Dem dem)
+{
+  const DemNeigh *nl = &dem->nl;
+  double         *f = dem->f, *tq = dem->tq, *hist = nl->hist, *ax;
+  DemConvexIn     in = {.law = dem->law, .dt = dem->dt};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
+  if (!dem->sepax || dem->sepax_build != nl->builds) { /* a new list: a new, empty cache */
+    PetscCall(PetscFree(dem->sepax));
+    PetscCall(PetscCalloc1(3 * (size_t)nl->start[dem->n] + 3, &dem->sepax));
+    dem->sepax_build = nl->builds;
+  }
+  ax = dem->sepax;
+  for (PetscInt i = 0; i < dem->n; i++) {
+    const DemShape *si = &dem->shp[dem->shape[i]];
+    ConvexPose      pi, pj;
+    double          fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0}, Ri[9];
+    dem_pose(dem, i, &pi);
+    dem_rotation(pi.q, Ri);
+    in.xi = dem->x + 3 * i;
+    in.vi = dem->v + 3 * i;
+    in.wi = dem->w + 3 * i;
+    for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
+      const PetscInt  j  = nl->nbr[a];
+      const DemShape *sj = &dem->shp[dem->shape[j]];
+      const double    rs = si->r + sj->r;
+      const double    d[3] = {dem->x[3 * j] - in.xi[0], dem->x[3 * j + 1] - in.xi[1], dem->x[3 * j + 2] - in.xi[2]};
+      double         *xi_t = hist ? hist + 3 * a : NULL;
+      ConvexContact   c;
+      double          F[3], Ti[3], Tj[3];
+      if (dem_dot(d, d) >= rs * rs) { /* bounding spheres apart: libccd is not called */
+        if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
+        continue;
+      }
+      double *u = ax + 3 * a, Rj[9];
+      dem_pose(dem, j, &pj);
+      dem_rotation(pj.q, Rj);
+      if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) c.overlap = PETSC_FALSE;
+      else if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, d)) {
+        c.overlap = PETSC_FALSE;
+        for (int k = 0; k < 3; k++) u[k] = d[k];
+      } else {
+        PetscCall(ConvexCollide(si->cvx, &pi, sj->cvx, &pj, &c));
+        if (c.overlap) u[0] = u[1] = u[2] = 0;
+        else dem_find_axis(si, Ri, sj, Rj, d, u);
+      }
+      if (!c.overlap) {
+        if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
+        continue;
+      }
+      in.p  = dem->pp + dem->shape[i] * dem->nshape + dem->shape[j];
+      in.c  = &c;
+      in.xj = dem->x + 3 * j;
+      in.vj = dem->v + 3 * j;
+      in.wj = dem->w + 3 * j;
+      dem_convex_force(&in, xi_t, F, Ti, Tj);
+      for (int k = 0; k < 3; k++) {
+        fi[k] += F[k];
+        ti[k] += Ti[k];
+      }
+      if (!dem->full_list && j < dem->n) /* a ghost's rank (or the full list) computes j's side */
+        for (int k = 0; k < 3; k++) {
+          f[3 * j + k] -= F[k];
+          tq[3 * j + k] += Tj[k];
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+      f[3 * i + k] += fi[k];
+      tq[3 * i + k] += ti[k];
+    }
+  }
+  PetscCall(PetscLogEventEnd(DEM_Contacts, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemContactsWallsConvex(Dem dem)
+{
+  static const double zero[3] = {0, 0, 0};
+  DemConvexIn         in      = {.law = dem->law, .dt = dem->dt, .wj = zero};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
+  for (PetscInt wi = 0; wi < dem->nwall; wi++) {
+    DemWall      *w = &dem->wall[wi];
+    DemPairParams pwl;
+    in.xj = w->p;
+    in.vj      = w->v;
+    for (PetscInt a = 0; a < w->cnt; a++) {
+      const PetscInt i    = w->idx[a];
+      double        *xi_t = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
+      ConvexPose     pose;
+      ConvexContact  c;
+      double         F[3], Ti[3], Tj[3];
+      dem_pose(dem, i, &pose);
+      PetscCall(ConvexCollidePlane(dem->shp[dem->shape[i]].cvx, &pose, w->p, w->n, &c));
+      if (!c.overlap || !DemWallCovers(w, c.point, pose.x)) {
+        if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
+        continue;
+      }
+      in.p  = DemWallParams(dem, w, dem->shape[i], &pwl);
+      in.c  = &c;
+      in.xi = dem->x + 3 * i;
+      in.vi = dem->v + 3 * i;
+      in.wi = dem->w + 3 * i;
+      dem_convex_force(&in, xi_t, F, Ti, Tj);
+      for (int k = 0; k < 3; k++) {
+        dem->f[3 * i + k] += F[k];
+        dem->tq[3 * i + k] += Ti[k];
+      }
+    }
+  }
+  PetscCall(PetscLogEventEnd(DEM_Walls, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,364 @@
+/* Parallel exchange of particles between the ranks of the shared DMDA decomposition, after
+ * Grains3D's tailored scheme (Part II §3): a particle within the halo (width = reach = 2 r_max +
+ * skin) of its box faces is sent only to the neighbours whose halo it lies in — 1 near a face,
+ * 3 near an edge, 7 near a corner — one message of doubles per direction, non-blocking. Three
+ * named operations:
+ *   migration (at list rebuilds): a particle whose centre left the box goes to the neighbour that
+ *     owns it, with its full state, its tangential springs and, when a coupling is attached, its
+ *     external force, drag and received impulse; periodic axes wrap positions;
+ *   ghost creation (at list rebuilds): copies of halo particles, positions shifted across periodic
+ *     boundaries; the send lists are kept;
+ *   forward update (every other step): the owners' kinematics overwrite the ghosts' in place.
+ * There is no reverse communication: a local-ghost pair is computed on both ranks, each applying
+ * the force to its own particle only; the kernels are written so that both sides get exactly
+ * opposite forces. With one rank along a periodic axis the neighbour is the rank itself (a
+ * message to self with a shift), so periodicity has one code path. A box thinner than the halo
+ * along a split or periodic axis is an error (a particle could then reach past a neighbour). */
+#include "dem/dem_impl.h"
+
+#define GHOST_WIDTH 15 /* id, shape, x[3], v[3], w[3], q[4] */
+#define MIG_HEAD    22 /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
+#define MIG_EXT     10 /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
+
+static void dem_dir_offsets(int d, int o[3])
+{
+  o[0] = d % 3 - 1;
+  o[1] = (d / 3) % 3 - 1;
+  o[2] = d / 9 - 1;
+}
+
+PetscErrorCode DemExchangeSetUp(Dem dem)
+{
+  const Domain   *dom = dem->dom;
+  DemExchange    *ex  = &dem->ex;
+  PetscInt        c[3];
+  const PetscInt *l[3];
+  PetscMPIInt     me;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(dem->comm, &me));
+  PetscCall(DMDAGetOwnershipRanges(dom->da, &l[0], &l[1], &l[2]));
+  for (int k = 0; k < 3; k++) { /* my coordinate in the process grid */
+    PetscInt s = 0;
+    for (c[k] = 0; s < dom->cstart[k]; c[k]++) s += l[k][c[k]];
+    const double w = dom->subhi[k] - dom->sublo[k];
+    PetscCheck(!(dom->nranks[k] > 1 || dom->periodic[k]) || w >= dem->reach, dem->comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "rank box width %g m along axis %d is thinner than the halo %g m (2 r_max + skin): use fewer ranks along that axis (-da_processors_%c) or a larger domain", w, k, (double)dem->reach, "xyz"[k]);
+  }
+  ex->active = PETSC_FALSE;
+  for (int d = 0; d < 27; d++) {
+    int      o[3];
+    PetscInt nb[3], ok = 1;
+    dem_dir_offsets(d, o);
+    for (int k = 0; k < 3; k++) {
+      nb[k]           = c[k] + o[k];
+      ex->shift[d][k] = 0;
+      if (nb[k] < 0 || nb[k] >= dom->nranks[k]) {
+        if (!dom->periodic[k]) ok = 0;
+        nb[k]           = (nb[k] + dom->nranks[k]) % dom->nranks[k];
+        ex->shift[d][k] = o[k] > 0 ? -dom->len[k] : dom->len[k];
+      }
+    }
+    ex->rank[d] = (ok && d != 13) ? (PetscMPIInt)(nb[0] + dom->nranks[0] * (nb[1] + dom->nranks[1] * nb[2])) : -1;
+    if (ex->rank[d] >= 0) ex->active = PETSC_TRUE;
+  }
+  (void)me;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemExchangeDestroy(Dem dem)
+{
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 27; d++) PetscCall(PetscFree(dem->ex.send[d]));
+  PetscCall(PetscFree(dem->ex.sbuf));
+  PetscCall(PetscFree(dem->ex.rbuf));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n)
+{
+  PetscFunctionBeginUser;
+  if (n > *cap) {
+    *cap = 2 * n + 1024;
+    PetscCall(PetscFree(*buf));
+    PetscCall(PetscMalloc1(*cap, buf));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Variable-size exchange: sizes first, then the doubles; returns receive offsets per direction. */
+static PetscErrorCode DemExchangeVariable(Dem dem, const size_t soff[28], size_t roff[28])
+{
+  DemExchange *ex = &dem->ex;
+  MPI_Request  req[54];
+  long long    ssz[27], rsz[27];
+  int          nr = 0;
+
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 27; d++) {
+    ssz[d] = (long long)(soff[d + 1] - soff[d]);
+    rsz[d] = 0;
+    if (ex->rank[d] < 0) continue;
+    /* from the neighbour at offset d, a message it sent in direction 26-d */
+    PetscCallMPI(MPI_Irecv(&rsz[d], 1, MPI_LONG_LONG, ex->rank[d], 26 - d, dem->comm, &req[nr++]));
+    PetscCallMPI(MPI_Isend(&ssz[d], 1, MPI_LONG_LONG, ex->rank[d], d, dem->comm, &req[nr++]));
+  }
+  PetscCallMPI(MPI_Waitall(nr, req, MPI_STATUSES_IGNORE));
+  roff[0] = 0;
+  for (int d = 0; d < 27; d++) roff[d + 1] = roff[d] + (size_t)rsz[d];
+  PetscCall(DemBufReserve(&ex->rbuf, &ex->caprbuf, roff[27] + 1));
+  nr = 0;
+  for (int d = 0; d < 27; d++) {
+    if (ex->rank[d] < 0) continue;
+    if (rsz[d]) PetscCallMPI(MPI_Irecv(ex->rbuf + roff[d], (PetscMPIInt)rsz[d], MPI_DOUBLE, ex->rank[d], 26 - d, dem->comm, &req[nr++]));
+    if (ssz[d]) PetscCallMPI(MPI_Isend(ex->sbuf + soff[d], (PetscMPIInt)ssz[d], MPI_DOUBLE, ex->rank[d], d, dem->comm, &req[nr++]));
+  }
+  PetscCallMPI(MPI_Waitall(nr, req, MPI_STATUSES_IGNORE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Direction along axis k in which x leaves the box (0: stays). */
+static int dem_leave(const Dem dem, const double *x, int k)
+{
+  const Domain *dom   = dem->dom;
+  const int     first = dom->cstart[k] == 0, last = dom->cstart[k] + dom->ccount[k] == dom->cells[k];
+  if (x[k] < dom->sublo[k] && (!first || dom->periodic[k])) return -1;
+  if (x[k] >= dom->subhi[k] && (!last || dom->periodic[k])) return 1;
+  return 0;
+}
+
+/* Collective. Sends every local particle that left the box to its new owner with its state and
+ * springs (recs, sorted by owner id on entry and on exit; received springs are appended). */
+PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec)
+{
+  DemExchange *ex = &dem->ex;
+  PetscInt    *dir, *keep, nkeep = 0, cnt[27] = {0};
+  size_t       soff[28], roff[28], pos[27];
+  const size_t hw = MIG_HEAD + (dem->external ? MIG_EXT : 0); /* header width */
+
+  PetscFunctionBeginUser;
+  if (!ex->active) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscMalloc2(dem->n + 1, &dir, dem->n + 1, &keep));
+  /* sizes: header + 4 doubles per spring */
+  for (int d = 0; d < 27; d++) soff[d] = 0;
+  size_t total = 0;
+  for (PetscInt i = 0; i < dem->n; i++) {
+    const double *x = dem->x + 3 * i;
+    dir[i]          = (dem_leave(dem, x, 0) + 1) + 3 * (dem_leave(dem, x, 1) + 1) + 9 * (dem_leave(dem, x, 2) + 1);
+    if (dir[i] == 13) {
+      keep[nkeep++] = i;
+      continue;
+    }
+    const DemSpring *s = DemSpringFind(*recs, *nrec, dem->id[i], PETSC_MIN_INT);
+    PetscInt         ns = 0;
+    for (; s && s < *recs + *nrec && s->owner == dem->id[i]; s++) ns++;
+    cnt[dir[i]]++;
+    soff[dir[i]] += hw + 4 * ns;
+    total += hw + 4 * ns;
+  }
+  for (int d = 0, acc = 0; d < 27; d++) { /* prefix sums */
+    const size_t sz = soff[d];
+    soff[d]         = (size_t)acc;
+    pos[d]          = (size_t)acc;
+    acc += (int)sz;
+  }
+  soff[27] = total;
+  PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, total + 1));
+  for (PetscInt i = 0; i < dem->n; i++) {
+    if (dir[i] == 13) continue;
+    double          *b = ex->sbuf + pos[dir[i]];
+    const DemSpring *s = DemSpringFind(*recs, *nrec, dem->id[i], PETSC_MIN_INT), *s0 = s;
+    PetscInt         ns = 0;
+    for (; s && s < *recs + *nrec && s->owner == dem->id[i]; s++) ns++;
+    b[0] = (double)dem->id[i];
+    b[1] = (double)dem->shape[i];
+    for (int k = 0; k < 3; k++) {
+      b[2 + k]  = dem->x[3 * i + k] + ex->shift[dir[i]][k];
+      b[5 + k]  = dem->v[3 * i + k];
+      b[8 + k]  = dem->w[3 * i + k];
+      b[15 + k] = dem->f[3 * i + k];
+      b[18 + k] = dem->tq[3 * i + k];
+    }
+    for (int k = 0; k < 4; k++) b[11 + k] = dem->q[4 * i + k];
+    b[21] = (double)ns;
+    if (dem->external) { /* the coupling's per-particle state, so its impulse count stays exact */
+      b[MIG_HEAD + 3] = dem->kdrag[i];
+      for (int k = 0; k < 3; k++) {
+        b[MIG_HEAD + k]     = dem->fext[3 * i + k];
+        b[MIG_HEAD + 4 + k] = dem->udrag[3 * i + k];
+        b[MIG_HEAD + 7 + k] = dem->jdrag[3 * i + k];
+      }
+    }
+    for (PetscInt a = 0; a < ns; a++) {
+      b[hw + 4 * a] = (double)s0[a].partner;
+      for (int k = 0; k < 3; k++) b[hw + 4 * a + 1 + k] = s0[a].xi[k];
+    }
+    pos[dir[i]] += hw + 4 * ns;
+  }
+  ex->migrated = dem->n - nkeep;
+  dem->n       = nkeep;
+  PetscCall(DemParticlesPermute(dem, keep));
+  PetscCall(PetscFree2(dir, keep));
+  PetscCall(DemExchangeVariable(dem, soff, roff));
+  /* unpack: particles appended, springs appended */
+  for (size_t o = 0; o < roff[27];) {
+    const double *b = ex->rbuf + o;
+    DemParticle   p;
+    const PetscInt ns = (PetscInt)b[21], i = dem->n;
+    p.id    = (PetscInt)b[0];
+    p.shape = (PetscInt)b[1];
+    for (int k = 0; k < 3; k++) {
+      p.x[k] = b[2 + k];
+      p.v[k] = b[5 + k];
+      p.w[k] = b[8 + k];
+    }
+    for (int k = 0; k < 4; k++) p.q[k] = b[11 + k];
+    PetscCall(DemAddParticle(dem, &p));
+    for (int k = 0; k < 3; k++) {
+      dem->f[3 * i + k]  = b[15 + k];
+      dem->tq[3 * i + k] = b[18 + k];
+    }
+    if (dem->external) {
+      dem->kdrag[i] = b[MIG_HEAD + 3];
+      for (int k = 0; k < 3; k++) {
+        dem->fext[3 * i + k]  = b[MIG_HEAD + k];
+        dem->udrag[3 * i + k] = b[MIG_HEAD + 4 + k];
+        dem->jdrag[3 * i + k] = b[MIG_HEAD + 7 + k];
+      }
+    }
+    if (*nrec + ns > *caprec) {
+      *caprec = 2 * (*nrec + ns) + 64;
+      PetscCall(PetscRealloc(sizeof(DemSpring) * (size_t)*caprec, recs));
+    }
+    for (PetscInt a = 0; a < ns; a++) {
+      DemSpring *r = *recs + (*nrec)++;
+      r->owner     = p.id;
+      r->partner   = (PetscInt)b[hw + 4 * a];
+      for (int k = 0; k < 3; k++) r->xi[k] = b[hw + 4 * a + 1 + k];
+    }
+    o += hw + 4 * (size_t)ns;
+  }
+  PetscCall(DemSpringsSort(*recs, *nrec));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Ghost copies of the halo particles of every neighbour, appended after the locals. */
+PetscErrorCode DemGhostsCreate(Dem dem)
+{
+  DemExchange  *ex = &dem->ex;
+  const Domain *dom = dem->dom;
+  const double  h = dem->reach;
+  size_t        soff[28], roff[28];
+
+  PetscFunctionBeginUser;
+  dem->ng = 0;
+  if (!ex->active) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int d = 0; d < 27; d++) ex->nsend[d] = 0;
+  for (PetscInt i = 0; i < dem->n; i++) {
+    const double *x = dem->x + 3 * i;
+    int           lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+      lo[k] = x[k] < dom->sublo[k] + h;
+      hi[k] = x[k] >= dom->subhi[k] - h;
+    }
+    if (!(lo[0] | hi[0] | lo[1] | hi[1] | lo[2] | hi[2])) continue;
+    for (int d = 0; d < 27; d++) { /* the 1, 3 or 7 directions whose halo holds x */
+      int o[3], in = 1;
+      dem_dir_offsets(d, o);
+      for (int k = 0; k < 3; k++) in &= o[k] == 0 || (o[k] < 0 ? lo[k] : hi[k]);
+      if (!in || d == 13 || ex->rank[d] < 0) continue;
+      if (ex->nsend[d] == ex->capsend[d]) {
+        ex->capsend[d] = 2 * ex->capsend[d] + 64;
+        PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)ex->capsend[d], &ex->send[d]));
+      }
+      ex->send[d][ex->nsend[d]++] = i;
+    }
+  }
+  soff[0] = 0;
+  for (int d = 0; d < 27; d++) soff[d + 1] = soff[d] + GHOST_WIDTH * (size_t)ex->nsend[d];
+  PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, soff[27] + 1));
+  for (int d = 0; d < 27; d++)
+    for (PetscInt a = 0; a < ex->nsend[d]; a++) {
+      const PetscInt i = ex->send[d][a];
+      double        *b = ex->sbuf + soff[d] + GHOST_WIDTH * a;
+      b[0]             = (double)dem->id[i];
+      b[1]             = (double)dem->shape[i];
+      for (int k = 0; k < 3; k++) {
+        b[2 + k] = dem->x[3 * i + k] + ex->shift[d][k];
+        b[5 + k] = dem->v[3 * i + k];
+        b[8 + k] = dem->w[3 * i + k];
+      }
+      for (int k = 0; k < 4; k++) b[11 + k] = dem->q[4 * i + k];
+    }
+  PetscCall(DemExchangeVariable(dem, soff, roff));
+  PetscCall(DemParticlesReserve(dem, dem->n + (PetscInt)(roff[27] / GHOST_WIDTH)));
+  for (int d = 0; d < 27; d++) {
+    ex->recvstart[d] = dem->n + dem->ng;
+    ex->nrecv[d]     = (PetscInt)((roff[d + 1] - roff[d]) / GHOST_WIDTH);
+    for (PetscInt a = 0; a < ex->nrecv[d]; a++) {
+      const double  *b = ex->rbuf + roff[d] + GHOST_WIDTH * a;
+      const PetscInt g = dem->n + dem->ng++;
+      dem->id[g]       = (PetscInt)b[0];
+      dem->shape[g]    = (PetscInt)b[1];
+      for (int k = 0; k < 3; k++) {
+        dem->x[3 * g + k] = b[2 + k];
+        dem->v[3 * g + k] = b[5 + k];
+        dem->w[3 * g + k] = b[8 + k];
+      }
+      for (int k = 0; k < 4; k++) dem->q[4 * g + k] = b[11 + k];
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Forward communication: ghosts take their owners' current kinematics. */
+PetscErrorCode DemGhostsUpdate(Dem dem)
+{
+  DemExchange *ex = &dem->ex;
+  const int    W  = 13; /* x, v, w, q */
+  MPI_Request  req[54];
+  int          nr = 0;
+  size_t       so = 0, ro = 0, soff[27], roff[27];
+
+  PetscFunctionBeginUser;
+  if (!ex->active) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
+  for (int d = 0; d < 27; d++) {
+    soff[d] = so;
+    roff[d] = ro;
+    so += W * (size_t)ex->nsend[d];
+    ro += W * (size_t)ex->nrecv[d];
+  }
+  PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, so + 1));
+  PetscCall(DemBufReserve(&ex->rbuf, &ex->caprbuf, ro + 1));
+  for (int d = 0; d < 27; d++)
+    if (ex->rank[d] >= 0 && ex->nrecv[d]) PetscCallMPI(MPI_Irecv(ex->rbuf + roff[d], W * (PetscMPIInt)ex->nrecv[d], MPI_DOUBLE, ex->rank[d], 26 - d, dem->comm, &req[nr++]));
+  for (int d = 0; d < 27; d++) {
+    if (ex->rank[d] < 0 || !ex->nsend[d]) continue;
+    for (PetscInt a = 0; a < ex->nsend[d]; a++) {
+      const PetscInt i = ex->send[d][a];
+      double        *b = ex->sbuf + soff[d] + W * a;
+      for (int k = 0; k < 3; k++) {
+        b[k]     = dem->x[3 * i + k] + ex->shift[d][k];
+        b[3 + k] = dem->v[3 * i + k];
+        b[6 + k] = dem->w[3 * i + k];
+      }
+      for (int k = 0; k < 4; k++) b[9 + k] = dem->q[4 * i + k];
+    }
+    PetscCallMPI(MPI_Isend(ex->sbuf + soff[d], W * (PetscMPIInt)ex->nsend[d], MPI_DOUBLE, ex->rank[d], d, dem->comm, &req[nr++]));
+  }
+  PetscCallMPI(MPI_Waitall(nr, req, MPI_STATUSES_IGNORE));
+  for (int d = 0; d < 27; d++)
+    for (PetscInt a = 0; a < ex->nrecv[d]; a++) {
+      const PetscInt g = ex->recvstart[d] + a;
+      const double  *b = ex->rbuf + roff[d] + W * a;
+      for (int k = 0; k < 3; k++) {
+        dem->x[3 * g + k] = b[k];
+        dem->v[3 * g + k] = b[3 + k];
+        dem->w[3 * g + k] = b[6 + k];
+      }
+      for (int k = 0; k < 4; k++) dem->q[4 * g + k] = b[9 + k];
+    }
+  PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

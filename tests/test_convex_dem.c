@@ -1,0 +1,277 @@
+/* Convex particles in the DEM (issue 6): rest, conservation, rotation.
+ * 1. A cube (a = 1 cm) dropped flat, on an edge and on a corner onto a plane, with friction and
+ *    damping, comes to rest on a face: its centre at a/2 above the plane within twice the static
+ *    overlap m g / kn (plus 1e-6 a), and one body axis vertical to 1e-3 rad.
+ * 2. Free flight of an asymmetric rigid body (box 1 x 0.6 x 0.3 cm read from a vertex file),
+ *    spun close to its intermediate axis so it tumbles (Dzhanibekov flips): over 1e5 steps the
+ *    world angular momentum J W stays constant to 1e-10 relative (the splitting in rotation.c
+ *    rotates q and L by the same orthogonal maps), and the energy to 1e-4.
+ * 3. Tumbling bodies colliding with each other in free space (boxes and icosahedra, e = 1, no
+ *    friction, linear law, dt = Tc/100): total linear and angular momentum (orbital + spin)
+ *    conserved to 1e-10 (forces and torques are equal and opposite about the common contact
+ *    point), energy drift (mean of the last tenth against the first) below 1e-4 over 1e5 steps.
+ * 4. A finite rectangle wall (-dem_rect_0, 3a x 3a): a cube (and a sphere) dropped on it rests
+ *    at a/2 (r) above it; one dropped beside it falls past it. */
+#include "check.h"
+#include "dem/convex_quat.h"
+
+static const double A = 0.01, RHO = 2500;
+
+static PetscErrorCode DropCube(const char *label, const double q[4], double *zerr, double *tilt, double *bound)
+{
+  char   opts[1024];
+  Domain dom;
+  Dem    dem;
+  const double kn = 2e4, m = RHO * A * A * A;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,0 -domain_hi 0.05,0.05,0.05 -dem_shape cube -dem_shape_size %g -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 0.3 -dem_friction 0.5 -dem_dt 1e-5 -dem_plane_0 0,0,0,0,0,1", A, RHO, kn));
+  PetscCall(TestDemCreate(opts, &dom, &dem));
+  DemParticle p = {.id = 0, .shape = 0, .x = {0, 0, 1.5 * A}, .v = {0.02, 0, 0}, .w = {0, 0, 0}};
+  for (int k = 0; k < 4; k++) p.q[k] = q[k];
+  PetscCall(DemAddParticle(dem, &p));
+  PetscCall(DemSetUp(dem));
+  for (int s = 0; s < 150000; s++) PetscCall(DemStep(dem));
+  p = TestGet(dem, 0);
+  double R[9], best = 0;
+  convex_quat_to_matrix(p.q, R);
+  for (int k = 0; k < 3; k++) best = PetscMax(best, PetscAbsReal(R[6 + k])); /* z component of body axis k */
+  *zerr  = PetscAbsReal(p.x[2] - 0.5 * A);
+  *tilt  = PetscAcosReal(PetscMin(1.0, best));
+  *bound = 2 * m * 9.81 / kn + 1e-6 * A;
+  PetscCall(PetscInfo(NULL, "%s: z %g v %g\n", label, p.x[2], p.v[2]));
+  PetscCall(TestDemDestroy(&dom, &dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* world angular momentum of one particle: R J R^T w, J principal (moments ascending) */
+static void SpinMomentum(const DemParticle *p, const double J[3], double L[3])
+{
+  double R[9], wb[3];
+  convex_quat_to_matrix(p->q, R);
+  convex_mat_tvec(R, p->w, wb);
+  for (int k = 0; k < 3; k++) wb[k] *= J[k];
+  convex_mat_vec(R, wb, L);
+}
+
+static PetscErrorCode WriteBoxFile(const char *path, double lx, double ly, double lz)
+{
+  FILE *fp = fopen(path, "w");
+
+  PetscFunctionBeginUser;
+  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path);
+  for (int c = 0; c < 8; c++) fprintf(fp, "%.17g %.17g %.17g\n", (c & 1 ? 0.5 : -0.5) * lx, (c & 2 ? 0.5 : -0.5) * ly, (c & 4 ? 0.5 : -0.5) * lz);
+  fclose(fp);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* principal moments (ascending) of the 1 x 0.6 x 0.3 A box and of the icosahedron of edge A/2 */
+static void Moments(PetscInt shape, double J[3], double *m)
+{
+  if (shape == 0) {
+    const double lx = A, ly = 0.6 * A, lz = 0.3 * A;
+    *m   = RHO * lx * ly * lz;
+    J[0] = *m * (ly * ly + lz * lz) / 12;
+    J[1] = *m * (lx * lx + lz * lz) / 12;
+    J[2] = *m * (lx * lx + ly * ly) / 12;
+  } else {
+    const double a = 0.5 * A, phi = 0.5 * (1 + sqrt(5.0));
+    *m   = RHO * 5.0 / 12.0 * (3 + sqrt(5.0)) * a * a * a;
+    J[0] = J[1] = J[2] = *m * phi * phi * a * a / 10;
+  }
+}
+
+/* total linear momentum P and angular momentum about the origin L */
+static void Momenta(Dem dem, double P[3], double L[3])
+{
+  PetscInt n;
+  DemGetLocalCount(dem, &n);
+  for (int k = 0; k < 3; k++) P[k] = L[k] = 0;
+  for (PetscInt i = 0; i < n; i++) {
+    DemParticle p;
+    double      J[3], m, Ls[3], mv[3], o[3];
+    DemGetParticle(dem, i, &p);
+    Moments(p.shape, J, &m);
+    SpinMomentum(&p, J, Ls);
+    for (int k = 0; k < 3; k++) mv[k] = m * p.v[k];
+    convex_cross(p.x, mv, o);
+    for (int k = 0; k < 3; k++) {
+      P[k] += mv[k];
+      L[k] += Ls[k] + o[k];
+    }
+  }
+}
+
+static double Dist(const double a[3], const double b[3], double scale)
+{
+  double d[3];
+  convex_sub(a, b, d);
+  return convex_norm(d) / scale;
+}
+
+static PetscErrorCode FreeFlight(void)
+{
+  char     opts[1024];
+  Domain   dom;
+  Dem      dem;
+  DemStats st;
+  double   P0[3], L0[3], P[3], L[3], e0, emax = 0, lmax = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(WriteBoxFile("test_convex_box.txt", A, 0.6 * A, 0.3 * A));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.05 -domain_hi 0.05,0.05,0.05 -dem_shape polyhedron -dem_shape_file test_convex_box.txt -dem_density %g -dem_kn 1e4 -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt 1e-5", RHO));
+  PetscCall(TestDemCreate(opts, &dom, &dem));
+  DemParticle p = {.id = 0, .shape = 0, .x = {0, 0, 0}, .v = {0.01, 0, 0}, .w = {0.3, 20, 0.2}, .q = {0.9, 0.1, 0.3, -0.2}};
+  const double qn = sqrt(0.81 + 0.01 + 0.09 + 0.04);
+  for (int k = 0; k < 4; k++) p.q[k] /= qn;
+  PetscCall(DemAddParticle(dem, &p));
+  PetscCall(DemSetUp(dem));
+  PetscCall(DemGetStats(dem, &st));
+  e0 = st.ke + st.ke_rot;
+  Momenta(dem, P0, L0);
+  for (int s = 1; s <= 100000; s++) {
+    PetscCall(DemStep(dem));
+    if (s % 100) continue;
+    PetscCall(DemGetStats(dem, &st));
+    Momenta(dem, P, L);
+    emax = PetscMax(emax, PetscAbsReal(st.ke + st.ke_rot - e0) / e0);
+    lmax = PetscMax(lmax, Dist(L, L0, convex_norm(L0)));
+  }
+  DemParticle pe = TestGet(dem, 0);
+  double      R[9];
+  convex_quat_to_matrix(pe.q, R);
+  check((PetscBool)(lmax < 1e-10), "free flight of a tumbling box, 1e5 steps: angular momentum error %.2e relative (bound 1e-10)", lmax);
+  check((PetscBool)(emax < 1e-4), "free flight of a tumbling box, 1e5 steps: energy error %.2e relative (bound 1e-4)", emax);
+  PetscCall(TestDemDestroy(&dom, &dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Collisions(double vs, double ws, double ebound)
+{
+  char         opts[1024];
+  Domain       dom;
+  Dem          dem;
+  DemStats     st;
+  const int    N = 100000;
+  const double kn = 1e4;
+  double       P0[3], L0[3], P[3], L[3], e0 = 0, first = 0, last = 0, pmax = 0, lmax = 0, m, J[3], omax = 0;
+  int          nf = 0, nl = 0;
+  PetscInt     contacts = 0;
+
+  PetscFunctionBeginUser;
+  Moments(1, J, &m);
+  const double tc = PETSC_PI * sqrt(0.5 * m / kn);
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.05 -domain_hi 0.05,0.05,0.05 -dem_shape polyhedron,icosahedron -dem_shape_file test_convex_box.txt -dem_shape_size 1,%g -dem_radius_fraction 1,1 -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt %g -dem_lattice 3,3,3 -dem_lattice_spacing %g -dem_lattice_origin %g,%g,%g -dem_lattice_random_orientation -dem_lattice_speed 0.05", 0.5 * A, RHO, kn, tc / 100, 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A));
+  PetscCall(TestDemCreate(opts, &dom, &dem));
+  PetscCall(DemSetUp(dem));
+  { /* give every body a spin, and aim them at the centre */
+    PetscInt n;
+    PetscCall(DemGetLocalCount(dem, &n));
+    for (PetscInt i = 0; i < n; i++) {
+      DemParticle p;
+      PetscCall(DemGetParticle(dem, i, &p));
+      for (int k = 0; k < 3; k++) {
+        p.w[k] = ws * sin(1.7 * p.id + 2.1 * k);
+        p.v[k] += -vs * p.x[k] / A;
+      }
+      PetscCall(DemSetParticle(dem, i, &p));
+    }
+  }
+  for (int s = 0; s <= N; s++) {
+    if (s % 10 == 0) {
+      PetscCall(DemGetStats(dem, &st));
+      const double e = st.ke + st.ke_rot + st.pe_spring;
+      contacts += st.contacts;
+      Momenta(dem, P, L);
+      if (s == 0) {
+        e0 = e;
+        for (int k = 0; k < 3; k++) P0[k] = P[k], L0[k] = L[k];
+      }
+      pmax = PetscMax(pmax, Dist(P, P0, m * 0.4));
+      lmax = PetscMax(lmax, Dist(L, L0, convex_norm(L0)));
+      omax = PetscMax(omax, st.max_overlap);
+      if (s < N / 10) first += e, nf++;
+      if (s > N - N / 10) last += e, nl++;
+    }
+    if (s < N) PetscCall(DemStep(dem));
+  }
+  const double drift = PetscAbsReal(last / nl - first / nf) / e0;
+  check((PetscBool)(contacts > 100), "colliding tumbling bodies (approach %g m/s, spin %g rad/s): %" PetscInt_FMT " contact samples (bound > 100), largest overlap %.3f d_eq/2", 0.4 * vs * 3, ws, contacts, omax);
+  check((PetscBool)(pmax < 1e-10), "colliding tumbling bodies, 1e5 steps: linear momentum error %.2e (bound 1e-10, of m v)", pmax);
+  check((PetscBool)(lmax < 1e-10), "colliding tumbling bodies, 1e5 steps: angular momentum about the origin (orbital + spin) error %.2e relative (bound 1e-10)", lmax);
+  check((PetscBool)(drift < ebound), "colliding tumbling bodies, e=1, no friction, dt = Tc/100, 1e5 steps: energy drift %.2e relative (bound %g)", drift, ebound);
+  PetscCall(TestDemDestroy(&dom, &dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode RectDrop(const char *shape, double rest)
+{
+  char   opts[1024];
+  Domain dom;
+  Dem    dem;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.5 -domain_hi 0.05,0.05,0.05 %s -dem_density %g -dem_contact_law linear -dem_kn 2e4 -dem_restitution 0.3 -dem_friction 0.5 -dem_dt 1e-5 -dem_rect_0 %g,%g,0,%g,%g,0,%g,%g,0", shape, RHO, -1.5 * A, -1.5 * A, 1.5 * A, -1.5 * A, -1.5 * A, 1.5 * A));
+  PetscCall(TestDemCreate(opts, &dom, &dem));
+  DemParticle on = {.id = 0, .shape = 0, .x = {0, 0, 1.5 * A}, .q = {1, 0, 0, 0}}, off = {.id = 1, .shape = 0, .x = {4 * A, 0, 1.5 * A}, .q = {1, 0, 0, 0}};
+  PetscCall(DemAddParticle(dem, &on));
+  PetscCall(DemAddParticle(dem, &off));
+  PetscCall(DemSetUp(dem));
+  for (int s = 0; s < 30000; s++) PetscCall(DemStep(dem));
+  on  = TestGet(dem, 0);
+  off = TestGet(dem, 1);
+  const double err = PetscAbsReal(on.x[2] - rest), bound = 2 * RHO * A * A * A * 9.81 / 2e4;
+  check((PetscBool)(err < bound), "%s on a finite rectangle rests at %g m: error %.2e m (bound %.2e m)", shape, rest, err, bound);
+  check((PetscBool)(off.x[2] < -0.3), "%s beside a finite rectangle falls past it: z = %.3f m after 0.3 s (bound < -0.3 m)", shape, off.x[2]);
+  PetscCall(TestDemDestroy(&dom, &dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  const double c = cos(PETSC_PI / 8), s = sin(PETSC_PI / 8);
+  /* flat (slightly tilted), on an edge (45 deg about x), on a corner (body diagonal vertical) */
+  const double th = 0.5 * acos(1 / sqrt(3.0)), ax[3] = {1 / sqrt(2.0), -1 / sqrt(2.0), 0};
+  const double qs[3][4] = {{cos(0.01), sin(0.01), 0, 0}, {c, s, 0.01, 0}, {cos(th), sin(th) * ax[0], sin(th) * ax[1], 0}};
+  const char  *names[3] = {"flat", "edge", "corner"};
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  { /* shape table: -dem_shape_deq scales each shape to the volume of the sphere of diameter d */
+    Domain       dom;
+    Dem          dem;
+    const double d = 0.007, vref = PETSC_PI * d * d * d / 6;
+    double       err = 0;
+    PetscCall(TestDemCreate("-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_shape cube,tetrahedron,octahedron,icosahedron,cylinder -dem_shape_deq 0.007,0.007,0.007,0.007,0.007 -dem_kn 1e4", &dom, &dem));
+    PetscCall(DemSetUp(dem));
+    for (PetscInt k = 0; k < 5; k++) {
+      PetscReal v, de;
+      PetscCall(DemGetShapeGeometry(dem, k, &v, &de));
+      err = PetscMax(err, PetscMax(PetscAbsReal(v - vref) / vref, PetscAbsReal(de - d) / d));
+    }
+    check((PetscBool)(err < 1e-12), "-dem_shape_deq: volume and d_eq of 5 built-ins scaled to d = 7 mm, largest error %.1e relative (bound 1e-12)", err);
+    PetscCall(TestDemDestroy(&dom, &dem));
+  }
+  for (int k = 0; k < 3; k++) {
+    double zerr = 0, tilt = 0, bound = 0, q[4], n = 0;
+    for (int j = 0; j < 4; j++) n += qs[k][j] * qs[k][j];
+    for (int j = 0; j < 4; j++) q[j] = qs[k][j] / sqrt(n);
+    PetscCall(DropCube(names[k], q, &zerr, &tilt, &bound));
+    check((PetscBool)(zerr < bound), "cube dropped on its %s rests at z = a/2: error %.2e m (bound 2 m g/kn = %.2e m)", names[k], zerr, bound);
+    check((PetscBool)(tilt < 1e-3), "cube dropped on its %s rests on a face: tilt %.2e rad (bound 1e-3)", names[k], tilt);
+  }
+  {
+    char cube[128], sphere[128];
+    PetscCall(PetscSNPrintf(cube, sizeof cube, "-dem_shape cube -dem_shape_size %g", A));
+    PetscCall(PetscSNPrintf(sphere, sizeof sphere, "-dem_radius %g", 0.5 * A));
+    PetscCall(RectDrop(cube, 0.5 * A));
+    PetscCall(RectDrop(sphere, 0.5 * A));
+  }
+  PetscCall(FreeFlight());
+  PetscCall(Collisions(0.03, 3, 1e-4));
+  /* faster impacts (overlaps ~ 5% of d_eq/2, many simultaneous contacts): MPR's depth and normal
+     (not the minimum penetration, CONVEX.md) make the force field non-conservative; the drift
+     is measured and bounded loosely as a known limitation */
+  PetscCall(Collisions(0.1, 10, 1e-2));
+  PetscCall(PetscFinalize());
+  return check_failures ? 1 : 0;
+}

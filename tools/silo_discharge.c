@@ -1,0 +1,47 @@
+/* Discharge of a silo (cases/silo_cubes): reads the frames <dir>/<prefix>_NNNNNN.h5 written every
+ * -silo_interval seconds, counts in each the particles whose centre is above the orifice plane
+ * z = -silo_z0, and prints the count against time and the mean discharge rate (particles per
+ * second and kg/s with -silo_mass) between 20% and 80% of the particles discharged (a linear
+ * regime for a silo: Beverloo's law). Options: -silo_dir, -silo_prefix, -silo_interval (s),
+ * -silo_z0 (m), -silo_mass (kg per particle). */
+#include "io/io.h"
+#include <unistd.h>
+
+int main(int argc, char **argv)
+{
+  char      dir[PETSC_MAX_PATH_LEN] = "out/silo_cubes", prefix[64] = "discharge", path[PETSC_MAX_PATH_LEN + 80];
+  PetscReal dt = 0.05, z0 = 0, mass = 0, t20 = -1, t80 = -1;
+  PetscInt  n0 = -1, n20 = 0, n80 = 0;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, "silo_discharge: particles above the orifice against time\n"));
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "silo discharge", NULL);
+  PetscCall(PetscOptionsString("-silo_dir", "Output directory", NULL, dir, dir, sizeof dir, NULL));
+  PetscCall(PetscOptionsString("-silo_prefix", "Frame file prefix", NULL, prefix, prefix, sizeof prefix, NULL));
+  PetscCall(PetscOptionsReal("-silo_interval", "Time between frames (s)", NULL, dt, &dt, NULL));
+  PetscCall(PetscOptionsReal("-silo_z0", "Height of the orifice (m)", NULL, z0, &z0, NULL));
+  PetscCall(PetscOptionsReal("-silo_mass", "Mass of one particle (kg), for kg/s", NULL, mass, &mass, NULL));
+  PetscOptionsEnd();
+  PetscCheck(dt > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-silo_interval %g must be > 0 (s)", (double)dt);
+  for (PetscInt f = 0;; f++) {
+    PetscReal *x;
+    PetscInt   n, nc, above = 0;
+    PetscCall(PetscSNPrintf(path, sizeof path, "%s/%s_%06" PetscInt_FMT ".h5", dir, prefix, f));
+    if (access(path, R_OK)) {
+      PetscCheck(f > 0, PETSC_COMM_WORLD, PETSC_ERR_FILE_OPEN, "no frame %s", path);
+      break;
+    }
+    PetscCall(IoReadDataset(path, "/particles/position", &n, &nc, &x));
+    for (PetscInt i = 0; i < n; i++) above += x[3 * i + 2] > z0;
+    PetscCall(PetscFree(x));
+    if (n0 < 0) n0 = above;
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "t %.3f s  above the orifice %" PetscInt_FMT "\n", (double)(f * dt), above));
+    if (t20 < 0 && n0 - above >= 0.2 * n0) t20 = f * dt, n20 = above;
+    if (t80 < 0 && n0 - above >= 0.8 * n0) t80 = f * dt, n80 = above;
+  }
+  if (t80 > t20 && t20 >= 0) {
+    const PetscReal rate = (n20 - n80) / (t80 - t20);
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge rate (20%% -> 80%%): %.1f particles/s, %.4f kg/s\n", (double)rate, (double)(rate * mass)));
+  } else PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge rate: fewer than 80%% discharged in the frames read\n"));
+  PetscCall(PetscFinalize());
+  return 0;
+}
