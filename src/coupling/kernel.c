@@ -1,6 +1,6 @@
 /* Cube projection kernel (Bernard et al., as used in Grains3D Part II §4.3). A particle of
- * volume V is a cube of side a = kscale (pi/6)^(1/3) d (kscale = 1: the cube has the sphere's
- * volume) centred on it, of uniform solid density V / a^3. Its exact overlap with a box is a
+ * volume V is a cube of side a = kscale V^(1/3) (kscale = 1: the cube has the particle's volume;
+ * a sphere: (pi/6)^(1/3) d) centred on it, of uniform solid density V / a^3. Its exact overlap with a box is a
  * product of 1-D overlaps, so the weights are separable: W(cell) = w0(i) w1(j) w2(k), each 1-D set
  * summing to one (the last weight is one minus the others, so the sum is one to a rounding).
  *   solid fraction of a cell:  sum_p V_p W_pc / V_cell           (porosity = 1 - that)
@@ -36,15 +36,17 @@ static PetscErrorCode cpl_weights_1d(double a, double L, double o, double h, Pet
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Kernel side, volume and drag diameter of a shape: the shape's true volume V and its
+ * volume-equivalent diameter (a sphere: 4/3 pi r^3 and 2 r), side kscale V^(1/3). */
 PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal *vol, PetscReal *diam)
 {
-  PetscReal r;
+  PetscReal v, deq;
 
   PetscFunctionBeginUser;
-  PetscCall(DemGetShape(cpl->dem, shape, &r, NULL));
-  if (diam) *diam = 2 * r;
-  if (vol) *vol = 4.0 / 3.0 * PETSC_PI * r * r * r;
-  if (side) *side = cpl->kscale * PetscCbrtReal(PETSC_PI / 6.0) * 2 * r;
+  PetscCall(DemGetShapeGeometry(cpl->dem, shape, &v, &deq));
+  if (diam) *diam = deq;
+  if (vol) *vol = v;
+  if (side) *side = cpl->kscale * PetscCbrtReal(v);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -69,7 +69,7 @@ PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v
 PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]);
 
 /* Coupling hooks (external.c). DemGetArrays: read-only views of the particle arrays, local
- * particles first, then ghosts (nghost = 0 until ghost particles exist); valid until the next
+ * particles first, then ghosts (copies of other ranks' particles and periodic images); valid until the next
  * DemStep or DemAddParticle (a list rebuild may re-sort, a growth may move them). */
 typedef struct {
   PetscInt         nlocal, nghost;

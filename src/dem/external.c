@@ -56,7 +56,7 @@ PetscErrorCode DemGetArrays(Dem dem, DemArrays *a)
 {
   PetscFunctionBeginUser;
   a->nlocal = dem->n;
-  a->nghost = 0;
+  a->nghost = dem->ng;
   a->x      = dem->x;
   a->v      = dem->v;
   a->id     = dem->id;
