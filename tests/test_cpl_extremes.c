@@ -6,11 +6,12 @@
  *   Re_p 0.01 and 1000: the frozen lattice bed of test_cpl_packed with mu = 100 and 0.001. */
 #include "cpl_common.h"
 
-static const char *Bed = "-domain_lo 0,0,0 -domain_hi 8,4,48 -da_grid_x 4 -da_grid_y 2 -da_grid_z 24 -dem_box 0,0,2,8,4,48 "
+static const char *Bed = "-domain_lo 0,0,0 -domain_hi 8,4,48 -domain_periodic_x -domain_periodic_y -da_grid_x 4 -da_grid_y 2 -da_grid_z 24 "
+                          "-dem_plane_0 0,0,2,0,0,1 -dem_plane_1 0,0,48,0,0,-1 "
                          "-dem_radius 0.5 -dem_gravity 0,0,-1 -dem_contact_law linear -dem_kn 1000 -dem_restitution 0.9 "
-                         "-dem_friction 0.1 -dem_wall_friction 0 -dem_dt 0.005 -dem_lattice 8,4,12 -dem_lattice_spacing 1 "
+                         "-dem_friction 0.1 -dem_dt 0.005 -dem_lattice 8,4,12 -dem_lattice_spacing 1 "
                          "-dem_lattice_speed 0.01 -dem_lattice_origin 0,0,2 -fluid_density 1 -fluid_viscosity 0.01 -fluid_advection tvd "
-                         "-fluid_bc_xlo slip -fluid_bc_xhi slip -fluid_bc_ylo slip -fluid_bc_yhi slip -fluid_bc_zlo inlet -fluid_bc_zhi outlet "
+                         "-fluid_bc_zlo inlet -fluid_bc_zhi outlet "
                          "-fluid_bc_zlo_velocity 0,0,0.2 -cpl_substeps 5";
 static const char *Packed = "-domain_lo 0,0,0 -domain_hi 4,4,24 -domain_periodic_x -domain_periodic_y -da_grid_x 4 -da_grid_y 4 -da_grid_z 24 "
                             "-dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 1e-3 -dem_frozen -dem_gravity 0,0,-1 "

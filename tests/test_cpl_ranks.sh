@@ -4,11 +4,11 @@
 # 2 and 4 ranks, so spheres near a rank boundary spread into the neighbour's cells) must give
 # the same pressure gradient and mean porosity to 1e-9 relative (the Poisson tolerance is 1e-8
 # relative to the residual; the steady state is reached in a few steps).
-# Then a short fluidized bed (the small bed on a lattice of spacing 1.1 d, 40 fluid steps at
-# 3 U_mf, process grids 1x1x1, 2x1x1, 2x1x2: spheres near x = 4 spread into the other rank's
-# cells while they move) must give the same mean pressure drop and particle drag to 1e-8.
-# Longer fluidized runs on several ranks need the parallel DEM (migration and ghost particles
-# for contacts across rank boundaries; issue 3): here no contact crosses a rank boundary.
+# Then a short fluidized bed (the make-run case: bi-periodic sides, 80 fluid steps at 3 U_mf
+# from a touching lattice) on process grids 1x1x1, 2x1x1 and 1x1x4 (rank boundaries at x = 4 and
+# at z = 12, inside the bed: particles migrate, contacts cross through ghost particles, kernels
+# spread into the neighbour's cells) must give the same mean pressure drop and particle drag to
+# 1e-7 relative (the Poisson tolerance is 1e-8; longer runs drift apart as any chaotic flow).
 cd "$(dirname "$0")/.."
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
@@ -27,9 +27,9 @@ for n in 1 2 4; do
     ok = (e1 < 1e-9 && e2 < 1e-12); printf "%s cpl_ranks_np%d: dp/L rel. diff %.2e (< 1e-9), porosity rel. diff %.2e (< 1e-12) vs 1 rank\n", ok ? "PASS" : "FAIL", n, e1, e2 }'
 done
 
-opts="-options_file cases/fluidized_bed/small.opts -io_dir $out.d -dem_lattice 7,3,10 -dem_lattice_spacing 1.1 -dem_lattice_speed 0 -cpl_t_end 1 -cpl_progress_interval 0 -da_processors_y 1"
+opts="-options_file cases/fluidized_bed/small.opts -io_dir $out.d -cpl_t_end 2 -cpl_progress_interval 0 -io_interval 0 -da_processors_y 1"
 ref=""
-for grid in 1,1,1 2,1,1 2,1,2; do
+for grid in 1,1,1 2,1,1 1,1,4; do
   px=${grid%%,*}; pz=${grid##*,}; n=$((px * pz)); label=$(echo "$grid" | tr , x)
   if [ "$n" -eq 1 ]; then bin/sable $opts >"$out" 2>&1; else mpiexec -n $n bin/sable $opts -da_processors_x $px -da_processors_z $pz >"$out" 2>&1; fi
   rc=$?
@@ -37,5 +37,5 @@ for grid in 1,1,1 2,1,1 2,1,2; do
   if [ "$rc" -ne 0 ] || [ -z "$v" ]; then echo "FAIL cpl_ranks_fluidized_$label: exit $rc"; tail -n 3 "$out" | sed 's/^/    /'; continue; fi
   if [ -z "$ref" ]; then ref=$v; echo "PASS cpl_ranks_fluidized_1x1x1: dp/W and drag/W $v (reference)"; continue; fi
   echo "$ref $v" | awk -v g=$label '{ e1 = ($1 - $3) / $1; if (e1 < 0) e1 = -e1; e2 = ($2 - $4) / $2; if (e2 < 0) e2 = -e2;
-    ok = (e1 < 1e-8 && e2 < 1e-8); printf "%s cpl_ranks_fluidized_%s: dp/W rel. diff %.2e, drag/W rel. diff %.2e (< 1e-8) vs 1 rank\n", ok ? "PASS" : "FAIL", g, e1, e2 }'
+    ok = (e1 < 1e-7 && e2 < 1e-7); printf "%s cpl_ranks_fluidized_%s: dp/W rel. diff %.2e, drag/W rel. diff %.2e (< 1e-7) vs 1 rank\n", ok ? "PASS" : "FAIL", g, e1, e2 }'
 done
