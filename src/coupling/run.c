@@ -109,7 +109,7 @@ PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
 {
   Fluid          fl;
   Cpl            cpl;
-  PetscBool      frozen;
+  PetscBool      frozen, convex;
   PetscLogDouble t0, t1;
   const char    *index;
 
@@ -121,7 +121,8 @@ PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
   if (!help) {
     PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
     PetscCall(DemGetFrozen(dem, &frozen));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on%s; fluid on; coupling on; convex shapes off; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", fluid grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", frozen ? " (frozen: no particle integration)" : "", dom->nranks[0], dom->nranks[1], dom->nranks[2], dom->cells[0], dom->cells[1], dom->cells[2]));
+    PetscCall(DemHasConvexShapes(dem, &convex));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on%s; fluid on; coupling on; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", fluid grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", frozen ? " (frozen: no particle integration)" : "", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2], dom->cells[0], dom->cells[1], dom->cells[2]));
     PetscCall(DemSetUp(dem));
     PetscCall(FluidSetUp(fl));
     PetscCall(CplSetUp(cpl));
