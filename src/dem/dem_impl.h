@@ -79,6 +79,7 @@ typedef struct {
   PetscInt   nc[3], ncell;
   double     lo[3], inv[3];
   PetscInt  *cstart, *cof, *order;
+  PetscInt  *zrank;  /* rank of each cell along a Morton (Z-order) curve: the re-sort order */
   /* half Verlet list */
   PetscInt  *start, *nbr, cap;
   double    *hist;   /* 3 per entry, NULL without history */

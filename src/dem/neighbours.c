@@ -41,6 +41,42 @@ const DemSpring *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, P
   return r + lo;
 }
 
+/* Morton key of a cell: the bits of cx, cy, cz interleaved. */
+static uint64_t dem_morton(PetscInt cx, PetscInt cy, PetscInt cz)
+{
+  uint64_t key = 0;
+  for (int b = 0; b < 21; b++)
+    key |= (((uint64_t)cx >> b) & 1) << (3 * b) | (((uint64_t)cy >> b) & 1) << (3 * b + 1) | (((uint64_t)cz >> b) & 1) << (3 * b + 2);
+  return key;
+}
+
+static int dem_u64pair_cmp(const void *a, const void *b)
+{
+  const uint64_t x = ((const uint64_t *)a)[0], y = ((const uint64_t *)b)[0];
+  return x < y ? -1 : (x > y);
+}
+
+/* zrank[c]: position of cell c along the Z-order curve. Particles re-sorted by it sit near their
+ * neighbours in memory along all three axes, not only along x (measured: fewer cache misses in
+ * the pair loop of a 10^5-particle bed than the plain cell order). */
+static PetscErrorCode DemCellsZOrder(DemNeigh *nl)
+{
+  uint64_t *kv;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(2 * (size_t)nl->ncell, &kv));
+  for (PetscInt c = 0; c < nl->ncell; c++) {
+    kv[2 * c]     = dem_morton(c % nl->nc[0], (c / nl->nc[0]) % nl->nc[1], c / (nl->nc[0] * nl->nc[1]));
+    kv[2 * c + 1] = (uint64_t)c;
+  }
+  qsort(kv, (size_t)nl->ncell, 2 * sizeof(uint64_t), dem_u64pair_cmp);
+  PetscCall(PetscFree(nl->zrank));
+  PetscCall(PetscMalloc1(nl->ncell, &nl->zrank));
+  for (PetscInt r = 0; r < nl->ncell; r++) nl->zrank[kv[2 * r + 1]] = r;
+  PetscCall(PetscFree(kv));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode DemCellsSetUp(Dem dem)
 {
   DemNeigh *nl = &dem->nl;
@@ -64,6 +100,7 @@ static PetscErrorCode DemCellsSetUp(Dem dem)
     nl->ncell *= nl->nc[k];
   }
   PetscCall(PetscMalloc1(nl->ncell + 1, &nl->cstart));
+  PetscCall(DemCellsZOrder(nl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -73,8 +110,9 @@ static inline PetscInt dem_cell_coord(const DemNeigh *nl, const double *x, int k
   return c < 0 ? 0 : (c >= nl->nc[k] ? nl->nc[k] - 1 : c);
 }
 
-/* Binning of particles 0..m-1: cstart[] and order[] (grouped by cell, ascending index). */
-static PetscErrorCode DemBin(Dem dem, PetscInt m)
+/* Binning of particles 0..m-1: cstart[] and order[] (grouped by cell, ascending index). With
+ * key, the buckets are key[cell] instead (the Z-order of the re-sort). */
+static PetscErrorCode DemBin(Dem dem, PetscInt m, const PetscInt *key)
 {
   DemNeigh *nl = &dem->nl;
 
@@ -87,6 +125,7 @@ static PetscErrorCode DemBin(Dem dem, PetscInt m)
   for (PetscInt i = 0; i < m; i++) {
     const double *xi = dem->x + 3 * i;
     nl->cof[i]       = dem_cell_coord(nl, xi, 0) + nl->nc[0] * (dem_cell_coord(nl, xi, 1) + nl->nc[1] * dem_cell_coord(nl, xi, 2));
+    if (key) nl->cof[i] = key[nl->cof[i]];
     nl->cstart[nl->cof[i] + 1]++;
   }
   for (PetscInt c = 0; c < nl->ncell; c++) nl->cstart[c + 1] += nl->cstart[c];
@@ -248,14 +287,14 @@ PetscErrorCode DemNeighBuild(Dem dem)
   PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
   if (!nl->cstart) PetscCall(DemCellsSetUp(dem));
   if (dem->sort_interval > 0 && nl->builds % dem->sort_interval == 0) {
-    PetscCall(DemBin(dem, dem->n));
+    PetscCall(DemBin(dem, dem->n, nl->zrank));
     PetscCall(DemParticlesPermute(dem, nl->order));
     nl->sorts++;
   }
   PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
   PetscCall(DemGhostsCreate(dem));
   PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
-  PetscCall(DemBin(dem, dem->n + dem->ng));
+  PetscCall(DemBin(dem, dem->n + dem->ng, NULL));
   PetscCall(DemPairList(dem));
   if (dem->law != DEM_LAW_LINEAR_NOHIST) PetscCall(DemSpringsRestore(dem, recs, nrec));
   PetscCall(DemWallsBuildLists(dem, recs, nrec));
@@ -274,6 +313,7 @@ PetscErrorCode DemNeighDestroy(Dem dem)
 
   PetscFunctionBeginUser;
   PetscCall(PetscFree(nl->cstart));
+  PetscCall(PetscFree(nl->zrank));
   PetscCall(PetscFree(nl->cof));
   PetscCall(PetscFree(nl->order));
   PetscCall(PetscFree(nl->start));

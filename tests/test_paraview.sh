@@ -1,0 +1,22 @@
+#!/bin/sh
+# A real client reads our output: ParaView's XDMF reader (pvpython, headless) opens the time
+# series of a short coupled run and finds every frame, every particle with its arrays, and the
+# fluid grid with eps, p and velocity on its cells.
+cd "$(dirname "$0")/.." || exit 1
+command -v pvpython >/dev/null || { echo "FAIL paraview: pvpython not found (tools/install-deps.sh installs paraview)"; exit 1; }
+D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
+bin/sable -options_file cases/fluidized_bed/small.opts -cpl_t_end 10 -io_interval 5 -io_dir "$D" > "$D/log" 2>&1 || { echo "FAIL paraview: the run failed: $(tail -3 "$D/log")"; exit 1; }
+cat > "$D/read.py" <<PY
+from paraview.simple import XDMFReader, servermanager
+r = XDMFReader(FileNames=["$D/sable.xmf"])
+r.UpdatePipelineInformation()
+t = list(r.TimestepValues)
+r.UpdatePipeline(t[-1])
+d = servermanager.Fetch(r)
+p, f = d.GetBlock(0), d.GetBlock(1)
+pa = sorted(p.GetPointData().GetArrayName(k) for k in range(p.GetPointData().GetNumberOfArrays()))
+fa = sorted(f.GetCellData().GetArrayName(k) for k in range(f.GetCellData().GetNumberOfArrays()))
+ok = len(t) == 3 and p.GetNumberOfPoints() == 384 and f.GetNumberOfCells() == 192 and {"velocity", "radius", "id", "quaternion"} <= set(pa) and {"eps", "p", "velocity"} <= set(fa)
+print(("PASS" if ok else "FAIL") + " paraview reads the series: %d frames (expected 3), %d particles (384) with %s, fluid %d cells (192) with %s" % (len(t), p.GetNumberOfPoints(), ",".join(pa), f.GetNumberOfCells(), ",".join(fa)))
+PY
+timeout 300 pvpython "$D/read.py" 2>&1 | grep -E '^(PASS|FAIL)' || echo "FAIL paraview: pvpython could not read the series"
