@@ -124,18 +124,26 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
 {
   const char *names[6] = {"/particles/position", "/particles/velocity", "/particles/angular_velocity", "/particles/quaternion", "/particles/id", "/particles/radius"};
   const int   width[6] = {3, 3, 3, 4, 1, 1};
-  PetscReal  *d[6];
-  PetscInt    rows[6], nc;
+  PetscReal  *d[6], *shp = NULL;
+  PetscInt    rows[6], nc, nrow = 0;
+  PetscBool   hasshape;
 
   PetscFunctionBeginUser;
   for (int k = 0; k < 6; k++) {
     PetscCall(IoReadDataset(dem->init_file, names[k], &rows[k], &nc, &d[k]));
     PetscCheck(nc == width[k] && rows[k] == rows[0], dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " x %" PetscInt_FMT " values, expected %" PetscInt_FMT " x %d", dem->init_file, names[k], rows[k], nc, rows[0], width[k]);
   }
+  PetscCall(IoHasDataset(dem->init_file, "/particles/shape", &hasshape));
+  if (hasshape) PetscCall(IoReadDataset(dem->init_file, "/particles/shape", &nrow, &nc, &shp));
+  PetscCheck(!hasshape || nrow == rows[0], dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: /particles/shape has %" PetscInt_FMT " rows, expected %" PetscInt_FMT, dem->init_file, nrow, rows[0]);
   for (PetscInt i = 0; i < rows[0]; i++) {
-    DemParticle p;
+    DemParticle    p;
+    const PetscInt s = hasshape ? (PetscInt)shp[i] : -1;
     p.id = (PetscInt)d[4][i];
-    PetscCall(DemShapeForRadius(dem, d[5][i], &p.shape));
+    /* the shape index written with the frame when it names a shape of this run with the same
+       (bounding) radius; else the shape is found by radius */
+    if (s >= 0 && s < dem->nshape && PetscAbsReal(dem->shp[s].r - d[5][i]) <= 1e-12 * d[5][i]) p.shape = s;
+    else PetscCall(DemShapeForRadius(dem, d[5][i], &p.shape));
     for (int k = 0; k < 3; k++) {
       p.x[k] = d[0][3 * i + k];
       p.v[k] = d[1][3 * i + k];
@@ -145,6 +153,7 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
     if (dem_in_box(dem->dom, p.x)) PetscCall(DemAddParticle(dem, &p));
   }
   for (int k = 0; k < 6; k++) PetscCall(PetscFree(d[k]));
+  PetscCall(PetscFree(shp));
   *nfile = rows[0];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
