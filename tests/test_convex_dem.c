@@ -272,6 +272,7 @@ int main(int argc, char **argv)
      (not the minimum penetration, CONVEX.md) make the force field non-conservative; the drift
      is measured and bounded loosely as a known limitation */
   PetscCall(Collisions(0.1, 10, 1e-2));
+  remove("test_convex_box.txt");
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;
 }

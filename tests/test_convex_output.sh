@@ -49,3 +49,16 @@ ref = np.load(d + "/ref.npy")
 err = np.abs(s - ref).max() if s.shape == ref.shape else float("inf")
 print(("PASS" if err == 0 else "FAIL") + " convex restart from -dem_init_file: %d cubes, max position/quaternion difference %g (bound 0)" % (len(s), err))
 PY
+# two shapes with the same bounding radius: the restart keeps each particle's shape index
+G2="-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_box 0,0,0,0.1,0.1,0.1 -dem_shape cube,cube -dem_shape_size $A,$A -dem_radius_fraction 1,1 -dem_kn 1e4"
+bin/sable $G2 -dem_lattice 5,5,1 -dem_lattice_spacing 0.018 -dem_t_end 0 -io_interval 1 -io_dir "$D/c" > "$D/log3" 2>&1 || { echo "FAIL convex restart with two shapes: exit $?"; tail -3 "$D/log3"; exit 1; }
+bin/sable $G2 -dem_init_file "$D/c/sable_000000.h5" -dem_t_end 0 -io_interval 1 -io_dir "$D/d" > "$D/log4" 2>&1 || { echo "FAIL convex restart with two shapes: exit $?"; tail -3 "$D/log4"; exit 1; }
+/usr/bin/python3 - "$D" <<'PY'
+import sys, h5py, numpy as np
+d = sys.argv[1]
+a, b = h5py.File(d + "/c/sable_000000.h5", "r"), h5py.File(d + "/d/sable_000000.h5", "r")
+sa = a["particles/shape"][:][np.argsort(a["particles/id"][:])]
+sb = b["particles/shape"][:][np.argsort(b["particles/id"][:])]
+ok = len(sa) == 25 and (sa == sb).all() and 0 < sa.sum() < 25
+print(("PASS" if ok else "FAIL") + " convex restart, two shapes of equal bounding radius: %d of %d shape indices kept (%d of shape 1)" % ((sa == sb).sum(), len(sa), sa.sum()))
+PY

@@ -13,7 +13,8 @@
  * and a body pair apart along some axis u, (x_j - x_i).u > h_i(u) + h_j(-u) (h: support
  * extent about the centre), usually stays apart along it for many steps. Each list entry keeps
  * the last such axis (tried first), the centre line is tried next, and only then libccd; when
- * libccd finds no contact, the face directions of both bodies are searched for an axis to keep.
+ * libccd finds no contact, the face directions of both bodies and the cross products of their
+ * edge directions (the complete set of separating-axis candidates) are searched for one to keep.
  * A test costs two support scans (about a tenth of an MPR call). The cache is exact (an axis
  * either separates or the full test runs) and is cleared at every list build.
  * The contact laws use R = d_eq/2 per shape (shapes.c). Units SI. */
@@ -99,6 +100,17 @@ static void dem_find_axis(const DemShape *si, const double *Ri, const DemShape *
       for (int k = 0; k < 3; k++) u[k] = R[b][3 * k] * n[0] + R[b][3 * k + 1] * n[1] + R[b][3 * k + 2] * n[2];
       if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) return;
     }
+  for (PetscInt e = 0; e < si->nen; e++) { /* edge-edge axes */
+    double ei[3], ej[3];
+    for (int k = 0; k < 3; k++) ei[k] = Ri[3 * k] * si->en[3 * e] + Ri[3 * k + 1] * si->en[3 * e + 1] + Ri[3 * k + 2] * si->en[3 * e + 2];
+    for (PetscInt g = 0; g < sj->nen; g++) {
+      for (int k = 0; k < 3; k++) ej[k] = Rj[3 * k] * sj->en[3 * g] + Rj[3 * k + 1] * sj->en[3 * g + 1] + Rj[3 * k + 2] * sj->en[3 * g + 2];
+      dem_cross(ei, ej, u);
+      const double l2 = dem_dot(u, u);
+      if (l2 < 1e-12) continue; /* parallel edges: no new axis */
+      if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) return;
+    }
+  }
   u[0] = u[1] = u[2] = 0;
 }
 

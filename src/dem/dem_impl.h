@@ -21,6 +21,8 @@ typedef struct {
   double vol, req;      /* volume (m^3), equivalent radius for the contact laws (m) */
   double  *fn;          /* distinct face normals of a polyhedron (body frame, 3 each), for sepaxis */
   PetscInt nfn;
+  double  *en;          /* distinct edge directions of a polyhedron (body frame, 3 each) */
+  PetscInt nen;
   PetscBool iso;        /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
 } DemShape;
 

@@ -157,6 +157,20 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
     }
     PetscCall(PetscFree(d));
   }
+  { /* the shape index written with the frame, when it names a shape of this run with the same
+       (bounding) radius; else the shape found by radius stays */
+    PetscBool hasshape;
+    PetscCall(IoHasDataset(dem->init_file, "/particles/shape", &hasshape));
+    if (hasshape) {
+      PetscCall(IoReadDataset(dem->init_file, "/particles/shape", &r, &nc, &d));
+      PetscCheck(r == rows, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: /particles/shape has %" PetscInt_FMT " rows, expected %" PetscInt_FMT, dem->init_file, r, rows);
+      for (PetscInt a = 0; a < nmine; a++) {
+        const PetscInt i = n0 + a, s = (PetscInt)d[mine[a]];
+        if (s >= 0 && s < dem->nshape && PetscAbsReal(dem->shp[s].r - dem->shp[dem->shape[i]].r) <= 1e-12 * dem->shp[s].r) dem->shape[i] = s;
+      }
+      PetscCall(PetscFree(d));
+    }
+  }
   for (PetscInt a = 0; a < nmine; a++) dem->next_id = PetscMax(dem->next_id, dem->id[n0 + a] + 1);
   PetscCall(PetscFree(mine));
   *nfile = rows;

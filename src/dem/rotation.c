@@ -93,11 +93,17 @@ PetscErrorCode DemRotateFirstHalf(Dem dem)
     dem_kick(R, sh->invJ, h, dem->tq + 3 * i, w);
     convex_mat_tvec(R, w, wb);
     for (int k = 0; k < 3; k++) L[k] = sh->J[k] * wb[k];
+    const double l2 = L[0] * L[0] + L[1] * L[1] + L[2] * L[2];
     dem_rotor_axis(0, h, sh->invJ, q, L);
     dem_rotor_axis(1, h, sh->invJ, q, L);
     dem_rotor_axis(2, dt, sh->invJ, q, L);
     dem_rotor_axis(1, h, sh->invJ, q, L);
     dem_rotor_axis(0, h, sh->invJ, q, L);
+    const double m2 = L[0] * L[0] + L[1] * L[1] + L[2] * L[2]; /* rotations keep |L|: remove */
+    if (m2 > 0) {                                                /* the rounding bias of c^2+s^2 */
+      const double f = sqrt(l2 / m2);
+      for (int k = 0; k < 3; k++) L[k] *= f;
+    }
     const double s = 1.0 / sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     for (int k = 0; k < 4; k++) q[k] *= s;
     dem_quat_matrix(q, R);

@@ -377,3 +377,19 @@ PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows,
   SableCallH5(H5Fclose(f));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has)
+{
+  hid_t f;
+  char  group[PETSC_MAX_PATH_LEN], *slash;
+
+  PetscFunctionBeginUser;
+  f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open HDF5 file %s", file);
+  PetscCall(PetscStrncpy(group, name, sizeof group));
+  slash = strrchr(group, '/');
+  if (slash && slash != group) *slash = 0;
+  *has = (PetscBool)((!slash || slash == group || H5Lexists(f, group, H5P_DEFAULT) > 0) && H5Lexists(f, name, H5P_DEFAULT) > 0);
+  SableCallH5(H5Fclose(f));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

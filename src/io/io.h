@@ -40,3 +40,6 @@ PetscErrorCode IoFrameEnd(Io io);
 /* Every rank reads a whole dataset of a Sable HDF5 file (rows x ncomp, as written); free with
  * PetscFree. Errors name the file and the dataset. */
 PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows, PetscInt *ncomp, PetscReal **data);
+/* Whether a Sable HDF5 file holds the dataset /<group>/<name> (group and name given as one
+ * path, e.g. "/particles/shape"). Not collective. */
+PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has);
