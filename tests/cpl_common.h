@@ -13,7 +13,7 @@ typedef struct {
 
 /* Replaces the options database by opts; builds and sets up everything; add (may be NULL)
  * adds particles before DemSetUp. */
-static PetscErrorCode TestCplCreateWith(const char *opts, PetscErrorCode (*add)(Dem), TestCpl *t)
+static inline PetscErrorCode TestCplCreateWith(const char *opts, PetscErrorCode (*add)(Dem), TestCpl *t)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsClear(NULL));
@@ -33,14 +33,14 @@ static PetscErrorCode TestCplCreateWith(const char *opts, PetscErrorCode (*add)(
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode TestCplCreate(const char *opts, TestCpl *t)
+static inline PetscErrorCode TestCplCreate(const char *opts, TestCpl *t)
 {
   PetscFunctionBeginUser;
   PetscCall(TestCplCreateWith(opts, NULL, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode TestCplDestroy(TestCpl *t)
+static inline PetscErrorCode TestCplDestroy(TestCpl *t)
 {
   PetscFunctionBeginUser;
   PetscCall(CplDestroy(&t->cpl));
@@ -50,7 +50,7 @@ static PetscErrorCode TestCplDestroy(TestCpl *t)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode TestCplRun(TestCpl *t, PetscInt nsteps, CplStats *st)
+static inline PetscErrorCode TestCplRun(TestCpl *t, PetscInt nsteps, CplStats *st)
 {
   PetscFunctionBeginUser;
   for (PetscInt s = 0; s < nsteps; s++) PetscCall(CplStep(t->cpl, st));
