@@ -49,6 +49,21 @@ static PetscErrorCode DomainCheckProcessGrid(MPI_Comm comm, const PetscInt m[3])
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The grid, the process grid and this rank's cells and box, read back from dom->da. */
+static PetscErrorCode DomainSetBoxes(Domain *dom)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(dom->da, NULL, &dom->cells[0], &dom->cells[1], &dom->cells[2], &dom->nranks[0], &dom->nranks[1], &dom->nranks[2], NULL, NULL, NULL, NULL, NULL, NULL));
+  PetscCall(DMDAGetCorners(dom->da, &dom->cstart[0], &dom->cstart[1], &dom->cstart[2], &dom->ccount[0], &dom->ccount[1], &dom->ccount[2]));
+  for (int k = 0; k < 3; k++) {
+    dom->h[k]     = dom->len[k] / dom->cells[k];
+    dom->sublo[k] = dom->lo[k] + dom->cstart[k] * dom->h[k];
+    /* the last rank's upper face is exactly hi, not lo + cells*h with roundoff */
+    dom->subhi[k] = (dom->cstart[k] + dom->ccount[k] == dom->cells[k]) ? dom->hi[k] : dom->lo[k] + (dom->cstart[k] + dom->ccount[k]) * dom->h[k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt stencil_width, Domain *dom)
 {
   DMBoundaryType   bt[3];
@@ -67,14 +82,7 @@ PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt sten
   PetscCall(DMDACreate3d(comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, m[0], m[1], m[2], PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, 1, stencil_width, NULL, NULL, NULL, &dom->da));
   PetscCall(DMSetFromOptions(dom->da));
   PetscCall(DMSetUp(dom->da));
-  PetscCall(DMDAGetInfo(dom->da, NULL, &dom->cells[0], &dom->cells[1], &dom->cells[2], &dom->nranks[0], &dom->nranks[1], &dom->nranks[2], NULL, NULL, NULL, NULL, NULL, NULL));
-  PetscCall(DMDAGetCorners(dom->da, &dom->cstart[0], &dom->cstart[1], &dom->cstart[2], &dom->ccount[0], &dom->ccount[1], &dom->ccount[2]));
-  for (int k = 0; k < 3; k++) {
-    dom->h[k]     = dom->len[k] / dom->cells[k];
-    dom->sublo[k] = dom->lo[k] + dom->cstart[k] * dom->h[k];
-    /* the last rank's upper face is exactly hi, not lo + cells*h with roundoff */
-    dom->subhi[k] = (dom->cstart[k] + dom->ccount[k] == dom->cells[k]) ? dom->hi[k] : dom->lo[k] + (dom->cstart[k] + dom->ccount[k]) * dom->h[k];
-  }
+  PetscCall(DomainSetBoxes(dom));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -82,5 +90,59 @@ PetscErrorCode DomainDestroy(Domain *dom)
 {
   PetscFunctionBeginUser;
   PetscCall(DMDestroy(&dom->da));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DomainSetOwnership(Domain *dom, PetscInt *const l[3])
+{
+  DM              da;
+  DMBoundaryType  bt[3];
+  PetscInt        sw;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)dom->da);
+
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(dom->da, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, &sw, &bt[0], &bt[1], &bt[2], NULL));
+  for (int k = 0; k < 3; k++) {
+    PetscInt sum = 0;
+    for (PetscInt r = 0; r < dom->nranks[k]; r++) {
+      PetscCheck(l[k][r] >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "new ownership along %c: rank column %" PetscInt_FMT " gets %" PetscInt_FMT " cells, must be >= 1", "xyz"[k], r, l[k][r]);
+      sum += l[k][r];
+    }
+    PetscCheck(sum == dom->cells[k], comm, PETSC_ERR_ARG_SIZ, "new ownership along %c sums to %" PetscInt_FMT " cells, the grid has %" PetscInt_FMT, "xyz"[k], sum, dom->cells[k]);
+  }
+  PetscCall(DMDACreate3d(comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, dom->cells[0], dom->cells[1], dom->cells[2], dom->nranks[0], dom->nranks[1], dom->nranks[2], 1, sw, l[0], l[1], l[2], &da));
+  PetscCall(DMSetUp(da));
+  PetscCall(DMDestroy(&dom->da));
+  dom->da = da;
+  PetscCall(DomainSetBoxes(dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DomainMoveVec(DM from, DM to, Vec *v)
+{
+  Vec        nfrom, nto, out;
+  VecScatter sc;
+  IS         is;
+  PetscInt   rs, re;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMDACreateNaturalVector(from, &nfrom));
+  PetscCall(DMDAGlobalToNaturalBegin(from, *v, INSERT_VALUES, nfrom));
+  PetscCall(DMDAGlobalToNaturalEnd(from, *v, INSERT_VALUES, nfrom));
+  PetscCall(DMDACreateNaturalVector(to, &nto));
+  PetscCall(VecGetOwnershipRange(nto, &rs, &re));
+  PetscCall(ISCreateStride(PetscObjectComm((PetscObject)to), re - rs, rs, 1, &is));
+  PetscCall(VecScatterCreate(nfrom, is, nto, is, &sc));
+  PetscCall(VecScatterBegin(sc, nfrom, nto, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, nfrom, nto, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(DMCreateGlobalVector(to, &out));
+  PetscCall(DMDANaturalToGlobalBegin(to, nto, INSERT_VALUES, out));
+  PetscCall(DMDANaturalToGlobalEnd(to, nto, INSERT_VALUES, out));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(ISDestroy(&is));
+  PetscCall(VecDestroy(&nfrom));
+  PetscCall(VecDestroy(&nto));
+  PetscCall(VecDestroy(v));
+  *v = out;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -21,3 +21,11 @@ typedef struct {
  * 1), cell = -domain_cell or else default_cell. stencil_width is the DMDA ghost width the caller needs. */
 PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt stencil_width, Domain *dom);
 PetscErrorCode DomainDestroy(Domain *dom);
+/* Collective. Replaces the DMDA by one with the same grid and process grid but the per-axis
+ * ownership ranges l[k][0..nranks[k]-1] (cells per rank column, summing to cells[k]), and
+ * updates this rank's cells and box. The caller moves the data living on the old layout. */
+PetscErrorCode DomainSetOwnership(Domain *dom, PetscInt *const l[3]);
+/* Collective. Moves the global Vec *v of DMDA from onto DMDA to (same grid and dofs, another
+ * ownership) through the natural ordering: every value lands bit for bit at the same grid
+ * point. *v is destroyed and replaced. */
+PetscErrorCode DomainMoveVec(DM from, DM to, Vec *v);

@@ -59,6 +59,7 @@ static PetscErrorCode SableRun(void)
   PetscInt  step;
   PetscLogDouble t0, t1;
   const char *index;
+  Balance     lb;
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help));
@@ -67,15 +68,19 @@ static PetscErrorCode SableRun(void)
   PetscOptionsEnd();
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "Sable %s — CFD-DEM for fluidized beds and granular flows\n", SABLE_VERSION));
   /* dry case: the background grid only decomposes space; its cell is 4 largest diameters by
-     default, so a rank box is never thinner than the halo (2 r_max + skin) */
+     default, so a rank box is never thinner than the halo (2 r_max + skin); with load balancing
+     it is the granularity of the cuts, 1.25 diameters (the balancer keeps boxes >= the halo) */
   {
     PetscReal r[32], rmax = 0.0069;
     PetscInt  nr = 32;
-    PetscBool set;
+    PetscBool set, no_lb;
+    char      scheme[64] = "none";
     PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-dem_radius", r, &nr, &set));
     if (set)
       for (PetscInt i = 0; i < nr; i++) rmax = i ? PetscMax(rmax, r[i]) : r[i];
-    PetscCall(DomainCreate(PETSC_COMM_WORLD, 8 * PetscAbsReal(rmax) + 1e-300, 1, &dom));
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-lb_scheme", scheme, sizeof scheme, NULL));
+    PetscCall(PetscStrcasecmp(scheme, "none", &no_lb));
+    PetscCall(DomainCreate(PETSC_COMM_WORLD, (no_lb ? 8 : 2.5) * PetscAbsReal(rmax) + 1e-300, 1, &dom));
   }
   PetscCall(DemCreate(&dom, &dem));
   PetscCall(DemSetFromOptions(dem));
@@ -96,14 +101,20 @@ static PetscErrorCode SableRun(void)
     PetscCall(DomainDestroy(&dom));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  PetscCall(BalanceCreate(&dom, dem, NULL, &lb));
+  PetscCall(BalanceSetFromOptions(lb));
   PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
   PetscCall(DemHasConvexShapes(dem, &convex));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom.nranks[0], dom.nranks[1], dom.nranks[2]));
   PetscCall(DemSetUp(dem));
   PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(BalanceSetUp(lb));
+  PetscCall(BalanceAttach(lb));
   PetscCall(PetscTime(&t0));
   PetscCall(DemRun(dem, io));
   PetscCall(PetscTime(&t1));
+  PetscCall(BalanceView(lb, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(BalanceDestroy(&lb));
   PetscCall(DemGetTime(dem, &t, &step));
   PetscCall(DemGetBedFigures(dem, &phi, &coord));
   {

@@ -139,6 +139,26 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CplRedistribute(Cpl cpl)
+{
+  DM   ofda = cpl->fda;
+  Vec *face[] = {&cpl->kv, &cpl->jf, &cpl->owed};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectReference((PetscObject)ofda)); /* the fluid drops its old DMs */
+  PetscCall(FluidRedistribute(cpl->fl));
+  PetscCall(FluidGetDMs(cpl->fl, &cpl->cda, &cpl->fda));
+  for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) PetscCall(DomainMoveVec(ofda, cpl->fda, face[i]));
+  PetscCall(DMDestroy(&ofda));
+  PetscCall(VecDestroy(&cpl->cloc));
+  PetscCall(VecDestroy(&cpl->floc));
+  PetscCall(DMCreateLocalVector(cpl->cda, &cpl->cloc));
+  PetscCall(DMCreateLocalVector(cpl->fda, &cpl->floc));
+  PetscCall(DemRedistribute(cpl->dem));
+  CplInvalidateStencils(cpl);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CplView(Cpl cpl, PetscViewer viewer)
 {
   PetscFunctionBeginUser;

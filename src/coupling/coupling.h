@@ -39,6 +39,9 @@ PetscErrorCode CplSetUp(Cpl cpl);
 /* Prints the pre-flight figures: dt_dem / contact time, coupling step / particle relaxation
  * time, cell size / diameter, kernel side / cell size. */
 PetscErrorCode CplView(Cpl cpl, PetscViewer viewer);
+/* Collective. After DomainSetOwnership: the fluid, the coupling's own fields (the momentum owed
+ * to the fluid) and the particles move onto the new layout (load balancing). Between steps. */
+PetscErrorCode CplRedistribute(Cpl cpl);
 PetscErrorCode CplDestroy(Cpl *cpl);
 
 /* Collective. One fluid step of length substeps x dt_dem (frozen bed: -fluid_dt), with the DEM
@@ -75,3 +78,23 @@ PetscReal CplPackedBedGradient(CplDragLaw law, PetscReal eps, PetscReal usup, Pe
 PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help);
 /* Whether the options ask for a coupled run (any -cpl_ or -fluid_ option given). */
 PetscErrorCode CplRequested(PetscBool *on);
+
+/* Load balancing (balancer.c; Golshan & Blais 2022): cell weights from the particle counts, new
+ * per-axis cuts of the shared DMDA, fluid and particles moved onto them. cpl NULL: a dry run.
+ * Life cycle: BalanceCreate -> BalanceSetFromOptions (-lb_scheme none|once|frequent|dynamic,
+ * -lb_weight linear|quadratic|measured, -lb_alpha, -lb_beta, -lb_threshold, -lb_interval,
+ * -lb_interval_time, -lb_step, -lb_time, -lb_max_sweeps, -lb_verbose) -> BalanceSetUp (after
+ * DemSetUp and CplSetUp) -> BalanceCheck after every step (or BalanceAttach: DemRun calls it)
+ * -> BalanceView -> BalanceDestroy. All collective. */
+typedef struct _p_Balance *Balance;
+PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb);
+PetscErrorCode BalanceSetFromOptions(Balance lb);
+PetscErrorCode BalanceSetUp(Balance lb);
+/* Checks when the scheme says so (force: now, and rebalance whatever the threshold); moved
+ * tells whether the cuts changed. Prints one line per check unless -lb_verbose 0. */
+PetscErrorCode BalanceCheck(Balance lb, PetscBool force, PetscBool *moved);
+/* The current rank loads under the weight model: smallest, largest, mean. */
+PetscErrorCode BalanceGetLoads(Balance lb, PetscReal *lmin, PetscReal *lmax, PetscReal *lavg);
+PetscErrorCode BalanceAttach(Balance lb);
+PetscErrorCode BalanceView(Balance lb, PetscViewer viewer);
+PetscErrorCode BalanceDestroy(Balance *lb);

@@ -38,6 +38,7 @@ struct _p_Cpl {
   CplStencil *stc;              /* cached kernel stencils of the local particles */
   PetscInt   stc_n, stc_cap;
   PetscBool  stc_valid;
+  PetscLogDouble t_fluid; /* wall time in fluid steps (s): the measured cell weight */
   PetscLogEvent ev_project, ev_drag, ev_exchange, ev_dem;
 };
 

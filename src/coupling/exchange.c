@@ -144,7 +144,11 @@ PetscErrorCode CplStep(Cpl cpl, CplStats *st)
   PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
   PetscCall(CplSetFluidDrag(cpl));
   PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
+  PetscLogDouble f0, f1;
+  PetscCall(PetscTime(&f0));
   PetscCall(FluidStep(cpl->fl, cpl->dt, &st->fluid));
+  PetscCall(PetscTime(&f1));
+  cpl->t_fluid += f1 - f0;
   PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "the fluid cut its step to %g s (-fluid_adaptive_dt); a coupled run needs the fixed step %g s: lower -dem_dt or -cpl_substeps instead", (double)st->fluid.dt, (double)cpl->dt);
   PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
   PetscCall(CplComputeOwed(cpl, &st->owed_norm));

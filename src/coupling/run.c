@@ -67,7 +67,7 @@ static PetscErrorCode CplOutput(Cpl cpl, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode CplRunLoop(Cpl cpl, Io io)
+static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
 {
   PetscLogDouble t0, now;
   PetscReal      next = cpl->progress_dt, w, dp = 0, avg = 0, davg = 0;
@@ -82,6 +82,7 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Io io)
   if (due) PetscCall(CplOutput(cpl, io));
   while (cpl->t < cpl->t_end - 0.5 * cpl->dt) {
     PetscCall(CplStep(cpl, &st));
+    PetscCall(BalanceCheck(lb, PETSC_FALSE, NULL));
     PetscCall(IoDue(io, cpl->t, &due));
     if (due) PetscCall(CplOutput(cpl, io));
     PetscCall(CplColumnDrop(cpl, &dp));
@@ -109,6 +110,7 @@ PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
 {
   Fluid          fl;
   Cpl            cpl;
+  Balance        lb;
   PetscBool      frozen, convex;
   PetscLogDouble t0, t1;
   const char    *index;
@@ -118,6 +120,8 @@ PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
   PetscCall(FluidSetFromOptions(fl));
   PetscCall(CplCreate(dom, dem, fl, &cpl));
   PetscCall(CplSetFromOptions(cpl));
+  PetscCall(BalanceCreate(dom, dem, cpl, &lb));
+  PetscCall(BalanceSetFromOptions(lb));
   if (!help) {
     PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
     PetscCall(DemGetFrozen(dem, &frozen));
@@ -128,13 +132,16 @@ PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
     PetscCall(CplSetUp(cpl));
     PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(CplView(cpl, PETSC_VIEWER_STDOUT_WORLD));
+    PetscCall(BalanceSetUp(lb));
     PetscCall(PetscTime(&t0));
-    PetscCall(CplRunLoop(cpl, io));
+    PetscCall(CplRunLoop(cpl, lb, io));
     PetscCall(PetscTime(&t1));
+    PetscCall(BalanceView(lb, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s\n", (double)cpl->t, cpl->step, t1 - t0));
     PetscCall(IoGetIndexPath(io, &index));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "output: %s (open it in ParaView)\n", index));
   }
+  PetscCall(BalanceDestroy(&lb));
   PetscCall(CplDestroy(&cpl));
   PetscCall(FluidDestroy(&fl));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -101,3 +101,19 @@ PetscErrorCode DemGetExternal(Dem dem, DemExternal *e);
 PetscErrorCode DemExternalSetFromOptions(Dem dem);
 PetscErrorCode DemSetFrozen(Dem dem, PetscBool frozen);
 PetscErrorCode DemGetFrozen(Dem dem, PetscBool *frozen);
+
+/* Load balancing hooks (redistribute.c). DemRedistribute: collective; after the Domain changed
+ * its ownership (DomainSetOwnership) every particle moves to the rank that now owns its centre,
+ * with its full state, its tangential springs and its coupling state; ghosts and lists are
+ * rebuilt. Call between steps. DemGetHaloWidth: the ghost halo 2 r_max + skin (m), the
+ * thinnest a rank box may be along a split or periodic axis (valid after DemSetUp).
+ * DemSetStepMonitor: fn(dem, ctx) runs after every step of DemRun (NULL: none).
+ * DemGetCellCounts: adds the number of local particles whose centre lies in each owned cell of
+ * the Domain's grid to count[], indexed over the global grid, x fastest (not collective). */
+PetscErrorCode DemRedistribute(Dem dem);
+PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach);
+PetscErrorCode DemSetStepMonitor(Dem dem, PetscErrorCode (*fn)(Dem, void *), void *ctx);
+PetscErrorCode DemGetCellCounts(Dem dem, PetscReal *count);
+/* Wall time this rank spent computing forces and integrating since DemSetUp (s; no waiting for
+ * other ranks): the particle cost that -lb_weight measured divides by particle-steps. */
+PetscErrorCode DemGetComputeTime(Dem dem, PetscLogDouble *t);

@@ -122,6 +122,10 @@ struct _p_Dem {
   DemStats  initial; /* count and checksum at set-up, for -dem_check_every */
   PetscInt  sort_interval;
   PetscBool need_build;
+  PetscBool remap; /* the decomposition changed: the next build migrates to any rank */
+  PetscErrorCode (*monitor)(Dem, void *); /* called by DemRun after every step (DemSetStepMonitor) */
+  void          *monitor_ctx;
+  PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
   /* time */
   PetscReal g[3], dt, t, t_end, dt_frac, progress_dt;
   PetscInt  step;
@@ -145,6 +149,15 @@ PetscErrorCode DemNeighBuild(Dem dem);                             /* neighbours
 PetscErrorCode DemExchangeSetUp(Dem dem);                          /* exchange.c */
 PetscErrorCode DemExchangeDestroy(Dem dem);                        /* exchange.c */
 PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* exchange.c */
+#define MIG_HEAD 22 /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
+#define MIG_EXT  10 /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
+#define MIG_RECORD_SIZE(dem, ns) (MIG_HEAD + ((dem)->external ? MIG_EXT : 0) + 4 * (size_t)(ns))
+PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n); /* exchange.c */
+/* exchange.c: the migration record of local particle i (position + shift, state, coupling
+ * state, springs): doubles written; unpack appends the particle and its springs */
+size_t         DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b);
+PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used);
+PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* redistribute.c */
 PetscErrorCode DemGhostsCreate(Dem dem);                           /* exchange.c */
 PetscErrorCode DemGhostsUpdate(Dem dem);                           /* exchange.c */
 PetscErrorCode DemSpringsSort(DemSpring *r, PetscInt n);           /* neighbours.c */

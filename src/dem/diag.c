@@ -202,6 +202,7 @@ PetscErrorCode DemRun(Dem dem, Io io)
   }
   while (dem->t < dem->t_end - 0.5 * dem->dt) {
     PetscCall(DemStep(dem));
+    if (dem->monitor) PetscCall(dem->monitor(dem, dem->monitor_ctx));
     if (io) {
       PetscCall(IoDue(io, dem->t, &due));
       if (due) PetscCall(DemOutput(dem, io));

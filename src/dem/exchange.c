@@ -17,8 +17,6 @@
 #include "dem/dem_impl.h"
 
 #define GHOST_WIDTH 15 /* id, shape, x[3], v[3], w[3], q[4] */
-#define MIG_HEAD    22 /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
-#define MIG_EXT     10 /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
 
 static void dem_dir_offsets(int d, int o[3])
 {
@@ -75,7 +73,7 @@ PetscErrorCode DemExchangeDestroy(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n)
+PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n)
 {
   PetscFunctionBeginUser;
   if (n > *cap) {
@@ -127,19 +125,101 @@ static int dem_leave(const Dem dem, const double *x, int k)
   return 0;
 }
 
+
+/* The springs of particle id in recs (sorted by owner): first record and count. */
+static const DemSpring *dem_springs_of(const DemSpring *recs, PetscInt nrec, PetscInt id, PetscInt *ns)
+{
+  const DemSpring *s = DemSpringFind(recs, nrec, id, PETSC_MIN_INT), *s0 = s;
+  *ns                = 0;
+  for (; s && s < recs + nrec && s->owner == id; s++) (*ns)++;
+  return s0;
+}
+
+size_t DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b)
+{
+  PetscInt         ns;
+  const DemSpring *s0 = dem_springs_of(recs, nrec, dem->id[i], &ns);
+  const size_t     hw = MIG_HEAD + (dem->external ? MIG_EXT : 0);
+
+  b[0] = (double)dem->id[i];
+  b[1] = (double)dem->shape[i];
+  for (int k = 0; k < 3; k++) {
+    b[2 + k]  = dem->x[3 * i + k] + shift[k];
+    b[5 + k]  = dem->v[3 * i + k];
+    b[8 + k]  = dem->w[3 * i + k];
+    b[15 + k] = dem->f[3 * i + k];
+    b[18 + k] = dem->tq[3 * i + k];
+  }
+  for (int k = 0; k < 4; k++) b[11 + k] = dem->q[4 * i + k];
+  b[21] = (double)ns;
+  if (dem->external) { /* the coupling's per-particle state, so its impulse count stays exact */
+    b[MIG_HEAD + 3] = dem->kdrag[i];
+    for (int k = 0; k < 3; k++) {
+      b[MIG_HEAD + k]     = dem->fext[3 * i + k];
+      b[MIG_HEAD + 4 + k] = dem->udrag[3 * i + k];
+      b[MIG_HEAD + 7 + k] = dem->jdrag[3 * i + k];
+    }
+  }
+  for (PetscInt a = 0; a < ns; a++) {
+    b[hw + 4 * a] = (double)s0[a].partner;
+    for (int k = 0; k < 3; k++) b[hw + 4 * a + 1 + k] = s0[a].xi[k];
+  }
+  return hw + 4 * (size_t)ns;
+}
+
+PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used)
+{
+  DemParticle    p;
+  const PetscInt ns = (PetscInt)b[21], i = dem->n;
+  const size_t   hw = MIG_HEAD + (dem->external ? MIG_EXT : 0);
+
+  PetscFunctionBeginUser;
+  p.id    = (PetscInt)b[0];
+  p.shape = (PetscInt)b[1];
+  for (int k = 0; k < 3; k++) {
+    p.x[k] = b[2 + k];
+    p.v[k] = b[5 + k];
+    p.w[k] = b[8 + k];
+  }
+  for (int k = 0; k < 4; k++) p.q[k] = b[11 + k];
+  PetscCall(DemAddParticle(dem, &p));
+  for (int k = 0; k < 3; k++) {
+    dem->f[3 * i + k]  = b[15 + k];
+    dem->tq[3 * i + k] = b[18 + k];
+  }
+  if (dem->external) {
+    dem->kdrag[i] = b[MIG_HEAD + 3];
+    for (int k = 0; k < 3; k++) {
+      dem->fext[3 * i + k]  = b[MIG_HEAD + k];
+      dem->udrag[3 * i + k] = b[MIG_HEAD + 4 + k];
+      dem->jdrag[3 * i + k] = b[MIG_HEAD + 7 + k];
+    }
+  }
+  if (*nrec + ns > *caprec) {
+    *caprec = 2 * (*nrec + ns) + 64;
+    PetscCall(PetscRealloc(sizeof(DemSpring) * (size_t)*caprec, recs));
+  }
+  for (PetscInt a = 0; a < ns; a++) {
+    DemSpring *r = *recs + (*nrec)++;
+    r->owner     = p.id;
+    r->partner   = (PetscInt)b[hw + 4 * a];
+    for (int k = 0; k < 3; k++) r->xi[k] = b[hw + 4 * a + 1 + k];
+  }
+  *used = hw + 4 * (size_t)ns;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Collective. Sends every local particle that left the box to its new owner with its state and
  * springs (recs, sorted by owner id on entry and on exit; received springs are appended). */
 PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec)
 {
   DemExchange *ex = &dem->ex;
-  PetscInt    *dir, *keep, nkeep = 0, cnt[27] = {0};
+  PetscInt    *dir, *keep, nkeep = 0;
   size_t       soff[28], roff[28], pos[27];
-  const size_t hw = MIG_HEAD + (dem->external ? MIG_EXT : 0); /* header width */
 
   PetscFunctionBeginUser;
   if (!ex->active) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscMalloc2(dem->n + 1, &dir, dem->n + 1, &keep));
-  /* sizes: header + 4 doubles per spring */
   for (int d = 0; d < 27; d++) soff[d] = 0;
   size_t total = 0;
   for (PetscInt i = 0; i < dem->n; i++) {
@@ -149,12 +229,10 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
       keep[nkeep++] = i;
       continue;
     }
-    const DemSpring *s = DemSpringFind(*recs, *nrec, dem->id[i], PETSC_MIN_INT);
-    PetscInt         ns = 0;
-    for (; s && s < *recs + *nrec && s->owner == dem->id[i]; s++) ns++;
-    cnt[dir[i]]++;
-    soff[dir[i]] += hw + 4 * ns;
-    total += hw + 4 * ns;
+    PetscInt ns;
+    (void)dem_springs_of(*recs, *nrec, dem->id[i], &ns);
+    soff[dir[i]] += MIG_RECORD_SIZE(dem, ns);
+    total += MIG_RECORD_SIZE(dem, ns);
   }
   for (int d = 0, acc = 0; d < 27; d++) { /* prefix sums */
     const size_t sz = soff[d];
@@ -164,80 +242,14 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
   }
   soff[27] = total;
   PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, total + 1));
-  for (PetscInt i = 0; i < dem->n; i++) {
-    if (dir[i] == 13) continue;
-    double          *b = ex->sbuf + pos[dir[i]];
-    const DemSpring *s = DemSpringFind(*recs, *nrec, dem->id[i], PETSC_MIN_INT), *s0 = s;
-    PetscInt         ns = 0;
-    for (; s && s < *recs + *nrec && s->owner == dem->id[i]; s++) ns++;
-    b[0] = (double)dem->id[i];
-    b[1] = (double)dem->shape[i];
-    for (int k = 0; k < 3; k++) {
-      b[2 + k]  = dem->x[3 * i + k] + ex->shift[dir[i]][k];
-      b[5 + k]  = dem->v[3 * i + k];
-      b[8 + k]  = dem->w[3 * i + k];
-      b[15 + k] = dem->f[3 * i + k];
-      b[18 + k] = dem->tq[3 * i + k];
-    }
-    for (int k = 0; k < 4; k++) b[11 + k] = dem->q[4 * i + k];
-    b[21] = (double)ns;
-    if (dem->external) { /* the coupling's per-particle state, so its impulse count stays exact */
-      b[MIG_HEAD + 3] = dem->kdrag[i];
-      for (int k = 0; k < 3; k++) {
-        b[MIG_HEAD + k]     = dem->fext[3 * i + k];
-        b[MIG_HEAD + 4 + k] = dem->udrag[3 * i + k];
-        b[MIG_HEAD + 7 + k] = dem->jdrag[3 * i + k];
-      }
-    }
-    for (PetscInt a = 0; a < ns; a++) {
-      b[hw + 4 * a] = (double)s0[a].partner;
-      for (int k = 0; k < 3; k++) b[hw + 4 * a + 1 + k] = s0[a].xi[k];
-    }
-    pos[dir[i]] += hw + 4 * ns;
-  }
+  for (PetscInt i = 0; i < dem->n; i++)
+    if (dir[i] != 13) pos[dir[i]] += DemMigPack(dem, i, *recs, *nrec, ex->shift[dir[i]], ex->sbuf + pos[dir[i]]);
   ex->migrated = dem->n - nkeep;
   dem->n       = nkeep;
   PetscCall(DemParticlesPermute(dem, keep));
   PetscCall(PetscFree2(dir, keep));
   PetscCall(DemExchangeVariable(dem, soff, roff));
-  /* unpack: particles appended, springs appended */
-  for (size_t o = 0; o < roff[27];) {
-    const double *b = ex->rbuf + o;
-    DemParticle   p;
-    const PetscInt ns = (PetscInt)b[21], i = dem->n;
-    p.id    = (PetscInt)b[0];
-    p.shape = (PetscInt)b[1];
-    for (int k = 0; k < 3; k++) {
-      p.x[k] = b[2 + k];
-      p.v[k] = b[5 + k];
-      p.w[k] = b[8 + k];
-    }
-    for (int k = 0; k < 4; k++) p.q[k] = b[11 + k];
-    PetscCall(DemAddParticle(dem, &p));
-    for (int k = 0; k < 3; k++) {
-      dem->f[3 * i + k]  = b[15 + k];
-      dem->tq[3 * i + k] = b[18 + k];
-    }
-    if (dem->external) {
-      dem->kdrag[i] = b[MIG_HEAD + 3];
-      for (int k = 0; k < 3; k++) {
-        dem->fext[3 * i + k]  = b[MIG_HEAD + k];
-        dem->udrag[3 * i + k] = b[MIG_HEAD + 4 + k];
-        dem->jdrag[3 * i + k] = b[MIG_HEAD + 7 + k];
-      }
-    }
-    if (*nrec + ns > *caprec) {
-      *caprec = 2 * (*nrec + ns) + 64;
-      PetscCall(PetscRealloc(sizeof(DemSpring) * (size_t)*caprec, recs));
-    }
-    for (PetscInt a = 0; a < ns; a++) {
-      DemSpring *r = *recs + (*nrec)++;
-      r->owner     = p.id;
-      r->partner   = (PetscInt)b[hw + 4 * a];
-      for (int k = 0; k < 3; k++) r->xi[k] = b[hw + 4 * a + 1 + k];
-    }
-    o += hw + 4 * (size_t)ns;
-  }
+  for (size_t o = 0, used; o < roff[27]; o += used) PetscCall(DemMigUnpack(dem, ex->rbuf + o, recs, nrec, caprec, &used));
   PetscCall(DemSpringsSort(*recs, *nrec));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -283,7 +283,9 @@ PetscErrorCode DemNeighBuild(Dem dem)
   PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
   dem->ng = 0;
   PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
-  PetscCall(DemMigrate(dem, &recs, &nrec, &caprec));
+  if (dem->remap) PetscCall(DemMigrateGlobal(dem, &recs, &nrec, &caprec));
+  else PetscCall(DemMigrate(dem, &recs, &nrec, &caprec));
+  dem->remap = PETSC_FALSE;
   PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
   if (!nl->cstart) PetscCall(DemCellsSetUp(dem));
   if (dem->sort_interval > 0 && nl->builds % dem->sort_interval == 0) {

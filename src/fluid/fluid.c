@@ -101,7 +101,7 @@ static PetscErrorCode FluidCheckDecomposition(Fluid fl, const PetscInt *l[3], co
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode FluidCreateDMs(Fluid fl)
+PetscErrorCode FluidCreateDMs(Fluid fl)
 {
   const PetscInt *l[3];
   PetscInt       *lf[3], np[3], N[3];

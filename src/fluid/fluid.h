@@ -46,6 +46,10 @@ PetscErrorCode FluidStep(Fluid fluid, PetscReal dt, FluidStats *stats);
  * component d is the velocity normal to the lower d-face of the cell with the same index; along
  * a non-periodic axis it has one point more than the cells, owned by the last rank). */
 PetscErrorCode FluidGetDMs(Fluid fluid, DM *cda, DM *fda);
+/* Collective. After the Domain changed its ownership (DomainSetOwnership): rebuilds the DMDAs
+ * on the new layout and moves every field bit for bit (redistribute.c). DMs and Vecs obtained
+ * before are invalid afterwards. */
+PetscErrorCode FluidRedistribute(Fluid fluid);
 /* The time step given by -fluid_dt (s), for drivers and tests. */
 PetscErrorCode FluidGetTimeStep(Fluid fluid, PetscReal *dt);
 /* Borrowed global Vecs, valid until FluidDestroy. eps: porosity eps^{n+1} (cell, set it before

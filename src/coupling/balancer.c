@@ -1,0 +1,305 @@
+/* The load balancer at run time (Golshan & Blais 2022, after Lethe-DEM; DESIGN §1): when its
+ * scheme says so it weighs every cell of the Domain's grid, W = alpha n_p + beta (linear) or
+ * alpha n_p^2 + beta (quadratic), n_p the particles whose centre lies in the cell, sums the
+ * weights over each rank's box into the loads L, and, if it rebalances, computes new per-axis
+ * cuts (balance_cuts.c), rebuilds the DMDA with them and moves the fluid fields and the
+ * particles onto it, so each rank still owns matching fluid and particle subdomains.
+ * Schemes (-lb_scheme): none; once (at -lb_step or -lb_time); frequent (every -lb_interval steps
+ * or -lb_interval_time seconds of simulated time); dynamic (checked at that cadence, rebalances
+ * when L_max - L_min > eps L_avg, eps = -lb_threshold). Weights (-lb_weight): linear,
+ * quadratic (-lb_alpha, -lb_beta) or measured: linear with alpha the measured compute time per
+ * particle-step and beta the measured fluid time per cell-step since the last check (beta = 0
+ * in a dry run), so the particle/cell ratio follows the machine and the case instead of a
+ * hand-set ratio. A rank box never becomes thinner than the DEM halo (2 r_max + skin), the
+ * DMDA stencil, or the fluid's two cells. Each check prints one line: the loads, the imbalance,
+ * whether it rebalanced and the wall time the check and the move cost.
+ * The global weight grid is reduced onto every rank (one double per cell), which bounds the
+ * method to grids of a few million cells; the cut search itself is serial and identical on all
+ * ranks. */
+#include "coupling/coupling_impl.h"
+#include "coupling/balance.h"
+
+typedef enum { LB_NONE, LB_ONCE, LB_FREQUENT, LB_DYNAMIC } LbScheme;
+static const char *const LbSchemeNames[] = {"none", "once", "frequent", "dynamic", "LbScheme", "LB_", NULL};
+static const char *const LbWeightNames[] = {"linear", "quadratic", "measured", "LbWeight", "LB_WEIGHT_", NULL};
+
+struct _p_Balance {
+  MPI_Comm  comm;
+  Domain   *dom;
+  Dem       dem;
+  Cpl       cpl; /* NULL in a dry run */
+  LbScheme  scheme;
+  PetscInt  weight; /* 0 linear, 1 quadratic, 2 measured */
+  PetscReal alpha, beta, threshold, once_time, interval_time, next_time;
+  PetscInt  once_step, interval, max_sweeps, last_step;
+  PetscBool done_once, verbose;
+  BalanceGrid g;
+  PetscReal  *count, *w, *load;
+  PetscInt   *l[3];
+  /* measured weights: compute times and work at the last check */
+  PetscLogDouble t_dem0, t_fluid0;
+  PetscInt       cstep0; /* coupling step of the last check */
+  /* totals for the summary */
+  PetscInt       checks, rebalances;
+  PetscLogDouble t_total;
+};
+
+PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb)
+{
+  Balance b;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&b));
+  b->comm          = PetscObjectComm((PetscObject)dom->da);
+  b->dom           = dom;
+  b->dem           = dem;
+  b->cpl           = cpl;
+  b->alpha         = 1.0;
+  b->beta          = 0.02; /* alpha/beta = 50: Lethe's best linear ratio (§3.2) */
+  b->threshold     = 0.8;  /* Lethe's silo (§3.5) */
+  b->interval      = 1000;
+  b->interval_time = 0;
+  b->once_step     = 0;
+  b->once_time     = -1;
+  b->verbose       = PETSC_TRUE;
+  *lb              = b;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A name option checked here, not by PetscOptionsEList, so that a wrong value is one collective
+ * error naming the valid values (PETSc's own check raises it on every rank). */
+static PetscErrorCode BalanceOptionName(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *opt, const char *text, const char *const *names, PetscInt n, PetscInt *value)
+{
+  char      buf[64];
+  PetscBool set, match = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(buf, names[*value], sizeof buf));
+  PetscCall(PetscOptionsString(opt, text, NULL, buf, buf, sizeof buf, &set));
+  if (!set) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt i = 0; i < n && !match; i++) {
+    PetscCall(PetscStrcasecmp(buf, names[i], &match));
+    if (match) *value = i;
+  }
+  PetscCheck(match, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s is not known; valid values: %s%s%s%s%s%s%s", opt, buf, names[0], n > 1 ? ", " : "", n > 1 ? names[1] : "", n > 2 ? ", " : "", n > 2 ? names[2] : "", n > 3 ? ", " : "", n > 3 ? names[3] : "");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BalanceSetFromOptions(Balance b)
+{
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(b->comm, NULL, "Load balancing (moves the shared DMDA cuts)", NULL);
+  PetscCall(BalanceOptionName(PetscOptionsObject, b->comm, "-lb_scheme", "When to rebalance: none, once, frequent, dynamic", LbSchemeNames, 4, (PetscInt *)&b->scheme));
+  PetscCall(BalanceOptionName(PetscOptionsObject, b->comm, "-lb_weight", "Cell weight: linear alpha n + beta, quadratic alpha n^2 + beta, measured (linear, alpha and beta from measured costs)", LbWeightNames, 3, &b->weight));
+  PetscCall(PetscOptionsReal("-lb_alpha", "Weight of a particle in a cell (-, >= 0)", NULL, b->alpha, &b->alpha, NULL));
+  PetscCall(PetscOptionsReal("-lb_beta", "Weight of a cell (-, >= 0)", NULL, b->beta, &b->beta, NULL));
+  PetscCall(PetscOptionsReal("-lb_threshold", "dynamic: rebalance when (L_max - L_min) / L_avg exceeds it (-, > 0)", NULL, b->threshold, &b->threshold, NULL));
+  PetscCall(PetscOptionsInt("-lb_interval", "frequent/dynamic: steps between checks (>= 1)", NULL, b->interval, &b->interval, NULL));
+  PetscCall(PetscOptionsReal("-lb_interval_time", "frequent/dynamic: simulated time between checks (s, > 0; replaces -lb_interval)", NULL, b->interval_time, &b->interval_time, &set));
+  PetscCheck(!set || b->interval_time > 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_interval_time %g must be > 0 (s)", (double)b->interval_time);
+  PetscCall(PetscOptionsInt("-lb_step", "once: the step after which to rebalance (>= 0)", NULL, b->once_step, &b->once_step, NULL));
+  PetscCall(PetscOptionsReal("-lb_time", "once: the simulated time after which to rebalance (s, >= 0; replaces -lb_step)", NULL, b->once_time, &b->once_time, &set));
+  PetscCheck(!set || b->once_time >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_time %g must be >= 0 (s)", (double)b->once_time);
+  PetscCall(PetscOptionsInt("-lb_max_sweeps", "Coordinate-descent rounds of the cut search (>= 0; 0: the marginal cuts only get refined by the default 20)", NULL, b->max_sweeps, &b->max_sweeps, NULL));
+  PetscCall(PetscOptionsBool("-lb_verbose", "Print one line per check", NULL, b->verbose, &b->verbose, NULL));
+  PetscOptionsEnd();
+  PetscCheck((PetscIsNormalReal(b->alpha) || b->alpha == 0) && b->alpha >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_alpha %g must be finite and >= 0 (a particle's weight)", (double)b->alpha);
+  PetscCheck((PetscIsNormalReal(b->beta) || b->beta == 0) && b->beta >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_beta %g must be finite and >= 0 (a cell's weight)", (double)b->beta);
+  PetscCheck(b->alpha > 0 || b->beta > 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_alpha and -lb_beta are both 0: every cell would weigh nothing");
+  PetscCheck(PetscIsNormalReal(b->threshold) && b->threshold > 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_threshold %g must be in (0, inf)", (double)b->threshold);
+  PetscCheck(b->interval >= 1, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_interval %" PetscInt_FMT " must be >= 1 (steps)", b->interval);
+  PetscCheck(b->once_step >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_step %" PetscInt_FMT " must be >= 0", b->once_step);
+  PetscCheck(b->max_sweeps >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_max_sweeps %" PetscInt_FMT " must be >= 0", b->max_sweeps);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The thinnest box along axis k in cells: the DEM halo and the DMDA stencil when the axis is
+ * split or periodic, and two cells for the fluid's stencils. */
+static PetscErrorCode BalanceMinWidth(Balance b, PetscInt minw[3])
+{
+  PetscReal reach;
+  PetscInt  sw;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetHaloWidth(b->dem, &reach));
+  PetscCall(DMDAGetInfo(b->dom->da, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, &sw, NULL, NULL, NULL, NULL));
+  for (int k = 0; k < 3; k++) {
+    minw[k] = PetscMax(1, sw);
+    if (b->dom->nranks[k] > 1 || b->dom->periodic[k]) minw[k] = PetscMax(minw[k], (PetscInt)PetscCeilReal(reach / b->dom->h[k] * (1 - 1e-12)));
+    if (b->cpl) minw[k] = PetscMax(minw[k], 2);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BalanceSetUp(Balance b)
+{
+  PetscInt ncell;
+
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 3; k++) {
+    b->g.n[k] = b->dom->cells[k];
+    b->g.p[k] = b->dom->nranks[k];
+  }
+  b->g.max_sweeps = b->max_sweeps;
+  PetscCall(BalanceMinWidth(b, b->g.minw));
+  ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
+  PetscCall(PetscMalloc3(ncell, &b->count, ncell, &b->w, b->g.p[0] * b->g.p[1] * b->g.p[2], &b->load));
+  for (int k = 0; k < 3; k++) PetscCall(PetscMalloc1(b->g.p[k], &b->l[k]));
+  PetscCall(DemGetTime(b->dem, &b->next_time, NULL));
+  b->next_time += b->interval_time;
+  PetscCall(DemGetTime(b->dem, NULL, &b->last_step));
+  PetscCall(DemGetComputeTime(b->dem, &b->t_dem0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BalanceDestroy(Balance *lb)
+{
+  PetscFunctionBeginUser;
+  if (!*lb) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscFree3((*lb)->count, (*lb)->w, (*lb)->load));
+  for (int k = 0; k < 3; k++) PetscCall(PetscFree((*lb)->l[k]));
+  PetscCall(PetscFree(*lb));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* alpha and beta of the measured mode: the mean compute time per particle-step and per
+ * cell-step over all ranks since the last check (s). */
+static PetscErrorCode BalanceMeasuredWeights(Balance b, PetscReal *alpha, PetscReal *beta)
+{
+  PetscLogDouble td, tf = 0;
+  PetscInt       step, n;
+  PetscReal      loc[4], glob[4];
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetComputeTime(b->dem, &td));
+  PetscCall(DemGetTime(b->dem, NULL, &step));
+  PetscCall(DemGetLocalCount(b->dem, &n));
+  if (b->cpl) tf = b->cpl->t_fluid;
+  loc[0] = td - b->t_dem0;
+  loc[1] = tf - b->t_fluid0;
+  loc[2] = (PetscReal)n * (step - b->last_step);
+  loc[3] = b->cpl ? (PetscReal)b->dom->ccount[0] * b->dom->ccount[1] * b->dom->ccount[2] * (b->cpl->step - b->cstep0) : 0;
+  PetscCallMPI(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPI_SUM, b->comm));
+  if (glob[0] > 0 && glob[2] > 0) { /* else nothing measured yet: the -lb_alpha, -lb_beta values */
+    *alpha = glob[0] / glob[2];
+    *beta  = glob[3] > 0 ? glob[1] / glob[3] : 0;
+  }
+  if (b->cpl) b->cstep0 = b->cpl->step;
+  b->t_dem0   = td;
+  b->t_fluid0 = tf;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Cell weights over the global grid (every rank gets all of them) and the current loads. */
+static PetscErrorCode BalanceWeigh(Balance b, PetscReal *lmin, PetscReal *lmax, PetscReal *lavg)
+{
+  const PetscInt P = b->g.p[0] * b->g.p[1] * b->g.p[2], ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
+  const PetscInt *l[3];
+  PetscReal       alpha = b->alpha, beta = b->beta, sum = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(b->w, ncell));
+  PetscCall(DemGetCellCounts(b->dem, b->w));
+  PetscCallMPI(MPIU_Allreduce(b->w, b->count, (PetscMPIInt)ncell, MPIU_REAL, MPI_SUM, b->comm));
+  if (b->weight == 2) PetscCall(BalanceMeasuredWeights(b, &alpha, &beta));
+  for (PetscInt c = 0; c < ncell; c++) b->w[c] = alpha * (b->weight == 1 ? b->count[c] * b->count[c] : b->count[c]) + beta;
+  PetscCall(DMDAGetOwnershipRanges(b->dom->da, &l[0], &l[1], &l[2]));
+  for (int k = 0; k < 3; k++) PetscCall(PetscArraycpy(b->l[k], l[k], b->g.p[k]));
+  PetscCall(BalanceLoads(&b->g, b->w, b->l, b->load));
+  *lmin = PETSC_MAX_REAL;
+  *lmax = 0;
+  for (PetscInt r = 0; r < P; r++) {
+    *lmin = PetscMin(*lmin, b->load[r]);
+    *lmax = PetscMax(*lmax, b->load[r]);
+    sum += b->load[r];
+  }
+  *lavg = sum / P;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Whether the scheme asks for a check after this step. */
+static PetscBool BalanceDue(Balance b, PetscReal t, PetscReal dt, PetscInt step)
+{
+  switch (b->scheme) {
+  case LB_NONE: return PETSC_FALSE;
+  case LB_ONCE: return (PetscBool)(!b->done_once && (b->once_time >= 0 ? t >= b->once_time - 0.5 * dt : step >= b->once_step));
+  default: return (PetscBool)(b->interval_time > 0 ? t >= b->next_time - 0.5 * dt : step - b->last_step >= b->interval);
+  }
+}
+
+PetscErrorCode BalanceCheck(Balance b, PetscBool force, PetscBool *moved)
+{
+  PetscReal      t, dt, lmin, lmax, lavg, nmax, navg;
+  PetscInt       step;
+  PetscLogDouble t0, t1;
+  PetscBool      go, same = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  if (moved) *moved = PETSC_FALSE;
+  PetscCall(DemGetTime(b->dem, &t, &step));
+  PetscCall(DemGetTimeStep(b->dem, &dt));
+  if (!force && !BalanceDue(b, t, dt, step)) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscTime(&t0));
+  PetscCall(BalanceWeigh(b, &lmin, &lmax, &lavg));
+  b->last_step = step;
+  while (b->interval_time > 0 && b->next_time <= t + 0.5 * dt) b->next_time += b->interval_time;
+  b->done_once = PETSC_TRUE;
+  b->checks++;
+  go = (PetscBool)(force || b->scheme != LB_DYNAMIC || lmax - lmin > b->threshold * lavg);
+  if (go) {
+    PetscCall(BalanceCuts(&b->g, b->w, b->l, &nmax, &navg));
+    const PetscInt *l[3];
+    PetscCall(DMDAGetOwnershipRanges(b->dom->da, &l[0], &l[1], &l[2]));
+    for (int k = 0; k < 3; k++)
+      for (PetscInt r = 0; r < b->g.p[k]; r++) same = (PetscBool)(same && l[k][r] == b->l[k][r]);
+    go = (PetscBool)!same;
+  }
+  if (go) {
+    PetscCall(DomainSetOwnership(b->dom, b->l));
+    if (b->cpl) PetscCall(CplRedistribute(b->cpl));
+    else PetscCall(DemRedistribute(b->dem));
+    b->rebalances++;
+    if (moved) *moved = PETSC_TRUE;
+  }
+  PetscCall(PetscTime(&t1));
+  b->t_total += t1 - t0;
+  if (b->verbose) {
+    PetscCall(PetscPrintf(b->comm, "lb: step %" PetscInt_FMT " t %.6g s  load min/avg/max %.4g/%.4g/%.4g  (Lmax-Lmin)/Lavg %.3f  Lmax/Lavg %.3f", step, (double)t, (double)lmin, (double)lavg, (double)lmax, (double)((lmax - lmin) / lavg), (double)(lmax / lavg)));
+    if (go) PetscCall(PetscPrintf(b->comm, "  -> rebalanced, predicted Lmax/Lavg %.3f, cost %.3g s\n", (double)(nmax / navg), t1 - t0));
+    else PetscCall(PetscPrintf(b->comm, "  -> kept%s, cost %.3g s\n", same ? "" : " (below threshold)", t1 - t0));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BalanceGetLoads(Balance b, PetscReal *lmin, PetscReal *lmax, PetscReal *lavg)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BalanceWeigh(b, lmin, lmax, lavg));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BalanceView(Balance b, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  if (b->scheme == LB_NONE) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "load balancing: scheme %s, weight %s, %" PetscInt_FMT " checks, %" PetscInt_FMT " rebalances, %.3g s in checks and moves\n", LbSchemeNames[b->scheme], LbWeightNames[b->weight], b->checks, b->rebalances, b->t_total));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* DemRun's step monitor of a dry run. */
+static PetscErrorCode BalanceMonitor(Dem dem, void *ctx)
+{
+  PetscFunctionBeginUser;
+  (void)dem;
+  PetscCall(BalanceCheck((Balance)ctx, PETSC_FALSE, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BalanceAttach(Balance b)
+{
+  PetscFunctionBeginUser;
+  if (b->scheme != LB_NONE) PetscCall(DemSetStepMonitor(b->dem, BalanceMonitor, b));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

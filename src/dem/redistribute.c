@@ -1,0 +1,130 @@
+/* Redistribution of the particles after the decomposition changed (load balancing, DESIGN §1).
+ * The process grid stays, only the per-axis cuts move, so a particle may now belong to any rank,
+ * not only to a neighbour: one all-to-all exchange sends every particle to the rank whose box
+ * holds its centre, with the same record as a migration (state, force and torque of the last
+ * step, coupling state, tangential springs keyed by ids), after wrapping positions across
+ * periodic boundaries. The owner is found from the cut positions computed exactly as the rank
+ * boxes are (lo + cells * h), so the global and the neighbour migrations agree on every
+ * particle. Then ghosts and lists are rebuilt from scratch (the cell grid follows the new box). */
+#include "dem/dem_impl.h"
+
+/* Rank column along axis k whose box holds coordinate x: box r is [lo + s_r h, lo + s_{r+1} h)
+ * with s_r the cells before column r; below lo the first, from hi on the last. */
+static PetscMPIInt dem_owner_column(const Domain *dom, const PetscInt *l, int k, double x)
+{
+  PetscInt c = 0, s = l[0];
+  for (PetscInt r = 1; r < dom->nranks[k]; s += l[r], r++) {
+    if (x < dom->lo[k] + s * dom->h[k]) break;
+    c = r;
+  }
+  return (PetscMPIInt)c;
+}
+
+PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec)
+{
+  const Domain   *dom = dem->dom;
+  DemExchange    *ex  = &dem->ex;
+  const PetscInt *l[3];
+  PetscMPIInt     size, me, *owner, *scnt, *sdsp, *rcnt, *rdsp;
+  PetscInt       *keep, nkeep = 0;
+  const double    zero[3] = {0, 0, 0};
+  size_t          total = 0, rtotal = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(dem->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(dem->comm, &me));
+  PetscCall(DMDAGetOwnershipRanges(dom->da, &l[0], &l[1], &l[2]));
+  PetscCall(PetscMalloc2(dem->n + 1, &owner, dem->n + 1, &keep));
+  PetscCall(PetscCalloc4(size, &scnt, size + 1, &sdsp, size, &rcnt, size + 1, &rdsp));
+  for (PetscInt i = 0; i < dem->n; i++) {
+    double     *x = dem->x + 3 * i;
+    PetscMPIInt c[3];
+    for (int k = 0; k < 3; k++) {
+      if (dom->periodic[k] && x[k] < dom->lo[k]) x[k] += dom->len[k];
+      else if (dom->periodic[k] && x[k] >= dom->hi[k]) x[k] -= dom->len[k];
+      c[k] = dem_owner_column(dom, l[k], k, x[k]);
+    }
+    owner[i] = c[0] + (PetscMPIInt)dom->nranks[0] * (c[1] + (PetscMPIInt)dom->nranks[1] * c[2]);
+    if (owner[i] == me) {
+      keep[nkeep++] = i;
+      continue;
+    }
+    PetscInt         ns = 0;
+    const DemSpring *s  = DemSpringFind(*recs, *nrec, dem->id[i], PETSC_MIN_INT);
+    for (; s && s < *recs + *nrec && s->owner == dem->id[i]; s++) ns++;
+    const size_t sz = MIG_RECORD_SIZE(dem, ns);
+    scnt[owner[i]] += (PetscMPIInt)sz;
+    total += sz;
+  }
+  PetscCheck(total < (size_t)PETSC_MPI_INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "redistribution message of %zu doubles exceeds the MPI count limit", total);
+  for (PetscMPIInt r = 0; r < size; r++) sdsp[r + 1] = sdsp[r] + scnt[r];
+  PetscCall(PetscArraycpy(rdsp, sdsp, size)); /* running positions while packing */
+  PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, total + 1));
+  for (PetscInt i = 0; i < dem->n; i++)
+    if (owner[i] != me) rdsp[owner[i]] += (PetscMPIInt)DemMigPack(dem, i, *recs, *nrec, zero, ex->sbuf + rdsp[owner[i]]);
+  ex->migrated = dem->n - nkeep;
+  dem->n       = nkeep;
+  PetscCall(DemParticlesPermute(dem, keep));
+  PetscCallMPI(MPI_Alltoall(scnt, 1, MPI_INT, rcnt, 1, MPI_INT, dem->comm));
+  rdsp[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) {
+    rdsp[r + 1] = rdsp[r] + rcnt[r];
+    rtotal += (size_t)rcnt[r];
+  }
+  PetscCheck(rtotal < (size_t)PETSC_MPI_INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "redistribution message of %zu doubles exceeds the MPI count limit", rtotal);
+  PetscCall(DemBufReserve(&ex->rbuf, &ex->caprbuf, rtotal + 1));
+  PetscCallMPI(MPI_Alltoallv(ex->sbuf, scnt, sdsp, MPI_DOUBLE, ex->rbuf, rcnt, rdsp, MPI_DOUBLE, dem->comm));
+  for (size_t o = 0, used; o < rtotal; o += used) PetscCall(DemMigUnpack(dem, ex->rbuf + o, recs, nrec, caprec, &used));
+  PetscCall(DemSpringsSort(*recs, *nrec));
+  PetscCall(PetscFree2(owner, keep));
+  PetscCall(PetscFree4(scnt, sdsp, rcnt, rdsp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemRedistribute(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DemExchangeSetUp(dem));  /* same neighbours; re-checks the box widths */
+  PetscCall(PetscFree(dem->nl.cstart)); /* the cell grid covers the new box */
+  dem->remap = PETSC_TRUE;
+  PetscCall(DemNeighBuild(dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach)
+{
+  PetscFunctionBeginUser;
+  *reach = dem->reach;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemSetStepMonitor(Dem dem, PetscErrorCode (*fn)(Dem, void *), void *ctx)
+{
+  PetscFunctionBeginUser;
+  dem->monitor     = fn;
+  dem->monitor_ctx = ctx;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetCellCounts(Dem dem, PetscReal *count)
+{
+  const Domain *dom = dem->dom;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dem->n; i++) {
+    PetscInt c[3];
+    for (int k = 0; k < 3; k++) { /* a particle a little outside its box counts in its edge cell */
+      c[k] = (PetscInt)PetscFloorReal((dem->x[3 * i + k] - dom->lo[k]) / dom->h[k]);
+      c[k] = PetscMin(PetscMax(c[k], dom->cstart[k]), dom->cstart[k] + dom->ccount[k] - 1);
+    }
+    count[c[0] + dom->cells[0] * (c[1] + dom->cells[1] * c[2])] += 1;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetComputeTime(Dem dem, PetscLogDouble *t)
+{
+  PetscFunctionBeginUser;
+  *t = dem->t_compute;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

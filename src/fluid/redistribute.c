@@ -1,0 +1,45 @@
+/* Moving the fluid onto a new decomposition (load balancing, DESIGN §1). The Domain has new
+ * per-axis ownership ranges; the fluid rebuilds its cell and face DMDAs from them and moves
+ * every field it keeps from one step to the next (velocity, pressure, porosity and its previous
+ * value, drag coefficient, solid velocity, momentum source, the Adams-Bashforth history of the
+ * advection term, the last pressure increment) through the natural ordering, so each value lands
+ * bit for bit on the same grid point (DomainMoveVec). Work vectors are moved as well (cheaper to
+ * move than to reason about which hold state). Matrices and the star-stencil DMDAs of the
+ * Poisson and viscous solves are rebuilt on the new layout at their next use; the KSPs keep
+ * their options. */
+#include "fluid/fluid_impl.h"
+
+PetscErrorCode FluidRedistribute(Fluid fl)
+{
+  DM   ocda = fl->cda, ofda = fl->fda;
+  Vec *cell[] = {&fl->p, &fl->eps, &fl->eps_old, &fl->phi, &fl->rhs};
+  Vec *face[] = {&fl->u, &fl->beta, &fl->us, &fl->src, &fl->uhat, &fl->advn, &fl->adv_old, &fl->vis};
+  Vec *work[] = {&fl->uloc, &fl->ploc, &fl->epsloc, &fl->epsoldloc, &fl->philoc, &fl->coef, &fl->coefloc, &fl->vbc, &fl->phiu};
+
+  PetscFunctionBeginUser;
+  PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidRedistribute");
+  for (size_t i = 0; i < sizeof work / sizeof work[0]; i++) PetscCall(VecDestroy(work[i]));
+  PetscCall(MatNullSpaceDestroy(&fl->nsp));
+  PetscCall(MatDestroy(&fl->A));
+  PetscCall(DMDestroy(&fl->pda));
+  PetscCall(MatDestroy(&fl->V));
+  PetscCall(DMDestroy(&fl->vda));
+  fl->cda = fl->fda = NULL;
+  PetscCall(FluidCreateDMs(fl));
+  for (size_t i = 0; i < sizeof cell / sizeof cell[0]; i++) PetscCall(DomainMoveVec(ocda, fl->cda, cell[i]));
+  for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) PetscCall(DomainMoveVec(ofda, fl->fda, face[i]));
+  PetscCall(DMDestroy(&ocda));
+  PetscCall(DMDestroy(&ofda));
+  PetscCall(DMCreateLocalVector(fl->cda, &fl->ploc));
+  PetscCall(VecDuplicate(fl->ploc, &fl->epsloc));
+  PetscCall(VecDuplicate(fl->ploc, &fl->epsoldloc));
+  PetscCall(VecDuplicate(fl->ploc, &fl->philoc));
+  PetscCall(DMCreateLocalVector(fl->fda, &fl->uloc));
+  PetscCall(KSPReset(fl->ksp)); /* operators of another size follow */
+  PetscCall(FluidPoissonSetUp(fl));
+  if (fl->vksp) {
+    PetscCall(KSPReset(fl->vksp));
+    PetscCall(FluidViscousSetUp(fl));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
