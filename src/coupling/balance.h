@@ -44,5 +44,6 @@ PetscErrorCode BalanceUniformCuts(const BalanceGrid *g, PetscInt *const l[3]);
  * cells are summed in global cell order. */
 PetscErrorCode BalanceLoads(const BalanceGrid *g, const PetscReal *w, PetscInt *const l[3], PetscReal *load);
 /* The process grid PETSc 3.18's DMDA chooses for `size` ranks on n[0] x n[1] x n[2] cells when
- * -da_processors_x/y/z are not given (the "squarish" factorisation of DMSetUp_DA_3D). */
+ * -da_processors_x/y/z are not given (the "squarish" factorisation of DMSetUp_DA_3D). Like the
+ * DMDA's, it may exceed the cells along an axis: the caller checks p[d] minw[d] <= n[d]. */
 PetscErrorCode BalanceProcessGrid(const PetscInt n[3], PetscInt size, PetscInt p[3]);

@@ -408,6 +408,5 @@ PetscErrorCode BalanceProcessGrid(const PetscInt n[3], PetscInt size, PetscInt p
   }
   p[0] = px, p[1] = py, p[2] = pz;
   PetscCheck(px * py * pz == size, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no process grid for %" PetscInt_FMT " ranks", size);
-  for (int d = 0; d < 3; d++) PetscCheck(p[d] <= n[d], PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " ranks: DMDA's grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " has more ranks than cells (%" PetscInt_FMT ") along %c", size, p[0], p[1], p[2], n[d], "xyz"[d]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
