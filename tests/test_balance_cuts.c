@@ -226,6 +226,29 @@ static PetscErrorCode TestLoadSum(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* degenerate input: no weight at all, a grid exactly p minw wide, a single rank */
+static PetscErrorCode TestEdges(void)
+{
+  const BalanceGrid g0 = {{6, 5, 7}, {2, 1, 3}, {1, 1, 2}, 0}, g1 = {{6, 5, 9}, {3, 1, 3}, {2, 1, 3}, 0}, g2 = {{6, 5, 7}, {1, 1, 1}, {1, 1, 1}, 0};
+  PetscReal         w[270], lmax = -1, lavg = -1, l1max, l1avg, l2max, l2avg, total = 0;
+  PetscInt          a[3], b[3], c[3];
+  PetscInt *const   l[3] = {a, b, c};
+  PetscBool         ok0, ok1, ok2;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < 270; i++) w[i] = 0;
+  PetscCall(BalanceCuts(&g0, w, l, &lmax, &lavg));
+  ok0 = (PetscBool)(CutsValid(&g0, l) && lmax == 0 && lavg == 0);
+  for (PetscInt i = 0; i < 270; i++) w[i] = rng();
+  for (PetscInt i = 0; i < 210; i++) total += w[i]; /* g2 has 210 cells */
+  PetscCall(BalanceCuts(&g1, w, l, &l1max, &l1avg));
+  ok1 = (PetscBool)(CutsValid(&g1, l) && a[0] == 2 && a[2] == 2 && c[0] == 3 && c[2] == 3);
+  PetscCall(BalanceCuts(&g2, w, l, &l2max, &l2avg));
+  ok2 = (PetscBool)(a[0] == 6 && b[0] == 5 && c[0] == 7 && PetscAbsReal(l2max - total) <= 1e-13 * total && l2max == l2avg);
+  check((PetscBool)(ok0 && ok1 && ok2), "edge cases: zero weights (valid cuts, L_max = L_avg = 0) %s; n = p minw exactly (all parts minw) %s; one rank (whole grid, L_max = total) %s", ok0 ? "yes" : "no", ok1 ? "yes" : "no", ok2 ? "yes" : "no");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static char last_msg[1024];
 
 static PetscErrorCode RecordError(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
@@ -303,6 +326,7 @@ int main(int argc, char **argv)
   PetscCall(TestColumn());
   PetscCall(TestMinWidth());
   PetscCall(TestLoadSum());
+  PetscCall(TestEdges());
   PetscCall(TestBruteForce("n 8x6x10 on 2x2x2", &g1, 50));
   PetscCall(TestBruteForce("n 8x6x10 on 3x2x2, minw 2,1,2", &g2, 50));
   PetscCall(TestBruteForce("n 7x7x12 on 2x2x3, minw 1,1,2", &g3, 20));
