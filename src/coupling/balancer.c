@@ -34,7 +34,8 @@ struct _p_Balance {
   PetscInt  once_step, interval, max_sweeps, last_step;
   PetscBool done_once, verbose;
   BalanceGrid g;
-  PetscReal  *count, *w, *load;
+  PetscReal  *count, *w, *load, alpha_used, beta_used;
+  PetscInt   *icount;
   PetscInt   *l[3];
   /* measured weights: compute times and work at the last check */
   PetscLogDouble t_dem0, t_fluid0;
@@ -145,7 +146,7 @@ PetscErrorCode BalanceSetUp(Balance b)
   b->g.max_sweeps = b->max_sweeps;
   PetscCall(BalanceMinWidth(b, b->g.minw));
   ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
-  PetscCall(PetscMalloc3(ncell, &b->count, ncell, &b->w, b->g.p[0] * b->g.p[1] * b->g.p[2], &b->load));
+  PetscCall(PetscMalloc4(ncell, &b->count, ncell, &b->icount, ncell, &b->w, b->g.p[0] * b->g.p[1] * b->g.p[2], &b->load));
   for (int k = 0; k < 3; k++) PetscCall(PetscMalloc1(b->g.p[k], &b->l[k]));
   PetscCall(DemGetTime(b->dem, &b->next_time, NULL));
   b->next_time += b->interval_time;
@@ -158,7 +159,7 @@ PetscErrorCode BalanceDestroy(Balance *lb)
 {
   PetscFunctionBeginUser;
   if (!*lb) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscFree3((*lb)->count, (*lb)->w, (*lb)->load));
+  PetscCall(PetscFree4((*lb)->count, (*lb)->icount, (*lb)->w, (*lb)->load));
   for (int k = 0; k < 3; k++) PetscCall(PetscFree((*lb)->l[k]));
   PetscCall(PetscFree(*lb));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -204,7 +205,13 @@ static PetscErrorCode BalanceWeigh(Balance b, PetscReal *lmin, PetscReal *lmax, 
   PetscCall(DemGetCellCounts(b->dem, b->w));
   PetscCallMPI(MPIU_Allreduce(b->w, b->count, (PetscMPIInt)ncell, MPIU_REAL, MPI_SUM, b->comm));
   if (b->weight == 2) PetscCall(BalanceMeasuredWeights(b, &alpha, &beta));
-  for (PetscInt c = 0; c < ncell; c++) b->w[c] = alpha * (b->weight == 1 ? b->count[c] * b->count[c] : b->count[c]) + beta;
+  {
+    const BalanceWeight wm = {b->weight == 1 ? BALANCE_WEIGHT_QUADRATIC : BALANCE_WEIGHT_LINEAR, alpha, beta};
+    for (PetscInt c = 0; c < ncell; c++) b->icount[c] = (PetscInt)b->count[c];
+    PetscCall(BalanceCellWeights(&wm, ncell, b->icount, b->w));
+  }
+  b->alpha_used = alpha;
+  b->beta_used  = beta;
   PetscCall(DMDAGetOwnershipRanges(b->dom->da, &l[0], &l[1], &l[2]));
   for (int k = 0; k < 3; k++) PetscCall(PetscArraycpy(b->l[k], l[k], b->g.p[k]));
   PetscCall(BalanceLoads(&b->g, b->w, b->l, b->load));
@@ -267,6 +274,7 @@ PetscErrorCode BalanceCheck(Balance b, PetscBool force, PetscBool *moved)
   b->t_total += t1 - t0;
   if (b->verbose) {
     PetscCall(PetscPrintf(b->comm, "lb: step %" PetscInt_FMT " t %.6g s  load min/avg/max %.4g/%.4g/%.4g  (Lmax-Lmin)/Lavg %.3f  Lmax/Lavg %.3f", step, (double)t, (double)lmin, (double)lavg, (double)lmax, (double)((lmax - lmin) / lavg), (double)(lmax / lavg)));
+    if (b->weight == 2) PetscCall(PetscPrintf(b->comm, "  measured alpha %.3g s/particle-step, beta %.3g s/cell-step", (double)b->alpha_used, (double)b->beta_used));
     if (go) PetscCall(PetscPrintf(b->comm, "  -> rebalanced, predicted Lmax/Lavg %.3f, cost %.3g s\n", (double)(nmax / navg), t1 - t0));
     else PetscCall(PetscPrintf(b->comm, "  -> kept%s, cost %.3g s\n", same ? "" : " (below threshold)", t1 - t0));
   }
