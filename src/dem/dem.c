@@ -40,6 +40,7 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
   d->vimpact     = 1;
   d->dt          = 1e-5;
   d->dt_frac     = 0.1;
+  d->overlap_max = 0.5;
   d->g[2]        = -9.81;
   d->sort_interval = 1;
   d->seed          = 1;
@@ -95,6 +96,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates (m/s)", NULL, dem->vimpact, &dem->vimpact, NULL));
   PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->dt, &dem->dt, NULL));
   PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->dt_frac, &dem->dt_frac, NULL));
+  PetscCall(PetscOptionsReal("-dem_overlap_max", "Largest overlap / radius allowed at a progress line or output frame; above it the run is diverging and stops, > 0", NULL, dem->overlap_max, &dem->overlap_max, NULL));
   PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run (s)", NULL, dem->t_end, &dem->t_end, NULL));
   PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, dem->progress_dt, &dem->progress_dt, NULL));
   SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
@@ -124,6 +126,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCheck(dem->shp[0].rho > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_density %g must be > 0 (kg/m^3)", (double)dem->shp[0].rho);
   PetscCheck(dem->dt > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt %g must be > 0 (s)", (double)dem->dt);
   PetscCheck(dem->dt_frac > 0 && dem->dt_frac <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_max_fraction %g must be in (0,1]", (double)dem->dt_frac);
+  PetscCheck(dem->overlap_max > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_overlap_max %g must be > 0", (double)dem->overlap_max);
   PetscCheck(dem->t_end >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_t_end %g must be >= 0 (s)", (double)dem->t_end);
   PetscCheck(dem->vimpact > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_impact_velocity %g must be > 0 (m/s)", (double)dem->vimpact);
   PetscCheck(dem->tdamp_ratio >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_tangential_damping %g must be >= 0", (double)dem->tdamp_ratio);
