@@ -55,3 +55,8 @@ if [ "$rc" -eq 1 ] && printf '%s' "$msg" | grep -q "above -dem_overlap_max" && !
 else
   echo "FAIL diverging DEM (dt/Tc 0.65) stops: exit $rc, got: $(printf '%s' "$out" | tail -n 2)"
 fi
+
+# -dem_dt_tc (the presets' way to set dt): dt is that fraction of the shortest contact time
+out=$(bin/sable -options_file cases/settle/quick.opts -io_interval 0 -io_dir "$OUT/dttc" -dem_dt_tc 0.05 -dem_t_end 0.002 2>&1)
+got=$(printf '%s\n' "$out" | sed -n 's/.*with particle: .*dt\/Tc = \([0-9.]*\) .*/\1/p')
+if [ "$got" = "0.05" ]; then echo "PASS -dem_dt_tc 0.05: the log's particle-particle dt/Tc $got (0.05)"; else echo "FAIL -dem_dt_tc 0.05: dt/Tc '$got'; $(printf '%s' "$out" | tail -n 1)"; fi

@@ -95,6 +95,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsReal("-dem_tangential_damping", "Tangential over normal damping ratio, >= 0", NULL, dem->tdamp_ratio, &dem->tdamp_ratio, NULL));
   PetscCall(PetscOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates (m/s)", NULL, dem->vimpact, &dem->vimpact, NULL));
   PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->dt, &dem->dt, NULL));
+  PetscCall(PetscOptionsReal("-dem_dt_tc", "Time step as this fraction of the shortest contact time (every pair type, at -dem_impact_velocity); replaces -dem_dt when > 0 (the presets in cases/presets use it)", NULL, dem->dt_tc, &dem->dt_tc, NULL));
   PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->dt_frac, &dem->dt_frac, NULL));
   PetscCall(PetscOptionsReal("-dem_overlap_max", "Largest overlap / radius allowed at a progress line or output frame; above it the run is diverging and stops, > 0", NULL, dem->overlap_max, &dem->overlap_max, NULL));
   PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run (s)", NULL, dem->t_end, &dem->t_end, NULL));
@@ -126,6 +127,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCheck(dem->shp[0].rho > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_density %g must be > 0 (kg/m^3)", (double)dem->shp[0].rho);
   PetscCheck(dem->dt > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt %g must be > 0 (s)", (double)dem->dt);
   PetscCheck(dem->dt_frac > 0 && dem->dt_frac <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_max_fraction %g must be in (0,1]", (double)dem->dt_frac);
+  PetscCheck(dem->dt_tc >= 0 && dem->dt_tc <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_tc %g must be in [0,1] (0: use -dem_dt)", (double)dem->dt_tc);
   PetscCheck(dem->overlap_max > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_overlap_max %g must be > 0", (double)dem->overlap_max);
   PetscCheck(dem->t_end >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_t_end %g must be >= 0 (s)", (double)dem->t_end);
   PetscCheck(dem->vimpact > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_impact_velocity %g must be > 0 (m/s)", (double)dem->vimpact);
@@ -136,16 +138,27 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* dt against the contact time of every pair type. */
+/* dt against the contact time of every pair type; with -dem_dt_tc, dt is first set to that
+ * fraction of the shortest one. */
 static PetscErrorCode DemCheckTimeStep(Dem dem)
 {
   PetscFunctionBeginUser;
+  if (dem->dt_tc > 0) {
+    PetscReal tmin = PETSC_MAX_REAL;
+    for (PetscInt s = 0; s < dem->nshape; s++)
+      for (PetscInt t = -1; t < dem->nshape; t++) {
+        PetscReal tc, e;
+        PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
+        tmin = PetscMin(tmin, tc);
+      }
+    dem->dt = dem->dt_tc * tmin;
+  }
   for (PetscInt s = 0; s < dem->nshape; s++)
     for (PetscInt t = -1; t < dem->nshape; t++) {
       PetscReal tc, e;
       PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
       PetscCheck(dem->dt <= dem->dt_frac * tc, dem->comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-dem_dt %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (%s, radius %g m): use -dem_dt <= %g", (double)dem->dt, (double)dem->dt_frac, (double)tc, t < 0 ? "particle-wall" : "particle-particle", (double)dem->shp[s].r, (double)(dem->dt_frac * tc));
+                 "%s %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (%s, radius %g m): use -dem_dt <= %g", dem->dt_tc > 0 ? "-dem_dt_tc gives dt" : "-dem_dt", (double)dem->dt, (double)dem->dt_frac, (double)tc, t < 0 ? "particle-wall" : "particle-particle", (double)dem->shp[s].r, (double)(dem->dt_frac * tc));
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

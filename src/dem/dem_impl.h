@@ -123,7 +123,7 @@ struct _p_Dem {
   PetscInt  sort_interval;
   PetscBool need_build;
   /* time */
-  PetscReal g[3], dt, t, t_end, dt_frac, progress_dt, overlap_max;
+  PetscReal g[3], dt, t, t_end, dt_frac, dt_tc, progress_dt, overlap_max;
   PetscInt  step;
   /* insertion */
   PetscInt  lat[3];
