@@ -60,6 +60,11 @@ static PetscErrorCode CplProbeReport(Cpl cpl)
 static PetscErrorCode CplOutput(Cpl cpl, Io io)
 {
   PetscFunctionBeginUser;
+  if (!cpl->frozen) { /* never write a diverged state */
+    DemStats ds;
+    PetscCall(DemGetStats(cpl->dem, &ds));
+    PetscCall(DemCheckHealth(cpl->dem, &ds));
+  }
   PetscCall(IoFrameBegin(io, cpl->t, cpl->step));
   PetscCall(DemWriteOutput(cpl->dem, io));
   PetscCall(FluidWriteOutput(cpl->fl, io));
