@@ -2,7 +2,10 @@
  * One step (velocity Verlet): half kick + drift (+ rebuild check) -> walls move -> lists rebuilt
  * if a particle or a wall moved more than skin/2 -> forces (gravity, pairs, walls) -> half kick.
  * The time step is checked against the contact time at set-up: dt <= dt_max_fraction * Tc for
- * every pair type (Tc of the hertz law at -dem_impact_velocity). */
+ * every pair type (Tc of the hertz law at -dem_impact_velocity); -dem_dt_tc sets dt to a fraction
+ * of the shortest Tc instead. A run that diverges anyway (dt too large for the stiffness: the
+ * particles pass through each other while every number stays finite) stops at the next progress
+ * line or output frame when the largest overlap exceeds -dem_overlap_max radii (diag.c). */
 #include "dem/dem_impl.h"
 
 PetscLogEvent        DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
