@@ -25,7 +25,7 @@ TEST_BIN = $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 HDRS = $(shell find src -name '*.h')
 
 .PHONY: all deps test run bench clean
-all: $(BIN)/sable $(TEST_BIN)
+all: $(BIN)/sable $(TEST_BIN) $(BUILD)/tools/tradeoff_run
 
 deps:
 	@tools/install-deps.sh

@@ -2,7 +2,10 @@
  * One step (velocity Verlet): half kick + drift (+ rebuild check) -> walls move -> lists rebuilt
  * if a particle or a wall moved more than skin/2 -> forces (gravity, pairs, walls) -> half kick.
  * The time step is checked against the contact time at set-up: dt <= dt_max_fraction * Tc for
- * every pair type (Tc of the hertz law at -dem_impact_velocity). */
+ * every pair type (Tc of the hertz law at -dem_impact_velocity); -dem_dt_tc sets dt to a fraction
+ * of the shortest Tc instead. A run that diverges anyway (dt too large for the stiffness: the
+ * particles pass through each other while every number stays finite) stops at the next progress
+ * line or output frame when the largest overlap exceeds -dem_overlap_max radii (diag.c). */
 #include "dem/dem_impl.h"
 
 PetscLogEvent        DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
@@ -40,6 +43,7 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
   d->vimpact     = 1;
   d->dt          = 1e-5;
   d->dt_frac     = 0.1;
+  d->overlap_max = 0.5;
   d->g[2]        = -9.81;
   d->sort_interval = 1;
   d->seed          = 1;
@@ -94,7 +98,9 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsReal("-dem_tangential_damping", "Tangential over normal damping ratio, >= 0", NULL, dem->tdamp_ratio, &dem->tdamp_ratio, NULL));
   PetscCall(PetscOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates (m/s)", NULL, dem->vimpact, &dem->vimpact, NULL));
   PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->dt, &dem->dt, NULL));
+  PetscCall(PetscOptionsReal("-dem_dt_tc", "Time step as this fraction of the shortest contact time (every pair type, at -dem_impact_velocity); replaces -dem_dt when > 0 (the presets in cases/presets use it)", NULL, dem->dt_tc, &dem->dt_tc, NULL));
   PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->dt_frac, &dem->dt_frac, NULL));
+  PetscCall(PetscOptionsReal("-dem_overlap_max", "Largest overlap / radius allowed at a progress line or output frame; above it the run is diverging and stops, > 0", NULL, dem->overlap_max, &dem->overlap_max, NULL));
   PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run (s)", NULL, dem->t_end, &dem->t_end, NULL));
   PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, dem->progress_dt, &dem->progress_dt, NULL));
   SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
@@ -124,6 +130,8 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCheck(dem->shp[0].rho > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_density %g must be > 0 (kg/m^3)", (double)dem->shp[0].rho);
   PetscCheck(dem->dt > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt %g must be > 0 (s)", (double)dem->dt);
   PetscCheck(dem->dt_frac > 0 && dem->dt_frac <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_max_fraction %g must be in (0,1]", (double)dem->dt_frac);
+  PetscCheck(dem->dt_tc >= 0 && dem->dt_tc <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_tc %g must be in [0,1] (0: use -dem_dt)", (double)dem->dt_tc);
+  PetscCheck(dem->overlap_max > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_overlap_max %g must be > 0", (double)dem->overlap_max);
   PetscCheck(dem->t_end >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_t_end %g must be >= 0 (s)", (double)dem->t_end);
   PetscCheck(dem->vimpact > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_impact_velocity %g must be > 0 (m/s)", (double)dem->vimpact);
   PetscCheck(dem->tdamp_ratio >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_tangential_damping %g must be >= 0", (double)dem->tdamp_ratio);
@@ -133,16 +141,27 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* dt against the contact time of every pair type. */
+/* dt against the contact time of every pair type; with -dem_dt_tc, dt is first set to that
+ * fraction of the shortest one. */
 static PetscErrorCode DemCheckTimeStep(Dem dem)
 {
   PetscFunctionBeginUser;
+  if (dem->dt_tc > 0) {
+    PetscReal tmin = PETSC_MAX_REAL;
+    for (PetscInt s = 0; s < dem->nshape; s++)
+      for (PetscInt t = -1; t < dem->nshape; t++) {
+        PetscReal tc, e;
+        PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
+        tmin = PetscMin(tmin, tc);
+      }
+    dem->dt = dem->dt_tc * tmin;
+  }
   for (PetscInt s = 0; s < dem->nshape; s++)
     for (PetscInt t = -1; t < dem->nshape; t++) {
       PetscReal tc, e;
       PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
       PetscCheck(dem->dt <= dem->dt_frac * tc, dem->comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-dem_dt %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (%s, radius %g m): use -dem_dt <= %g", (double)dem->dt, (double)dem->dt_frac, (double)tc, t < 0 ? "particle-wall" : "particle-particle", (double)dem->shp[s].r, (double)(dem->dt_frac * tc));
+                 "%s %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (%s, radius %g m): use -dem_dt <= %g", dem->dt_tc > 0 ? "-dem_dt_tc gives dt" : "-dem_dt", (double)dem->dt, (double)dem->dt_frac, (double)tc, t < 0 ? "particle-wall" : "particle-particle", (double)dem->shp[s].r, (double)(dem->dt_frac * tc));
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -43,6 +43,10 @@ PetscErrorCode DemRun(Dem dem, Io io);
 PetscErrorCode DemGetTime(Dem dem, PetscReal *t, PetscInt *step);
 PetscErrorCode DemGetTimeStep(Dem dem, PetscReal *dt);
 PetscErrorCode DemGetStats(Dem dem, DemStats *s);
+/* Collective. Stops a diverging run with a message: kinetic energy not finite, or the largest
+ * overlap above -dem_overlap_max radii (a time step too large for the stiffness lets particles
+ * pass through each other while every number stays finite). s from DemGetStats. */
+PetscErrorCode DemCheckHealth(Dem dem, const DemStats *s);
 /* Packing fraction of the bed (particle volume over footprint x surface height, the surface
  * being the mean of the highest sphere top per column of one diameter) and mean coordination
  * number (particle-particle contacts per particle). Collective. */

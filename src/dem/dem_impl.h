@@ -127,7 +127,7 @@ struct _p_Dem {
   void          *monitor_ctx;
   PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
   /* time */
-  PetscReal g[3], dt, t, t_end, dt_frac, progress_dt;
+  PetscReal g[3], dt, t, t_end, dt_frac, dt_tc, progress_dt, overlap_max;
   PetscInt  step;
   /* insertion */
   PetscInt  lat[3];

@@ -178,9 +178,24 @@ PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode DemCheckHealth(Dem dem, const DemStats *st)
+{
+  PetscReal tc = 0, e;
+
+  PetscFunctionBeginUser;
+  PetscCheck(PetscIsNormalReal(st->ke) || st->ke == 0, dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": kinetic energy is not finite; lower -dem_dt", dem->step);
+  if (st->max_overlap <= dem->overlap_max) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DemGetContactFigures(dem, 0, 0, dem->vimpact, &tc, &e));
+  SETERRQ(dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": the largest overlap is %.3g radii, above -dem_overlap_max %g: the contacts are not resolved and the run is diverging (dt/Tc = %.3g); lower -dem_dt or raise -dem_kn", dem->step, (double)st->max_overlap, (double)dem->overlap_max, (double)(dem->dt / tc));
+}
+
 static PetscErrorCode DemOutput(Dem dem, Io io)
 {
+  DemStats st;
+
   PetscFunctionBeginUser;
+  PetscCall(DemGetStats(dem, &st)); /* never write a diverged state */
+  PetscCall(DemCheckHealth(dem, &st));
   PetscCall(IoFrameBegin(io, dem->t, dem->step));
   PetscCall(DemWriteOutput(dem, io));
   PetscCall(IoFrameEnd(io));
@@ -213,7 +228,7 @@ PetscErrorCode DemRun(Dem dem, Io io)
       PetscCall(PetscTime(&now));
       const double rate = (dem->step - s0) / PetscMax(now - t0, 1e-9);
       PetscCall(PetscPrintf(dem->comm, "t %.4f s  step %" PetscInt_FMT "  %.0f steps/s  ETA %.0f s  KE %.4g J  contacts %" PetscInt_FMT "  max overlap/r %.3g\n", (double)dem->t, dem->step, rate, PetscMax(0.0, (dem->t_end - dem->t) / dem->dt / rate), (double)(st.ke + st.ke_rot), st.contacts + st.wall_contacts, (double)st.max_overlap));
-      PetscCheck(PetscIsNormalReal(st.ke) || st.ke == 0, dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": kinetic energy is not finite; lower -dem_dt", dem->step);
+      PetscCall(DemCheckHealth(dem, &st));
       next += dem->progress_dt;
     }
   }
