@@ -36,7 +36,7 @@ static PetscErrorCode DemWallAddPolygon(Dem dem, const char *opt, PetscInt nv, c
     L = PetscMax(L, sqrt(dem_dot(d, d)));
   }
   nn = sqrt(dem_dot(n, n));
-  PetscCheck(L > 0 && nn > 1e-12 * L * L, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the polygon has zero area (degenerate or repeated vertices)", opt);
+  PetscCheck(L > 0 && nn > 1e-12 * L * L, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the polygon has zero area (repeated or collinear vertices, or crossing edges)", opt);
   for (int k = 0; k < 3; k++) n[k] /= nn;
   double mean = 0; /* offset of the mean plane (normal n) from v0 */
   for (PetscInt e = 0; e < nv; e++) {
