@@ -1,14 +1,24 @@
 /* Walls: infinite planes given by a point p and a unit normal n pointing into the granular side,
  * optionally translating at a constant velocity; an axis-aligned box is six such planes facing
- * inward. A particle touches a plane when its signed distance (x - p).n is below its radius;
- * the contact uses the same kernels as a particle pair, with the wall as a partner of infinite
- * mass and radius (m* = m, R* = r). Each wall keeps a list of the particles within r + skin,
- * rebuilt with the Verlet list, and their tangential springs.
+ * inward; finite rectangles, convex polygons and a square hopper (walls_polygon.c); a cylinder
+ * with particles inside, rotating about its axis, with co-rotating end caps (walls_cylinder.c).
+ * A sphere touches a wall when its overlap (dem_impl.h: dem_wall_sphere) is positive: for a
+ * plane r - (x - p).n; for a cylinder r + |rho| - R. The contact uses the same kernels as a
+ * particle pair, with the wall as a partner of infinite mass and radius (m* = m, R* = r) whose
+ * surface velocity at the contact point c is v + omega u x (c - a) (dem_wall_velocity: a
+ * translating plane, a rotating drum), so a moving wall drags particles by friction. Each wall
+ * keeps a list of the particles within r + skin, rebuilt with the Verlet list, and their
+ * tangential springs.
+ * Edges: a rectangle or a polygon is touched only where the sphere's centre (the contact point)
+ * projects inside it and lies in front of it; a sphere overhanging a joint edge feels no force
+ * from that face (the neighbouring face takes over, as in a box corner or a hopper's corners).
+ * Only edges marked as free rims (the hopper's orifice) are touched as segments.
  * Options: -dem_box xlo,ylo,zlo,xhi,yhi,zhi (m); -dem_plane_<k> px,py,pz,nx,ny,nz (m, -);
  * -dem_plane_<k>_velocity vx,vy,vz (m/s), k = 0..9; -dem_rect_<k> x0,y0,z0,x1,y1,z1,x2,y2,z2 (m),
  * k = 0..9: a finite rectangle with corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0), facing
- * the side (p1 - p0) x (p2 - p0) points to, touched only where the contact projects inside it
- * and by particles whose centre is in front (hopper plates, a bottom with an orifice). */
+ * the side (p1 - p0) x (p2 - p0) points to; -dem_quad_<k> (4 vertices), -dem_hopper (walls_polygon.c);
+ * -dem_cylinder, -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); -dem_<wall>_friction
+ * overrides -dem_wall_friction for that wall. At most DEM_MAX_WALLS walls in all. */
 #include "dem/dem_impl.h"
 
 PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3])
