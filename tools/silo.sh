@@ -5,7 +5,7 @@
 # (González-Montellano et al. 2011), Grains3D 29.36 s. Extra arguments go to the discharge run
 # (a short check: tools/silo.sh -dem_t_end 0.6); SILO_FILL_ARGS to the fill; SILO_SKIP_FILL=1
 # reuses out/silo/fill_000001.h5; RANKS=2 runs both on two ranks split along z. One rank, this
-# 2-core VM: fill 4.7 min; discharge ~0.15 us per particle-step, about 1.7 h for the full 32 s.
+# 2-core VM: fill 4.7 min; discharge 0.15-0.18 us per particle-step, about 2 h for the full 32 s.
 set -eu
 cd "$(dirname "$0")/.."
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
