@@ -14,6 +14,8 @@
  *     rests on the four rim edges at height h with sqrt(a^2 + h^2) = r - delta and
  *     4 kn delta h / (r - delta) = m g (frictionless: with friction the rest height depends on
  *     the history); a sphere narrower than the opening falls through.
+ *  5. A horizontal convex quadrilateral (-dem_quad_0, a kite): a sphere over it rests at
+ *     z = r - mg/kn (1% of the overlap); one beside it, inside its bounding box, falls past.
  * Run on 1 and 2 ranks: the sphere migrates with its wall springs. */
 /* ranks: 1 2 */
 #include "check.h"
@@ -170,6 +172,22 @@ static PetscErrorCode Orifice(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode Quad(void)
+{
+  const double r = 0.005, kn = 1e4, m = rho * 4.0 / 3.0 * PETSC_PI * r * r * r, delta = m * g / kn;
+  const double inside[3] = {0.01, 0, r}, beside[3] = {-0.03, 0.02, r};
+  double       s1[10], s2[10];
+  char         opts[1024];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.06,-0.06,-0.2 -domain_hi 0.06,0.06,0.05 -dem_radius %g -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 0.3 -dem_friction 0.3 -dem_dt 1e-5 -dem_quad_0 0,-0.05,0,0.05,0,0,0,0.05,0,-0.02,0,0", r, rho, kn));
+  PetscCall(Run(opts, inside, 0.2, 0.2, s1, s2));
+  check((PetscBool)(s2[9] == 1 && PetscAbsReal(s2[2] - (r - delta)) < 1e-2 * delta), "quad wall: sphere over it rests at z = %.9f m, analytic r - mg/kn = %.9f, error %.2e of the overlap (bound 1e-2)", s2[2], r - delta, PetscAbsReal(s2[2] - (r - delta)) / delta);
+  PetscCall(Run(opts, beside, 0.15, 0.15, s1, s2));
+  check((PetscBool)(s2[9] == 1 && s2[2] < -0.08), "quad wall: sphere beside it (inside its bounding box) falls past, z(0.15 s) = %.3f m (bound < -0.08)", s2[2]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
@@ -192,6 +210,7 @@ int main(int argc, char **argv)
   PetscCall(HopperPlate(0.5));
   PetscCall(HopperPlate(0.6));
   PetscCall(Orifice());
+  PetscCall(Quad());
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;
 }
