@@ -23,5 +23,17 @@ expect "time step above Tc/10" "-dem_dt 0.0001 s exceeds -dem_dt_max_fraction 0.
 expect "lattice outside the domain" "lie outside the domain box" $OK -dem_lattice 20,2,2
 expect "hertz without modulus" "-dem_contact_law hertz needs -dem_youngs_modulus" $OK -dem_contact_law hertz
 expect "wrong vector length" "-dem_gravity takes 3 comma-separated values, got 2" $OK -dem_gravity 0,1
+# walls (src/dem/walls_polygon.c, walls_cylinder.c)
+expect "non-planar quad" "-dem_quad_0: the vertices are not planar: vertex 0 is" $OK -dem_quad_0 0.01,0.01,0.01,0.09,0.01,0.01,0.09,0.09,0.03,0.01,0.09,0.01
+expect "non-convex quad" "-dem_quad_0: the polygon is not convex, or its vertices are not in order around it (turn at vertex 2 is the wrong way)" $OK -dem_quad_0 0.01,0.01,0.01,0.09,0.01,0.01,0.03,0.03,0.01,0.01,0.09,0.01
+expect "crossed quad" "-dem_quad_0: the polygon has zero area (repeated or collinear vertices, or crossing edges)" $OK -dem_quad_0 0.01,0.01,0.01,0.09,0.09,0.01,0.09,0.01,0.01,0.01,0.09,0.01
+expect "degenerate quad" "-dem_quad_0: the polygon has zero area" $OK -dem_quad_0 0.01,0.01,0.01,0.01,0.01,0.01,0.01,0.01,0.01,0.01,0.01,0.01
+expect "quad with 11 values" "-dem_quad_0 takes 12 comma-separated values, got 11" $OK -dem_quad_0 0,0,0,1,0,0,1,1,0,0,1
+expect "hopper wider at the bottom" "-dem_hopper: half-widths top 0.01 and bottom 0.03 must satisfy top > bottom > 0" $OK -dem_hopper 0.05,0.05,0.08,0.01,0.02,0.03
+expect "hopper upside down" "-dem_hopper: top z 0.02 must exceed bottom z 0.08" $OK -dem_hopper 0.05,0.05,0.02,0.04,0.08,0.01
+expect "cylinder of zero radius" "-dem_cylinder: radius 0. must be > 0" $OK -dem_cylinder 0.05,0.05,0.05,1,0,0,0
+expect "cylinder with zero axis" "-dem_cylinder: the axis direction 0.,0.,0. must be non-zero" $OK -dem_cylinder 0.05,0.05,0.05,0,0,0,0.04
+expect "drum speed without a drum" "-dem_cylinder_omega given without -dem_cylinder" $OK -dem_cylinder_omega 2
+expect "caps in the wrong order" "-dem_cylinder_caps: s1 -0.04 must exceed s0 0.04" $OK -dem_cylinder 0.05,0.05,0.05,1,0,0,0.04 -dem_cylinder_caps 0.04,-0.04
 # a good run for contrast: exit 0
 if $S $OK >/dev/null 2>&1; then echo "PASS good input runs: exit 0"; else echo "FAIL good input runs: exit $?"; fi

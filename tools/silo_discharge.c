@@ -2,8 +2,12 @@
  * -silo_interval seconds, counts in each the particles whose centre is above the orifice plane
  * z = -silo_z0, and prints the count against time and the mean discharge rate (particles per
  * second and kg/s with -silo_mass) between 20% and 80% of the particles discharged (a linear
- * regime for a silo: Beverloo's law), or, if 80% is not reached, from 0.1 s to the last frame. Options: -silo_dir, -silo_prefix, -silo_interval (s),
- * -silo_z0 (m), -silo_mass (kg per particle). */
+ * regime for a silo: Beverloo's law), or, if 80% is not reached, from 0.1 s to the last frame,
+ * then the discharge time: the time of the first frame with no particle left above the orifice
+ * (González-Montellano et al.'s and Grains3D's "discharge time": the silo is empty), or, if the
+ * frames stop before, its estimate N0 / rate at the constant (Beverloo) rate.
+ * Options: -silo_dir, -silo_prefix, -silo_interval (s), -silo_z0 (m), -silo_mass (kg per
+ * particle). */
 #include "io/io.h"
 #include <unistd.h>
 
@@ -12,7 +16,7 @@ int main(int argc, char **argv)
   char      dir[PETSC_MAX_PATH_LEN] = "out/silo_cubes", prefix[64] = "discharge", path[PETSC_MAX_PATH_LEN + 80];
   PetscReal dt = 0.05, z0 = 0, mass = 0, t20 = -1, t80 = -1;
   PetscInt  n0 = -1, n20 = 0, n80 = 0, n01 = 0, nlast = 0;
-  PetscReal tlast = 0;
+  PetscReal tlast = 0, tempty = -1, rate = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "silo_discharge: particles above the orifice against time\n"));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "silo discharge", NULL);
@@ -40,14 +44,17 @@ int main(int argc, char **argv)
     nlast = above, tlast = f * dt;
     if (t20 < 0 && n0 - above >= 0.2 * n0) t20 = f * dt, n20 = above;
     if (t80 < 0 && n0 - above >= 0.8 * n0) t80 = f * dt, n80 = above;
+    if (tempty < 0 && above == 0) tempty = f * dt;
   }
   if (t80 > t20 && t20 >= 0) {
-    const PetscReal rate = (n20 - n80) / (t80 - t20);
+    rate = (n20 - n80) / (t80 - t20);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge rate (20%% -> 80%%): %.1f particles/s, %.4f kg/s\n", (double)rate, (double)(rate * mass)));
   } else if (nlast < n0 && tlast > 0.1) { /* not 80% yet: from 0.1 s (start-up) to the last frame */
-    const PetscReal rate = (n01 - nlast) / (tlast - 0.1);
+    rate = (n01 - nlast) / (tlast - 0.1);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge rate (0.1 s -> %.2f s, %.0f%% discharged, not yet 80%%): %.1f particles/s, %.4f kg/s\n", (double)tlast, 100.0 * (n0 - nlast) / n0, (double)rate, (double)(rate * mass)));
   } else PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge rate: no discharge in the frames read\n"));
+  if (tempty >= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge time (no particle left above the orifice): %.2f s\n", (double)tempty));
+  else if (rate > 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge time: not reached (%" PetscInt_FMT " of %" PetscInt_FMT " left at %.2f s); at the rate above, N0 / rate = %.1f s\n", nlast, n0, (double)tlast, (double)(n0 / rate)));
   PetscCall(PetscFinalize());
   return 0;
 }

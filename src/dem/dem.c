@@ -46,6 +46,7 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
   d->overlap_max = 0.5;
   d->g[2]        = -9.81;
   d->sort_interval = 1;
+  d->lat_count     = -1; /* all lattice sites */
   d->seed          = 1;
   d->skin          = -1;
   *dem = d;

@@ -42,9 +42,9 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
     const DemWall *wl = &dem->wall[w];
     for (PetscInt a = 0; a < wl->cnt; a++) {
       const PetscInt i = wl->idx[a];
-      const double   d[3] = {dem->x[3 * i] - wl->p[0], dem->x[3 * i + 1] - wl->p[1], dem->x[3 * i + 2] - wl->p[2]};
-      const double   rr = dem->shp[dem->shape[i]].r, delta = rr - dem_dot(d, wl->n);
-      if (delta <= 0 || !DemWallCovers(wl, dem->x + 3 * i, dem->x + 3 * i)) continue;
+      double         nrm[3];
+      const double   rr = dem->shp[dem->shape[i]].r, delta = dem_wall_sphere(wl, dem->x + 3 * i, rr, nrm);
+      if (delta <= 0) continue;
       c[2]++;
       r[3] += dem_spring_energy(dem, &dem->pw[dem->shape[i]], delta, dem->law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);
       rmax = PetscMax(rmax, delta / rr);

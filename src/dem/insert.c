@@ -45,6 +45,7 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscInt nl = 3;
   PetscCall(PetscOptionsIntArray("-dem_lattice", "Cubic lattice site counts nx,ny,nz (0 = no lattice)", NULL, dem->lat, &nl, &set));
   PetscCheck(!set || nl == 3, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_lattice takes 3 counts nx,ny,nz, got %" PetscInt_FMT, nl);
+  PetscCall(PetscOptionsInt("-dem_lattice_count", "Fill only the first this many lattice sites, x fastest then y then z (default all nx*ny*nz)", NULL, dem->lat_count, &dem->lat_count, NULL));
   PetscCall(PetscOptionsReal("-dem_lattice_spacing", "Lattice spacing (m); default 1.05 x the largest diameter", NULL, dem->lat_a, &dem->lat_a, NULL));
   SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region (m); default the domain's lower corner", NULL, dem->lat_origin, 3, &dem->lat_origin_set);
   PetscCall(PetscOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2, in [0,1]", NULL, dem->lat_jitter, &dem->lat_jitter, NULL));
@@ -54,6 +55,8 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles)", NULL, dem->init_file, dem->init_file, sizeof dem->init_file, NULL));
   PetscOptionsEnd();
   for (int k = 0; k < 3; k++) PetscCheck(dem->lat[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice count %" PetscInt_FMT " must be >= 0", dem->lat[k]);
+  PetscCheck(dem->lat_count >= -1 && dem->lat_count <= dem->lat[0] * dem->lat[1] * dem->lat[2], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_count %" PetscInt_FMT " must be in [0, nx*ny*nz = %" PetscInt_FMT "]", dem->lat_count, dem->lat[0] * dem->lat[1] * dem->lat[2]);
+  if (dem->lat_count < 0) dem->lat_count = dem->lat[0] * dem->lat[1] * dem->lat[2];
   PetscCheck(dem->lat_jitter >= 0 && dem->lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->lat_jitter);
   PetscCheck(dem->lat_speed >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_speed %g must be >= 0", (double)dem->lat_speed);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -72,7 +75,7 @@ static PetscBool dem_in_box(const Domain *dom, const double *x)
 static PetscErrorCode DemInsertLattice(Dem dem)
 {
   double   dmax = 0, a, gap;
-  PetscInt nsite = dem->lat[0] * dem->lat[1] * dem->lat[2];
+  PetscInt nsite = dem->lat_count;
 
   PetscFunctionBeginUser;
   for (PetscInt s = 0; s < dem->nshape; s++) dmax = PetscMax(dmax, 2 * dem->shp[s].r);
@@ -187,9 +190,9 @@ PetscErrorCode DemInsert(Dem dem)
     PetscCall(DemInsertFile(dem, &nfile));
     want += nfile;
   }
-  if (dem->lat[0] * dem->lat[1] * dem->lat[2] > 0) {
+  if (dem->lat_count > 0) {
     PetscCall(DemInsertLattice(dem));
-    want += dem->lat[0] * dem->lat[1] * dem->lat[2];
+    want += dem->lat_count;
   }
   /* a particle outside every rank's box would be lost silently: refuse */
   added = dem->n - n0;

@@ -1,17 +1,27 @@
 /* Walls: infinite planes given by a point p and a unit normal n pointing into the granular side,
  * optionally translating at a constant velocity; an axis-aligned box is six such planes facing
- * inward. A particle touches a plane when its signed distance (x - p).n is below its radius;
- * the contact uses the same kernels as a particle pair, with the wall as a partner of infinite
- * mass and radius (m* = m, R* = r). Each wall keeps a list of the particles within r + skin,
- * rebuilt with the Verlet list, and their tangential springs.
+ * inward; finite rectangles, convex polygons and a square hopper (walls_polygon.c); a cylinder
+ * with particles inside, rotating about its axis, with co-rotating end caps (walls_cylinder.c).
+ * A sphere touches a wall when its overlap (dem_impl.h: dem_wall_sphere) is positive: for a
+ * plane r - (x - p).n; for a cylinder r + |rho| - R. The contact uses the same kernels as a
+ * particle pair, with the wall as a partner of infinite mass and radius (m* = m, R* = r) whose
+ * surface velocity at the contact point c is v + omega u x (c - a) (dem_wall_velocity: a
+ * translating plane, a rotating drum), so a moving wall drags particles by friction. Each wall
+ * keeps a list of the particles within r + skin, rebuilt with the Verlet list, and their
+ * tangential springs.
+ * Edges: a rectangle or a polygon is touched only where the sphere's centre (the contact point)
+ * projects inside it and lies in front of it; a sphere overhanging a joint edge feels no force
+ * from that face (the neighbouring face takes over, as in a box corner or a hopper's corners).
+ * Only edges marked as free rims (the hopper's orifice) are touched as segments.
  * Options: -dem_box xlo,ylo,zlo,xhi,yhi,zhi (m); -dem_plane_<k> px,py,pz,nx,ny,nz (m, -);
  * -dem_plane_<k>_velocity vx,vy,vz (m/s), k = 0..9; -dem_rect_<k> x0,y0,z0,x1,y1,z1,x2,y2,z2 (m),
  * k = 0..9: a finite rectangle with corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0), facing
- * the side (p1 - p0) x (p2 - p0) points to, touched only where the contact projects inside it
- * and by particles whose centre is in front (hopper plates, a bottom with an orifice). */
+ * the side (p1 - p0) x (p2 - p0) points to; -dem_quad_<k> (4 vertices), -dem_hopper (walls_polygon.c);
+ * -dem_cylinder, -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); -dem_<wall>_friction
+ * overrides -dem_wall_friction for that wall. At most DEM_MAX_WALLS walls in all. */
 #include "dem/dem_impl.h"
 
-static PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3])
+PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3])
 {
   DemWall *w;
   double   nn = sqrt(dem_dot(n, n));
@@ -46,6 +56,7 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
   PetscCall(DemWallAdd(dem, r, n, z));
   w         = &dem->wall[dem->nwall - 1];
   w->finite = PETSC_TRUE;
+  w->kind   = DEM_WALL_RECT;
   for (int k = 0; k < 3; k++) {
     w->e1[k] = e1[k];
     w->e2[k] = e2[k];
@@ -55,7 +66,7 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
 
 /* Per-wall friction override: n values for walls first.. (a box: xlo,ylo,zlo,xhi,yhi,zhi).
  * Called inside the walls' options block. */
-static PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first)
+PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first)
 {
   PetscReal mu[7];
   PetscInt  got = 7; /* room for one value too many, to report it */
@@ -114,6 +125,8 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
     if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
   }
+  PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));  /* -dem_quad_<k>, -dem_hopper */
+  PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem)); /* -dem_cylinder (drum) */
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -128,8 +141,14 @@ PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
     w->cnt     = 0;
     for (PetscInt i = 0; i < dem->n; i++) {
       const double d[3] = {dem->x[3 * i] - w->p[0], dem->x[3 * i + 1] - w->p[1], dem->x[3 * i + 2] - w->p[2]};
-      if (dem_dot(d, w->n) >= dem->shp[dem->shape[i]].r + dem->skin) continue;
-      if (w->finite && dem_dot(d, w->n) < -dem->skin) continue; /* behind a rectangle */
+      const double reach = dem->shp[dem->shape[i]].r + dem->skin;
+      if (w->kind == DEM_WALL_CYLINDER) { /* distance from the curved surface, inside */
+        const double a = dem_dot(d, w->n), rho2 = dem_dot(d, d) - a * a;
+        if (w->R - sqrt(PetscMax(rho2, 0.0)) >= reach) continue;
+      } else {
+        if (dem_dot(d, w->n) >= reach) continue;
+        if (w->finite && dem_dot(d, w->n) < -dem->skin) continue; /* behind a rectangle or polygon */
+      }
       if (w->cnt == w->cap) {
         w->cap = 2 * w->cap + 256;
         PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)w->cap, &w->idx));
@@ -152,25 +171,26 @@ PetscErrorCode DemContactsWalls(Dem dem)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
   for (PetscInt wi = 0; wi < dem->nwall; wi++) {
-    DemWall     *w   = &dem->wall[wi];
-    const double nrm[3] = {-w->n[0], -w->n[1], -w->n[2]}; /* from the particle to the wall */
+    DemWall      *w = &dem->wall[wi];
     DemPairParams pwl;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt       i  = w->idx[a];
       const double        *xi = dem->x + 3 * i, *vi = dem->v + 3 * i, *wi_ = dem->w + 3 * i;
       const double         r  = dem->shp[dem->shape[i]].r;
-      const double         d[3] = {xi[0] - w->p[0], xi[1] - w->p[1], xi[2] - w->p[2]};
-      const double         delta = r - dem_dot(d, w->n);
+      double               nrm[3]; /* from the particle to the wall */
+      const double         delta = dem_wall_sphere(w, xi, r, nrm);
       double              *xi_t  = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
       const DemPairParams *p     = DemWallParams(dem, w, dem->shape[i], &pwl);
-      if (delta <= 0 || !DemWallCovers(w, xi, xi)) {
+      if (delta <= 0) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
       const double l = r - 0.5 * delta;
-      double       vr[3], c[3], kt, gt, F[3];
+      double       vr[3], c[3], kt, gt, F[3], vw[3];
+      const double pc[3] = {xi[0] + l * nrm[0], xi[1] + l * nrm[1], xi[2] + l * nrm[2]}; /* contact point */
+      dem_wall_velocity(w, pc, vw);
       dem_cross(wi_, nrm, c);
-      for (int k = 0; k < 3; k++) vr[k] = w->v[k] - vi[k] - l * c[k];
+      for (int k = 0; k < 3; k++) vr[k] = vw[k] - vi[k] - l * c[k];
       const double vn = dem_dot(vr, nrm);
       const double fn = dem_normal_force(dem->law, p, delta, vn, &kt, &gt);
       for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k];

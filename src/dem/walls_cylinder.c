@@ -1,0 +1,61 @@
+/* Cylinder wall with particles inside, rotating about its own axis (a rotating drum).
+ *
+ * Axis through point a with unit direction u, radius R. A sphere of centre x, radius r has
+ * radial offset rho = (x - a) - ((x - a).u) u and overlap delta = r + |rho| - R; the normal from
+ * the centre to the wall is rho/|rho| (dem_impl.h: dem_wall_sphere). The drum turns at omega
+ * (rad/s, right-handed about u): its surface velocity at the contact point c = x + (r - delta/2)
+ * rho/|rho| is omega u x (c - a), and it enters the relative velocity of the contact, hence the
+ * tangential (friction) force, exactly as a translating plane's velocity does (walls.c). The
+ * geometry does not change as it turns, so the wall never triggers a list rebuild.
+ * The curvature is ignored in the contact law (the wall is a partner of infinite radius, R* = r,
+ * as for planes: exact for the linear laws, for Hertz an error of order r/R in the stiffness).
+ * End caps (-dem_cylinder_caps s0,s1): two planes perpendicular to the axis at a + s0 u and
+ * a + s1 u facing inward, co-rotating with the drum (surface velocity omega u x (c - a), in their
+ * plane); inside the cylinder a plane is the same as the disc. The cylinder is infinitely long
+ * without caps (close it with caps, planes, or a periodic domain axis).
+ * Options: -dem_cylinder ax,ay,az,ux,uy,uz,R (m, -, m); -dem_cylinder_omega (rad/s);
+ * -dem_cylinder_caps s0,s1 (m); -dem_cylinder_friction (cylinder and caps). Spheres only. */
+#include "dem/dem_impl.h"
+
+/* Reads the cylinder options inside the walls' options block (walls.c). */
+PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
+{
+  PetscReal cyl[7], caps[2], omega = 0;
+  PetscBool set, oset, cset;
+  DemWall  *w;
+
+  PetscFunctionBeginUser;
+  SableOptionsRealN("-dem_cylinder", "Cylinder wall, particles inside: axis point ax,ay,az (m), axis direction ux,uy,uz (-), radius R (m)", NULL, cyl, 7, &set);
+  PetscCall(PetscOptionsReal("-dem_cylinder_omega", "Angular velocity of the cylinder (and its caps) about its axis, right-handed (rad/s)", NULL, omega, &omega, &oset));
+  SableOptionsRealN("-dem_cylinder_caps", "End caps: axial positions s0,s1 (m, from the axis point along the axis) of two planes perpendicular to the axis, co-rotating", NULL, caps, 2, &cset);
+  PetscCheck(set || (!oset && !cset), dem->comm, PETSC_ERR_ARG_WRONG, "%s given without -dem_cylinder", oset ? "-dem_cylinder_omega" : "-dem_cylinder_caps");
+  if (!set) PetscFunctionReturn(PETSC_SUCCESS);
+  const double u[3] = {cyl[3], cyl[4], cyl[5]}, lu = sqrt(dem_dot(u, u));
+  PetscCheck(lu > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder: the axis direction %g,%g,%g must be non-zero", (double)u[0], (double)u[1], (double)u[2]);
+  PetscCheck(cyl[6] > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder: radius %g must be > 0 (m)", (double)cyl[6]);
+  PetscCheck(PetscIsNormalReal(omega) || omega == 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder_omega %g must be finite (rad/s)", (double)omega);
+  PetscCheck(!cset || caps[1] > caps[0], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder_caps: s1 %g must exceed s0 %g (m)", (double)caps[1], (double)caps[0]);
+  PetscCheck(!dem->convex, dem->comm, PETSC_ERR_SUP, "-dem_cylinder: implemented for spheres only, not with -dem_shape");
+  const double a[3] = {cyl[0], cyl[1], cyl[2]}, un[3] = {u[0] / lu, u[1] / lu, u[2] / lu};
+  const PetscInt first = dem->nwall;
+  PetscCall(DemWallAdd(dem, a, un, (double[3]){0, 0, 0}));
+  w       = &dem->wall[dem->nwall - 1];
+  w->kind = DEM_WALL_CYLINDER;
+  w->R    = cyl[6];
+  for (int c = 0; c < 2 && cset; c++) { /* caps facing inward: +u at s0, -u at s1 */
+    const double p[3] = {a[0] + caps[c] * un[0], a[1] + caps[c] * un[1], a[2] + caps[c] * un[2]};
+    const double n[3] = {c ? -un[0] : un[0], c ? -un[1] : un[1], c ? -un[2] : un[2]};
+    PetscCall(DemWallAdd(dem, p, n, (double[3]){0, 0, 0}));
+  }
+  for (PetscInt k = first; k < dem->nwall; k++) {
+    w        = &dem->wall[k];
+    w->omega = omega;
+    for (int c = 0; c < 3; c++) {
+      w->ax_p[c] = a[c];
+      w->ax_u[c] = un[c];
+    }
+  }
+  PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_cylinder_friction", 1, first));
+  for (PetscInt k = first + 1; k < dem->nwall; k++) dem->wall[k].mu = dem->wall[first].mu;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
