@@ -37,3 +37,7 @@ expect "drum speed without a drum" "-dem_cylinder_omega given without -dem_cylin
 expect "caps in the wrong order" "-dem_cylinder_caps: s1 -0.04 must exceed s0 0.04" $OK -dem_cylinder 0.05,0.05,0.05,1,0,0,0.04 -dem_cylinder_caps 0.04,-0.04
 # a good run for contrast: exit 0
 if $S $OK >/dev/null 2>&1; then echo "PASS good input runs: exit 0"; else echo "FAIL good input runs: exit $?"; fi
+# -help lists every module's options (it once crashed printing uninitialised shape arrays)
+out=$($S -help 2>&1); rc=$?
+n=$(printf '%s\n' "$out" | grep -c -e '-dem_shape <' -e '-lb_scheme <' -e '-fluid_density <' -e '-cpl_drag <' -e '-domain_lo <')
+if [ "$rc" -eq 0 ] && [ "$n" -eq 5 ]; then echo "PASS -help: exit 0, lists -domain_, -dem_, -fluid_, -cpl_, -lb_ options ($n of 5 probes)"; else echo "FAIL -help: exit $rc, $n of 5 probes found"; fi

@@ -83,8 +83,8 @@ static PetscErrorCode DemShapeBuild(Dem dem, PetscInt s, const DemShapeSpec *sp)
 
 static PetscErrorCode DemShapeSpecsRead(Dem dem, PetscInt *ns, DemShapeSpec sp[], char *files[])
 {
-  PetscEnum kind[DEM_MAX_SHAPES];
-  PetscReal size[DEM_MAX_SHAPES], deq[DEM_MAX_SHAPES], aspect = 1;
+  PetscEnum kind[DEM_MAX_SHAPES] = {0}; /* initialised: -help prints the arrays */
+  PetscReal size[DEM_MAX_SHAPES] = {0}, deq[DEM_MAX_SHAPES] = {0}, aspect = 1;
   PetscInt  nk = DEM_MAX_SHAPES, nsz = DEM_MAX_SHAPES, nd = DEM_MAX_SHAPES, nfile = DEM_MAX_SHAPES, used = 0;
   PetscBool kset, sset, dset, fset, rset;
 
