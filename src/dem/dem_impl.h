@@ -235,6 +235,7 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
 PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n); /* exchange.c */
 /* exchange.c: the migration record of local particle i (position + shift, state, coupling
  * state, springs): doubles written; unpack appends the particle and its springs */
+size_t         DemMigSize(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec);
 size_t         DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b);
 PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used);
 PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* redistribute.c */

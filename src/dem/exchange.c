@@ -125,7 +125,6 @@ static int dem_leave(const Dem dem, const double *x, int k)
   return 0;
 }
 
-
 /* The springs of particle id in recs (sorted by owner): first record and count. */
 static const DemSpring *dem_springs_of(const DemSpring *recs, PetscInt nrec, PetscInt id, PetscInt *ns)
 {
@@ -133,6 +132,13 @@ static const DemSpring *dem_springs_of(const DemSpring *recs, PetscInt nrec, Pet
   *ns                = 0;
   for (; s && s < recs + nrec && s->owner == id; s++) (*ns)++;
   return s0;
+}
+
+size_t DemMigSize(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec)
+{
+  PetscInt ns;
+  (void)dem_springs_of(recs, nrec, dem->id[i], &ns);
+  return MIG_RECORD_SIZE(dem, ns);
 }
 
 size_t DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b)
@@ -229,10 +235,9 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
       keep[nkeep++] = i;
       continue;
     }
-    PetscInt ns;
-    (void)dem_springs_of(*recs, *nrec, dem->id[i], &ns);
-    soff[dir[i]] += MIG_RECORD_SIZE(dem, ns);
-    total += MIG_RECORD_SIZE(dem, ns);
+    const size_t sz = DemMigSize(dem, i, *recs, *nrec);
+    soff[dir[i]] += sz;
+    total += sz;
   }
   for (int d = 0, acc = 0; d < 27; d++) { /* prefix sums */
     const size_t sz = soff[d];

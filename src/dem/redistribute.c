@@ -49,10 +49,7 @@ PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, Petsc
       keep[nkeep++] = i;
       continue;
     }
-    PetscInt         ns = 0;
-    const DemSpring *s  = DemSpringFind(*recs, *nrec, dem->id[i], PETSC_MIN_INT);
-    for (; s && s < *recs + *nrec && s->owner == dem->id[i]; s++) ns++;
-    const size_t sz = MIG_RECORD_SIZE(dem, ns);
+    const size_t sz = DemMigSize(dem, i, *recs, *nrec);
     scnt[owner[i]] += (PetscMPIInt)sz;
     total += sz;
   }
