@@ -5,40 +5,49 @@
  * pair computed on two ranks get exactly opposite forces. Spheres: n = (x_j - x_i)/|x_j - x_i|, overlap
  * delta = r_i + r_j - |x_j - x_i|, contact point at r_i - delta/2 from i along n. The spring of
  * a pair that is not touching is reset to zero (a new contact starts unloaded). Torques only
- * when the scene has friction (dem->rotation). */
+ * when the scene has friction (dem->rotation).
+ * Speed (the pair loop is most of a dense step): a scene of one shape reads its radius and pair
+ * parameters once, not per pair; the arrays are restrict-qualified so that the row
+ * particle's state and sums stay in registers. The arithmetic is the same, expression by expression, so
+ * the forces are bitwise those of the general path. */
 #include "dem/dem_impl.h"
 
-PetscErrorCode DemContactsPairs(Dem dem)
+/* Rows 0..n-1: forces and torques of their pairs, added to the row particle and (half list)
+ * to local partners (j < nhalf). With one shape (mono) the partner's shape is never read: the
+ * radius and the parameters are those of shape 0 (a loop-invariant test, predicted). */
+static void dem_pair_rows(const Dem dem, PetscBool mono)
 {
-  const DemNeigh *nl = &dem->nl;
-  const double   *x = dem->x, *v = dem->v, *w = dem->w;
-  double         *f = dem->f, *tq = dem->tq, *hist = nl->hist;
-  const PetscInt *shape = dem->shape, *start = nl->start, *nbr = nl->nbr;
-  const PetscInt  ns = dem->nshape, n = dem->n;
-  const DemLaw    law = dem->law;
-  const PetscBool rot = dem->rotation;
-  const double    dt = dem->dt;
-  const PetscInt  nhalf = dem->full_list ? 0 : n; /* partners below this index get the reaction */
+  const double *restrict   x = dem->x, *restrict v = dem->v, *restrict w = dem->w;
+  double *restrict         f = dem->f, *restrict tq = dem->tq, *restrict hist = dem->nl.hist;
+  const PetscInt *restrict shape = dem->shape, *restrict start = dem->nl.start, *restrict nbr = dem->nl.nbr;
+  const PetscInt           n = dem->n, ns = dem->nshape, nhalf = dem->full_list ? 0 : dem->n;
+  const DemLaw             law = dem->law;
+  const PetscBool          rot = dem->rotation;
+  const double             dt = dem->dt;
+  const DemPairParams      p1 = dem->pp[0]; /* local copies: no store in the loop can change them */
+  double                   rad[DEM_MAX_SHAPES];
 
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
+  for (PetscInt s = 0; s < ns; s++) rad[s] = dem->shp[s].r;
   for (PetscInt i = 0; i < n; i++) {
-    const double        *xi = x + 3 * i, *vi = v + 3 * i, *wi = w + 3 * i;
-    const double         ri = dem->shp[shape[i]].r;
-    const DemPairParams *row = dem->pp + shape[i] * ns;
+    const double         xi[3] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+    const double         vi[3] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+    const double         wi[3] = {w[3 * i], w[3 * i + 1], w[3 * i + 2]};
+    const double         ri    = mono ? rad[0] : rad[shape[i]];
+    const DemPairParams *row   = mono ? NULL : dem->pp + shape[i] * ns;
     double               fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
+
     for (PetscInt a = start[i]; a < start[i + 1]; a++) {
       const PetscInt j  = nbr[a];
       const double  *xj = x + 3 * j;
-      const double   rj = dem->shp[shape[j]].r, rs = ri + rj;
-      double         d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+      const double   rj = mono ? rad[0] : rad[shape[j]], rs = ri + rj;
+      const double   d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
       const double   d2 = dem_dot(d, d);
       double        *xi_t = hist ? hist + 3 * a : NULL;
-      if (d2 >= rs * rs) {
+      if (d2 >= rs * rs) { /* not touching: no square root, no division, no spring */
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      const DemPairParams *p    = row + shape[j];
+      const DemPairParams *p    = mono ? &p1 : row + shape[j];
       const double         dist = sqrt(d2), inv = 1.0 / dist, delta = rs - dist;
       const double         nrm[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
       const double        *vj = v + 3 * j, *wj = w + 3 * j;
@@ -76,6 +85,13 @@ PetscErrorCode DemContactsPairs(Dem dem)
       tq[3 * i + k] += ti[k];
     }
   }
+}
+
+PetscErrorCode DemContactsPairs(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
+  dem_pair_rows(dem, (PetscBool)(dem->nshape == 1));
   PetscCall(PetscLogEventEnd(DEM_Contacts, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
