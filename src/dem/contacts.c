@@ -52,7 +52,7 @@ static void dem_pair_rows(const Dem dem, PetscBool mono)
       const double         nrm[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
       const double        *vj = v + 3 * j, *wj = w + 3 * j;
       const double         li = ri - 0.5 * delta, lj = rj - 0.5 * delta; /* lever arms */
-      double               vr[3], kt, gt, F[3];
+      double               vr[3], kt, gt, F[3], c[3] = {0, 0, 0}; /* c: n x ft, the torque's direction */
       /* partner's contact-point velocity relative to i's: v_j - v_i + (w_j l_j + w_i l_i) x (-n)... */
       {
         double wsum[3], c[3];
@@ -68,17 +68,17 @@ static void dem_pair_rows(const Dem dem, PetscBool mono)
         for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
         dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft); /* ft acts on the partner */
         if (rot) {
-          double c[3];
           dem_cross(nrm, ft, c); /* torque on i: (l_i n) x (-ft); on j: (-l_j n) x ft */
           for (int k = 0; k < 3; k++) ti[k] -= li * c[k];
-          if (j < nhalf)
-            for (int k = 0; k < 3; k++) tq[3 * j + k] -= lj * c[k];
         }
         for (int k = 0; k < 3; k++) F[k] -= ft[k];
       }
       for (int k = 0; k < 3; k++) fi[k] += F[k];
       if (j < nhalf)
-        for (int k = 0; k < 3; k++) f[3 * j + k] -= F[k];
+        for (int k = 0; k < 3; k++) {
+          f[3 * j + k] -= F[k];
+          tq[3 * j + k] -= lj * c[k];
+        }
     }
     for (int k = 0; k < 3; k++) {
       f[3 * i + k] += fi[k];

@@ -11,6 +11,8 @@
  * implicit); a frozen DEM (-dem_frozen) moves nothing. */
 #include "dem/dem_impl.h"
 
+#define DEM_INTEGRATE_BLOCK 256 /* particles per block of the first half step */
+
 /* Spin half kick and quaternion step of particle i (spheres: isotropic inertia, 1/I = ii). */
 static inline void dem_spin_first_half(double *restrict wi, double *restrict qi, const double *restrict ti, double ii, double h)
 {
@@ -31,8 +33,8 @@ static inline void dem_spin_first_half(double *restrict wi, double *restrict qi,
   for (int k = 0; k < 4; k++) qi[k] *= s;
 }
 
-/* Half kick and drift (with one shape a flat loop over the 3n components, which vectorises),
- * the largest displacement since the list build, and for spheres with friction the spin half
+/* Half kick and drift (with one shape a flat loop over the 3n components, which vectorises)
+ * and the largest displacement since the list build, block by block, and for spheres with friction the spin half
  * kick and quaternion step. */
 PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
 {
@@ -47,31 +49,38 @@ PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
   if (dem->frozen) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(DEM_Integrate, 0, 0, 0, 0));
   if (dem->external) DemExternalKick(dem, h);
-  if (dem->nshape == 1) {
-    const double im = dem->external ? 0 : dem->shp[0].invm;
-    for (PetscInt k = 0; k < 3 * n; k++) {
-      v[k] += h * f[k] * im;
-      x[k] += dt * v[k];
-    }
-  } else
-    for (PetscInt i = 0; i < n; i++) {
-      const double im = dem->external ? 0 : dem->shp[shape[i]].invm;
-      for (int k = 0; k < 3; k++) {
-        v[3 * i + k] += h * f[3 * i + k] * im;
-        x[3 * i + k] += dt * v[3 * i + k];
+  /* blocks of particles small enough to stay in L1 between the kick-drift and the displacement */
+  for (PetscInt b0 = 0; b0 < n; b0 += DEM_INTEGRATE_BLOCK) {
+    const PetscInt b1 = PetscMin(b0 + DEM_INTEGRATE_BLOCK, n);
+    if (dem->nshape == 1) {
+      const double im = dem->external ? 0 : dem->shp[0].invm;
+      for (PetscInt k = 3 * b0; k < 3 * b1; k++) {
+        v[k] += h * f[k] * im;
+        x[k] += dt * v[k];
       }
+    } else
+      for (PetscInt i = b0; i < b1; i++) {
+        const double im = dem->external ? 0 : dem->shp[shape[i]].invm;
+        for (int k = 0; k < 3; k++) {
+          v[3 * i + k] += h * f[3 * i + k] * im;
+          x[3 * i + k] += dt * v[3 * i + k];
+        }
+      }
+    for (PetscInt i = b0; i < b1; i++) {
+      double d2 = 0;
+      for (int k = 0; k < 3; k++) {
+        const double d = x[3 * i + k] - x0[3 * i + k];
+        d2 += d * d;
+      }
+      d2max = d2 > d2max ? d2 : d2max;
     }
-  for (PetscInt i = 0; i < n; i++) {
-    double d2 = 0;
-    for (int k = 0; k < 3; k++) {
-      const double d = x[3 * i + k] - x0[3 * i + k];
-      d2 += d * d;
-    }
-    d2max = d2 > d2max ? d2 : d2max;
   }
   if (dem->convex) PetscCall(DemRotateFirstHalf(dem)); /* full inertia tensor (rotation.c) */
   else if (dem->rotation)
-    for (PetscInt i = 0; i < n; i++) dem_spin_first_half(w + 3 * i, q + 4 * i, tq + 3 * i, dem->shp[dem->nshape == 1 ? 0 : shape[i]].invi, h);
+    for (PetscInt i = 0; i < n; i++) {
+      const double ii = dem->nshape == 1 ? dem->shp[0].invi : dem->shp[shape[i]].invi;
+      dem_spin_first_half(w + 3 * i, q + 4 * i, tq + 3 * i, ii, h);
+    }
   *maxdisp2 = d2max;
   PetscCall(PetscLogFlops(12.0 * n));
   PetscCall(PetscLogEventEnd(DEM_Integrate, 0, 0, 0, 0));
