@@ -170,9 +170,11 @@ static PetscErrorCode DemCheckTimeStep(Dem dem)
 static PetscErrorCode DemComputeForces(Dem dem)
 {
   PetscFunctionBeginUser;
+  double *restrict f = dem->f;
+  const double     g[3] = {dem->g[0], dem->g[1], dem->g[2]};
   for (PetscInt i = 0; i < dem->n; i++) {
-    const double m = dem->shp[dem->shape[i]].m;
-    for (int k = 0; k < 3; k++) dem->f[3 * i + k] = m * dem->g[k];
+    const double m = dem->shp[dem->nshape == 1 ? 0 : dem->shape[i]].m;
+    for (int k = 0; k < 3; k++) f[3 * i + k] = m * g[k];
   }
   if (dem->rotation) PetscCall(PetscArrayzero(dem->tq, 3 * dem->n));
   if (dem->convex) { /* convex shapes: libccd narrow phase (contacts_convex.c) */

@@ -164,6 +164,7 @@ typedef struct {
   PetscInt  *zrank;  /* rank of each cell along a Morton (Z-order) curve: the re-sort order */
   /* half Verlet list */
   PetscInt  *start, *nbr, cap;
+  PetscInt  *own;    /* row (local particle) of each entry: the pair loop screens entries flat */
   double    *hist;   /* 3 per entry, NULL without history */
   PetscInt   builds, sorts;
 } DemNeigh;

@@ -204,6 +204,10 @@ static PetscErrorCode DemPairList(Dem dem)
     if (dem->full_list) dem_row_sort(dem, nl->nbr + nl->start[i], m - nl->start[i]);
   }
   nl->start[dem->n] = m;
+  PetscCall(PetscFree(nl->own));
+  PetscCall(PetscMalloc1(m + 1, &nl->own));
+  for (PetscInt i = 0; i < dem->n; i++)
+    for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) nl->own[a] = i;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -320,6 +324,7 @@ PetscErrorCode DemNeighDestroy(Dem dem)
   PetscCall(PetscFree(nl->order));
   PetscCall(PetscFree(nl->start));
   PetscCall(PetscFree(nl->nbr));
+  PetscCall(PetscFree(nl->own));
   PetscCall(PetscFree(nl->hist));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
