@@ -26,7 +26,9 @@ expect "zero interval" "-lb_interval 0 must be >= 1" $Q -lb_scheme frequent -lb_
 for s in none once frequent dynamic; do
   out=$(mpiexec --oversubscribe -n 2 bin/sable $Q -lb_scheme $s -lb_interval 500 -lb_threshold 0.1 -dem_check_every 100 2>&1); rc=$?
   checks=$(printf '%s\n' "$out" | grep -c '^lb: step')
-  case $s in none) want=0 ;; once) want=1 ;; *) want=4 ;; esac
-  if [ "$rc" -eq 0 ] && [ "$checks" -eq "$want" ]; then echo "PASS good input -lb_scheme $s on 2 ranks: exit 0, $checks check lines (expected $want)"
-  else echo "FAIL good input -lb_scheme $s: exit $rc, $checks check lines (expected $want): $(printf '%s' "$out" | tail -3)"; fi
+  # 2000 steps: once (-lb_step 0) checks after step 1; frequent and dynamic after step 1, then at 501, 1001, 1501
+  case $s in none) want=0; first=0 ;; once) want=1; first=1 ;; *) want=4; first=1 ;; esac
+  one=$(printf '%s\n' "$out" | grep -c '^lb: step 1 ')
+  if [ "$rc" -eq 0 ] && [ "$checks" -eq "$want" ] && [ "$one" -eq "$first" ]; then echo "PASS good input -lb_scheme $s on 2 ranks: exit 0, $checks check lines (expected $want), a check after step 1: $one (expected $first)"
+  else echo "FAIL good input -lb_scheme $s: exit $rc, $checks check lines (expected $want), after step 1: $one (expected $first): $(printf '%s' "$out" | tail -3)"; fi
 done

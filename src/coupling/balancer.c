@@ -4,9 +4,9 @@
  * weights over each rank's box into the loads L, and, if it rebalances, computes new per-axis
  * cuts (balance_cuts.c), rebuilds the DMDA with them and moves the fluid fields and the
  * particles onto it, so each rank still owns matching fluid and particle subdomains.
- * Schemes (-lb_scheme): none; once (at -lb_step or -lb_time); frequent (every -lb_interval steps
- * or -lb_interval_time seconds of simulated time); dynamic (checked at that cadence, rebalances
- * when L_max - L_min > eps L_avg, eps = -lb_threshold). Weights (-lb_weight): linear,
+ * Schemes (-lb_scheme): none; once (at -lb_step or -lb_time); frequent (after the first step,
+ * then every -lb_interval steps or -lb_interval_time seconds of simulated time); dynamic (checked
+ * at that cadence, rebalances when L_max - L_min > eps L_avg, eps = -lb_threshold). Weights (-lb_weight): linear,
  * quadratic (-lb_alpha, -lb_beta) or measured: linear with alpha the measured compute time per
  * particle-step and beta the measured fluid time per cell-step since the last check (beta = 0
  * in a dry run), so the particle/cell ratio follows the machine and the case instead of a
@@ -148,9 +148,10 @@ PetscErrorCode BalanceSetUp(Balance b)
   ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
   PetscCall(PetscMalloc4(ncell, &b->count, ncell, &b->icount, ncell, &b->w, b->g.p[0] * b->g.p[1] * b->g.p[2], &b->load));
   for (int k = 0; k < 3; k++) PetscCall(PetscMalloc1(b->g.p[k], &b->l[k]));
-  PetscCall(DemGetTime(b->dem, &b->next_time, NULL));
-  b->next_time += b->interval_time;
-  PetscCall(DemGetTime(b->dem, NULL, &b->last_step));
+  /* frequent and dynamic check after the first step (a start or a restart may be imbalanced),
+     then at their cadence */
+  PetscCall(DemGetTime(b->dem, &b->next_time, &b->last_step));
+  b->last_step -= b->interval;
   PetscCall(DemGetComputeTime(b->dem, &b->t_dem0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
