@@ -16,13 +16,13 @@ int main(int argc, char **argv)
   char      dir[PETSC_MAX_PATH_LEN] = "out/silo_cubes", prefix[64] = "discharge", path[PETSC_MAX_PATH_LEN + 80];
   PetscReal dt = 0.05, z0 = 0, mass = 0, t20 = -1, t80 = -1;
   PetscInt  n0 = -1, n20 = 0, n80 = 0, n01 = 0, nlast = 0;
-  PetscReal tlast = 0, tempty = -1, rate = 0;
+  PetscReal tlast = 0, tempty = -1, rate = 0, t0 = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "silo_discharge: particles above the orifice against time\n"));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "silo discharge", NULL);
   PetscCall(PetscOptionsString("-silo_dir", "Output directory", NULL, dir, dir, sizeof dir, NULL));
   PetscCall(PetscOptionsString("-silo_prefix", "Frame file prefix", NULL, prefix, prefix, sizeof prefix, NULL));
-  PetscCall(PetscOptionsReal("-silo_interval", "Time between frames (s)", NULL, dt, &dt, NULL));
+  PetscCall(PetscOptionsReal("-silo_interval", "Time between frames (s), used only for frames without a time attribute", NULL, dt, &dt, NULL));
   PetscCall(PetscOptionsReal("-silo_z0", "Height of the orifice (m)", NULL, z0, &z0, NULL));
   PetscCall(PetscOptionsReal("-silo_mass", "Mass of one particle (kg), for kg/s", NULL, mass, &mass, NULL));
   PetscOptionsEnd();
@@ -30,21 +30,26 @@ int main(int argc, char **argv)
   for (PetscInt f = 0;; f++) {
     PetscReal *x;
     PetscInt   n, nc, above = 0;
+    PetscReal  tf;
+    PetscBool  has_t;
     PetscCall(PetscSNPrintf(path, sizeof path, "%s/%s_%06" PetscInt_FMT ".h5", dir, prefix, f));
     if (access(path, R_OK)) {
       PetscCheck(f > 0, PETSC_COMM_WORLD, PETSC_ERR_FILE_OPEN, "no frame %s", path);
       break;
     }
+    PetscCall(IoReadTime(path, &tf, &has_t));
+    if (f == 0) t0 = has_t ? tf : 0;
+    tf = has_t ? tf - t0 : f * dt; /* the frame's own time: output steps need not be evenly spaced */
     PetscCall(IoReadDataset(path, "/particles/position", &n, &nc, &x));
     for (PetscInt i = 0; i < n; i++) above += x[3 * i + 2] > z0;
     PetscCall(PetscFree(x));
     if (n0 < 0) n0 = above;
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "t %.3f s  above the orifice %" PetscInt_FMT "\n", (double)(f * dt), above));
-    if (f * dt <= 0.1 + 1e-9) n01 = above;
-    nlast = above, tlast = f * dt;
-    if (t20 < 0 && n0 - above >= 0.2 * n0) t20 = f * dt, n20 = above;
-    if (t80 < 0 && n0 - above >= 0.8 * n0) t80 = f * dt, n80 = above;
-    if (tempty < 0 && above == 0) tempty = f * dt;
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "t %.3f s  above the orifice %" PetscInt_FMT "\n", (double)tf, above));
+    if (tf <= 0.1 + 1e-9) n01 = above;
+    nlast = above, tlast = tf;
+    if (t20 < 0 && n0 - above >= 0.2 * n0) t20 = tf, n20 = above;
+    if (t80 < 0 && n0 - above >= 0.8 * n0) t80 = tf, n80 = above;
+    if (tempty < 0 && above == 0) tempty = tf;
   }
   if (t80 > t20 && t20 >= 0) {
     rate = (n20 - n80) / (t80 - t20);

@@ -76,8 +76,11 @@ PetscErrorCode IoGetIndexPath(Io io, const char **path)
 PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due)
 {
   PetscFunctionBeginUser;
+  /* t is a sum of steps and drifts from the multiples of the interval: the same tolerance decides
+     whether a frame is due and which multiple comes next, so a frame taken just below k*interval
+     is not followed by another just above it */
   *due = (io->interval > 0 && t >= io->next - 1e-6 * io->interval) ? PETSC_TRUE : PETSC_FALSE;
-  if (*due) io->next = (PetscFloorReal(t / io->interval + 1e-9) + 1) * io->interval;
+  if (*due) io->next = (PetscFloorReal(t / io->interval + 1e-6) + 1) * io->interval;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -374,6 +377,26 @@ PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows,
   if (*rows) SableCallH5(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, *data));
   SableCallH5(H5Sclose(s));
   SableCallH5(H5Dclose(d));
+  SableCallH5(H5Fclose(f));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoReadTime(const char *file, PetscReal *t, PetscBool *has)
+{
+  hid_t  f, a;
+  double v = 0;
+
+  PetscFunctionBeginUser;
+  f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open HDF5 file %s", file);
+  *has = (PetscBool)(H5Aexists(f, "time") > 0);
+  if (*has) {
+    a = H5Aopen(f, "time", H5P_DEFAULT);
+    SableCallH5(a);
+    SableCallH5(H5Aread(a, H5T_NATIVE_DOUBLE, &v));
+    SableCallH5(H5Aclose(a));
+  }
+  *t = v;
   SableCallH5(H5Fclose(f));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

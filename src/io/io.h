@@ -39,6 +39,8 @@ PetscErrorCode IoFrameEnd(Io io);
 
 /* Every rank reads a whole dataset of a Sable HDF5 file (rows x ncomp, as written); free with
  * PetscFree. Errors name the file and the dataset. */
+/* The simulated time of a frame (its root attribute "time"); has = false if it has none. */
+PetscErrorCode IoReadTime(const char *file, PetscReal *t, PetscBool *has);
 PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows, PetscInt *ncomp, PetscReal **data);
 /* Whether a Sable HDF5 file holds the dataset /<group>/<name> (group and name given as one
  * path, e.g. "/particles/shape"). Not collective. */
