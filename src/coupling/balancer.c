@@ -13,7 +13,7 @@
  * hand-set ratio. A rank box never becomes thinner than the DEM halo (2 r_max + skin), the
  * DMDA stencil, or the fluid's two cells. Each check prints one line: the loads, the imbalance,
  * whether it rebalanced and the wall time the check and the move cost.
- * The global weight grid is reduced onto every rank (one double per cell), which bounds the
+ * The per-cell particle counts are reduced onto every rank (one integer per cell), which bounds the
  * method to grids of a few million cells; the cut search itself is serial and identical on all
  * ranks. */
 #include "coupling/coupling_impl.h"
@@ -34,8 +34,8 @@ struct _p_Balance {
   PetscInt  once_step, interval, max_sweeps, last_step;
   PetscBool done_once, verbose;
   BalanceGrid g;
-  PetscReal  *count, *w, *load, alpha_used, beta_used;
-  PetscInt   *icount;
+  PetscReal  *w, *load, alpha_used, beta_used;
+  PetscInt   *count; /* particles per cell of the global grid */
   PetscInt   *l[3];
   /* measured weights: compute times and work at the last check */
   PetscLogDouble t_dem0, t_fluid0;
@@ -146,7 +146,7 @@ PetscErrorCode BalanceSetUp(Balance b)
   b->g.max_sweeps = b->max_sweeps;
   PetscCall(BalanceMinWidth(b, b->g.minw));
   ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
-  PetscCall(PetscMalloc4(ncell, &b->count, ncell, &b->icount, ncell, &b->w, b->g.p[0] * b->g.p[1] * b->g.p[2], &b->load));
+  PetscCall(PetscMalloc3(ncell, &b->count, ncell, &b->w, b->g.p[0] * b->g.p[1] * b->g.p[2], &b->load));
   for (int k = 0; k < 3; k++) PetscCall(PetscMalloc1(b->g.p[k], &b->l[k]));
   /* frequent and dynamic check after the first step (a start or a restart may be imbalanced),
      then at their cadence */
@@ -160,7 +160,7 @@ PetscErrorCode BalanceDestroy(Balance *lb)
 {
   PetscFunctionBeginUser;
   if (!*lb) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscFree4((*lb)->count, (*lb)->icount, (*lb)->w, (*lb)->load));
+  PetscCall(PetscFree3((*lb)->count, (*lb)->w, (*lb)->load));
   for (int k = 0; k < 3; k++) PetscCall(PetscFree((*lb)->l[k]));
   PetscCall(PetscFree(*lb));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -202,14 +202,13 @@ static PetscErrorCode BalanceWeigh(Balance b, PetscReal *lmin, PetscReal *lmax, 
   PetscReal       alpha = b->alpha, beta = b->beta, sum = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscArrayzero(b->w, ncell));
-  PetscCall(DemGetCellCounts(b->dem, b->w));
-  PetscCallMPI(MPIU_Allreduce(b->w, b->count, (PetscMPIInt)ncell, MPIU_REAL, MPI_SUM, b->comm));
+  PetscCall(PetscArrayzero(b->count, ncell));
+  PetscCall(DemGetCellCounts(b->dem, b->count));
+  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, b->count, (PetscMPIInt)ncell, MPIU_INT, MPI_SUM, b->comm));
   if (b->weight == 2) PetscCall(BalanceMeasuredWeights(b, &alpha, &beta));
   {
     const BalanceWeight wm = {b->weight == 1 ? BALANCE_WEIGHT_QUADRATIC : BALANCE_WEIGHT_LINEAR, alpha, beta};
-    for (PetscInt c = 0; c < ncell; c++) b->icount[c] = (PetscInt)b->count[c];
-    PetscCall(BalanceCellWeights(&wm, ncell, b->icount, b->w));
+    PetscCall(BalanceCellWeights(&wm, ncell, b->count, b->w));
   }
   b->alpha_used = alpha;
   b->beta_used  = beta;

@@ -117,7 +117,7 @@ PetscErrorCode DemGetFrozen(Dem dem, PetscBool *frozen);
 PetscErrorCode DemRedistribute(Dem dem);
 PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach);
 PetscErrorCode DemSetStepMonitor(Dem dem, PetscErrorCode (*fn)(Dem, void *), void *ctx);
-PetscErrorCode DemGetCellCounts(Dem dem, PetscReal *count);
+PetscErrorCode DemGetCellCounts(Dem dem, PetscInt *count);
 /* Wall time this rank spent computing forces and integrating since DemSetUp (s; no waiting for
  * other ranks): the particle cost that -lb_weight measured divides by particle-steps. */
 PetscErrorCode DemGetComputeTime(Dem dem, PetscLogDouble *t);

@@ -103,7 +103,7 @@ PetscErrorCode DemSetStepMonitor(Dem dem, PetscErrorCode (*fn)(Dem, void *), voi
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemGetCellCounts(Dem dem, PetscReal *count)
+PetscErrorCode DemGetCellCounts(Dem dem, PetscInt *count)
 {
   const Domain *dom = dem->dom;
 

@@ -139,6 +139,31 @@ PetscErrorCode FluidCreateDMs(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The ghosted local work vectors of the current DMDAs. */
+PetscErrorCode FluidCreateLocals(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateLocalVector(fl->cda, &fl->ploc));
+  PetscCall(VecDuplicate(fl->ploc, &fl->epsloc));
+  PetscCall(VecDuplicate(fl->ploc, &fl->epsoldloc));
+  PetscCall(VecDuplicate(fl->ploc, &fl->philoc));
+  PetscCall(DMCreateLocalVector(fl->fda, &fl->uloc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The matrices, null space and star-stencil DMDAs of the Poisson and viscous solves (they
+ * belong to one layout; the KSPs and their options stay). */
+PetscErrorCode FluidSolversDestroy(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatNullSpaceDestroy(&fl->nsp));
+  PetscCall(MatDestroy(&fl->A));
+  PetscCall(DMDestroy(&fl->pda));
+  PetscCall(MatDestroy(&fl->V));
+  PetscCall(DMDestroy(&fl->vda));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FluidSetUp(Fluid fl)
 {
   PetscFunctionBeginUser;
@@ -150,10 +175,6 @@ PetscErrorCode FluidSetUp(Fluid fl)
   PetscCall(VecDuplicate(fl->p, &fl->rhs));
   PetscCall(VecSet(fl->eps, 1.0));
   PetscCall(VecSet(fl->eps_old, 1.0));
-  PetscCall(DMCreateLocalVector(fl->cda, &fl->ploc));
-  PetscCall(VecDuplicate(fl->ploc, &fl->epsloc));
-  PetscCall(VecDuplicate(fl->ploc, &fl->epsoldloc));
-  PetscCall(VecDuplicate(fl->ploc, &fl->philoc));
   PetscCall(DMCreateGlobalVector(fl->fda, &fl->u));
   PetscCall(VecDuplicate(fl->u, &fl->beta));
   PetscCall(VecDuplicate(fl->u, &fl->us));
@@ -162,7 +183,7 @@ PetscErrorCode FluidSetUp(Fluid fl)
   PetscCall(VecDuplicate(fl->u, &fl->adv_old));
   PetscCall(VecDuplicate(fl->u, &fl->advn));
   PetscCall(VecDuplicate(fl->u, &fl->vis));
-  PetscCall(DMCreateLocalVector(fl->fda, &fl->uloc));
+  PetscCall(FluidCreateLocals(fl));
   PetscCall(FluidBoundaryFaceValues(fl, fl->u));
   PetscCheck(fl->ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
   PetscCall(FluidPoissonSetUp(fl));
@@ -179,13 +200,9 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
   if (!fl) PetscFunctionReturn(PETSC_SUCCESS);
   Vec *v[] = {&fl->u, &fl->p, &fl->eps, &fl->eps_old, &fl->beta, &fl->us, &fl->src, &fl->uloc, &fl->ploc, &fl->epsloc, &fl->epsoldloc, &fl->uhat, &fl->advn, &fl->adv_old, &fl->vis, &fl->coef, &fl->coefloc, &fl->vbc, &fl->phiu, &fl->phi, &fl->rhs, &fl->philoc};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) PetscCall(VecDestroy(v[i]));
-  PetscCall(MatNullSpaceDestroy(&fl->nsp));
-  PetscCall(MatDestroy(&fl->A));
-  PetscCall(DMDestroy(&fl->pda));
+  PetscCall(FluidSolversDestroy(fl));
   PetscCall(KSPDestroy(&fl->ksp));
-  PetscCall(MatDestroy(&fl->V));
   PetscCall(KSPDestroy(&fl->vksp));
-  PetscCall(DMDestroy(&fl->vda));
   PetscCall(DMDestroy(&fl->cda));
   PetscCall(DMDestroy(&fl->fda));
   PetscCall(PetscFree(*fluid));

@@ -108,6 +108,8 @@ static inline PetscScalar fluid_mass_divergence(const FluidGrid *g, const PetscS
 
 /* fluid.c: the cell and face DMDAs from the Domain's ownership, and the grid geometry */
 PetscErrorCode FluidCreateDMs(Fluid fl);
+PetscErrorCode FluidCreateLocals(Fluid fl);
+PetscErrorCode FluidSolversDestroy(Fluid fl);
 /* bc.c */
 PetscErrorCode FluidSetFromOptionsBC(Fluid fl);
 PetscErrorCode FluidFillVelocityGhosts(Fluid fl, PetscScalar *u);

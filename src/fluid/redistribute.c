@@ -19,22 +19,14 @@ PetscErrorCode FluidRedistribute(Fluid fl)
   PetscFunctionBeginUser;
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidRedistribute");
   for (size_t i = 0; i < sizeof work / sizeof work[0]; i++) PetscCall(VecDestroy(work[i]));
-  PetscCall(MatNullSpaceDestroy(&fl->nsp));
-  PetscCall(MatDestroy(&fl->A));
-  PetscCall(DMDestroy(&fl->pda));
-  PetscCall(MatDestroy(&fl->V));
-  PetscCall(DMDestroy(&fl->vda));
+  PetscCall(FluidSolversDestroy(fl));
   fl->cda = fl->fda = NULL;
   PetscCall(FluidCreateDMs(fl));
   for (size_t i = 0; i < sizeof cell / sizeof cell[0]; i++) PetscCall(DomainMoveVec(ocda, fl->cda, cell[i]));
   for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) PetscCall(DomainMoveVec(ofda, fl->fda, face[i]));
   PetscCall(DMDestroy(&ocda));
   PetscCall(DMDestroy(&ofda));
-  PetscCall(DMCreateLocalVector(fl->cda, &fl->ploc));
-  PetscCall(VecDuplicate(fl->ploc, &fl->epsloc));
-  PetscCall(VecDuplicate(fl->ploc, &fl->epsoldloc));
-  PetscCall(VecDuplicate(fl->ploc, &fl->philoc));
-  PetscCall(DMCreateLocalVector(fl->fda, &fl->uloc));
+  PetscCall(FluidCreateLocals(fl));
   PetscCall(KSPReset(fl->ksp)); /* operators of another size follow */
   PetscCall(FluidPoissonSetUp(fl));
   if (fl->vksp) {
