@@ -47,6 +47,8 @@ PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid)
   fl->visc     = FLUID_VISC_EXPLICIT;
   fl->cfl_max  = 0.5;
   fl->visc_max = 0.5;
+  fl->pc_lag    = 20;
+  fl->pc_growth = 1.5;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) fl->bc[d][s].type = dom->periodic[d] ? FLUID_BC_PERIODIC : FLUID_BC_WALL;
   PetscCall(FluidRegisterEvents(fl));
@@ -74,14 +76,19 @@ PetscErrorCode FluidSetFromOptions(Fluid fl)
   PetscCall(PetscOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", NULL, FluidViscousNames, (PetscEnum)fl->visc, (PetscEnum *)&fl->visc, NULL));
   PetscCall(PetscOptionsReal("-fluid_cfl_max", "Largest advective CFL number dt*sum|u_d|/h_d allowed (default 0.5)", NULL, fl->cfl_max, &fl->cfl_max, NULL));
   PetscCall(PetscOptionsReal("-fluid_viscous_number_max", "Largest explicit viscous number 2 dt nu sum 1/h_d^2 allowed (default 0.5; stability needs <= 1)", NULL, fl->visc_max, &fl->visc_max, NULL));
+  PetscCall(PetscOptionsInt("-fluid_poisson_pc_lag", "Keep the Poisson preconditioner for up to this many matrix changes (0: rebuild at every change)", NULL, fl->pc_lag, &fl->pc_lag, NULL));
+  PetscCall(PetscOptionsReal("-fluid_poisson_pc_lag_growth", "Rebuild a lagged preconditioner earlier when the iterations exceed growth x those after its build + 1", NULL, fl->pc_growth, &fl->pc_growth, NULL));
   PetscCall(PetscOptionsBool("-fluid_adaptive_dt", "Lower dt to the stability limit instead of stopping", NULL, fl->adaptive, &fl->adaptive, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->rho > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_density %g must be > 0 (kg/m^3)", (double)fl->rho);
   PetscCheck(fl->mu > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_viscosity %g must be > 0 (Pa s)", (double)fl->mu);
   PetscCheck(fl->dt > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_dt %g must be > 0 (s)", (double)fl->dt);
   PetscCheck(fl->cfl_max > 0 && fl->cfl_max <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_cfl_max %g must be in (0,1]", (double)fl->cfl_max);
+  PetscCheck(fl->pc_lag >= 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_poisson_pc_lag %d must be >= 0 (0 rebuilds the preconditioner at every matrix change)", (int)fl->pc_lag);
+  PetscCheck(fl->pc_growth >= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_poisson_pc_lag_growth %g must be >= 1", (double)fl->pc_growth);
   PetscCheck(fl->visc_max > 0 && fl->visc_max <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_viscous_number_max %g must be in (0,1]", (double)fl->visc_max);
   PetscCall(FluidSetFromOptionsBC(fl));
+  PetscCall(FluidSetFromOptionsInlet(fl));
   PetscCall(KSPDestroy(&fl->ksp));
   PetscCall(KSPDestroy(&fl->vksp));
   PetscCall(FluidPoissonCreateKSP(fl));

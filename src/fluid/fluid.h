@@ -21,6 +21,7 @@ typedef struct _p_Fluid *Fluid;
  * step, and the time step actually taken (s; smaller than asked when adaptive stepping cut it). */
 typedef struct {
   PetscInt  poisson_its;
+  PetscInt  poisson_pc_builds; /* Poisson preconditioners built so far (see -fluid_poisson_pc_lag) */
   PetscReal poisson_rnorm;
   PetscReal div_max;
   PetscReal cfl, visc_number;

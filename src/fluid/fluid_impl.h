@@ -11,9 +11,14 @@ typedef enum { FLUID_BC_PERIODIC, FLUID_BC_WALL, FLUID_BC_SLIP, FLUID_BC_INLET, 
 typedef enum { FLUID_ADV_CENTRAL, FLUID_ADV_TVD, FLUID_ADV_NONE } FluidAdvection;
 typedef enum { FLUID_VISC_EXPLICIT, FLUID_VISC_IMPLICIT } FluidViscous;
 
+#define FLUID_INLET_TABLE_MAX 32
+
 typedef struct {
   FluidBCType type;
-  PetscReal   vel[3]; /* inlet velocity (m/s) */
+  PetscReal   vel[3];  /* inlet velocity now (m/s) */
+  PetscReal   vel0[3]; /* -fluid_bc_<face>_velocity: before the table's first time */
+  PetscInt    ntab;    /* rows of -fluid_bc_<face>_velocity_table: t, u, v, w (s, m/s) */
+  PetscReal   tab[4 * FLUID_INLET_TABLE_MAX];
 } FluidBC;
 
 /* Geometry of the ghosted local arrays of this rank. */
@@ -38,6 +43,8 @@ struct _p_Fluid {
   FluidViscous   visc;
   PetscReal      cfl_max, visc_max;
   PetscBool      adaptive, setup;
+  PetscBool      inlet_linear; /* -fluid_inlet_interpolation linear (else step) */
+  PetscReal      time;         /* sum of the steps taken (s): the inlet tables' clock */
   /* fields (global) */
   Vec u, p, eps, eps_old, beta, us, src;
   /* work: ghosted locals, AB2 history of the advection term, predictor, projection */
@@ -51,6 +58,10 @@ struct _p_Fluid {
   MatNullSpace nsp;
   PetscObjectState eps_state, beta_state;
   PetscReal  dt_mat;
+  PetscInt   pc_lag;          /* -fluid_poisson_pc_lag: matrix changes a preconditioner may serve */
+  PetscReal  pc_growth;       /* -fluid_poisson_pc_lag_growth: rebuild when its > growth * its0 + 1 */
+  PetscInt   pc_age, pc_its0, pc_its_last, pc_builds; /* changes served, its after the build, last its, builds */
+  PetscReal  dt_pc;
   PetscBool  singular;
   PetscInt   nsteps;
   KSP        vksp; /* implicit viscous solve (only with -fluid_viscous implicit) */
@@ -117,6 +128,9 @@ PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *a, PetscBool odd_at_ou
 PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u);
 PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc);
 PetscErrorCode FluidLocalCell(Fluid fl, Vec a, Vec aloc, PetscBool odd_at_outlet, PetscReal outlet_value);
+/* inlet.c: time tables of inlet velocities */
+PetscErrorCode FluidSetFromOptionsInlet(Fluid fl);
+PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t);
 /* momentum.c: explicit terms per unit volume at the active faces of the owned points */
 PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out);
 PetscErrorCode FluidViscousTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscBool transpose_only, PetscScalar *out);

@@ -9,7 +9,13 @@
  * ghost). The matrix is -div(c grad), symmetric positive (semi-)definite; with no outlet it has
  * the constants as null space, removed from the right-hand side. The same face gradient is used
  * in the matrix and in the correction, so continuity holds to the solver tolerance. KSP prefix
- * -fluid_poisson_ (CG + hypre BoomerAMG, rtol 1e-8 by default); every solve is checked. */
+ * -fluid_poisson_ (CG + hypre BoomerAMG, rtol 1e-8 by default); every solve is checked.
+ * The matrix changes with eps and beta at every coupled step, but slowly, and hypre's set-up
+ * costs about two solves: a preconditioner is kept for up to -fluid_poisson_pc_lag matrix
+ * changes (default 20; 0 rebuilds at every change), and rebuilt earlier when a solve needs more
+ * than -fluid_poisson_pc_lag_growth (1.5) x the iterations of the first solve after its build,
+ * plus one, or when dt changes. The solution is the same to the solver tolerance either way; a
+ * solve that fails with a kept preconditioner is repeated with a new one. */
 #include "fluid/fluid_impl.h"
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: rebuild the matrix only when eps, beta or dt changed */
 
@@ -49,7 +55,8 @@ PetscErrorCode FluidPoissonSetUp(Fluid fl)
     PetscCall(MatNullSpaceCreate(fl->comm, PETSC_TRUE, 0, NULL, &fl->nsp));
     PetscCall(MatSetNullSpace(fl->A, fl->nsp));
   }
-  fl->dt_mat = -1;
+  fl->dt_mat  = -1;
+  fl->pc_its0 = -1; /* a new matrix: the first solve builds the preconditioner */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -163,11 +170,31 @@ static PetscErrorCode FluidCorrect(Fluid fl, const PetscScalar *eps)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Decides, after the matrix changed, whether the preconditioner is rebuilt (see the header). */
+static PetscBool FluidPoissonRebuildPC(const Fluid fl, PetscReal dt)
+{
+  if (fl->pc_lag == 0 || fl->pc_its0 < 0 || dt != fl->dt_pc) return PETSC_TRUE;
+  if (fl->pc_age >= fl->pc_lag) return PETSC_TRUE;
+  return (PetscBool)(fl->pc_its_last > fl->pc_growth * fl->pc_its0 + 1);
+}
+
+static PetscErrorCode FluidPoissonSolve(Fluid fl, PetscBool rebuild, KSPConvergedReason *reason, FluidStats *st)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetReusePreconditioner(fl->ksp, (PetscBool)!rebuild));
+  PetscCall(KSPSolve(fl->ksp, fl->rhs, fl->phi));
+  PetscCall(KSPGetConvergedReason(fl->ksp, reason));
+  PetscCall(KSPGetIterationNumber(fl->ksp, &st->poisson_its));
+  PetscCall(KSPGetResidualNorm(fl->ksp, &st->poisson_rnorm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
 {
   const PetscScalar *u, *eps, *eps0;
   PetscObjectState   se, sb;
   KSPConvergedReason reason;
+  PetscBool          changed = PETSC_FALSE, rebuild = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(fl->ev_poisson, 0, 0, 0, 0));
@@ -182,15 +209,26 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
     fl->eps_state  = se;
     fl->beta_state = sb;
     fl->dt_mat     = dt;
+    changed        = PETSC_TRUE;
+    rebuild        = FluidPoissonRebuildPC(fl, dt);
   }
   PetscCall(FluidPoissonRHS(fl, dt, u, eps, eps0));
   PetscCall(VecRestoreArrayRead(fl->epsoldloc, &eps0));
   PetscCall(VecRestoreArrayRead(fl->uloc, &u));
-  PetscCall(KSPSolve(fl->ksp, fl->rhs, fl->phi));
-  PetscCall(KSPGetConvergedReason(fl->ksp, &reason));
-  PetscCall(KSPGetIterationNumber(fl->ksp, &st->poisson_its));
-  PetscCall(KSPGetResidualNorm(fl->ksp, &st->poisson_rnorm));
+  PetscCall(FluidPoissonSolve(fl, rebuild, &reason, st));
+  if (reason <= 0 && changed && !rebuild) { /* a stale preconditioner is never the reason to stop */
+    rebuild = PETSC_TRUE;
+    PetscCall(FluidPoissonSolve(fl, rebuild, &reason, st));
+  }
   PetscCheck(reason > 0, fl->comm, PETSC_ERR_NOT_CONVERGED, "fluid pressure Poisson solve failed: %s after %d iterations, residual %g; try -fluid_poisson_ksp_max_it, -fluid_poisson_ksp_rtol or -fluid_poisson_pc_type", KSPConvergedReasons[reason], (int)st->poisson_its, (double)st->poisson_rnorm);
+  if (rebuild) {
+    fl->pc_its0 = st->poisson_its;
+    fl->pc_age  = 0;
+    fl->dt_pc   = dt;
+    fl->pc_builds++;
+  } else if (changed) fl->pc_age++;
+  fl->pc_its_last = st->poisson_its;
+  st->poisson_pc_builds = fl->pc_builds;
   PetscCall(PetscLogEventEnd(fl->ev_poisson, 0, 0, 0, 0));
   PetscCall(PetscLogEventBegin(fl->ev_correct, 0, 0, 0, 0));
   PetscCall(FluidCorrect(fl, eps));

@@ -201,6 +201,7 @@ PetscErrorCode FluidStep(Fluid fl, PetscReal dt, FluidStats *st)
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidStep");
   PetscCheck(dt > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step %g must be > 0 (s)", (double)dt);
   PetscCall(PetscMemzero(st, sizeof *st));
+  PetscCall(FluidUpdateInlets(fl, fl->time + dt));
   PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
   PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
   PetscCall(FluidLocalCell(fl, fl->eps_old, fl->epsoldloc, PETSC_FALSE, 0.0));
@@ -211,6 +212,7 @@ PetscErrorCode FluidStep(Fluid fl, PetscReal dt, FluidStats *st)
   PetscCall(VecCopy(fl->eps, fl->eps_old));
   fl->dt_old = dt;
   fl->nsteps++;
+  fl->time += dt;
   st->dt = dt;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,0 +1,91 @@
+/* Inlet velocities that change during a run (Grains3D Part II §4.3.2 runs its bed at 2 U_mf up
+ * to t = 1785, then at 3 U_mf). Per inlet face, -fluid_bc_<face>_velocity_table t1,u1,v1,w1,
+ * t2,u2,v2,w2,... (s, m/s; times strictly increasing, >= 0, at most FLUID_INLET_TABLE_MAX rows)
+ * gives the velocity from t1 on; before t1 the face keeps -fluid_bc_<face>_velocity. Between
+ * rows the value holds (-fluid_inlet_interpolation step, the default: a switch) or is
+ * interpolated linearly (linear: a ramp); after the last row it holds. The fluid's clock is the
+ * sum of its steps; a step from t to t + dt uses the velocity at t + dt, the level at which the
+ * projection enforces continuity, so the flux through the outlet follows the table within the
+ * solver tolerance from the step that crosses a row's time on. */
+#include "fluid/fluid_impl.h"
+
+static const char *const FluidInletInterpNames[] = {"step", "linear", "FluidInletInterp", "FLUID_INLET_", NULL};
+
+/* Collective. Reads the tables and -fluid_inlet_interpolation; call after the face types are known. */
+PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
+{
+  const char *side[2] = {"lo", "hi"}, *ax = "xyz";
+  char        opt[64];
+  PetscBool   set;
+  PetscInt    interp = fl->inlet_linear ? 1 : 0;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(fl->comm, NULL, "Fluid inlet tables", NULL);
+  PetscCall(PetscOptionsEList("-fluid_inlet_interpolation", "Between rows of an inlet table: step (hold the earlier row) or linear", NULL, FluidInletInterpNames, 2, FluidInletInterpNames[interp], &interp, NULL));
+  fl->inlet_linear = interp == 1 ? PETSC_TRUE : PETSC_FALSE;
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      FluidBC *bc = &fl->bc[d][s];
+      PetscInt n  = 4 * FLUID_INLET_TABLE_MAX;
+
+      for (int k = 0; k < 3; k++) bc->vel0[k] = bc->vel[k];
+      PetscCall(PetscSNPrintf(opt, sizeof opt, "-fluid_bc_%c%s_velocity_table", ax[d], side[s]));
+      PetscCall(PetscOptionsRealArray(opt, "Inlet velocity from each time on: t1,u1,v1,w1,t2,... (s, m/s)", NULL, bc->tab, &n, &set));
+      if (!set) continue;
+      PetscCheck(bc->type == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but -fluid_bc_%c%s is not inlet", opt, ax[d], side[s]);
+      PetscCheck(n > 0 && n % 4 == 0, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes rows of 4 values t,u,v,w (at most %d rows), got %d values", opt, FLUID_INLET_TABLE_MAX, (int)n);
+      bc->ntab = n / 4;
+      for (PetscInt r = 0; r < bc->ntab; r++) {
+        const PetscReal *row = &bc->tab[4 * r];
+        PetscCheck(!PetscIsInfOrNanReal(row[0]), fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: time %g of row %d is not finite", opt, (double)row[0], (int)r + 1);
+        PetscCheck(row[0] >= 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: time %g of row %d must be >= 0 (s)", opt, (double)row[0], (int)r + 1);
+        PetscCheck(r == 0 || row[0] > row[-4], fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: times must increase strictly, row %d has %g after %g", opt, (int)r + 1, (double)row[0], (double)row[-4]);
+        for (int k = 1; k < 4; k++) PetscCheck(!PetscIsInfOrNanReal(row[k]), fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: velocity of row %d is not finite", opt, (int)r + 1);
+      }
+    }
+  PetscOptionsEnd();
+  PetscCall(FluidUpdateInlets(fl, fl->time));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The velocity of one face at time t; rows within 1e-9 (relative) of t count as reached, so a
+ * clock that accumulated rounding still switches on the step that ends at a row's time. */
+static void FluidInletAt(const FluidBC *bc, PetscBool linear, PetscReal t, PetscReal v[3])
+{
+  const PetscReal tr = t + 1e-9 * PetscMax(1.0, PetscAbsReal(t));
+  PetscInt        r  = -1;
+
+  for (int k = 0; k < 3; k++) v[k] = bc->vel0[k];
+  while (r + 1 < bc->ntab && bc->tab[4 * (r + 1)] <= tr) r++;
+  if (r < 0) return;
+  for (int k = 0; k < 3; k++) v[k] = bc->tab[4 * r + 1 + k];
+  if (linear && r + 1 < bc->ntab) {
+    const PetscReal *a = &bc->tab[4 * r], *b = a + 4, w = PetscMax(0.0, (t - a[0]) / (b[0] - a[0]));
+    for (int k = 0; k < 3; k++) v[k] = (1 - w) * a[1 + k] + w * b[1 + k];
+  }
+}
+
+/* Collective. Sets every tabled inlet to its velocity at t; when one changes, rewrites the fixed faces of u and makes the implicit
+ * viscous operator rebuild its boundary part. */
+PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t)
+{
+  PetscBool changed = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      FluidBC  *bc = &fl->bc[d][s];
+      PetscReal v[3];
+      if (!bc->ntab) continue;
+      FluidInletAt(bc, fl->inlet_linear, t, v);
+      for (int k = 0; k < 3; k++) {
+        if (v[k] != bc->vel[k]) changed = PETSC_TRUE;
+        bc->vel[k] = v[k];
+      }
+    }
+  if (changed && fl->setup) {
+    PetscCall(FluidBoundaryFaceValues(fl, fl->u));
+    fl->dt_vmat = -1;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
