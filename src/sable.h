@@ -14,6 +14,9 @@
 /* Collective. Errors when an option in the database was never read (a typo cannot silently run
  * the wrong physics). Call after every object has done its SetFromOptions. */
 PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm);
+/* Collective. At the end of a run: a warning per option left unread among those the start-up
+ * check has to let through (multigrid level options, read when a solver is set up). */
+PetscErrorCode SableWarnOptionsUnused(MPI_Comm comm);
 
 /* PETSc 3.18 predates PETSC_SUCCESS. */
 #ifndef PETSC_SUCCESS

@@ -145,6 +145,7 @@ PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s\n", (double)cpl->t, cpl->step, t1 - t0));
     PetscCall(IoGetIndexPath(io, &index));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "output: %s (open it in ParaView)\n", index));
+    PetscCall(SableWarnOptionsUnused(PETSC_COMM_WORLD));
   }
   PetscCall(BalanceDestroy(&lb));
   PetscCall(CplDestroy(&cpl));

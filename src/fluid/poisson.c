@@ -49,6 +49,8 @@ PetscErrorCode FluidPoissonSetUp(Fluid fl)
   PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_STAR, fl->g.N[0], fl->g.N[1], fl->g.N[2], np[0], np[1], np[2], 1, 1, l[0], l[1], l[2], &fl->pda));
   PetscCall(DMSetUp(fl->pda));
   PetscCall(DMCreateMatrix(fl->pda, &fl->A));
+  PetscCall(KSPSetDM(fl->ksp, fl->pda)); /* for geometric multigrid (-fluid_poisson_pc_type mg); the operators stay ours */
+  PetscCall(KSPSetDMActive(fl->ksp, PETSC_FALSE));
   PetscCall(VecDuplicate(fl->u, &fl->coef));
   PetscCall(VecDuplicate(fl->uloc, &fl->coefloc));
   if (fl->singular) {
