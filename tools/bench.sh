@@ -3,7 +3,8 @@
 # decks' sizes), linear law with history, one rank. Prints microseconds per particle-step for
 # the falling phase (the first 2,000 steps from the lattice) and for the settled bed (2,000 steps
 # from the state at 0.8 s simulated), median of 3 runs, and the peak memory per particle
-# (marginal: the difference of peak RSS between the two sizes over the difference in count).
+# (marginal: the difference of peak RSS between the two sizes over the difference in count);
+# then the fluid (tools/bench_fluid.sh) and the coupled fluidized bed (tools/bench_fluidized.sh).
 # Usage: tools/bench.sh [sizes], sizes among 10k 100k (default both). Output in bench-out/.
 set -eu
 cd "$(dirname "$0")/.."
@@ -39,3 +40,4 @@ if [ "$(grep -c . $O/results.txt)" -ge 2 ]; then
   awk '$1=="10k"{n1=$2;m1=$5} $1=="100k"{n2=$2;m2=$5} END {if (n2>n1) printf "memory per particle (marginal, 10k -> 100k): %.0f bytes\n", (m2-m1)*1048576/(n2-n1)}' $O/results.txt
 fi
 [ -x build/tools/bench_fluid ] || [ ! -x tools/bench_fluid.sh ] || tools/bench_fluid.sh
+tools/bench_fluidized.sh
