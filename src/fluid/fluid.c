@@ -212,6 +212,7 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
   PetscCall(KSPDestroy(&fl->vksp));
   PetscCall(DMDestroy(&fl->cda));
   PetscCall(DMDestroy(&fl->fda));
+  PetscCall(PetscFree(fl->advbuf));
   PetscCall(PetscFree(*fluid));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -71,6 +71,8 @@ struct _p_Fluid {
   PetscObjectState veps_state, vbeta_state;
   PetscReal  dt_vmat;
   PetscLogEvent ev_predict, ev_poisson, ev_correct;
+  PetscScalar  *advbuf; /* advection: one flux per ghosted face point (momentum.c) */
+  PetscInt      advbuf_n;
 };
 
 static inline PetscInt FluidCellOff(const FluidGrid *g, PetscInt i, PetscInt j, PetscInt k)

@@ -27,29 +27,16 @@ static inline PetscScalar fluid_mass_flux(const FluidGrid *g, const PetscScalar 
   return 0.5 * (eps[c] + eps[c - g->cs[e]]) * u[f + e];
 }
 
-static PetscScalar FluidAdvectionAt(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, int d)
+/* rho F_m v_m at the lower e-face of the control volume around the d-face at point f (cell c):
+ * the flux through that face times the advected value there. The upper face of this volume is
+ * the lower face of the volume at f + e, so each is computed once (FluidAdvectionTerm). */
+static inline PetscScalar fluid_advective_flux(const FluidGrid *g, PetscBool tvd, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, int d, int e)
 {
-  const FluidGrid *g   = &fl->g;
-  const PetscBool  tvd = (PetscBool)(fl->adv == FLUID_ADV_TVD);
-  PetscScalar      sum = 0;
-
-  for (int e = 0; e < 3; e++) {
-    const PetscInt fe = g->fs[e], ce = g->cs[e], fd = g->fs[d], cd = g->cs[d];
-    /* fluxes through the +e and -e faces of the control volume around face P */
-    const PetscScalar Fp = 0.5 * (fluid_mass_flux(g, u, eps, f + fe, c + ce, e) + fluid_mass_flux(g, u, eps, f + fe - fd, c + ce - cd, e));
-    const PetscScalar Fm = 0.5 * (fluid_mass_flux(g, u, eps, f, c, e) + fluid_mass_flux(g, u, eps, f - fd, c - cd, e));
-    const PetscScalar um2 = u[f - 2 * fe + d], um1 = u[f - fe + d], u0 = u[f + d], up1 = u[f + fe + d], up2 = u[f + 2 * fe + d];
-    PetscScalar       vp, vm;
-    if (tvd) {
-      vp = fluid_tvd_face(um1, u0, up1, up2, Fp);
-      vm = fluid_tvd_face(um2, um1, u0, up1, Fm);
-    } else {
-      vp = 0.5 * (u0 + up1);
-      vm = 0.5 * (um1 + u0);
-    }
-    sum += (Fp * vp - Fm * vm) / g->h[e];
-  }
-  return fl->rho * sum;
+  const PetscInt    fe = g->fs[e], fd = g->fs[d], cd = g->cs[d];
+  const PetscScalar Fm = 0.5 * (fluid_mass_flux(g, u, eps, f, c, e) + fluid_mass_flux(g, u, eps, f - fd, c - cd, e));
+  const PetscScalar um1 = u[f - fe + d], u0 = u[f + d];
+  const PetscScalar vm = tvd ? fluid_tvd_face(u[f - 2 * fe + d], um1, u0, u[f + fe + d], Fm) : 0.5 * (um1 + u0);
+  return Fm * vm;
 }
 
 static PetscScalar FluidViscousAt(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, int d, PetscBool transpose_only)
@@ -83,12 +70,35 @@ static PetscScalar FluidViscousAt(Fluid fl, const PetscScalar *u, const PetscSca
 
 PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out)
 {
-  const FluidGrid *g = &fl->g;
+  const FluidGrid *g   = &fl->g;
+  const PetscBool  tvd = (PetscBool)(fl->adv == FLUID_ADV_TVD);
+  const PetscInt   np  = g->gfm[0] * g->gfm[1] * g->gfm[2];
   PetscInt         idx[3], f, c, o;
 
   PetscFunctionBeginUser;
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
-  for (int d = 0; d < 3; d++) out[o + d] = (fl->adv != FLUID_ADV_NONE && FluidFaceActive(fl, d, idx)) ? FluidAdvectionAt(fl, u, eps, f, c, d) : 0;
+  for (int d = 0; d < 3; d++) out[o + d] = 0;
+  if (fl->adv == FLUID_ADV_NONE) PetscFunctionReturn(PETSC_SUCCESS);
+  if (fl->advbuf_n < np) {
+    PetscCall(PetscFree(fl->advbuf));
+    PetscCall(PetscMalloc1(np, &fl->advbuf));
+    fl->advbuf_n = np;
+  }
+  for (int d = 0; d < 3; d++)
+    for (int e = 0; e < 3; e++) {
+      PetscScalar   *B  = fl->advbuf; /* by face point: f / 3 */
+      const PetscInt pe = g->fs[e] / 3;
+      PetscInt       hi[3];
+      for (int k = 0; k < 3; k++) hi[k] = g->xs[k] + g->fxm[k] + (k == e);
+      /* lower-face fluxes of every owned volume and of the one above the last along e */
+      for (idx[2] = g->xs[2]; idx[2] < hi[2]; idx[2]++)
+        for (idx[1] = g->xs[1]; idx[1] < hi[1]; idx[1]++)
+          for (idx[0] = g->xs[0], f = FluidFaceOff(g, idx[0], idx[1], idx[2]), c = FluidCellOff(g, idx[0], idx[1], idx[2]); idx[0] < hi[0]; idx[0]++, f += 3, c++) B[f / 3] = fluid_advective_flux(g, tvd, u, eps, f, c, d, e);
+      /* the same sum, in the same order, as (F+ v+ - F- v-) / h_e over e = x, y, z */
+      FLUID_FOR_OWNED_FACES(g, idx, f, c, o) out[o + d] += (B[f / 3 + pe] - B[f / 3]) / g->h[e];
+    }
+  FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+  for (int d = 0; d < 3; d++) out[o + d] = FluidFaceActive(fl, d, idx) ? fl->rho * out[o + d] : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
