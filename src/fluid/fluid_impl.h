@@ -18,6 +18,7 @@ typedef struct {
   PetscReal   vel[3];  /* inlet velocity now (m/s) */
   PetscReal   vel0[3]; /* -fluid_bc_<face>_velocity: before the table's first time */
   PetscInt    ntab;    /* rows of -fluid_bc_<face>_velocity_table: t, u, v, w (s, m/s) */
+  PetscInt    row;     /* the last row reached (-1: none yet) */
   PetscReal   tab[4 * FLUID_INLET_TABLE_MAX];
 } FluidBC;
 

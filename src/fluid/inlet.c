@@ -35,6 +35,7 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
       PetscCheck(bc->type == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but -fluid_bc_%c%s is not inlet", opt, ax[d], side[s]);
       PetscCheck(n > 0 && n % 4 == 0, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes rows of 4 values t,u,v,w (at most %d rows), got %d values", opt, FLUID_INLET_TABLE_MAX, (int)n);
       bc->ntab = n / 4;
+      bc->row  = -1;
       for (PetscInt r = 0; r < bc->ntab; r++) {
         const PetscReal *row = &bc->tab[4 * r];
         PetscCheck(!PetscIsInfOrNanReal(row[0]), fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: time %g of row %d is not finite", opt, (double)row[0], (int)r + 1);
@@ -48,36 +49,42 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The velocity of one face at time t; rows within 1e-9 (relative) of t count as reached, so a
- * clock that accumulated rounding still switches on the step that ends at a row's time. */
-static void FluidInletAt(const FluidBC *bc, PetscBool linear, PetscReal t, PetscReal v[3])
+/* The velocity of one face at time t and the last row reached (-1: none); rows within 1e-9
+ * (relative) of t count as reached, so a clock that accumulated rounding still switches on the
+ * step that ends at a row's time. */
+static PetscInt FluidInletAt(const FluidBC *bc, PetscBool linear, PetscReal t, PetscReal v[3])
 {
   const PetscReal tr = t + 1e-9 * PetscMax(1.0, PetscAbsReal(t));
   PetscInt        r  = -1;
 
   for (int k = 0; k < 3; k++) v[k] = bc->vel0[k];
   while (r + 1 < bc->ntab && bc->tab[4 * (r + 1)] <= tr) r++;
-  if (r < 0) return;
+  if (r < 0) return r;
   for (int k = 0; k < 3; k++) v[k] = bc->tab[4 * r + 1 + k];
   if (linear && r + 1 < bc->ntab) {
     const PetscReal *a = &bc->tab[4 * r], *b = a + 4, w = PetscMax(0.0, (t - a[0]) / (b[0] - a[0]));
     for (int k = 0; k < 3; k++) v[k] = (1 - w) * a[1 + k] + w * b[1 + k];
   }
+  return r;
 }
 
 /* Collective. Sets every tabled inlet to its velocity at t; when one changes, rewrites the fixed faces of u and makes the implicit
  * viscous operator rebuild its boundary part. */
 PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t)
 {
-  PetscBool changed = PETSC_FALSE;
+  const char *side[2] = {"lo", "hi"}, *ax = "xyz";
+  PetscBool   changed = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      FluidBC  *bc = &fl->bc[d][s];
-      PetscReal v[3];
+      FluidBC       *bc = &fl->bc[d][s];
+      PetscReal      v[3];
+      PetscInt       r;
       if (!bc->ntab) continue;
-      FluidInletAt(bc, fl->inlet_linear, t, v);
+      r = FluidInletAt(bc, fl->inlet_linear, t, v);
+      if (r != bc->row && r >= 0) PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s reaches row %d of its table at t = %g s: velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)r + 1, (double)t, (double)bc->tab[4 * r + 1], (double)bc->tab[4 * r + 2], (double)bc->tab[4 * r + 3], fl->inlet_linear && r + 1 < bc->ntab ? ", ramping to the next row" : ""));
+      bc->row = r;
       for (int k = 0; k < 3; k++) {
         if (v[k] != bc->vel[k]) changed = PETSC_TRUE;
         bc->vel[k] = v[k];
