@@ -18,7 +18,11 @@ static const char *Packed = "-domain_lo 0,0,0 -domain_hi 4,4,24 -domain_periodic
                             "-fluid_density 1 -fluid_dt 0.05 -fluid_viscous implicit -fluid_advection tvd "
                             "-fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,1 -fluid_bc_zhi outlet";
 
-/* the body centres of a BCC bed whose corners are the -dem_lattice sites (4 x 4 x 10, a = 1.18) */
+/* The body centres of a BCC bed whose corners are the -dem_lattice sites: the lattice (4 x 4 x
+ * 10, spacing a = 1.18, origin -a/2, -a/2, 4.5 a) puts its sites at (i a, j a, 5 a + k a); each body
+ * centre sits half a spacing further along every axis, inside the periodic box (nearest-neighbour
+ * distance sqrt(3) a / 2 = 1.022 d: no overlap), so a cube of the grid holds two spheres'
+ * volume and the bed's porosity is 1 - 2 (pi/6) / a^3 = 0.363. */
 static PetscErrorCode AddBodyCentres(Dem dem)
 {
   const PetscReal a = 1.18;
@@ -31,11 +35,9 @@ static PetscErrorCode AddBodyCentres(Dem dem)
         PetscCall(PetscMemzero(&p, sizeof p));
         p.id   = 100000 + i + 4 * (j + 4 * k);
         p.q[0] = 1;
-        p.x[0] = (i + 1) * a;
-        p.x[1] = (j + 1) * a;
-        p.x[2] = 5 * a + (k + 1) * a;
-        if (p.x[0] > 4 * a - 1e-9) p.x[0] -= 4 * a; /* periodic sides */
-        if (p.x[1] > 4 * a - 1e-9) p.x[1] -= 4 * a;
+        p.x[0] = (i + 0.5) * a;
+        p.x[1] = (j + 0.5) * a;
+        p.x[2] = 5 * a + (k + 0.5) * a;
         PetscCall(DemAddParticle(dem, &p));
       }
   PetscFunctionReturn(PETSC_SUCCESS);
