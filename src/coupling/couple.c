@@ -110,7 +110,7 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscFunctionBeginUser;
   PetscCall(FluidGetDMs(cpl->fl, &cpl->cda, &cpl->fda));
   PetscCall(DMCreateLocalVector(cpl->cda, &cpl->cloc));
-  PetscCall(DMCreateLocalVector(cpl->fda, &cpl->floc));
+  for (int s = 0; s < 3; s++) PetscCall(DMCreateLocalVector(cpl->fda, &cpl->floc[s]));
   PetscCall(DMCreateGlobalVector(cpl->fda, &cpl->kv));
   PetscCall(VecDuplicate(cpl->kv, &cpl->jf));
   PetscCall(VecDuplicate(cpl->kv, &cpl->owed));
@@ -151,9 +151,11 @@ PetscErrorCode CplRedistribute(Cpl cpl)
   for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) PetscCall(DomainMoveVec(ofda, cpl->fda, face[i]));
   PetscCall(DMDestroy(&ofda));
   PetscCall(VecDestroy(&cpl->cloc));
-  PetscCall(VecDestroy(&cpl->floc));
   PetscCall(DMCreateLocalVector(cpl->cda, &cpl->cloc));
-  PetscCall(DMCreateLocalVector(cpl->fda, &cpl->floc));
+  for (int s = 0; s < 3; s++) {
+    PetscCall(VecDestroy(&cpl->floc[s]));
+    PetscCall(DMCreateLocalVector(cpl->fda, &cpl->floc[s]));
+  }
   PetscCall(DemRedistribute(cpl->dem));
   CplInvalidateStencils(cpl);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -172,7 +174,7 @@ PetscErrorCode CplDestroy(Cpl *cpl)
   PetscFunctionBeginUser;
   if (!*cpl) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(VecDestroy(&(*cpl)->cloc));
-  PetscCall(VecDestroy(&(*cpl)->floc));
+  for (int s = 0; s < 3; s++) PetscCall(VecDestroy(&(*cpl)->floc[s]));
   PetscCall(VecDestroy(&(*cpl)->kv));
   PetscCall(VecDestroy(&(*cpl)->jf));
   PetscCall(VecDestroy(&(*cpl)->owed));

@@ -33,7 +33,7 @@ struct _p_Cpl {
   PetscInt   step;
   PetscInt   clipped_total;
   PetscReal  solid_grid; /* last projection, before the floor */
-  Vec        cloc, floc;        /* work: cell local, face local */
+  Vec        cloc, floc[3];     /* work: cell local, face locals (one per field spread together) */
   Vec        kv, jf, owed;      /* face globals: sum K W v, spread impulse, momentum owed */
   CplStencil *stc;              /* cached kernel stencils of the local particles */
   PetscInt   stc_n, stc_cap;
@@ -59,6 +59,11 @@ PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplSt
 PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal *vol, PetscReal *diam);
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st);
 void           CplInvalidateStencils(Cpl cpl);
-PetscErrorCode CplSpreadFaces(Cpl cpl, const PetscReal *val, PetscBool scalar, Vec out);
+typedef struct {
+  const PetscReal *val;    /* 3 per local particle, or 1 if scalar */
+  PetscBool        scalar;
+  Vec              out;    /* global face Vec */
+} CplSpread;
+PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[]);
 /* preflight.c */
 PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce);

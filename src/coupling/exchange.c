@@ -34,8 +34,9 @@ static PetscErrorCode CplSetParticleDrag(Cpl cpl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* beta and u_s on the faces from K and the particle velocities at the new positions; the
- * source is the momentum owed from the previous step. */
+/* beta and u_s on the faces from K and the particle velocities at the new positions, and the
+ * impulses of the DEM substeps just taken (for the momentum owed after the fluid step), in one
+ * pass; the source is the momentum owed from the previous step. */
 static PetscErrorCode CplSetFluidDrag(Cpl cpl)
 {
   DemArrays          pa;
@@ -52,10 +53,12 @@ static PetscErrorCode CplSetFluidDrag(Cpl cpl)
   PetscCall(FluidGetDragCoefficient(cpl->fl, &beta));
   PetscCall(FluidGetSolidVelocity(cpl->fl, &us));
   PetscCall(FluidGetMomentumSource(cpl->fl, &src));
-  PetscCall(CplSpreadFaces(cpl, ex.k, PETSC_TRUE, beta));
   PetscCall(PetscMalloc1(3 * pa.nlocal + 1, &kv));
   for (PetscInt p = 0; p < 3 * pa.nlocal; p++) kv[p] = ex.k[p / 3] * pa.v[p];
-  PetscCall(CplSpreadFaces(cpl, kv, PETSC_FALSE, cpl->kv));
+  {
+    const CplSpread sp[3] = {{ex.k, PETSC_TRUE, beta}, {kv, PETSC_FALSE, cpl->kv}, {ex.j, PETSC_FALSE, cpl->jf}};
+    PetscCall(CplSpreadFaces(cpl, cpl->correct ? 3 : 2, sp));
+  }
   PetscCall(PetscFree(kv));
   PetscCall(VecGetLocalSize(us, &n));
   PetscCall(VecGetArrayRead(beta, &b));
@@ -70,10 +73,10 @@ static PetscErrorCode CplSetFluidDrag(Cpl cpl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* owed = V_cell (beta (u - u_s) dt - sum_p J_p W / V_cell) at interior faces, 0 elsewhere. */
+/* owed = V_cell (beta (u - u_s) dt - sum_p J_p W / V_cell) at interior faces, 0 elsewhere (the
+ * spread impulses jf come from CplSetFluidDrag). */
 static PetscErrorCode CplComputeOwed(Cpl cpl, PetscReal *norm)
 {
-  DemExternal        ex;
   Vec                beta, us, u;
   const PetscScalar *b, *s, *v, *j;
   PetscScalar       *o;
@@ -83,8 +86,6 @@ static PetscErrorCode CplComputeOwed(Cpl cpl, PetscReal *norm)
   PetscCall(VecZeroEntries(cpl->owed));
   *norm = 0;
   if (!cpl->correct) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(DemGetExternal(cpl->dem, &ex));
-  PetscCall(CplSpreadFaces(cpl, ex.j, PETSC_FALSE, cpl->jf));
   PetscCall(FluidGetDragCoefficient(cpl->fl, &beta));
   PetscCall(FluidGetSolidVelocity(cpl->fl, &us));
   PetscCall(FluidGetVelocity(cpl->fl, &u));

@@ -205,39 +205,49 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective. out (a global face Vec) <- sum_p val_p^d W^d_pf / V_cell per component d; val has
- * 3 values per local particle, or one (scalar) used for all three components. */
-PetscErrorCode CplSpreadFaces(Cpl cpl, const PetscReal *val, PetscBool scalar, Vec out)
+/* Collective. For each of n <= 3 fields: out (a global face Vec) <- sum_p val_p^d W^d_pf / V_cell
+ * per component d, val with 3 values per local particle or one (scalar) used for all three
+ * components. The fields share one pass over the particles and their stencils; each field is
+ * summed in the same order as alone. */
+PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
 {
   DemArrays         pa;
   CplBox            b;
   const CplStencil *stc;
-  PetscScalar      *a;
+  PetscScalar      *a[3];
 
   PetscFunctionBeginUser;
+  PetscCheck(n >= 1 && n <= 3, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "CplSpreadFaces: %d fields, 1 to 3 supported", (int)n);
   PetscCall(DemGetArrays(cpl->dem, &pa));
   PetscCall(CplStencils(cpl, &pa, &stc));
   PetscCall(CplBoxOf(cpl->fda, &b));
-  PetscCall(VecZeroEntries(cpl->floc));
-  PetscCall(VecGetArray(cpl->floc, &a));
+  for (PetscInt s = 0; s < n; s++) {
+    PetscCall(VecZeroEntries(cpl->floc[s]));
+    PetscCall(VecGetArray(cpl->floc[s], &a[s]));
+  }
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     for (int d = 0; d < 3; d++) {
       PetscInt      first[3];
-      int           n[3];
+      int           nn[3];
       const double *w[3];
-      const double  q = (scalar ? val[p] : val[3 * p + d]) / cpl->cell_vol;
-      cpl_component(&stc[p], d, first, n, w);
-      for (int k = 0; k < n[2]; k++)
-        for (int j = 0; j < n[1]; j++) {
-          const double wjk = q * w[2][k] * w[1][j];
-          PetscInt     o   = 3 * cpl_off(&b, first[0], first[1] + j, first[2] + k) + d;
-          for (int i = 0; i < n[0]; i++) a[o + 3 * i] += wjk * w[0][i];
+      double        q[3];
+      for (PetscInt s = 0; s < n; s++) q[s] = (sp[s].scalar ? sp[s].val[p] : sp[s].val[3 * p + d]) / cpl->cell_vol;
+      cpl_component(&stc[p], d, first, nn, w);
+      for (int k = 0; k < nn[2]; k++)
+        for (int j = 0; j < nn[1]; j++) {
+          PetscInt o = 3 * cpl_off(&b, first[0], first[1] + j, first[2] + k) + d;
+          for (PetscInt s = 0; s < n; s++) {
+            const double wjk = q[s] * w[2][k] * w[1][j];
+            for (int i = 0; i < nn[0]; i++) a[s][o + 3 * i] += wjk * w[0][i];
+          }
         }
     }
   }
-  PetscCall(VecRestoreArray(cpl->floc, &a));
-  PetscCall(VecZeroEntries(out));
-  PetscCall(DMLocalToGlobal(cpl->fda, cpl->floc, ADD_VALUES, out));
+  for (PetscInt s = 0; s < n; s++) {
+    PetscCall(VecRestoreArray(cpl->floc[s], &a[s]));
+    PetscCall(VecZeroEntries(sp[s].out));
+    PetscCall(DMLocalToGlobal(cpl->fda, cpl->floc[s], ADD_VALUES, sp[s].out));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
