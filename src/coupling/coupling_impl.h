@@ -36,7 +36,7 @@ struct _p_Cpl {
   Vec        cloc, floc[3];     /* work: cell local, face locals (one per field spread together) */
   Vec        kv, jf, owed;      /* face globals: sum K W v, spread impulse, momentum owed */
   CplStencil *stc;              /* cached kernel stencils of the local particles */
-  PetscInt   stc_n, stc_cap;
+  PetscInt   stc_n, stc_cap, stc_state; /* stc_state: DemGetState when the stencils were computed */
   PetscBool  stc_valid;
   PetscLogDouble t_fluid; /* wall time in fluid steps (s): the measured cell weight */
   PetscLogEvent ev_project, ev_drag, ev_exchange, ev_dem;

@@ -133,10 +133,8 @@ PetscErrorCode CplStep(Cpl cpl, CplStats *st)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(st, sizeof *st));
-  CplInvalidateStencils(cpl); /* the driver may have moved particles since the last step */
   PetscCall(CplSetParticleDrag(cpl));
   if (!cpl->frozen) {
-    CplInvalidateStencils(cpl);
     PetscCall(PetscLogEventBegin(cpl->ev_dem, 0, 0, 0, 0));
     for (PetscInt s = 0; s < cpl->substeps; s++) PetscCall(DemStep(cpl->dem));
     PetscCall(PetscLogEventEnd(cpl->ev_dem, 0, 0, 0, 0));

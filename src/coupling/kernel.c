@@ -103,15 +103,17 @@ static void cpl_component(const CplStencil *s, int d, PetscInt first[3], int n[3
   }
 }
 
-/* The stencils of all local particles, cached until CplInvalidateStencils (the coupling calls
- * it whenever the DEM may have moved or re-sorted its particles); each is checked against the
- * ghost boxes of both grids once, when computed. */
+/* The stencils of all local particles, cached while the DEM's state (DemGetState: positions and
+ * order) is unchanged and until CplInvalidateStencils (the grids moved); each is checked against
+ * the ghost boxes of both grids once, when computed. */
 static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil **out)
 {
-  CplBox bc, bf;
+  CplBox   bc, bf;
+  PetscInt state;
 
   PetscFunctionBeginUser;
-  if (!cpl->stc_valid || cpl->stc_n != pa->nlocal) {
+  PetscCall(DemGetState(cpl->dem, &state));
+  if (!cpl->stc_valid || cpl->stc_n != pa->nlocal || cpl->stc_state != state) {
     PetscCall(CplBoxOf(cpl->cda, &bc));
     PetscCall(CplBoxOf(cpl->fda, &bf));
     if (pa->nlocal > cpl->stc_cap) {
@@ -132,6 +134,7 @@ static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil
       }
     }
     cpl->stc_n     = pa->nlocal;
+    cpl->stc_state = state;
     cpl->stc_valid = PETSC_TRUE;
   }
   *out = cpl->stc;

@@ -192,6 +192,7 @@ PetscErrorCode DemSetUp(Dem dem)
   double rmax = 0;
 
   PetscFunctionBeginUser;
+  dem->state++;
   PetscCall(DemInsert(dem));
   for (PetscInt s = 0; s < dem->nshape; s++) {
     DemShape *sh = &dem->shp[s];
@@ -221,6 +222,7 @@ PetscErrorCode DemStep(Dem dem)
   double d2, wmax = 0;
 
   PetscFunctionBeginUser;
+  dem->state++;
   PetscCall(DemIntegrateFirstHalf(dem, &d2));
   PetscCheck(PetscIsNormalReal(d2) || d2 == 0, PETSC_COMM_SELF, PETSC_ERR_FP, "step %" PetscInt_FMT ": a particle position became non-finite; lower -dem_dt (now %g s)", dem->step, (double)dem->dt);
   for (PetscInt w = 0; w < dem->nwall; w++) {

@@ -81,6 +81,10 @@ typedef struct {
   const PetscInt  *id, *shape;
 } DemArrays;
 PetscErrorCode DemGetArrays(Dem dem, DemArrays *a);
+/* Not collective. A number that changes whenever the local particles' positions or order may
+ * have changed (DemSetUp, DemStep, DemAddParticle, DemSetParticle, list rebuilds, DemRedistribute):
+ * a coupling keeps what it derived from positions while it is unchanged. */
+PetscErrorCode DemGetState(Dem dem, PetscInt *state);
 /* Radius (m) and mass (kg, known after DemSetUp) of shape s; number of shapes. */
 PetscErrorCode DemGetShape(Dem dem, PetscInt s, PetscReal *radius, PetscReal *mass);
 PetscErrorCode DemGetShapeCount(Dem dem, PetscInt *n);

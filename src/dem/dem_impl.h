@@ -210,6 +210,7 @@ struct _p_Dem {
   /* time */
   PetscReal g[3], dt, t, t_end, dt_frac, dt_tc, progress_dt, overlap_max;
   PetscInt  step;
+  PetscInt  state; /* changes whenever positions or the local order may have (DemGetState) */
   /* insertion */
   PetscInt  lat[3], lat_count; /* lattice sites, and how many of them are filled (-1: all) */
   PetscReal lat_a, lat_origin[3], lat_jitter, lat_speed;

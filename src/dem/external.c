@@ -52,6 +52,13 @@ PetscErrorCode DemGetExternal(Dem dem, DemExternal *e)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode DemGetState(Dem dem, PetscInt *state)
+{
+  PetscFunctionBeginUser;
+  *state = dem->state;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemGetArrays(Dem dem, DemArrays *a)
 {
   PetscFunctionBeginUser;

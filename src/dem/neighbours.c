@@ -283,6 +283,7 @@ PetscErrorCode DemNeighBuild(Dem dem)
   PetscInt   nrec, caprec;
 
   PetscFunctionBeginUser;
+  dem->state++; /* migration and re-sorting change the local order */
   PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));
   PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
   dem->ng = 0;

@@ -65,6 +65,7 @@ PetscErrorCode DemAddParticle(Dem dem, const DemParticle *p)
   PetscInt i = dem->n;
 
   PetscFunctionBeginUser;
+  dem->state++;
   PetscCheck(p->shape >= 0 && p->shape < dem->nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "particle %" PetscInt_FMT ": shape %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", p->id, p->shape, dem->nshape);
   for (int k = 0; k < 3; k++)
     PetscCheck(PetscIsNormalReal(p->x[k]) || p->x[k] == 0, PETSC_COMM_SELF, PETSC_ERR_FP, "particle %" PetscInt_FMT ": position is not finite", p->id);
@@ -114,6 +115,7 @@ PetscErrorCode DemGetParticle(Dem dem, PetscInt i, DemParticle *p)
 PetscErrorCode DemSetParticle(Dem dem, PetscInt i, const DemParticle *p)
 {
   PetscFunctionBeginUser;
+  dem->state++;
   PetscCheck(i >= 0 && i < dem->n, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "particle index %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", i, dem->n);
   for (int k = 0; k < 3; k++) {
     dem->x[3 * i + k] = p->x[k];
