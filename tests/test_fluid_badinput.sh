@@ -30,11 +30,13 @@ check dt_above_viscous_limit 'explicit viscous number .* above the limit -fluid_
 check undecomposable_grid 'cannot be split over 2 ranks: every rank needs >= 2 cells' 2 -da_grid_x 2 -da_processors_x 2 -da_processors_y 1 -da_processors_z 1
 check periodic_axis_bc '-fluid_bc_zlo inlet: the z axis is periodic' 1 -fluid_bc_zlo inlet
 check misspelled_option 'option -fluid_viscosty .* nothing reads it' 1 -fluid_viscosty 1
-check inlet_table_not_inlet '-fluid_bc_xhi_velocity_table is given but -fluid_bc_xhi is not inlet' 1 -fluid_bc_xhi_velocity_table 1,0,0,1
-check inlet_table_row_count '-fluid_bc_xlo_velocity_table takes rows of 4 values t,u,v,w .* got 3 values' 1 -fluid_bc_xlo_velocity_table 1,0.5,0
+check inlet_table_not_inlet '-fluid_bc_xhi_velocity_table is given but -fluid_bc_xhi is outlet, not inlet' 1 -fluid_bc_xhi_velocity_table 1,0,0,1
+check inlet_table_row_count '-fluid_bc_xlo_velocity_table takes rows of 4 values t,u,v,w, 1 to 32 rows; got 3 values' 1 -fluid_bc_xlo_velocity_table 1,0.5,0
 check inlet_table_times_decrease '-fluid_bc_xlo_velocity_table: times must increase strictly, row 2 has 0.5 after 1' 1 -fluid_bc_xlo_velocity_table 1,1,0,0,0.5,2,0,0
 check inlet_table_negative_time '-fluid_bc_xlo_velocity_table: time -1\.? of row 1 must be >= 0' 1 -fluid_bc_xlo_velocity_table -1,1,0,0
-check inlet_interpolation_name 'fluid_inlet_interpolation' 1 -fluid_inlet_interpolation cubic
+check inlet_table_too_many_rows '-fluid_bc_xlo_velocity_table takes rows of 4 values t,u,v,w, 1 to 32 rows; got more than 128 values' 1 -fluid_bc_xlo_velocity_table "$(awk 'BEGIN {for (i = 0; i < 33; i++) printf "%s%d,1,0,0", i ? "," : "", i}')"
+check inlet_interpolation_name 'Unknown option cubic for -fluid_inlet_interpolation' 1 -fluid_inlet_interpolation cubic
+check mg_levels_too_many '-fluid_poisson_pc_mg_levels 2: the fluid grid \(-da_grid_x 16\) has 16 cells along the bounded x axis after 0 coarsenings and cannot be coarsened again' 1 -fluid_poisson_pc_type mg -fluid_poisson_pc_mg_levels 2
 check negative_pc_lag '-fluid_poisson_pc_lag -1 must be >= 0' 1 -fluid_poisson_pc_lag -1
 check pc_lag_growth_below_1 '-fluid_poisson_pc_lag_growth 0.5 must be >= 1' 1 -fluid_poisson_pc_lag_growth 0.5
 check bad_advection_name 'fluid_advection' 1 -fluid_advection upwind3

@@ -12,7 +12,7 @@
  * (m/s), -fluid_outlet_pressure (Pa). */
 #include "fluid/fluid_impl.h"
 
-static const char *const FluidBCNames[] = {"periodic", "wall", "slip", "inlet", "outlet", "FluidBCType", "FLUID_BC_", NULL};
+const char *const FluidBCNames[] = {"periodic", "wall", "slip", "inlet", "outlet", "FluidBCType", "FLUID_BC_", NULL};
 
 PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
 {

@@ -3,8 +3,9 @@
  * lives on the one decomposition of the run; the face DMDA has the same ranges plus one point
  * on the last rank along non-periodic axes (the upper boundary faces). Options -fluid_density,
  * -fluid_viscosity, -fluid_dt, -fluid_gravity, -fluid_pressure_gradient, -fluid_advection,
- * -fluid_viscous, -fluid_cfl_max, -fluid_viscous_number_max, -fluid_adaptive_dt; boundary
- * options in bc.c. */
+ * -fluid_viscous, -fluid_cfl_max, -fluid_viscous_number_max, -fluid_adaptive_dt, and the
+ * preconditioner lag of the Poisson solve -fluid_poisson_pc_lag, -fluid_poisson_pc_lag_growth
+ * (poisson.c); boundary options in bc.c, inlet tables in inlet.c. */
 #include "fluid/fluid_impl.h"
 
 static const char *const FluidAdvectionNames[] = {"central", "tvd", "none", "FluidAdvection", "FLUID_ADV_", NULL};
@@ -76,8 +77,8 @@ PetscErrorCode FluidSetFromOptions(Fluid fl)
   PetscCall(PetscOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", NULL, FluidViscousNames, (PetscEnum)fl->visc, (PetscEnum *)&fl->visc, NULL));
   PetscCall(PetscOptionsReal("-fluid_cfl_max", "Largest advective CFL number dt*sum|u_d|/h_d allowed (default 0.5)", NULL, fl->cfl_max, &fl->cfl_max, NULL));
   PetscCall(PetscOptionsReal("-fluid_viscous_number_max", "Largest explicit viscous number 2 dt nu sum 1/h_d^2 allowed (default 0.5; stability needs <= 1)", NULL, fl->visc_max, &fl->visc_max, NULL));
-  PetscCall(PetscOptionsInt("-fluid_poisson_pc_lag", "Keep the Poisson preconditioner for up to this many matrix changes (0: rebuild at every change)", NULL, fl->pc_lag, &fl->pc_lag, NULL));
-  PetscCall(PetscOptionsReal("-fluid_poisson_pc_lag_growth", "Rebuild a lagged preconditioner earlier when the iterations exceed growth x those after its build + 1", NULL, fl->pc_growth, &fl->pc_growth, NULL));
+  PetscCall(PetscOptionsInt("-fluid_poisson_pc_lag", "Keep the Poisson preconditioner for up to this many matrix changes (0: rebuild at every change; default 20)", NULL, fl->pc_lag, &fl->pc_lag, NULL));
+  PetscCall(PetscOptionsReal("-fluid_poisson_pc_lag_growth", "Rebuild a lagged preconditioner earlier when the iterations exceed growth x those after its build + 1 (default 1.5)", NULL, fl->pc_growth, &fl->pc_growth, NULL));
   PetscCall(PetscOptionsBool("-fluid_adaptive_dt", "Lower dt to the stability limit instead of stopping", NULL, fl->adaptive, &fl->adaptive, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->rho > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_density %g must be > 0 (kg/m^3)", (double)fl->rho);

@@ -21,7 +21,8 @@ typedef struct _p_Fluid *Fluid;
  * step, and the time step actually taken (s; smaller than asked when adaptive stepping cut it). */
 typedef struct {
   PetscInt  poisson_its;
-  PetscInt  poisson_pc_builds; /* Poisson preconditioners built so far (see -fluid_poisson_pc_lag) */
+  PetscInt  poisson_pc_builds;  /* Poisson preconditioners built so far (see -fluid_poisson_pc_lag) */
+  PetscInt  poisson_pc_retries; /* solves redone with a fresh preconditioner so far */
   PetscReal poisson_rnorm;
   PetscReal div_max;
   PetscReal cfl, visc_number;

@@ -8,6 +8,7 @@
 #include "fluid/fluid.h"
 
 typedef enum { FLUID_BC_PERIODIC, FLUID_BC_WALL, FLUID_BC_SLIP, FLUID_BC_INLET, FLUID_BC_OUTLET } FluidBCType;
+extern const char *const FluidBCNames[]; /* bc.c: option values, indexed by FluidBCType */
 typedef enum { FLUID_ADV_CENTRAL, FLUID_ADV_TVD, FLUID_ADV_NONE } FluidAdvection;
 typedef enum { FLUID_VISC_EXPLICIT, FLUID_VISC_IMPLICIT } FluidViscous;
 
@@ -61,7 +62,7 @@ struct _p_Fluid {
   PetscReal  dt_mat;
   PetscInt   pc_lag;          /* -fluid_poisson_pc_lag: matrix changes a preconditioner may serve */
   PetscReal  pc_growth;       /* -fluid_poisson_pc_lag_growth: rebuild when its > growth * its0 + 1 */
-  PetscInt   pc_age, pc_its0, pc_its_last, pc_builds; /* changes served, its after the build, last its, builds */
+  PetscInt   pc_age, pc_its0, pc_its_last, pc_builds, pc_retries; /* changes served, its after the build, last its, builds, failed solves redone */
   PetscReal  dt_pc;
   PetscBool  singular;
   PetscInt   nsteps;
@@ -133,7 +134,7 @@ PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc);
 PetscErrorCode FluidLocalCell(Fluid fl, Vec a, Vec aloc, PetscBool odd_at_outlet, PetscReal outlet_value);
 /* inlet.c: time tables of inlet velocities */
 PetscErrorCode FluidSetFromOptionsInlet(Fluid fl);
-PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t);
+PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed);
 /* momentum.c: explicit terms per unit volume at the active faces of the owned points */
 PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out);
 PetscErrorCode FluidViscousTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscBool transpose_only, PetscScalar *out);

@@ -9,31 +9,34 @@
  * solver tolerance from the step that crosses a row's time on. */
 #include "fluid/fluid_impl.h"
 
+typedef enum { FLUID_INLET_STEP, FLUID_INLET_LINEAR } FluidInletInterp;
 static const char *const FluidInletInterpNames[] = {"step", "linear", "FluidInletInterp", "FLUID_INLET_", NULL};
 
 /* Collective. Reads the tables and -fluid_inlet_interpolation; call after the face types are known. */
 PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
 {
-  const char *side[2] = {"lo", "hi"}, *ax = "xyz";
-  char        opt[64];
-  PetscBool   set;
-  PetscInt    interp = fl->inlet_linear ? 1 : 0;
+  const char      *side[2] = {"lo", "hi"}, *ax = "xyz";
+  char             opt[64];
+  PetscBool        set;
+  FluidInletInterp interp = fl->inlet_linear ? FLUID_INLET_LINEAR : FLUID_INLET_STEP;
+  PetscReal        buf[4 * FLUID_INLET_TABLE_MAX + 4]; /* one row more than allowed: PETSc stops silently at the array's size */
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid inlet tables", NULL);
-  PetscCall(PetscOptionsEList("-fluid_inlet_interpolation", "Between rows of an inlet table: step (hold the earlier row) or linear", NULL, FluidInletInterpNames, 2, FluidInletInterpNames[interp], &interp, NULL));
-  fl->inlet_linear = interp == 1 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscOptionsEnum("-fluid_inlet_interpolation", "Between rows of an inlet table: step (hold the earlier row) or linear (default step)", NULL, FluidInletInterpNames, (PetscEnum)interp, (PetscEnum *)&interp, NULL));
+  fl->inlet_linear = interp == FLUID_INLET_LINEAR ? PETSC_TRUE : PETSC_FALSE;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
       FluidBC *bc = &fl->bc[d][s];
-      PetscInt n  = 4 * FLUID_INLET_TABLE_MAX;
+      PetscInt n  = 4 * FLUID_INLET_TABLE_MAX + 4;
 
       for (int k = 0; k < 3; k++) bc->vel0[k] = bc->vel[k];
       PetscCall(PetscSNPrintf(opt, sizeof opt, "-fluid_bc_%c%s_velocity_table", ax[d], side[s]));
-      PetscCall(PetscOptionsRealArray(opt, "Inlet velocity from each time on: t1,u1,v1,w1,t2,... (s, m/s)", NULL, bc->tab, &n, &set));
+      PetscCall(PetscOptionsRealArray(opt, "Inlet velocity from each time on: t1,u1,v1,w1,t2,... (s, m/s; default none)", NULL, buf, &n, &set));
       if (!set) continue;
-      PetscCheck(bc->type == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but -fluid_bc_%c%s is not inlet", opt, ax[d], side[s]);
-      PetscCheck(n > 0 && n % 4 == 0, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes rows of 4 values t,u,v,w (at most %d rows), got %d values", opt, FLUID_INLET_TABLE_MAX, (int)n);
+      PetscCheck(bc->type == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but -fluid_bc_%c%s is %s, not inlet", opt, ax[d], side[s], FluidBCNames[bc->type]);
+      PetscCheck(n > 0 && n % 4 == 0 && n <= 4 * FLUID_INLET_TABLE_MAX, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes rows of 4 values t,u,v,w, 1 to %d rows; got %s%d values", opt, FLUID_INLET_TABLE_MAX, n > 4 * FLUID_INLET_TABLE_MAX ? "more than " : "", (int)(n > 4 * FLUID_INLET_TABLE_MAX ? 4 * FLUID_INLET_TABLE_MAX : n));
+      PetscCall(PetscArraycpy(bc->tab, buf, n));
       bc->ntab = n / 4;
       bc->row  = -1;
       for (PetscInt r = 0; r < bc->ntab; r++) {
@@ -41,18 +44,18 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
         PetscCheck(!PetscIsInfOrNanReal(row[0]), fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: time %g of row %d is not finite", opt, (double)row[0], (int)r + 1);
         PetscCheck(row[0] >= 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: time %g of row %d must be >= 0 (s)", opt, (double)row[0], (int)r + 1);
         PetscCheck(r == 0 || row[0] > row[-4], fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: times must increase strictly, row %d has %g after %g", opt, (int)r + 1, (double)row[0], (double)row[-4]);
-        for (int k = 1; k < 4; k++) PetscCheck(!PetscIsInfOrNanReal(row[k]), fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: velocity of row %d is not finite", opt, (int)r + 1);
+        for (int k = 1; k < 4; k++) PetscCheck(!PetscIsInfOrNanReal(row[k]), fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: velocity %g,%g,%g of row %d is not finite", opt, (double)row[1], (double)row[2], (double)row[3], (int)r + 1);
       }
     }
   PetscOptionsEnd();
-  PetscCall(FluidUpdateInlets(fl, fl->time));
+  PetscCall(FluidUpdateInlets(fl, fl->time, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* The velocity of one face at time t and the last row reached (-1: none); rows within 1e-9
  * (relative) of t count as reached, so a clock that accumulated rounding still switches on the
  * step that ends at a row's time. */
-static PetscInt FluidInletAt(const FluidBC *bc, PetscBool linear, PetscReal t, PetscReal v[3])
+static inline PetscInt fluid_inlet_at(const FluidBC *bc, PetscBool linear, PetscReal t, PetscReal v[3])
 {
   const PetscReal tr = t + 1e-9 * PetscMax(1.0, PetscAbsReal(t));
   PetscInt        r  = -1;
@@ -70,7 +73,7 @@ static PetscInt FluidInletAt(const FluidBC *bc, PetscBool linear, PetscReal t, P
 
 /* Collective. Sets every tabled inlet to its velocity at t; when one changes, rewrites the fixed faces of u and makes the implicit
  * viscous operator rebuild its boundary part. */
-PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t)
+PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed_out)
 {
   const char *side[2] = {"lo", "hi"}, *ax = "xyz";
   PetscBool   changed = PETSC_FALSE;
@@ -82,7 +85,7 @@ PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t)
       PetscReal      v[3];
       PetscInt       r;
       if (!bc->ntab) continue;
-      r = FluidInletAt(bc, fl->inlet_linear, t, v);
+      r = fluid_inlet_at(bc, fl->inlet_linear, t, v);
       if (r != bc->row && r >= 0) PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s reaches row %d of its table at t = %g s: velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)r + 1, (double)t, (double)bc->tab[4 * r + 1], (double)bc->tab[4 * r + 2], (double)bc->tab[4 * r + 3], fl->inlet_linear && r + 1 < bc->ntab ? ", ramping to the next row" : ""));
       bc->row = r;
       for (int k = 0; k < 3; k++) {
@@ -92,7 +95,8 @@ PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t)
     }
   if (changed && fl->setup) {
     PetscCall(FluidBoundaryFaceValues(fl, fl->u));
-    fl->dt_vmat = -1;
+    fl->dt_vmat = -1; /* the implicit viscous right-hand side holds the inlet values (a ramp rebuilds it every step) */
   }
+  if (changed_out) *changed_out = changed;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

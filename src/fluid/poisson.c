@@ -15,7 +15,9 @@
  * changes (default 20; 0 rebuilds at every change), and rebuilt earlier when a solve needs more
  * than -fluid_poisson_pc_lag_growth (1.5) x the iterations of the first solve after its build,
  * plus one, or when dt changes. The solution is the same to the solver tolerance either way; a
- * solve that fails with a kept preconditioner is repeated with a new one. */
+ * solve that fails with a kept preconditioner is repeated with a new one (a warning line, counted
+ * in FluidStats). Geometric multigrid (-fluid_poisson_pc_type mg) coarsens the pressure DMDA:
+ * its levels are checked against the grid at set-up. */
 #include "fluid/fluid_impl.h"
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: rebuild the matrix only when eps, beta or dt changed */
 
@@ -37,6 +39,32 @@ PetscErrorCode FluidPoissonCreateKSP(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Geometric multigrid coarsens the pressure DMDA L - 1 times: a periodic axis halves (N even),
+ * a bounded one maps N to (N - 1)/2 + 1 (N odd), and every level keeps >= 2 cells per axis. */
+static PetscErrorCode FluidPoissonCheckMG(Fluid fl)
+{
+  PC        pc;
+  PetscBool mg;
+  PetscInt  L;
+  const char ax[] = "xyz";
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(fl->ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCMG, &mg));
+  if (!mg) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PCMGGetLevels(pc, &L));
+  for (int d = 0; d < 3; d++) {
+    PetscInt n = fl->g.N[d];
+    for (PetscInt l = 1; l < L; l++) {
+      const PetscBool per = FluidPeriodic(fl, d), ok = (PetscBool)(per ? n % 2 == 0 : n % 2 == 1);
+      const PetscInt  nc  = per ? n / 2 : (n - 1) / 2 + 1;
+      PetscCheck(ok && nc >= 2, fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_poisson_pc_mg_levels %d: the fluid grid (-da_grid_%c %d) has %d cells along the %s %c axis after %d coarsenings and cannot be coarsened again (a periodic axis needs an even count, a bounded one an odd count, and the coarsest level >= 2 cells); lower the levels or change -da_grid_%c", (int)L, ax[d], (int)fl->g.N[d], (int)n, per ? "periodic" : "bounded", ax[d], (int)(l - 1), ax[d]);
+      n = nc;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FluidPoissonSetUp(Fluid fl)
 {
   const PetscInt *l[3];
@@ -51,6 +79,7 @@ PetscErrorCode FluidPoissonSetUp(Fluid fl)
   PetscCall(DMCreateMatrix(fl->pda, &fl->A));
   PetscCall(KSPSetDM(fl->ksp, fl->pda)); /* for geometric multigrid (-fluid_poisson_pc_type mg); the operators stay ours */
   PetscCall(KSPSetDMActive(fl->ksp, PETSC_FALSE));
+  PetscCall(FluidPoissonCheckMG(fl));
   PetscCall(VecDuplicate(fl->u, &fl->coef));
   PetscCall(VecDuplicate(fl->uloc, &fl->coefloc));
   if (fl->singular) {
@@ -173,7 +202,7 @@ static PetscErrorCode FluidCorrect(Fluid fl, const PetscScalar *eps)
 }
 
 /* Decides, after the matrix changed, whether the preconditioner is rebuilt (see the header). */
-static PetscBool FluidPoissonRebuildPC(const Fluid fl, PetscReal dt)
+static inline PetscBool fluid_poisson_rebuild_pc(const struct _p_Fluid *fl, PetscReal dt)
 {
   if (fl->pc_lag == 0 || fl->pc_its0 < 0 || dt != fl->dt_pc) return PETSC_TRUE;
   if (fl->pc_age >= fl->pc_lag) return PETSC_TRUE;
@@ -212,13 +241,15 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
     fl->beta_state = sb;
     fl->dt_mat     = dt;
     changed        = PETSC_TRUE;
-    rebuild        = FluidPoissonRebuildPC(fl, dt);
+    rebuild        = fluid_poisson_rebuild_pc(fl, dt);
   }
   PetscCall(FluidPoissonRHS(fl, dt, u, eps, eps0));
   PetscCall(VecRestoreArrayRead(fl->epsoldloc, &eps0));
   PetscCall(VecRestoreArrayRead(fl->uloc, &u));
   PetscCall(FluidPoissonSolve(fl, rebuild, &reason, st));
-  if (reason <= 0 && changed && !rebuild) { /* a stale preconditioner is never the reason to stop */
+  if (reason <= 0 && !rebuild && (changed || fl->pc_age > 0)) { /* a kept preconditioner is never the reason to stop */
+    PetscCall(PetscPrintf(fl->comm, "warning: fluid Poisson solve %s after %d iterations with a kept preconditioner; rebuilt and solved again\n", KSPConvergedReasons[reason], (int)st->poisson_its));
+    fl->pc_retries++;
     rebuild = PETSC_TRUE;
     PetscCall(FluidPoissonSolve(fl, rebuild, &reason, st));
   }
@@ -230,7 +261,8 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
     fl->pc_builds++;
   } else if (changed) fl->pc_age++;
   fl->pc_its_last = st->poisson_its;
-  st->poisson_pc_builds = fl->pc_builds;
+  st->poisson_pc_builds  = fl->pc_builds;
+  st->poisson_pc_retries = fl->pc_retries;
   PetscCall(PetscLogEventEnd(fl->ev_poisson, 0, 0, 0, 0));
   PetscCall(PetscLogEventBegin(fl->ev_correct, 0, 0, 0, 0));
   PetscCall(FluidCorrect(fl, eps));

@@ -201,11 +201,15 @@ PetscErrorCode FluidStep(Fluid fl, PetscReal dt, FluidStats *st)
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidStep");
   PetscCheck(dt > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step %g must be > 0 (s)", (double)dt);
   PetscCall(PetscMemzero(st, sizeof *st));
-  PetscCall(FluidUpdateInlets(fl, fl->time + dt));
   PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
   PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
   PetscCall(FluidLocalCell(fl, fl->eps_old, fl->epsoldloc, PETSC_FALSE, 0.0));
   PetscCall(FluidCheckStability(fl, &dt, st));
+  /* the inlets at the end of the step actually taken (adaptive stepping may have cut dt); a
+   * changed inlet refills the ghosts, and the next step's check sees its velocity */
+  PetscBool changed;
+  PetscCall(FluidUpdateInlets(fl, fl->time + dt, &changed));
+  if (changed) PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
   PetscCall(FluidPredict(fl, dt));
   PetscCall(FluidProject(fl, dt, st));
   PetscCall(FluidDivergenceMax(fl, dt, &st->div_max));
