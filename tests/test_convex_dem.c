@@ -9,7 +9,11 @@
  * 3. Tumbling bodies colliding with each other in free space (boxes and icosahedra, e = 1, no
  *    friction, linear law, dt = Tc/100): total linear and angular momentum (orbital + spin)
  *    conserved to 1e-10 (forces and torques are equal and opposite about the common contact
- *    point), energy drift (mean of the last tenth against the first) below 1e-4 over 1e5 steps.
+ *    point), energy drift (mean of the last tenth against the first) below 1e-4 over 1e5 steps
+ *    for gentle impacts; faster impacts (0.12 m/s, 10 rad/s) drift by about 5e-3 (bound 1e-2),
+ *    also with boxes only, whose pairs use the exact separating-axis narrow phase (1.1e-3 with
+ *    it and with libccd's MPR alike: the drift comes from the contact point model, see
+ *    src/dem/CONVEX.md).
  * 4. A finite rectangle wall (-dem_rect_0, 3a x 3a): a cube (and a sphere) dropped on it rests
  *    at a/2 (r) above it; one dropped beside it falls past it. */
 #include "check.h"
@@ -146,7 +150,7 @@ static PetscErrorCode FreeFlight(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode Collisions(double vs, double ws, double ebound)
+static PetscErrorCode Collisions(PetscBool boxes, double vs, double ws, double ebound)
 {
   char         opts[1024];
   Domain       dom;
@@ -158,10 +162,14 @@ static PetscErrorCode Collisions(double vs, double ws, double ebound)
   int          nf = 0, nl = 0;
   PetscInt     contacts = 0;
 
+  char         shapes[256];
+
   PetscFunctionBeginUser;
   Moments(1, J, &m);
   const double tc = PETSC_PI * sqrt(0.5 * m / kn);
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.05 -domain_hi 0.05,0.05,0.05 -dem_shape polyhedron,icosahedron -dem_shape_file test_convex_box.txt -dem_shape_size 1,%g -dem_radius_fraction 1,1 -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt %g -dem_lattice 3,3,3 -dem_lattice_spacing %g -dem_lattice_origin %g,%g,%g -dem_lattice_random_orientation -dem_lattice_speed 0.05", 0.5 * A, RHO, kn, tc / 100, 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A));
+  if (boxes) PetscCall(PetscSNPrintf(shapes, sizeof shapes, "-dem_shape polyhedron -dem_shape_file test_convex_box.txt -dem_shape_size 1"));
+  else PetscCall(PetscSNPrintf(shapes, sizeof shapes, "-dem_shape polyhedron,icosahedron -dem_shape_file test_convex_box.txt -dem_shape_size 1,%g -dem_radius_fraction 1,1", 0.5 * A));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.05 -domain_hi 0.05,0.05,0.05 %s -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt %g -dem_lattice 3,3,3 -dem_lattice_spacing %g -dem_lattice_origin %g,%g,%g -dem_lattice_random_orientation -dem_lattice_speed 0.05", shapes, RHO, kn, tc / 100, 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A));
   PetscCall(TestDemCreate(opts, &dom, &dem));
   PetscCall(DemSetUp(dem));
   { /* give every body a spin, and aim them at the centre */
@@ -196,10 +204,10 @@ static PetscErrorCode Collisions(double vs, double ws, double ebound)
     if (s < N) PetscCall(DemStep(dem));
   }
   const double drift = PetscAbsReal(last / nl - first / nf) / e0;
-  check((PetscBool)(contacts > 100), "colliding tumbling bodies (approach %g m/s, spin %g rad/s): %" PetscInt_FMT " contact samples (bound > 100), largest overlap %.3f d_eq/2", 0.4 * vs * 3, ws, contacts, omax);
-  check((PetscBool)(pmax < 1e-10), "colliding tumbling bodies, 1e5 steps: linear momentum error %.2e (bound 1e-10, of m v)", pmax);
-  check((PetscBool)(lmax < 1e-10), "colliding tumbling bodies, 1e5 steps: angular momentum about the origin (orbital + spin) error %.2e relative (bound 1e-10)", lmax);
-  check((PetscBool)(drift < ebound), "colliding tumbling bodies, e=1, no friction, dt = Tc/100, 1e5 steps: energy drift %.2e relative (bound %g)", drift, ebound);
+  check((PetscBool)(contacts > 100), "colliding tumbling %s (approach %g m/s, spin %g rad/s): %" PetscInt_FMT " contact samples (bound > 100), largest overlap %.3f d_eq/2", boxes ? "boxes" : "boxes and icosahedra", 0.4 * vs * 3, ws, contacts, omax);
+  check((PetscBool)(pmax < 1e-10), "colliding tumbling %s, 1e5 steps: linear momentum error %.2e (bound 1e-10, of m v)", boxes ? "boxes" : "bodies", pmax);
+  check((PetscBool)(lmax < 1e-10), "colliding tumbling %s, 1e5 steps: angular momentum about the origin (orbital + spin) error %.2e relative (bound 1e-10)", boxes ? "boxes" : "bodies", lmax);
+  check((PetscBool)(drift < ebound), "colliding tumbling %s, e=1, no friction, dt = Tc/100, 1e5 steps: energy drift %.2e relative (bound %g)", boxes ? "boxes" : "bodies", drift, ebound);
   PetscCall(TestDemDestroy(&dom, &dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -267,11 +275,12 @@ int main(int argc, char **argv)
     PetscCall(RectDrop(sphere, 0.5 * A));
   }
   PetscCall(FreeFlight());
-  PetscCall(Collisions(0.03, 3, 1e-4));
+  PetscCall(Collisions(PETSC_FALSE, 0.03, 3, 1e-4));
   /* faster impacts (overlaps ~ 5% of d_eq/2, many simultaneous contacts): MPR's depth and normal
      (not the minimum penetration, CONVEX.md) make the force field non-conservative; the drift
      is measured and bounded loosely as a known limitation */
-  PetscCall(Collisions(0.1, 10, 1e-2));
+  PetscCall(Collisions(PETSC_FALSE, 0.1, 10, 1e-2));
+  PetscCall(Collisions(PETSC_TRUE, 0.1, 10, 1e-2)); /* box-box pairs: the separating-axis narrow phase */
   remove("test_convex_box.txt");
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;

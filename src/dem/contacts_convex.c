@@ -17,6 +17,11 @@
  * edge directions (the complete set of separating-axis candidates) are searched for one to keep.
  * A test costs two support scans (about a tenth of an MPR call). The cache is exact (an axis
  * either separates or the full test runs) and is cleared at every list build.
+ * Few-axis pairs (box-box: 3 + 3 face normals and 3 x 3 edge-edge axes, at most DEM_SAT_AXES)
+ * skip libccd: the separating-axis test over all candidates gives the exact minimum
+ * penetration (depth and normal of the least overlap, for convex polyhedra the minimum
+ * translation), continuous in the poses, where MPR's portal depth jumps; the feature point
+ * follows (ConvexContactPoint), and MPR is the fallback if that point fails.
  * The contact laws use R = d_eq/2 per shape (shapes.c). Units SI. */
 #include "dem/dem_impl.h"
 
@@ -114,6 +119,73 @@ static void dem_find_axis(const DemShape *si, const double *Ri, const DemShape *
   u[0] = u[1] = u[2] = 0;
 }
 
+#define DEM_SAT_AXES 16
+
+static inline PetscBool dem_sat_pair(const DemShape *si, const DemShape *sj)
+{
+  return (PetscBool)(si->nfn > 0 && sj->nfn > 0 && si->nfn + sj->nfn + si->nen * sj->nen <= DEM_SAT_AXES);
+}
+
+/* Least overlap of i (at the origin, Ri) and j (at d, Rj) along the unit world axis u: returns
+ * it, and in n the axis oriented from i to j. */
+static inline double dem_sat_overlap(const ConvexShape *ci, const double *Ri, const ConvexShape *cj, const double *Rj, const double d[3], const double u[3], double n[3])
+{
+  const double du = dem_dot(d, u), s = du >= 0 ? 1.0 : -1.0;
+  double       ui[3], uj[3];
+  for (int k = 0; k < 3; k++) {
+    n[k]  = s * u[k];
+    ui[k] = s * (Ri[k] * u[0] + Ri[3 + k] * u[1] + Ri[6 + k] * u[2]);
+    uj[k] = -s * (Rj[k] * u[0] + Rj[3 + k] * u[1] + Rj[6 + k] * u[2]);
+  }
+  return dem_extent(ci, ui) + dem_extent(cj, uj) - s * du;
+}
+
+/* Separating-axis test of two polyhedra over face normals and edge-edge axes: PETSC_FALSE with
+ * the separating axis in u, or PETSC_TRUE with the least overlap (depth) and its axis n (i to j). */
+static PetscBool dem_sat(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double *depth, double n[3], double u[3])
+{
+  const DemShape *sh[2] = {si, sj};
+  const double   *R[2]  = {Ri, Rj};
+  double          best  = PETSC_MAX_REAL, m[3], a[3];
+  for (int b = 0; b < 2; b++)
+    for (PetscInt f = 0; f < sh[b]->nfn; f++) {
+      const double *fn = sh[b]->fn + 3 * f;
+      for (int k = 0; k < 3; k++) a[k] = R[b][3 * k] * fn[0] + R[b][3 * k + 1] * fn[1] + R[b][3 * k + 2] * fn[2];
+      const double ov = dem_sat_overlap(si->cvx, Ri, sj->cvx, Rj, d, a, m);
+      if (ov < 0) {
+        for (int k = 0; k < 3; k++) u[k] = a[k];
+        return PETSC_FALSE;
+      }
+      if (ov < best) {
+        best = ov;
+        for (int k = 0; k < 3; k++) n[k] = m[k];
+      }
+    }
+  for (PetscInt e = 0; e < si->nen; e++) {
+    double ei[3], ej[3];
+    for (int k = 0; k < 3; k++) ei[k] = Ri[3 * k] * si->en[3 * e] + Ri[3 * k + 1] * si->en[3 * e + 1] + Ri[3 * k + 2] * si->en[3 * e + 2];
+    for (PetscInt g = 0; g < sj->nen; g++) {
+      for (int k = 0; k < 3; k++) ej[k] = Rj[3 * k] * sj->en[3 * g] + Rj[3 * k + 1] * sj->en[3 * g + 1] + Rj[3 * k + 2] * sj->en[3 * g + 2];
+      dem_cross(ei, ej, a);
+      const double l2 = dem_dot(a, a);
+      if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
+      const double il = 1 / sqrt(l2);
+      for (int k = 0; k < 3; k++) a[k] *= il;
+      const double ov = dem_sat_overlap(si->cvx, Ri, sj->cvx, Rj, d, a, m);
+      if (ov < 0) {
+        for (int k = 0; k < 3; k++) u[k] = a[k];
+        return PETSC_FALSE;
+      }
+      if (ov < best) {
+        best = ov;
+        for (int k = 0; k < 3; k++) n[k] = m[k];
+      }
+    }
+  }
+  *depth = best;
+  return PETSC_TRUE;
+}
+
 static inline void dem_pose(const Dem dem, PetscInt i, ConvexPose *pose)
 {
   for (int k = 0; k < 3; k++) pose->x[k] = dem->x[3 * i + k];
@@ -162,6 +234,14 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
       else if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, d)) {
         c.overlap = PETSC_FALSE;
         for (int k = 0; k < 3; k++) u[k] = d[k];
+      } else if (dem->convex_sat && dem_sat_pair(si, sj)) {
+        double    depth, n[3];
+        PetscBool ok = PETSC_FALSE;
+        if (dem_sat(si, Ri, sj, Rj, d, &depth, n, u)) {
+          if (depth > 0) PetscCall(ConvexContactPoint(si->cvx, &pi, sj->cvx, &pj, n, depth, &c, &ok));
+          if (!ok) PetscCall(ConvexCollide(si->cvx, &pi, sj->cvx, &pj, &c)); /* touching at 0 depth, or no supporting feature */
+          u[0] = u[1] = u[2] = 0;
+        } else c.overlap = PETSC_FALSE; /* u: the separating axis found */
       } else {
         PetscCall(ConvexCollide(si->cvx, &pi, sj->cvx, &pj, &c));
         if (c.overlap) u[0] = u[1] = u[2] = 0;

@@ -73,3 +73,9 @@ PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const C
  * centre, an edge its midpoint; continuous as the body tilts), depth/2 below the plane;
  * normal = -n (from A to B, as for pairs). Cylinder: same rule on its rims, closed form. */
 PetscErrorCode ConvexCollidePlane(const ConvexShape *a, const ConvexPose *pa, const PetscReal p0[3], const PetscReal n[3], ConvexContact *c);
+/* Not collective. The contact of A and B when the caller already knows the exact minimum
+ * penetration: unit normal n (A to B) and depth > 0 (a separating-axis test over face normals
+ * and edge-edge axes gives them for polyhedra). Fills c with them and the feature point; returns
+ * *ok = PETSC_FALSE (c->overlap false) when n is not a supporting normal of the pair, and the
+ * caller should then use ConvexCollide. */
+PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, const PetscReal n[3], PetscReal depth, ConvexContact *c, PetscBool *ok);

@@ -49,6 +49,7 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
   d->lat_count     = -1; /* all lattice sites */
   d->seed          = 1;
   d->skin          = -1;
+  d->convex_sat    = PETSC_TRUE;
   *dem = d;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -106,6 +107,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, dem->progress_dt, &dem->progress_dt, NULL));
   SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
   PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, NULL));
+  PetscCall(PetscOptionsBool("-dem_convex_sat", "Box-box pairs (few separating axes) by the exact separating-axis test instead of libccd's MPR (default true)", NULL, dem->convex_sat, &dem->convex_sat, NULL));
   PetscCall(PetscOptionsBool("-dem_deterministic", "Full neighbour rows summed in id order: results bitwise independent of the rank count (about 2x the contact cost)", NULL, dem->full_list, &dem->full_list, NULL));
   PetscCall(PetscOptionsInt("-dem_check_every", "Debug: check the global particle count and id checksum every this many steps (0 = never)", NULL, dem->check_every, &dem->check_every, NULL));
   PetscCall(PetscOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, dem->sort_interval, &dem->sort_interval, NULL));

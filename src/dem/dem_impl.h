@@ -198,6 +198,7 @@ struct _p_Dem {
   DemNeigh  nl;
   PetscReal skin, reach; /* reach = 2 r_max + skin = halo width */
   PetscBool full_list;   /* -dem_deterministic: full rows summed in id order */
+  PetscBool convex_sat;  /* -dem_convex_sat: separating-axis narrow phase for few-axis polyhedron pairs */
   DemExchange ex;
   PetscInt  check_every;
   DemStats  initial; /* count and checksum at set-up, for -dem_check_every */

@@ -101,6 +101,22 @@ PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const C
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, const PetscReal n[3], PetscReal depth, ConvexContact *c, PetscBool *ok)
+{
+  ConvexBody A, B;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMemzero(c, sizeof(*c)));
+  convex_body_set(a, pa, &A);
+  convex_body_set(b, pb, &B);
+  *ok = ConvexFeaturePoint(&A, &B, n, depth, c->point);
+  if (!*ok) PetscFunctionReturn(PETSC_SUCCESS);
+  c->overlap = PETSC_TRUE;
+  c->depth   = depth;
+  for (int k = 0; k < 3; k++) c->normal[k] = n[k];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Depth-weighted rim of one end circle: centre e (depth de), radius r, in-plane unit u towards
  * the deepest rim point whose depth is de + r s. With phi the angle from u, the weight is
  * w = max(0, de + r s cos phi); returns W = int w dphi and adds int w y dphi to *acc. */
