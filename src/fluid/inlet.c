@@ -71,8 +71,10 @@ static inline PetscInt fluid_inlet_at(const FluidBC *bc, PetscBool linear, Petsc
   return r;
 }
 
-/* Collective. Sets every tabled inlet to its velocity at t; when one changes, rewrites the fixed faces of u and makes the implicit
- * viscous operator rebuild its boundary part. */
+/* Collective. Sets every tabled inlet to its velocity at t; when one changes, rewrites the
+ * fixed faces of u and makes the implicit viscous operator rebuild its boundary part. A line is
+ * printed when a face reaches a new row of its table; *changed_out (may be NULL) says whether
+ * any inlet velocity changed. */
 PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed_out)
 {
   const char *side[2] = {"lo", "hi"}, *ax = "xyz";
