@@ -92,8 +92,11 @@ PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscSca
       for (int k = 0; k < 3; k++) hi[k] = g->xs[k] + g->fxm[k] + (k == e);
       /* lower-face fluxes of every owned volume and of the one above the last along e */
       for (idx[2] = g->xs[2]; idx[2] < hi[2]; idx[2]++)
-        for (idx[1] = g->xs[1]; idx[1] < hi[1]; idx[1]++)
-          for (idx[0] = g->xs[0], f = FluidFaceOff(g, idx[0], idx[1], idx[2]), c = FluidCellOff(g, idx[0], idx[1], idx[2]); idx[0] < hi[0]; idx[0]++, f += 3, c++) B[f / 3] = fluid_advective_flux(g, tvd, u, eps, f, c, d, e);
+        for (idx[1] = g->xs[1]; idx[1] < hi[1]; idx[1]++) {
+          f = FluidFaceOff(g, g->xs[0], idx[1], idx[2]);
+          c = FluidCellOff(g, g->xs[0], idx[1], idx[2]);
+          for (idx[0] = g->xs[0]; idx[0] < hi[0]; idx[0]++, f += 3, c++) B[f / 3] = fluid_advective_flux(g, tvd, u, eps, f, c, d, e);
+        }
       /* the same sum, in the same order, as (F+ v+ - F- v-) / h_e over e = x, y, z */
       FLUID_FOR_OWNED_FACES(g, idx, f, c, o) out[o + d] += (B[f / 3 + pe] - B[f / 3]) / g->h[e];
     }
