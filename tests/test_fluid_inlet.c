@@ -59,29 +59,12 @@ static PetscErrorCode Run(PetscBool linear, PetscReal *err, PetscReal *Ulast)
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsSetValue(NULL, "-domain_lo", "0,0,0"));
-  PetscCall(PetscOptionsSetValue(NULL, "-domain_hi", "1,1,2"));
-  PetscCall(PetscOptionsSetValue(NULL, "-domain_periodic_x", "1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-domain_periodic_y", "1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-da_grid_x", "4"));
-  PetscCall(PetscOptionsSetValue(NULL, "-da_grid_y", "4"));
-  PetscCall(PetscOptionsSetValue(NULL, "-da_grid_z", "8"));
-  if (size == 2) {
-    PetscCall(PetscOptionsSetValue(NULL, "-da_processors_x", "1"));
-    PetscCall(PetscOptionsSetValue(NULL, "-da_processors_y", "1"));
-    PetscCall(PetscOptionsSetValue(NULL, "-da_processors_z", "2"));
-  }
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_density", "1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_viscosity", "0.01"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_zlo", "inlet"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_zlo_velocity", "0,0,1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_zhi", "outlet"));
-  if (linear) {
-    PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_zlo_velocity_table", "0.1,0,0,1,0.3,0,0,2"));
-    PetscCall(PetscOptionsSetValue(NULL, "-fluid_inlet_interpolation", "linear"));
-  } else PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_zlo_velocity_table", "0.105,0,0,1.5,0.25,0,0,0.5"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_ksp_rtol", "1e-12"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_ksp_norm_type", "unpreconditioned"));
+  PetscCall(PetscOptionsInsertString(NULL, "-domain_lo 0,0,0 -domain_hi 1,1,2 -domain_periodic_x -domain_periodic_y -da_grid_x 4 -da_grid_y 4 -da_grid_z 8 "
+                                           "-fluid_density 1 -fluid_viscosity 0.01 -fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,1 -fluid_bc_zhi outlet "
+                                           "-fluid_poisson_ksp_rtol 1e-12 -fluid_poisson_ksp_norm_type unpreconditioned"));
+  if (size == 2) PetscCall(PetscOptionsInsertString(NULL, "-da_processors_x 1 -da_processors_y 1 -da_processors_z 2"));
+  if (linear) PetscCall(PetscOptionsInsertString(NULL, "-fluid_bc_zlo_velocity_table 0.1,0,0,1,0.3,0,0,2 -fluid_inlet_interpolation linear"));
+  else PetscCall(PetscOptionsInsertString(NULL, "-fluid_bc_zlo_velocity_table 0.105,0,0,1.5,0.25,0,0,0.5"));
   PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
   PetscCall(FluidCreate(&dom, &fl));
   PetscCall(FluidSetFromOptions(fl));

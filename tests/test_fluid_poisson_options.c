@@ -56,29 +56,13 @@ static PetscErrorCode Run(const char *lag, PetscBool mg, Result *r)
   PetscFunctionBeginUser;
   PetscCall(SetUpCount(&s0));
   PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsSetValue(NULL, "-domain_lo", "0,0,0"));
-  PetscCall(PetscOptionsSetValue(NULL, "-domain_hi", "1,1,2"));
-  PetscCall(PetscOptionsSetValue(NULL, "-domain_periodic_x", "1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-domain_periodic_y", "1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-da_grid_x", "8"));
-  PetscCall(PetscOptionsSetValue(NULL, "-da_grid_y", "4"));
-  PetscCall(PetscOptionsSetValue(NULL, "-da_grid_z", "17"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_density", "1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_viscosity", "0.01"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_advection", "tvd"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_zlo", "inlet"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_zlo_velocity", "0,0,1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_zhi", "outlet"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_ksp_rtol", "1e-11"));
-  PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_ksp_norm_type", "unpreconditioned"));
+  PetscCall(PetscOptionsInsertString(NULL, "-domain_lo 0,0,0 -domain_hi 1,1,2 -domain_periodic_x -domain_periodic_y -da_grid_x 8 -da_grid_y 4 -da_grid_z 17 "
+                                           "-fluid_density 1 -fluid_viscosity 0.01 -fluid_advection tvd -fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,1 -fluid_bc_zhi outlet "
+                                           "-fluid_poisson_ksp_rtol 1e-11 -fluid_poisson_ksp_norm_type unpreconditioned"));
   if (lag) PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_pc_lag", lag));
-  if (mg) {
-    PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_pc_type", "mg"));
-    PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_pc_mg_levels", "2"));
-    PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_pc_mg_galerkin", "pmat"));
-    PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_mg_levels_ksp_type", "chebyshev"));
-    PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_mg_levels_pc_type", "jacobi"));
-  }
+  if (mg)
+    PetscCall(PetscOptionsInsertString(NULL, "-fluid_poisson_pc_type mg -fluid_poisson_pc_mg_levels 2 -fluid_poisson_pc_mg_galerkin pmat "
+                                             "-fluid_poisson_mg_levels_ksp_type chebyshev -fluid_poisson_mg_levels_pc_type jacobi"));
   PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
   PetscCall(FluidCreate(&dom, &fl));
   PetscCall(FluidSetFromOptions(fl));

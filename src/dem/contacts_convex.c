@@ -93,32 +93,6 @@ static inline void dem_rotation(const double *q, double *R)
   R[6] = 2 * (x * z - w * y), R[7] = 2 * (y * z + w * x), R[8] = 1 - 2 * (x * x + y * y);
 }
 
-/* After libccd found no contact: a face direction of either body that separates them (into u),
- * or u = 0. */
-static void dem_find_axis(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double u[3])
-{
-  const DemShape *sh[2] = {si, sj};
-  const double   *R[2]  = {Ri, Rj};
-  for (int b = 0; b < 2; b++)
-    for (PetscInt f = 0; f < sh[b]->nfn; f++) {
-      const double *n = sh[b]->fn + 3 * f;
-      for (int k = 0; k < 3; k++) u[k] = R[b][3 * k] * n[0] + R[b][3 * k + 1] * n[1] + R[b][3 * k + 2] * n[2];
-      if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) return;
-    }
-  for (PetscInt e = 0; e < si->nen; e++) { /* edge-edge axes */
-    double ei[3], ej[3];
-    for (int k = 0; k < 3; k++) ei[k] = Ri[3 * k] * si->en[3 * e] + Ri[3 * k + 1] * si->en[3 * e + 1] + Ri[3 * k + 2] * si->en[3 * e + 2];
-    for (PetscInt g = 0; g < sj->nen; g++) {
-      for (int k = 0; k < 3; k++) ej[k] = Rj[3 * k] * sj->en[3 * g] + Rj[3 * k + 1] * sj->en[3 * g + 1] + Rj[3 * k + 2] * sj->en[3 * g + 2];
-      dem_cross(ei, ej, u);
-      const double l2 = dem_dot(u, u);
-      if (l2 < 1e-12) continue; /* parallel edges: no new axis */
-      if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) return;
-    }
-  }
-  u[0] = u[1] = u[2] = 0;
-}
-
 #define DEM_SAT_AXES 16
 
 static inline PetscBool dem_sat_pair(const DemShape *si, const DemShape *sj)
@@ -140,26 +114,37 @@ static inline double dem_sat_overlap(const ConvexShape *ci, const double *Ri, co
   return dem_extent(ci, ui) + dem_extent(cj, uj) - s * du;
 }
 
-/* Separating-axis test of two polyhedra over face normals and edge-edge axes: PETSC_FALSE with
- * the separating axis in u, or PETSC_TRUE with the least overlap (depth) and its axis n (i to j). */
+/* One candidate axis a (unit, world): PETSC_TRUE when it separates the pair (u = a); otherwise
+ * *best and n keep the least overlap so far and its axis oriented from i to j. */
+static inline PetscBool dem_sat_axis(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], const double a[3], double *best, double n[3], double u[3])
+{
+  double       m[3];
+  const double ov = dem_sat_overlap(si->cvx, Ri, sj->cvx, Rj, d, a, m);
+  if (ov < 0) {
+    for (int k = 0; k < 3; k++) u[k] = a[k];
+    return PETSC_TRUE;
+  }
+  if (ov < *best) {
+    *best = ov;
+    for (int k = 0; k < 3; k++) n[k] = m[k];
+  }
+  return PETSC_FALSE;
+}
+
+/* Separating-axis test of two polyhedra over the face normals of both and the cross products of
+ * their edge directions (the complete candidate set): PETSC_FALSE with the separating axis in u,
+ * or PETSC_TRUE with the least overlap (depth) and its axis n (i to j). After libccd found no
+ * contact it also finds the axis the cache keeps (u = 0 if rounding left none). */
 static PetscBool dem_sat(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double *depth, double n[3], double u[3])
 {
   const DemShape *sh[2] = {si, sj};
   const double   *R[2]  = {Ri, Rj};
-  double          best  = PETSC_MAX_REAL, m[3], a[3];
+  double          best  = PETSC_MAX_REAL, a[3];
   for (int b = 0; b < 2; b++)
     for (PetscInt f = 0; f < sh[b]->nfn; f++) {
       const double *fn = sh[b]->fn + 3 * f;
       for (int k = 0; k < 3; k++) a[k] = R[b][3 * k] * fn[0] + R[b][3 * k + 1] * fn[1] + R[b][3 * k + 2] * fn[2];
-      const double ov = dem_sat_overlap(si->cvx, Ri, sj->cvx, Rj, d, a, m);
-      if (ov < 0) {
-        for (int k = 0; k < 3; k++) u[k] = a[k];
-        return PETSC_FALSE;
-      }
-      if (ov < best) {
-        best = ov;
-        for (int k = 0; k < 3; k++) n[k] = m[k];
-      }
+      if (dem_sat_axis(si, Ri, sj, Rj, d, a, &best, n, u)) return PETSC_FALSE;
     }
   for (PetscInt e = 0; e < si->nen; e++) {
     double ei[3], ej[3];
@@ -171,18 +156,11 @@ static PetscBool dem_sat(const DemShape *si, const double *Ri, const DemShape *s
       if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
       const double il = 1 / sqrt(l2);
       for (int k = 0; k < 3; k++) a[k] *= il;
-      const double ov = dem_sat_overlap(si->cvx, Ri, sj->cvx, Rj, d, a, m);
-      if (ov < 0) {
-        for (int k = 0; k < 3; k++) u[k] = a[k];
-        return PETSC_FALSE;
-      }
-      if (ov < best) {
-        best = ov;
-        for (int k = 0; k < 3; k++) n[k] = m[k];
-      }
+      if (dem_sat_axis(si, Ri, sj, Rj, d, a, &best, n, u)) return PETSC_FALSE;
     }
   }
   *depth = best;
+  u[0] = u[1] = u[2] = 0;
   return PETSC_TRUE;
 }
 
@@ -240,12 +218,12 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
         if (dem_sat(si, Ri, sj, Rj, d, &depth, n, u)) {
           if (depth > 0) PetscCall(ConvexContactPoint(si->cvx, &pi, sj->cvx, &pj, n, depth, &c, &ok));
           if (!ok) PetscCall(ConvexCollide(si->cvx, &pi, sj->cvx, &pj, &c)); /* touching at 0 depth, or no supporting feature */
-          u[0] = u[1] = u[2] = 0;
         } else c.overlap = PETSC_FALSE; /* u: the separating axis found */
       } else {
+        double depth, n[3];
         PetscCall(ConvexCollide(si->cvx, &pi, sj->cvx, &pj, &c));
         if (c.overlap) u[0] = u[1] = u[2] = 0;
-        else dem_find_axis(si, Ri, sj, Rj, d, u);
+        else (void)dem_sat(si, Ri, sj, Rj, d, &depth, n, u); /* the axis to keep, or u = 0 */
       }
       if (!c.overlap) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
