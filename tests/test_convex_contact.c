@@ -224,6 +224,31 @@ static PetscErrorCode TestCubeCube(const ConvexShape *cube)
     for (int k = 0; k < 3; k++) pr[k] += T[k];
     report("cube-cube vertex-to-face, scene rotated", &c3, n_exp, dist3(c3.point, pr));
   }
+  { /* B tilted by 0.004 rad about (1, -1, 0): its bottom corners differ in height by less than
+       the overlap, so the patch point is inside the overlap patch, while the support point
+       (CONVEX_POINT_SUPPORT) is the lowest corner, on A's top face at depth/2 */
+    const double  u[3] = {1 / sqrt(2.0), -1 / sqrt(2.0), 0};
+    double        M[9], low[3] = {0, 0, PETSC_MAX_REAL}, p[3];
+    ConvexContact cs, cp;
+    PetscBool     ok_s, ok_p;
+    B = (ConvexPose){{0.3 * a, 0.2 * a, 0}, {0}};
+    convex_quat_from_axis_angle(u, 0.004, B.q);
+    convex_quat_to_matrix(B.q, M);
+    for (int k = 0; k < 4; k++) {
+      const double v[3] = {(k & 1 ? 0.5 : -0.5) * a, (k & 2 ? 0.5 : -0.5) * a, -0.5 * a};
+      double       w[3];
+      convex_mat_vec(M, v, w);
+      if (w[2] < low[2]) low[0] = w[0], low[1] = w[1], low[2] = w[2];
+    }
+    B.x[2] = a / 2 - delta - low[2]; /* the lowest corner delta below A's top face */
+    PetscCall(ConvexContactPoint(cube, &A, cube, &B, ez, delta, CONVEX_POINT_SUPPORT, &cs, &ok_s));
+    PetscCall(ConvexContactPoint(cube, &A, cube, &B, ez, delta, CONVEX_POINT_PATCH, &cp, &ok_p));
+    p[0] = B.x[0] + low[0], p[1] = B.x[1] + low[1], p[2] = a / 2 - delta / 2;
+    check("cube-cube tilted face-to-face, support point: found (1 if not)", ok_s ? 0 : 1, 0);
+    check("cube-cube tilted face-to-face, support point = the lowest corner at depth/2: error / a", dist3(cs.point, p) / a, tol_mpr / a);
+    check("cube-cube tilted face-to-face, patch point: found (1 if not)", ok_p ? 0 : 1, 0);
+    check("cube-cube tilted face-to-face, patch point is inside the patch, not at the corner: 0.1 a minus its distance to the corner, / a (<= 0)", (0.1 * a - dist3(cp.point, p)) / a, 0);
+  }
   B = (ConvexPose){{1.02 * a, 1.02 * a, 0}, {0}}; /* bounding spheres overlap, cubes do not */
   edge_down(B.q);
   PetscCall(ConvexCollide(cube, &A, cube, &B, &c));

@@ -17,8 +17,8 @@
  * edge directions (the complete set of separating-axis candidates) are searched for one to keep.
  * A test costs two support scans (about a tenth of an MPR call). The cache is exact (an axis
  * either separates or the full test runs) and is cleared at every list build.
- * Few-axis pairs (box-box: 3 + 3 face normals and 3 x 3 edge-edge axes, at most DEM_SAT_AXES)
- * skip libccd: the separating-axis test over all candidates gives the exact minimum
+ * Few-axis pairs (box-box: 3 + 3 face normals and 3 x 3 edge-edge axes; -dem_convex_sat_axes
+ * sets the limit, 16 by default) skip libccd: the separating-axis test over all candidates gives the exact minimum
  * penetration (depth and normal of the least overlap, for convex polyhedra the minimum
  * translation), continuous in the poses, where MPR's portal depth jumps; the feature point
  * follows (ConvexContactPoint), and MPR is the fallback if that point fails.
@@ -93,11 +93,9 @@ static inline void dem_rotation(const double *q, double *R)
   R[6] = 2 * (x * z - w * y), R[7] = 2 * (y * z + w * x), R[8] = 1 - 2 * (x * x + y * y);
 }
 
-#define DEM_SAT_AXES 16
-
-static inline PetscBool dem_sat_pair(const DemShape *si, const DemShape *sj)
+static inline PetscBool dem_sat_pair(const Dem dem, const DemShape *si, const DemShape *sj)
 {
-  return (PetscBool)(si->nfn > 0 && sj->nfn > 0 && si->nfn + sj->nfn + si->nen * sj->nen <= DEM_SAT_AXES);
+  return (PetscBool)(dem->convex_sat && si->nfn > 0 && sj->nfn > 0 && si->nfn + sj->nfn + si->nen * sj->nen <= dem->convex_sat_axes);
 }
 
 /* Least overlap of i (at the origin, Ri) and j (at d, Rj) along the unit world axis u: returns
@@ -170,6 +168,64 @@ static inline void dem_pose(const Dem dem, PetscInt i, ConvexPose *pose)
   for (int k = 0; k < 4; k++) pose->q[k] = dem->q[4 * i + k];
 }
 
+/* The narrow phase of one pair whose bounding spheres overlap: i at pi (rotation Ri), j at pj
+ * (Rj), d = x_j - x_i. u: the pair's cached separating axis (updated), or NULL for none. The
+ * forces and the statistics (diag_convex.c) both call it, so the elastic energy is that of the
+ * depth the forces used. */
+static PetscErrorCode dem_convex_narrow(const Dem dem, const DemShape *si, const ConvexPose *pi, const double *Ri, const DemShape *sj, const ConvexPose *pj, const double *Rj, const double d[3], double *u, ConvexContact *c)
+{
+  double none[3] = {0, 0, 0}, depth, n[3];
+
+  PetscFunctionBeginUser;
+  if (!u) u = none;
+  c->overlap = PETSC_FALSE;
+  if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) PetscFunctionReturn(PETSC_SUCCESS);
+  if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, d)) {
+    for (int k = 0; k < 3; k++) u[k] = d[k];
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (dem_sat_pair(dem, si, sj)) {
+    PetscBool ok = PETSC_FALSE;
+    if (!dem_sat(si, Ri, sj, Rj, d, &depth, n, u)) PetscFunctionReturn(PETSC_SUCCESS); /* u: the separating axis found */
+    if (depth > 0) PetscCall(ConvexContactPoint(si->cvx, pi, sj->cvx, pj, n, depth, dem->convex_point, c, &ok));
+    if (ok) PetscFunctionReturn(PETSC_SUCCESS);
+    /* touching at 0 depth, or no supporting feature: MPR below */
+  }
+  PetscCall(ConvexCollide(si->cvx, pi, sj->cvx, pj, c));
+  if (!c->overlap) {
+    (void)dem_sat(si, Ri, sj, Rj, d, &depth, n, u); /* the axis to keep, or u = 0 */
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  u[0] = u[1] = u[2] = 0;
+  if (dem->convex_point == CONVEX_POINT_SUPPORT) { /* MPR's normal and depth, the support features' point */
+    ConvexContact s;
+    PetscBool     ok;
+    PetscCall(ConvexContactPoint(si->cvx, pi, sj->cvx, pj, c->normal, c->depth, CONVEX_POINT_SUPPORT, &s, &ok));
+    if (ok) *c = s;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Contact of the pair (i, j) for the statistics: the narrow phase of the forces, no cache. */
+PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c)
+{
+  const DemShape *si = &dem->shp[dem->shape[i]], *sj = &dem->shp[dem->shape[j]];
+  const double    rs = si->r + sj->r;
+  const double    d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
+  ConvexPose      pi, pj;
+  double          Ri[9], Rj[9];
+
+  PetscFunctionBeginUser;
+  c->overlap = PETSC_FALSE;
+  if (dem_dot(d, d) >= rs * rs) PetscFunctionReturn(PETSC_SUCCESS);
+  dem_pose(dem, i, &pi);
+  dem_pose(dem, j, &pj);
+  dem_rotation(pi.q, Ri);
+  dem_rotation(pj.q, Rj);
+  PetscCall(dem_convex_narrow(dem, si, &pi, Ri, sj, &pj, Rj, d, NULL, c));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemContactsPairsConvex(Dem dem)
 {
   const DemNeigh *nl = &dem->nl;
@@ -208,23 +264,7 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
       double *u = ax + 3 * a, Rj[9];
       dem_pose(dem, j, &pj);
       dem_rotation(pj.q, Rj);
-      if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) c.overlap = PETSC_FALSE;
-      else if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, d)) {
-        c.overlap = PETSC_FALSE;
-        for (int k = 0; k < 3; k++) u[k] = d[k];
-      } else if (dem->convex_sat && dem_sat_pair(si, sj)) {
-        double    depth, n[3];
-        PetscBool ok = PETSC_FALSE;
-        if (dem_sat(si, Ri, sj, Rj, d, &depth, n, u)) {
-          if (depth > 0) PetscCall(ConvexContactPoint(si->cvx, &pi, sj->cvx, &pj, n, depth, &c, &ok));
-          if (!ok) PetscCall(ConvexCollide(si->cvx, &pi, sj->cvx, &pj, &c)); /* touching at 0 depth, or no supporting feature */
-        } else c.overlap = PETSC_FALSE; /* u: the separating axis found */
-      } else {
-        double depth, n[3];
-        PetscCall(ConvexCollide(si->cvx, &pi, sj->cvx, &pj, &c));
-        if (c.overlap) u[0] = u[1] = u[2] = 0;
-        else (void)dem_sat(si, Ri, sj, Rj, d, &depth, n, u); /* the axis to keep, or u = 0 */
-      }
+      PetscCall(dem_convex_narrow(dem, si, &pi, Ri, sj, &pj, Rj, d, u, &c));
       if (!c.overlap) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;

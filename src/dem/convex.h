@@ -73,9 +73,22 @@ PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const C
  * centre, an edge its midpoint; continuous as the body tilts), depth/2 below the plane;
  * normal = -n (from A to B, as for pairs). Cylinder: same rule on its rims, closed form. */
 PetscErrorCode ConvexCollidePlane(const ConvexShape *a, const ConvexPose *pa, const PetscReal p0[3], const PetscReal n[3], ConvexContact *c);
+/* Where the contact point of a pair sits (ConvexContactPoint):
+ *  PATCH:   the centroid of the intersection of the two contact features, each taken as the
+ *           body's vertices in the slab between the two support planes (thickness = depth): a
+ *           face-face contact acts at its patch centre and the point moves smoothly while a
+ *           face tilts, but it is not the gradient of the elastic energy, so a frictionless
+ *           elastic collision does not conserve energy exactly.
+ *  SUPPORT: the support features only (the vertices on each support plane): the deepest
+ *           vertex of a vertex-face contact, the crossing of an edge-edge contact. With the
+ *           exact minimum penetration this is the gradient of 1/2 k depth^2 (the torque the
+ *           energy gives), so the energy is conserved up to the time-step error; the point
+ *           jumps when the deepest vertex changes (a face nearly parallel to the other). */
+typedef enum { CONVEX_POINT_PATCH, CONVEX_POINT_SUPPORT } ConvexPointModel;
+
 /* Not collective. The contact of A and B when the caller already knows the exact minimum
  * penetration: unit normal n (A to B) and depth > 0 (a separating-axis test over face normals
  * and edge-edge axes gives them for polyhedra). Fills c with them and the feature point; returns
  * *ok = PETSC_FALSE (c->overlap false) when n is not a supporting normal of the pair, and the
  * caller should then use ConvexCollide. */
-PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, const PetscReal n[3], PetscReal depth, ConvexContact *c, PetscBool *ok);
+PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, const PetscReal n[3], PetscReal depth, ConvexPointModel model, ConvexContact *c, PetscBool *ok);

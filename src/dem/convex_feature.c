@@ -9,6 +9,8 @@
  * This gives the exact point for vertex-face, edge-face (middle of the clipped edge),
  * edge-edge (crossing point) and face-face (area centroid of the overlap patch) contacts, where
  * the barycentric point of MPR is biased towards the centres by O(depth).
+ * With support = PETSC_TRUE each feature is only the set of vertices on the body's own support
+ * plane (within the length tolerance): the point of CONVEX_POINT_SUPPORT (convex.h).
  * A cylinder's candidate points are 2 x 32 rim samples, starting on each rim at the support
  * point, so a point contact is exact and an end face resting flat gives a 32-gon.
  * Stack-only (no allocation); a shape with more than CONVEX_FEATURE_MAX vertices -> PETSC_FALSE
@@ -204,7 +206,7 @@ static void collect(const Cand *C, const Frame *F, PetscReal lo, PetscReal hi, P
     if (C->h[i] >= lo - F->eps && C->h[i] <= hi + F->eps) P->p[P->k][0] = C->u[i], P->p[P->k][1] = C->v[i], P->k++;
 }
 
-PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, PetscReal point[3])
+PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, PetscBool support, PetscReal point[3])
 {
   Poly2           PA, PB;
   Cand            CA, CB;
@@ -230,8 +232,8 @@ PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const Pet
    * are meaningless. 1% leaves room for the slower convergence of the normal on curved
    * surfaces (cylinder). */
   if (hA - hB > 1.01 * depth + F.eps) return PETSC_FALSE;
-  collect(&CA, &F, hB, hA, &PA);
-  collect(&CB, &F, hB, hA, &PB);
+  collect(&CA, &F, support ? hA : hB, hA, &PA); /* support: the vertices on A's support plane */
+  collect(&CB, &F, hB, support ? hB : hA, &PB);
   if (!PA.k || !PB.k) return PETSC_FALSE;
   hull2(&PA, F.eps, eps2);
   hull2(&PB, F.eps, eps2);

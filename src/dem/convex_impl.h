@@ -33,5 +33,6 @@ typedef struct {
 /* Contact point of two overlapping bodies given the contact normal n (unit, A to B) and the
  * depth: the centroid of the intersection of their contact features (convex_feature.c).
  * Returns PETSC_FALSE, leaving point untouched, when n is not a supporting normal of A - B
- * (the support heights along n differ from depth) or the features do not intersect. */
-PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, PetscReal point[3]);
+ * (the support heights along n differ from depth) or the features do not intersect. support:
+ * the features are the vertices on the support planes only (CONVEX_POINT_SUPPORT). */
+PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, PetscBool support, PetscReal point[3]);

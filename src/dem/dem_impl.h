@@ -199,6 +199,8 @@ struct _p_Dem {
   PetscReal skin, reach; /* reach = 2 r_max + skin = halo width */
   PetscBool full_list;   /* -dem_deterministic: full rows summed in id order */
   PetscBool convex_sat;  /* -dem_convex_sat: separating-axis narrow phase for few-axis polyhedron pairs */
+  PetscInt  convex_sat_axes;     /* -dem_convex_sat_axes: the most candidate axes a pair may have for it */
+  ConvexPointModel convex_point; /* -dem_convex_contact_point patch|support */
   DemExchange ex;
   PetscInt  check_every;
   DemStats  initial; /* count and checksum at set-up, for -dem_check_every */
@@ -264,6 +266,7 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c *
 PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
 PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
 PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* contacts_convex.c */
+PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c); /* contacts_convex.c: the forces' narrow phase */
 PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* contacts_convex.c */
 PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* diag_convex.c */
 PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* diag_convex.c */

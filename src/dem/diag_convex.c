@@ -31,7 +31,7 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *s = &dem->shp[dem->shape[i]];
     double          R[9], wb[3];
-    ConvexPose      pi, pj;
+    ConvexPose      pi;
     convex_quat_to_matrix(dem->q + 4 * i, R);
     convex_mat_tvec(R, dem->w + 3 * i, wb);
     r[0] += 0.5 * s->m * dem_dot(dem->v + 3 * i, dem->v + 3 * i);
@@ -43,8 +43,7 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
       const PetscInt  j  = dem->nl.nbr[a];
       const DemShape *t  = &dem->shp[dem->shape[j]];
       ConvexContact   cc;
-      dem_pose_of(dem, j, &pj);
-      PetscCall(ConvexCollide(s->cvx, &pi, t->cvx, &pj, &cc));
+      PetscCall(DemConvexPairContact(dem, i, j, &cc));
       if (!cc.overlap) continue;
       /* a pair seen from both sides (full list, or a ghost partner) counts half on each */
       const PetscBool both = (PetscBool)(dem->full_list || j >= dem->n);

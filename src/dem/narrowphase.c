@@ -97,11 +97,11 @@ PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const C
     c->normal[k] = dir.v[k];
     c->point[k]  = pos.v[k];
   }
-  (void)ConvexFeaturePoint(&A, &B, c->normal, c->depth, c->point); /* keeps MPR's point if it fails */
+  (void)ConvexFeaturePoint(&A, &B, c->normal, c->depth, PETSC_FALSE, c->point); /* keeps MPR's point if it fails */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, const PetscReal n[3], PetscReal depth, ConvexContact *c, PetscBool *ok)
+PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, const PetscReal n[3], PetscReal depth, ConvexPointModel model, ConvexContact *c, PetscBool *ok)
 {
   ConvexBody A, B;
 
@@ -109,7 +109,7 @@ PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, co
   PetscCall(PetscMemzero(c, sizeof(*c)));
   convex_body_set(a, pa, &A);
   convex_body_set(b, pb, &B);
-  *ok = ConvexFeaturePoint(&A, &B, n, depth, c->point);
+  *ok = ConvexFeaturePoint(&A, &B, n, depth, (PetscBool)(model == CONVEX_POINT_SUPPORT), c->point);
   if (!*ok) PetscFunctionReturn(PETSC_SUCCESS);
   c->overlap = PETSC_TRUE;
   c->depth   = depth;
