@@ -166,6 +166,8 @@ PetscErrorCode FluidSolversDestroy(Fluid fl)
   PetscFunctionBeginUser;
   PetscCall(MatNullSpaceDestroy(&fl->nsp));
   PetscCall(MatDestroy(&fl->A));
+  PetscCall(PetscFree(fl->coo_v));
+  fl->ncoo = 0;
   PetscCall(DMDestroy(&fl->pda));
   PetscCall(MatDestroy(&fl->V));
   PetscCall(DMDestroy(&fl->vda));

@@ -56,6 +56,8 @@ struct _p_Fluid {
   DM         pda;  /* star-stencil copy of cda for the Poisson matrix (same ownership) */
   Vec        coef, coefloc;
   Mat        A;
+  PetscCount   ncoo;  /* entries of A in the order FluidPoissonAssemble writes them */
+  PetscScalar *coo_v; /* their values (MatSetValuesCOO) */
   KSP        ksp;
   MatNullSpace nsp;
   PetscObjectState eps_state, beta_state;

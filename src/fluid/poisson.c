@@ -65,6 +65,8 @@ static PetscErrorCode FluidPoissonCheckMG(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode FluidPoissonPattern(Fluid fl);
+
 PetscErrorCode FluidPoissonSetUp(Fluid fl)
 {
   const PetscInt *l[3];
@@ -77,6 +79,7 @@ PetscErrorCode FluidPoissonSetUp(Fluid fl)
   PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_STAR, fl->g.N[0], fl->g.N[1], fl->g.N[2], np[0], np[1], np[2], 1, 1, l[0], l[1], l[2], &fl->pda));
   PetscCall(DMSetUp(fl->pda));
   PetscCall(DMCreateMatrix(fl->pda, &fl->A));
+  PetscCall(FluidPoissonPattern(fl));
   PetscCall(KSPSetDM(fl->ksp, fl->pda)); /* for geometric multigrid (-fluid_poisson_pc_type mg); the operators stay ours */
   PetscCall(KSPSetDMActive(fl->ksp, PETSC_FALSE));
   PetscCall(FluidPoissonCheckMG(fl));
@@ -113,47 +116,74 @@ static PetscErrorCode FluidPoissonCoefficients(Fluid fl, PetscReal dt, const Pet
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Whether the row of cell idx couples to its neighbour on side s (0 lower, 1 upper) along d:
+ * yes inside the grid and across a periodic side; no across an outlet (its face enters the
+ * diagonal) or a wall or inlet face (c = 0 there). */
+static inline PetscBool fluid_poisson_neighbour(Fluid fl, const PetscInt idx[3], int d, int s)
+{
+  return (PetscBool)(FluidPeriodic(fl, d) || (s ? idx[d] < fl->g.N[d] - 1 : idx[d] > 0));
+}
+
+/* The matrix's nonzero pattern, once per layout: row by row over the owned cells, the diagonal
+ * then the neighbours in the order d = x, y, z, lower before upper, as local (ghosted) indices
+ * of the pressure DMDA; PETSc maps them to global ones (a periodic ghost to its owner). */
+static PetscErrorCode FluidPoissonPattern(Fluid fl)
+{
+  const FluidGrid *g = &fl->g;
+  PetscInt         gs[3], gm[3], idx[3], c, o, *ci, *cj;
+  PetscCount       n = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetGhostCorners(fl->pda, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
+  PetscCall(PetscMalloc2(7 * g->xm[0] * g->xm[1] * g->xm[2], &ci, 7 * g->xm[0] * g->xm[1] * g->xm[2], &cj));
+  FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+  {
+    const PetscInt row = ((idx[2] - gs[2]) * gm[1] + idx[1] - gs[1]) * gm[0] + idx[0] - gs[0];
+    const PetscInt step[3] = {1, gm[0], gm[0] * gm[1]};
+    ci[n] = row, cj[n++] = row;
+    for (int d = 0; d < 3; d++)
+      for (int s = 0; s < 2; s++)
+        if (fluid_poisson_neighbour(fl, idx, d, s)) ci[n] = row, cj[n++] = row + (s ? step[d] : -step[d]);
+  }
+  PetscCall(MatSetPreallocationCOOLocal(fl->A, n, ci, cj));
+  PetscCall(PetscFree2(ci, cj));
+  PetscCall(PetscFree(fl->coo_v));
+  PetscCall(PetscMalloc1(n, &fl->coo_v));
+  fl->ncoo = n;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The values of -div(c grad) in the pattern's order, set in one call (no search per entry). */
 static PetscErrorCode FluidPoissonAssemble(Fluid fl, PetscReal dt, const PetscScalar *eps)
 {
   const FluidGrid   *g = &fl->g;
   const PetscScalar *cf;
+  PetscScalar       *v = fl->coo_v;
   PetscInt           idx[3], c, o;
+  PetscCount         n = 0;
 
   PetscFunctionBeginUser;
   PetscCall(FluidPoissonCoefficients(fl, dt, eps));
-  PetscCall(MatZeroEntries(fl->A));
   PetscCall(VecGetArrayRead(fl->coefloc, &cf));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
-    MatStencil  row = {.k = idx[2], .j = idx[1], .i = idx[0]}, col[7];
-    PetscScalar v[7];
-    PetscInt    n = 1;
-    const PetscInt f = FluidFaceOff(g, idx[0], idx[1], idx[2]);
-    col[0] = row;
-    v[0]   = 0;
+    const PetscInt f    = FluidFaceOff(g, idx[0], idx[1], idx[2]);
+    const PetscCount nd = n++;
+    v[nd]               = 0;
     for (int d = 0; d < 3; d++) {
       const PetscReal   ih2 = 1.0 / (g->h[d] * g->h[d]);
       const PetscScalar cm = cf[f + d] * ih2, cp = cf[f + g->fs[d] + d] * ih2;
-      v[0] += cm + cp;
+      v[nd] += cm + cp;
       for (int s = 0; s < 2; s++) {
         const PetscScalar cc = s ? cp : cm;
-        const PetscBool   in = (PetscBool)(FluidPeriodic(fl, d) || (s ? idx[d] < g->N[d] - 1 : idx[d] > 0));
-        if (!in) {
-          v[0] += cc; /* Dirichlet on an outlet face: ghost phi = -phi (c is 0 on fixed faces) */
-          continue;
-        }
-        col[n]   = row;
-        if (d == 0) col[n].i += s ? 1 : -1;
-        if (d == 1) col[n].j += s ? 1 : -1;
-        if (d == 2) col[n].k += s ? 1 : -1;
-        v[n++] = -cc;
+        if (fluid_poisson_neighbour(fl, idx, d, s)) v[n++] = -cc;
+        else v[nd] += cc; /* Dirichlet on an outlet face: ghost phi = -phi (c is 0 on fixed faces) */
       }
     }
-    PetscCall(MatSetValuesStencil(fl->A, 1, &row, n, col, v, ADD_VALUES));
   }
+  PetscCheck(n == fl->ncoo, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Poisson matrix: %" PetscCount_FMT " values for a pattern of %" PetscCount_FMT, n, fl->ncoo);
   PetscCall(VecRestoreArrayRead(fl->coefloc, &cf));
-  PetscCall(MatAssemblyBegin(fl->A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(fl->A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatSetValuesCOO(fl->A, v, INSERT_VALUES));
   PetscCall(KSPSetOperators(fl->ksp, fl->A, fl->A));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
