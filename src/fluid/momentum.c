@@ -11,29 +11,25 @@
 #include "fluid/fluid_impl.h"
 
 /* Value of u_d on the interface between L and R = L+e given the neighbours LL = L-e and
- * RR = R+e and the sign of the flux through it (van Leer limited slope, upwind side). */
+ * RR = R+e and the sign of the flux through it (van Leer limited slope, upwind side). Written
+ * without branches (the signs are data-dependent in a bubbling bed): both quotients are formed
+ * and the one that applies kept, so a 0/0 on the unused side never reaches the result. */
 static inline PetscScalar fluid_tvd_face(PetscScalar LL, PetscScalar L, PetscScalar R, PetscScalar RR, PetscScalar F)
 {
-  PetscScalar up, dn, dd;
-  if (F >= 0) { up = L; dn = R; dd = L - LL; }
-  else { up = R; dn = L; dd = R - RR; }
-  const PetscScalar D = dn - up;
-  return up + (dd * D > 0 ? dd * D / (dd + D) : 0);
+  const PetscBool   pos = (PetscBool)(F >= 0);
+  const PetscScalar up = pos ? L : R, dn = pos ? R : L, dd = pos ? L - LL : R - RR;
+  const PetscScalar D = dn - up, r = dd * D, q = r / (dd + D);
+  return up + (r > 0 ? q : 0);
 }
 
-/* Mass flux eps u_e at the e-face of face point f (cell c). */
-static inline PetscScalar fluid_mass_flux(const FluidGrid *g, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, int e)
+/* rho F_m v_m at the lower e-face of the control volume around the d-face at point f: the flux
+ * through that face, F_m the mean of the mass fluxes eps u_e (M, by face point) of the two
+ * e-faces it joins, times the advected value there. The upper face of this volume is the lower
+ * face of the volume at f + e, so each is computed once (FluidAdvectionTerm). */
+static inline PetscScalar fluid_advective_flux(const FluidGrid *g, PetscBool tvd, const PetscScalar *u, const PetscScalar *M, PetscInt f, int d, int e)
 {
-  return 0.5 * (eps[c] + eps[c - g->cs[e]]) * u[f + e];
-}
-
-/* rho F_m v_m at the lower e-face of the control volume around the d-face at point f (cell c):
- * the flux through that face times the advected value there. The upper face of this volume is
- * the lower face of the volume at f + e, so each is computed once (FluidAdvectionTerm). */
-static inline PetscScalar fluid_advective_flux(const FluidGrid *g, PetscBool tvd, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, int d, int e)
-{
-  const PetscInt    fe = g->fs[e], fd = g->fs[d], cd = g->cs[d];
-  const PetscScalar Fm = 0.5 * (fluid_mass_flux(g, u, eps, f, c, e) + fluid_mass_flux(g, u, eps, f - fd, c - cd, e));
+  const PetscInt    fe = g->fs[e], fd = g->fs[d];
+  const PetscScalar Fm = 0.5 * (M[f / 3] + M[(f - fd) / 3]);
   const PetscScalar um1 = u[f - fe + d], u0 = u[f + d];
   const PetscScalar vm = tvd ? fluid_tvd_face(u[f - 2 * fe + d], um1, u0, u[f + fe + d], Fm) : 0.5 * (um1 + u0);
   return Fm * vm;
@@ -79,27 +75,35 @@ PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscSca
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) out[o + d] = 0;
   if (fl->adv == FLUID_ADV_NONE) PetscFunctionReturn(PETSC_SUCCESS);
-  if (fl->advbuf_n < np) {
+  if (fl->advbuf_n < 2 * np) {
     PetscCall(PetscFree(fl->advbuf));
-    PetscCall(PetscMalloc1(np, &fl->advbuf));
-    fl->advbuf_n = np;
+    PetscCall(PetscMalloc1(2 * np, &fl->advbuf));
+    fl->advbuf_n = 2 * np;
   }
-  for (int d = 0; d < 3; d++)
-    for (int e = 0; e < 3; e++) {
-      PetscScalar   *B  = fl->advbuf; /* by face point: f / 3 */
-      const PetscInt pe = g->fs[e] / 3;
-      PetscInt       hi[3];
-      for (int k = 0; k < 3; k++) hi[k] = g->xs[k] + g->fxm[k] + (k == e);
+  for (int e = 0; e < 3; e++) {
+    PetscScalar   *M  = fl->advbuf + np; /* mass flux eps u_e by face point, f / 3 */
+    const PetscInt pe = g->fs[e] / 3;
+    PetscInt       hi[3];
+    for (int k = 0; k < 3; k++) hi[k] = g->xs[k] + g->fxm[k] + (k == e);
+    /* on the points the fluxes below read: down to one point before the owned ones */
+    for (idx[2] = g->xs[2] - 1; idx[2] < hi[2]; idx[2]++)
+      for (idx[1] = g->xs[1] - 1; idx[1] < hi[1]; idx[1]++) {
+        f = FluidFaceOff(g, g->xs[0] - 1, idx[1], idx[2]);
+        c = FluidCellOff(g, g->xs[0] - 1, idx[1], idx[2]);
+        for (idx[0] = g->xs[0] - 1; idx[0] < hi[0]; idx[0]++, f += 3, c++) M[f / 3] = 0.5 * (eps[c] + eps[c - g->cs[e]]) * u[f + e];
+      }
+    for (int d = 0; d < 3; d++) {
+      PetscScalar *B = fl->advbuf; /* by face point: f / 3 */
       /* lower-face fluxes of every owned volume and of the one above the last along e */
       for (idx[2] = g->xs[2]; idx[2] < hi[2]; idx[2]++)
         for (idx[1] = g->xs[1]; idx[1] < hi[1]; idx[1]++) {
           f = FluidFaceOff(g, g->xs[0], idx[1], idx[2]);
-          c = FluidCellOff(g, g->xs[0], idx[1], idx[2]);
-          for (idx[0] = g->xs[0]; idx[0] < hi[0]; idx[0]++, f += 3, c++) B[f / 3] = fluid_advective_flux(g, tvd, u, eps, f, c, d, e);
+          for (idx[0] = g->xs[0]; idx[0] < hi[0]; idx[0]++, f += 3) B[f / 3] = fluid_advective_flux(g, tvd, u, M, f, d, e);
         }
       /* the same sum, in the same order, as (F+ v+ - F- v-) / h_e over e = x, y, z */
       FLUID_FOR_OWNED_FACES(g, idx, f, c, o) out[o + d] += (B[f / 3 + pe] - B[f / 3]) / g->h[e];
     }
+  }
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) out[o + d] = FluidFaceActive(fl, d, idx) ? fl->rho * out[o + d] : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
