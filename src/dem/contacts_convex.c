@@ -72,9 +72,16 @@ static inline double dem_extent(const ConvexShape *c, const double d[3])
   return best;
 }
 
+/* The same for a shape of the table: a box in closed form, sum_k h_k |a_k . d|. */
+static inline double dem_shape_extent(const DemShape *s, const double d[3])
+{
+  if (s->box) return s->bh[0] * PetscAbsReal(dem_dot(s->fn, d)) + s->bh[1] * PetscAbsReal(dem_dot(s->fn + 3, d)) + s->bh[2] * PetscAbsReal(dem_dot(s->fn + 6, d));
+  return dem_extent(s->cvx, d);
+}
+
 /* Body i at the origin with rotation Ri, body j at d with Rj: are they apart along the world
  * axis u (either sense)? */
-static inline PetscBool dem_apart(const ConvexShape *ci, const double *Ri, const ConvexShape *cj, const double *Rj, const double d[3], const double u[3])
+static inline PetscBool dem_apart(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], const double u[3])
 {
   const double du = dem_dot(d, u), s = du >= 0 ? 1.0 : -1.0;
   double       ui[3], uj[3];
@@ -82,7 +89,7 @@ static inline PetscBool dem_apart(const ConvexShape *ci, const double *Ri, const
     ui[k] = s * (Ri[k] * u[0] + Ri[3 + k] * u[1] + Ri[6 + k] * u[2]);
     uj[k] = -s * (Rj[k] * u[0] + Rj[3 + k] * u[1] + Rj[6 + k] * u[2]);
   }
-  return (PetscBool)(s * du > dem_extent(ci, ui) + dem_extent(cj, uj));
+  return (PetscBool)(s * du > dem_shape_extent(si, ui) + dem_shape_extent(sj, uj));
 }
 
 static inline void dem_rotation(const double *q, double *R)
@@ -100,7 +107,7 @@ static inline PetscBool dem_sat_pair(const Dem dem, const DemShape *si, const De
 
 /* Least overlap of i (at the origin, Ri) and j (at d, Rj) along the unit world axis u: returns
  * it, and in n the axis oriented from i to j. */
-static inline double dem_sat_overlap(const ConvexShape *ci, const double *Ri, const ConvexShape *cj, const double *Rj, const double d[3], const double u[3], double n[3])
+static inline double dem_sat_overlap(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], const double u[3], double n[3])
 {
   const double du = dem_dot(d, u), s = du >= 0 ? 1.0 : -1.0;
   double       ui[3], uj[3];
@@ -109,7 +116,7 @@ static inline double dem_sat_overlap(const ConvexShape *ci, const double *Ri, co
     ui[k] = s * (Ri[k] * u[0] + Ri[3 + k] * u[1] + Ri[6 + k] * u[2]);
     uj[k] = -s * (Rj[k] * u[0] + Rj[3 + k] * u[1] + Rj[6 + k] * u[2]);
   }
-  return dem_extent(ci, ui) + dem_extent(cj, uj) - s * du;
+  return dem_shape_extent(si, ui) + dem_shape_extent(sj, uj) - s * du;
 }
 
 /* One candidate axis a (unit, world): PETSC_TRUE when it separates the pair (u = a); otherwise
@@ -117,7 +124,7 @@ static inline double dem_sat_overlap(const ConvexShape *ci, const double *Ri, co
 static inline PetscBool dem_sat_axis(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], const double a[3], double *best, double n[3], double u[3])
 {
   double       m[3];
-  const double ov = dem_sat_overlap(si->cvx, Ri, sj->cvx, Rj, d, a, m);
+  const double ov = dem_sat_overlap(si, Ri, sj, Rj, d, a, m);
   if (ov < 0) {
     for (int k = 0; k < 3; k++) u[k] = a[k];
     return PETSC_TRUE;
@@ -138,6 +145,7 @@ static PetscBool dem_sat(const DemShape *si, const double *Ri, const DemShape *s
   const DemShape *sh[2] = {si, sj};
   const double   *R[2]  = {Ri, Rj};
   double          best  = PETSC_MAX_REAL, a[3];
+  if (si->box && sj->box) return DemSatBox(si, Ri, sj, Rj, d, depth, n, u); /* the same axes in closed form */
   for (int b = 0; b < 2; b++)
     for (PetscInt f = 0; f < sh[b]->nfn; f++) {
       const double *fn = sh[b]->fn + 3 * f;
@@ -179,8 +187,8 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemShape *si, const
   PetscFunctionBeginUser;
   if (!u) u = none;
   c->overlap = PETSC_FALSE;
-  if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(si->cvx, Ri, sj->cvx, Rj, d, u)) PetscFunctionReturn(PETSC_SUCCESS);
-  if (dem_apart(si->cvx, Ri, sj->cvx, Rj, d, d)) {
+  if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(si, Ri, sj, Rj, d, u)) PetscFunctionReturn(PETSC_SUCCESS);
+  if (dem_apart(si, Ri, sj, Rj, d, d)) {
     for (int k = 0; k < 3; k++) u[k] = d[k];
     PetscFunctionReturn(PETSC_SUCCESS);
   }

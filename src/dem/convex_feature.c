@@ -126,7 +126,8 @@ static PetscBool clip2(Poly2 *S, const Poly2 *C, PetscReal eps2)
         out.k++;
       }
     }
-    *S = out;
+    for (PetscInt i = 0; i < out.k; i++) S->p[i][0] = out.p[i][0], S->p[i][1] = out.p[i][1]; /* not the whole 8 kB */
+    S->k = out.k;
   }
   return S->k > 0 ? PETSC_TRUE : PETSC_FALSE;
 }

@@ -24,6 +24,8 @@ typedef struct {
   double  *en;          /* distinct edge directions of a polyhedron (body frame, 3 each) */
   PetscInt nen;
   PetscBool iso;        /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
+  PetscBool box;        /* a box: 8 vertices at +-bh[k] along the orthogonal fn[0..2] (sat_box.c) */
+  double    bh[3];
 } DemShape;
 
 typedef enum { DEM_WALL_PLANE, DEM_WALL_RECT, DEM_WALL_POLYGON, DEM_WALL_CYLINDER } DemWallKind;
@@ -266,6 +268,8 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c *
 PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
 PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
 PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* contacts_convex.c */
+PetscBool      DemShapeBoxFrame(DemShape *sh);                     /* sat_box.c */
+PetscBool      DemSatBox(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double *depth, double n[3], double u[3]);
 PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c); /* contacts_convex.c: the forces' narrow phase */
 PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* contacts_convex.c */
 PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* diag_convex.c */

@@ -245,6 +245,7 @@ PetscErrorCode DemShapesSetUp(Dem dem)
     sh->inertia = (sh->J[0] + sh->J[1] + sh->J[2]) / 3.0; /* only for reports */
     PetscCall(DemShapeFaceAxes(sh));
     PetscCall(DemShapeEdgeAxes(sh));
+    (void)DemShapeBoxFrame(sh);
     sh->iso = (PetscBool)(PetscAbsReal(sh->J[0] - sh->J[2]) <= 1e-12 * sh->J[2] && PetscAbsReal(sh->J[1] - sh->J[2]) <= 1e-12 * sh->J[2]);
     sh->invi    = 1.0 / sh->inertia;
   }
