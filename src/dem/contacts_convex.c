@@ -18,10 +18,12 @@
  * A test costs two support scans (about a tenth of an MPR call). The cache is exact (an axis
  * either separates or the full test runs) and is cleared at every list build.
  * Few-axis pairs (box-box: 3 + 3 face normals and 3 x 3 edge-edge axes; -dem_convex_sat_axes
- * sets the limit, 16 by default) skip libccd: the separating-axis test over all candidates gives the exact minimum
- * penetration (depth and normal of the least overlap, for convex polyhedra the minimum
- * translation), continuous in the poses, where MPR's portal depth jumps; the feature point
- * follows (ConvexContactPoint), and MPR is the fallback if that point fails.
+ * sets the limit, 16 by default; two boxes in closed form, sat_box.c) skip libccd: the
+ * separating-axis test over all candidates gives the exact minimum penetration (depth and normal
+ * of the least overlap, for convex polyhedra the minimum translation), continuous in the poses,
+ * where MPR's portal depth jumps; the contact point follows (ConvexContactPoint, the model of
+ * -dem_convex_contact_point), and MPR is the fallback if that point fails. With the support
+ * point, pairs left to MPR take MPR's depth and normal and the support features' point.
  * The contact laws use R = d_eq/2 per shape (shapes.c). Units SI. */
 #include "dem/dem_impl.h"
 
