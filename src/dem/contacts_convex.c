@@ -201,18 +201,9 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemShape *si, const
     if (ok) PetscFunctionReturn(PETSC_SUCCESS);
     /* touching at 0 depth, or no supporting feature: MPR below */
   }
-  PetscCall(ConvexCollide(si->cvx, pi, sj->cvx, pj, c));
-  if (!c->overlap) {
-    (void)dem_sat(si, Ri, sj, Rj, d, &depth, n, u); /* the axis to keep, or u = 0 */
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  u[0] = u[1] = u[2] = 0;
-  if (dem->convex_point == CONVEX_POINT_SUPPORT) { /* MPR's normal and depth, the support features' point */
-    ConvexContact s;
-    PetscBool     ok;
-    PetscCall(ConvexContactPoint(si->cvx, pi, sj->cvx, pj, c->normal, c->depth, CONVEX_POINT_SUPPORT, &s, &ok));
-    if (ok) *c = s;
-  }
+  PetscCall(ConvexCollideWith(si->cvx, pi, sj->cvx, pj, dem->convex_point, c)); /* MPR's depth and normal */
+  if (c->overlap) u[0] = u[1] = u[2] = 0;
+  else (void)dem_sat(si, Ri, sj, Rj, d, &depth, n, u); /* the axis to keep, or u = 0 */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -86,6 +86,9 @@ PetscErrorCode ConvexCollidePlane(const ConvexShape *a, const ConvexPose *pa, co
  *           jumps when the deepest vertex changes (a face nearly parallel to the other). */
 typedef enum { CONVEX_POINT_PATCH, CONVEX_POINT_SUPPORT } ConvexPointModel;
 
+/* ConvexCollide with the contact point of the given model (ConvexCollide itself: PATCH). */
+PetscErrorCode ConvexCollideWith(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, ConvexPointModel model, ConvexContact *c);
+
 /* Not collective. The contact of A and B when the caller already knows the exact minimum
  * penetration: unit normal n (A to B) and depth > 0 (a separating-axis test over face normals
  * and edge-edge axes gives them for polyhedra). Fills c with them and the feature point; returns

@@ -71,6 +71,13 @@ static void convex_body_set(const ConvexShape *s, const ConvexPose *p, ConvexBod
 
 PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, ConvexContact *c)
 {
+  PetscFunctionBegin;
+  PetscCall(ConvexCollideWith(a, pa, b, pb, CONVEX_POINT_PATCH, c));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ConvexCollideWith(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, ConvexPointModel model, ConvexContact *c)
+{
   ConvexBody A, B;
   ccd_t      ccd;
   ccd_real_t depth;
@@ -97,7 +104,7 @@ PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const C
     c->normal[k] = dir.v[k];
     c->point[k]  = pos.v[k];
   }
-  (void)ConvexFeaturePoint(&A, &B, c->normal, c->depth, PETSC_FALSE, c->point); /* keeps MPR's point if it fails */
+  (void)ConvexFeaturePoint(&A, &B, c->normal, c->depth, (PetscBool)(model == CONVEX_POINT_SUPPORT), c->point); /* keeps MPR's point if it fails */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
