@@ -236,8 +236,10 @@ PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const Pet
   collect(&CA, &F, support ? hA : hB, hA, &PA); /* support: the vertices on A's support plane */
   collect(&CB, &F, hB, support ? hB : hA, &PB);
   if (!PA.k || !PB.k) return PETSC_FALSE;
-  hull2(&PA, F.eps, eps2);
-  hull2(&PB, F.eps, eps2);
+  if (PA.k > 1 && PB.k > 1) { /* a single vertex on either side is the point (vertex-face) */
+    hull2(&PA, F.eps, eps2);
+    hull2(&PB, F.eps, eps2);
+  }
   if (PA.k == 1) c[0] = PA.p[0][0], c[1] = PA.p[0][1];
   else if (PB.k == 1) c[0] = PB.p[0][0], c[1] = PB.p[0][1];
   else if (PA.k == 2 && PB.k == 2) segments2(&PA, &PB, F.eps, c);

@@ -38,19 +38,20 @@ PetscBool DemShapeBoxFrame(DemShape *sh)
   return PETSC_TRUE;
 }
 
-/* One axis (world, |axis| = len > 0) with the extents ri + rj of its unit version times len:
- * as dem_sat_axis, PETSC_TRUE when it separates (u = the unit axis). */
-static inline PetscBool dem_box_axis(const double axis[3], double len, double rij, const double d[3], double *best, double n[3], double u[3])
+/* One axis (world, |axis|^2 = l2 > 0) with the extents ri + rj of its unit version times its
+ * length: as dem_sat_axis, PETSC_TRUE when it separates (u = the unit axis). The square root is
+ * taken only for a separating axis or a new least overlap. */
+static inline PetscBool dem_box_axis(const double axis[3], double l2, double rij, const double d[3], double *best, double n[3], double u[3])
 {
-  const double du = dem_dot(d, axis), s = du >= 0 ? 1.0 : -1.0;
-  if (rij < s * du) { /* apart along it (len > 0) */
-    const double il = 1 / len;
+  const double du = dem_dot(d, axis), s = du >= 0 ? 1.0 : -1.0, ov = rij - s * du;
+  if (ov < 0) { /* apart along it */
+    const double il = 1 / sqrt(l2);
     for (int k = 0; k < 3; k++) u[k] = axis[k] * il;
     return PETSC_TRUE;
   }
-  if (rij - s * du < *best * len) { /* the overlap (rij - |d.axis|) / len is the least so far */
-    const double il = 1 / len;
-    *best = (rij - s * du) * il;
+  if (ov * ov < *best * *best * l2) { /* the overlap ov / |axis| is the least so far */
+    const double il = 1 / sqrt(l2);
+    *best = ov * il;
     for (int k = 0; k < 3; k++) n[k] = s * axis[k] * il;
   }
   return PETSC_FALSE;
@@ -59,7 +60,7 @@ static inline PetscBool dem_box_axis(const double axis[3], double len, double ri
 PetscBool DemSatBox(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double *depth, double n[3], double u[3])
 {
   const double *h = si->bh, *g = sj->bh;
-  double        A[3][3], B[3][3], C[3][3], aC[3][3], best = PETSC_MAX_REAL;
+  double        A[3][3], B[3][3], C[3][3], aC[3][3], best = 1e150; /* best^2 stays finite */
 
   for (int a = 0; a < 3; a++) { /* world axes: A_a = Ri fn_a, B_b = Rj fn_b */
     const double *fa = si->fn + 3 * a, *fb = sj->fn + 3 * a;
@@ -86,7 +87,7 @@ PetscBool DemSatBox(const DemShape *si, const double *Ri, const DemShape *sj, co
       if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
       dem_cross(A[a], B[b], L);
       const double rij = h[a1] * aC[a2][b] + h[a2] * aC[a1][b] + g[b1] * aC[a][b2] + g[b2] * aC[a][b1];
-      if (dem_box_axis(L, sqrt(dem_dot(L, L)), rij, d, &best, n, u)) return PETSC_FALSE;
+      if (dem_box_axis(L, dem_dot(L, L), rij, d, &best, n, u)) return PETSC_FALSE;
     }
   }
   *depth = best;
