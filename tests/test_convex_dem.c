@@ -150,18 +150,25 @@ static PetscErrorCode FreeFlight(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Least overlap of two boxes of half extents h (body frame x, y, z) at poses (x, R), by brute
- * force: both bodies' 8 vertices projected on the 15 candidate axes (face normals, edge cross
- * products), the 1-D interval overlap min(maxA - minB, maxB - minA) on each; < 0 when apart. */
-static double BoxDepth(const double h[3], const double xa[3], const double Ra[9], const double xb[3], const double Rb[9])
+/* A box: half extents along its body axes x, y, z, and its pose. */
+typedef struct {
+  double h[3], x[3], R[9];
+} TestBox;
+
+/* Least overlap of two boxes, by brute force: both bodies' 8 vertices projected on the 15
+ * candidate axes (face normals, edge cross products), the 1-D interval overlap
+ * min(maxA - minB, maxB - minA) on each; < 0 when apart. */
+static double BoxDepth(const TestBox *a, const TestBox *b)
 {
-  double ax[15][3], va[8][3], vb[8][3], best = PETSC_MAX_REAL;
-  int    na = 0;
+  const double *Ra = a->R, *Rb = b->R;
+  double        ax[15][3], va[8][3], vb[8][3], best = PETSC_MAX_REAL;
+  int           na = 0;
   for (int c = 0; c < 8; c++) {
-    const double v[3] = {(c & 1 ? 1 : -1) * h[0], (c & 2 ? 1 : -1) * h[1], (c & 4 ? 1 : -1) * h[2]};
-    convex_mat_vec(Ra, v, va[c]);
+    const double u[3] = {(c & 1 ? 1 : -1) * a->h[0], (c & 2 ? 1 : -1) * a->h[1], (c & 4 ? 1 : -1) * a->h[2]};
+    const double v[3] = {(c & 1 ? 1 : -1) * b->h[0], (c & 2 ? 1 : -1) * b->h[1], (c & 4 ? 1 : -1) * b->h[2]};
+    convex_mat_vec(Ra, u, va[c]);
     convex_mat_vec(Rb, v, vb[c]);
-    for (int k = 0; k < 3; k++) va[c][k] += xa[k], vb[c][k] += xb[k];
+    for (int k = 0; k < 3; k++) va[c][k] += a->x[k], vb[c][k] += b->x[k];
   }
   for (int k = 0; k < 3; k++) /* face normals: the body axes, columns of R */
     for (int m = 0; m < 3; m++) ax[2 * k][m] = Ra[3 * m + k], ax[2 * k + 1][m] = Rb[3 * m + k];
@@ -193,47 +200,51 @@ static void RandomQuat(double q[4])
   q[0] = sqrt(1 - u1) * sin(u2), q[1] = sqrt(1 - u1) * cos(u2), q[2] = sqrt(u1) * sin(u3), q[3] = sqrt(u1) * cos(u3);
 }
 
-/* The DEM's box-box narrow phase (closed-form separating axes, sat_box.c) against BoxDepth: two
- * 1 x 0.6 x 0.3 boxes in random poses, the second moved along a random direction to just inside
- * or just outside touching (found by bisection on BoxDepth); the DEM's depth is read back from
- * the elastic energy 1/2 kn delta^2 of its statistics. */
+/* The DEM's box-box narrow phase (closed-form separating axes, sat_box.c) against BoxDepth: a
+ * 1 x 0.6 x 0.3 and a 0.8 x 0.5 x 0.4 box (different, so a mix-up of the two boxes' extents
+ * shows) in random poses, the second moved along a random direction to just inside or just
+ * outside touching (found by bisection on BoxDepth); the DEM's depth is read back from the
+ * elastic energy 1/2 kn delta^2 of its statistics. Both boxes' body frames are their input
+ * frames (moments ascending along x, y, z). */
 static PetscErrorCode BoxPairs(void)
 {
   char         opts[512];
   Domain       dom;
   Dem          dem;
-  const double kn = 1e4, h[3] = {0.5 * A, 0.3 * A, 0.15 * A};
+  const double kn = 1e4;
+  TestBox      ba = {.h = {0.5 * A, 0.3 * A, 0.15 * A}}, bb = {.h = {0.4 * A, 0.25 * A, 0.2 * A}};
   double       err = 0;
   int          wrong = 0, touching = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.05 -domain_hi 0.05,0.05,0.05 -dem_shape polyhedron -dem_shape_file test_convex_box.txt -dem_shape_size 1 -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt 1e-6", RHO, kn));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.05 -domain_hi 0.05,0.05,0.05 -dem_shape polyhedron,polyhedron -dem_shape_file test_convex_box.txt,test_convex_box2.txt -dem_shape_size 1,1 -dem_radius_fraction 1,1 -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt 1e-6", RHO, kn));
+  PetscCall(WriteBoxFile("test_convex_box2.txt", 0.8 * A, 0.5 * A, 0.4 * A));
   PetscCall(TestDemCreate(opts, &dom, &dem));
-  DemParticle p0 = {.id = 0, .shape = 0, .x = {0, 0, 0}, .q = {1, 0, 0, 0}}, p1 = {.id = 1, .shape = 0, .x = {0.5 * A, 0, 0}, .q = {1, 0, 0, 0}};
+  DemParticle p0 = {.id = 0, .shape = 0, .x = {0, 0, 0}, .q = {1, 0, 0, 0}}, p1 = {.id = 1, .shape = 1, .x = {0.5 * A, 0, 0}, .q = {1, 0, 0, 0}};
   PetscCall(DemAddParticle(dem, &p0));
   PetscCall(DemAddParticle(dem, &p1));
   PetscCall(DemSetUp(dem));
   srand(7);
   for (int t = 0; t < 400; t++) {
-    double   Ra[9], Rb[9], u[3], lo = 0, hi = 2 * A, xb[3], ref;
+    double   u[3], lo = 0, hi = 2 * A, ref;
     DemStats st;
     RandomQuat(p0.q);
     RandomQuat(p1.q);
-    convex_quat_to_matrix(p0.q, Ra);
-    convex_quat_to_matrix(p1.q, Rb);
+    convex_quat_to_matrix(p0.q, ba.R);
+    convex_quat_to_matrix(p1.q, bb.R);
     do {
       for (int k = 0; k < 3; k++) u[k] = 2.0 * rand() / RAND_MAX - 1;
     } while (convex_dot(u, u) > 1 || convex_dot(u, u) < 1e-2);
     for (int k = 0; k < 3; k++) u[k] /= sqrt(convex_dot(u, u));
     for (int it = 0; it < 80; it++) { /* touching distance along u */
       const double mid = 0.5 * (lo + hi);
-      for (int k = 0; k < 3; k++) xb[k] = mid * u[k];
-      if (BoxDepth(h, p0.x, Ra, xb, Rb) > 0) lo = mid;
+      for (int k = 0; k < 3; k++) bb.x[k] = mid * u[k];
+      if (BoxDepth(&ba, &bb) > 0) lo = mid;
       else hi = mid;
     }
     const double s = lo + (t % 4 == 3 ? 1 : -1) * 0.01 * A * (0.05 + (double)rand() / RAND_MAX); /* one in four apart */
-    for (int k = 0; k < 3; k++) p1.x[k] = s * u[k];
-    ref = BoxDepth(h, p0.x, Ra, p1.x, Rb);
+    for (int k = 0; k < 3; k++) p1.x[k] = bb.x[k] = s * u[k];
+    ref = BoxDepth(&ba, &bb);
     PetscCall(DemSetParticle(dem, 0, &p0));
     PetscCall(DemSetParticle(dem, 1, &p1));
     PetscCall(DemGetStats(dem, &st));
@@ -246,6 +257,7 @@ static PetscErrorCode BoxPairs(void)
   check((PetscBool)(wrong == 0 && touching > 250), "box-box narrow phase of the DEM (closed-form separating axes), 400 random poses near touching: contact found as the brute-force test says in all but %d (bound 0), %d touching", wrong, touching);
   check((PetscBool)(err < 1e-12), "box-box narrow phase of the DEM: depth against the brute-force separating-axis test, largest error %.1e of the edge (bound 1e-12)", err);
   PetscCall(TestDemDestroy(&dom, &dem));
+  remove("test_convex_box2.txt");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -306,7 +318,7 @@ static PetscErrorCode Collisions(PetscBool boxes, double vs, double ws, const ch
     if (s < N) PetscCall(DemStep(dem));
   }
   const double drift = PetscAbsReal(last / nl - first / nf) / e0;
-  check((PetscBool)(contacts > 100), "colliding tumbling %s (approach %g m/s, spin %g rad/s, dt = Tc/%d, %s): %" PetscInt_FMT " contact samples (bound > 100), largest overlap %.3f d_eq/2", boxes ? "boxes" : "boxes and icosahedra", 0.4 * vs * 3, ws, 100 * dtf, model, contacts, omax);
+  check((PetscBool)(contacts > 100), "colliding tumbling %s (approach %g m/s, spin %g rad/s, dt = Tc/%d, %s): %" PetscInt_FMT " contact samples (bound > 100), largest overlap %.3f d_eq/2", boxes ? "boxes" : "boxes and icosahedra", 0.4 * vs * 3, ws, 100 * dtf, model[0] ? model : "defaults", contacts, omax);
   /* round-off accumulates step by step: 1e-10 per 1e5 steps */
   check((PetscBool)(pmax < 1e-10 * dtf), "colliding tumbling %s, %d steps: linear momentum error %.2e (bound %g, of m v)", what, N, pmax, 1e-10 * dtf);
   check((PetscBool)(lmax < 1e-10 * dtf), "colliding tumbling %s, %d steps: angular momentum about the origin (orbital + spin) error %.2e relative (bound %g)", what, N, lmax, 1e-10 * dtf);
@@ -394,10 +406,10 @@ int main(int argc, char **argv)
     check((PetscBool)(d1 < 1e-4), "fast collisions of boxes and icosahedra, exact depth + support point, dt = Tc/100, 1e5 steps: energy drift %.2e relative (bound 1e-4)", d1);
     check((PetscBool)(d2 < 0.25 * d1), "fast collisions, exact depth + support point: the drift falls with dt, %.2e at Tc/100 to %.2e at Tc/400 (bound: below 1/4 of it)", d1, d2);
     /* the defaults (patch point; MPR's depth for icosahedra) are not an energy gradient: their
-       drift does not fall with dt. Reported, not checked. */
+       drift does not fall with dt; bounded only against regressions */
     PetscCall(Collisions(PETSC_FALSE, 0.1, 10, "", 1, &d3));
     PetscCall(Collisions(PETSC_FALSE, 0.1, 10, "", 4, &d4));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "# fast collisions with the defaults (patch point, MPR for icosahedra): energy drift %.2e at Tc/100, %.2e at Tc/400 (not an energy gradient; reported, not checked)\n", d3, d4));
+    check((PetscBool)(d3 < 1e-2 && d4 < 1e-2), "fast collisions with the defaults (patch point, MPR for icosahedra): energy drift %.2e at Tc/100, %.2e at Tc/400 (a regression bound, 1e-2: this model is not an energy gradient, its drift does not fall with dt)", d3, d4);
     PetscCall(Collisions(PETSC_TRUE, 0.1, 10, "-dem_convex_contact_point support", 1, &d1));
     PetscCall(Collisions(PETSC_TRUE, 0.1, 10, "-dem_convex_contact_point support", 4, &d2));
     check((PetscBool)(d2 < 1e-4), "fast collisions of boxes (separating axes by default) + support point, dt = Tc/400: energy drift %.2e relative (bound 1e-4; %.2e at Tc/100)", d2, d1);

@@ -81,17 +81,17 @@ static inline double dem_shape_extent(const DemShape *s, const double d[3])
   return dem_extent(s->cvx, d);
 }
 
-/* Body i at the origin with rotation Ri, body j at d with Rj: are they apart along the world
- * axis u (either sense)? */
-static inline PetscBool dem_apart(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], const double u[3])
+/* Body i at the origin, body j at d: are they apart along the world axis u (either sense)? */
+static inline PetscBool dem_apart(const DemBody *bi, const DemBody *bj, const double d[3], const double u[3])
 {
-  const double du = dem_dot(d, u), s = du >= 0 ? 1.0 : -1.0;
-  double       ui[3], uj[3];
+  const double  du = dem_dot(d, u), s = du >= 0 ? 1.0 : -1.0;
+  const double *Ri = bi->R, *Rj = bj->R;
+  double        ui[3], uj[3];
   for (int k = 0; k < 3; k++) { /* R^T (s u) and R^T (-s u) */
     ui[k] = s * (Ri[k] * u[0] + Ri[3 + k] * u[1] + Ri[6 + k] * u[2]);
     uj[k] = -s * (Rj[k] * u[0] + Rj[3 + k] * u[1] + Rj[6 + k] * u[2]);
   }
-  return (PetscBool)(s * du > dem_shape_extent(si, ui) + dem_shape_extent(sj, uj));
+  return (PetscBool)(s * du > dem_shape_extent(bi->s, ui) + dem_shape_extent(bj->s, uj));
 }
 
 static inline void dem_rotation(const double *q, double *R)
@@ -107,52 +107,55 @@ static inline PetscBool dem_sat_pair(const Dem dem, const DemShape *si, const De
   return (PetscBool)(dem->convex_sat && si->nfn > 0 && sj->nfn > 0 && si->nfn + sj->nfn + si->nen * sj->nen <= dem->convex_sat_axes);
 }
 
-/* Least overlap of i (at the origin, Ri) and j (at d, Rj) along the unit world axis u: returns
- * it, and in n the axis oriented from i to j. */
-static inline double dem_sat_overlap(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], const double u[3], double n[3])
+/* Least overlap of i (at the origin) and j (at d) along the unit world axis u: returns it, and
+ * in n the axis oriented from i to j. */
+static inline double dem_sat_overlap(const DemBody *bi, const DemBody *bj, const double d[3], const double u[3], double n[3])
 {
-  const double du = dem_dot(d, u), s = du >= 0 ? 1.0 : -1.0;
-  double       ui[3], uj[3];
+  const double  du = dem_dot(d, u), s = du >= 0 ? 1.0 : -1.0;
+  const double *Ri = bi->R, *Rj = bj->R;
+  double        ui[3], uj[3];
   for (int k = 0; k < 3; k++) {
     n[k]  = s * u[k];
     ui[k] = s * (Ri[k] * u[0] + Ri[3 + k] * u[1] + Ri[6 + k] * u[2]);
     uj[k] = -s * (Rj[k] * u[0] + Rj[3 + k] * u[1] + Rj[6 + k] * u[2]);
   }
-  return dem_shape_extent(si, ui) + dem_shape_extent(sj, uj) - s * du;
+  return dem_shape_extent(bi->s, ui) + dem_shape_extent(bj->s, uj) - s * du;
 }
 
 /* One candidate axis a (unit, world): PETSC_TRUE when it separates the pair (u = a); otherwise
- * *best and n keep the least overlap so far and its axis oriented from i to j. */
-static inline PetscBool dem_sat_axis(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], const double a[3], double *best, double n[3], double u[3])
+ * m keeps the least overlap so far and its axis oriented from i to j. */
+static inline PetscBool dem_sat_axis(const DemBody *bi, const DemBody *bj, const double d[3], const double a[3], DemSatMin *m, double u[3])
 {
-  double       m[3];
-  const double ov = dem_sat_overlap(si, Ri, sj, Rj, d, a, m);
+  double       n[3];
+  const double ov = dem_sat_overlap(bi, bj, d, a, n);
   if (ov < 0) {
     for (int k = 0; k < 3; k++) u[k] = a[k];
     return PETSC_TRUE;
   }
-  if (ov < *best) {
-    *best = ov;
-    for (int k = 0; k < 3; k++) n[k] = m[k];
+  if (ov < m->depth) {
+    m->depth = ov;
+    for (int k = 0; k < 3; k++) m->n[k] = n[k];
   }
   return PETSC_FALSE;
 }
 
 /* Separating-axis test of two polyhedra over the face normals of both and the cross products of
  * their edge directions (the complete candidate set): PETSC_FALSE with the separating axis in u,
- * or PETSC_TRUE with the least overlap (depth) and its axis n (i to j). After libccd found no
- * contact it also finds the axis the cache keeps (u = 0 if rounding left none). */
-static PetscBool dem_sat(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double *depth, double n[3], double u[3])
+ * or PETSC_TRUE with the least overlap and its axis (i to j) in m. After libccd found no contact
+ * it also finds the axis the cache keeps (u = 0 if rounding left none). */
+static PetscBool dem_sat(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3])
 {
-  const DemShape *sh[2] = {si, sj};
-  const double   *R[2]  = {Ri, Rj};
-  double          best  = PETSC_MAX_REAL, a[3];
-  if (si->box && sj->box) return DemSatBox(si, Ri, sj, Rj, d, depth, n, u); /* the same axes in closed form */
+  const DemBody *b2[2] = {bi, bj};
+  const double  *Ri = bi->R, *Rj = bj->R;
+  const DemShape *si = bi->s, *sj = bj->s;
+  double          a[3];
+  m->depth = PETSC_MAX_REAL;
+  if (si->box && sj->box) return DemSatBox(bi, bj, d, m, u); /* the same axes in closed form */
   for (int b = 0; b < 2; b++)
-    for (PetscInt f = 0; f < sh[b]->nfn; f++) {
-      const double *fn = sh[b]->fn + 3 * f;
-      for (int k = 0; k < 3; k++) a[k] = R[b][3 * k] * fn[0] + R[b][3 * k + 1] * fn[1] + R[b][3 * k + 2] * fn[2];
-      if (dem_sat_axis(si, Ri, sj, Rj, d, a, &best, n, u)) return PETSC_FALSE;
+    for (PetscInt f = 0; f < b2[b]->s->nfn; f++) {
+      const double *fn = b2[b]->s->fn + 3 * f, *R = b2[b]->R;
+      for (int k = 0; k < 3; k++) a[k] = R[3 * k] * fn[0] + R[3 * k + 1] * fn[1] + R[3 * k + 2] * fn[2];
+      if (dem_sat_axis(bi, bj, d, a, m, u)) return PETSC_FALSE;
     }
   for (PetscInt e = 0; e < si->nen; e++) {
     double ei[3], ej[3];
@@ -164,46 +167,49 @@ static PetscBool dem_sat(const DemShape *si, const double *Ri, const DemShape *s
       if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
       const double il = 1 / sqrt(l2);
       for (int k = 0; k < 3; k++) a[k] *= il;
-      if (dem_sat_axis(si, Ri, sj, Rj, d, a, &best, n, u)) return PETSC_FALSE;
+      if (dem_sat_axis(bi, bj, d, a, m, u)) return PETSC_FALSE;
     }
   }
-  *depth = best;
   u[0] = u[1] = u[2] = 0;
   return PETSC_TRUE;
 }
 
-static inline void dem_pose(const Dem dem, PetscInt i, ConvexPose *pose)
+/* Particle i as a body of the pair tests. */
+static inline void dem_body(const Dem dem, PetscInt i, DemBody *b)
 {
-  for (int k = 0; k < 3; k++) pose->x[k] = dem->x[3 * i + k];
-  for (int k = 0; k < 4; k++) pose->q[k] = dem->q[4 * i + k];
+  b->s = &dem->shp[dem->shape[i]];
+  for (int k = 0; k < 3; k++) b->pose.x[k] = dem->x[3 * i + k];
+  for (int k = 0; k < 4; k++) b->pose.q[k] = dem->q[4 * i + k];
+  dem_rotation(b->pose.q, b->R);
 }
 
-/* The narrow phase of one pair whose bounding spheres overlap: i at pi (rotation Ri), j at pj
- * (Rj), d = x_j - x_i. u: the pair's cached separating axis (updated), or NULL for none. The
- * forces and the statistics (diag_convex.c) both call it, so the elastic energy is that of the
- * depth the forces used. */
-static PetscErrorCode dem_convex_narrow(const Dem dem, const DemShape *si, const ConvexPose *pi, const double *Ri, const DemShape *sj, const ConvexPose *pj, const double *Rj, const double d[3], double *u, ConvexContact *c)
+/* The narrow phase of one pair whose bounding spheres overlap, d = x_j - x_i. u: the pair's
+ * cached separating axis (updated), or NULL for none. The forces and the statistics
+ * (diag_convex.c) both call it, so the elastic energy is that of the depth the forces used. */
+static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const DemBody *bj, const double d[3], double *u, ConvexContact *c)
 {
-  double none[3] = {0, 0, 0}, depth, n[3];
+  double    none[3] = {0, 0, 0};
+  DemSatMin m;
 
   PetscFunctionBeginUser;
   if (!u) u = none;
   c->overlap = PETSC_FALSE;
-  if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(si, Ri, sj, Rj, d, u)) PetscFunctionReturn(PETSC_SUCCESS);
-  if (dem_apart(si, Ri, sj, Rj, d, d)) {
+  if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(bi, bj, d, u)) PetscFunctionReturn(PETSC_SUCCESS);
+  if (dem_apart(bi, bj, d, d)) {
     for (int k = 0; k < 3; k++) u[k] = d[k];
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  if (dem_sat_pair(dem, si, sj)) {
+  const PetscBool sat = dem_sat_pair(dem, bi->s, bj->s);
+  if (sat) {
     PetscBool ok = PETSC_FALSE;
-    if (!dem_sat(si, Ri, sj, Rj, d, &depth, n, u)) PetscFunctionReturn(PETSC_SUCCESS); /* u: the separating axis found */
-    if (depth > 0) PetscCall(ConvexContactPoint(si->cvx, pi, sj->cvx, pj, n, depth, dem->convex_point, c, &ok));
+    if (!dem_sat(bi, bj, d, &m, u)) PetscFunctionReturn(PETSC_SUCCESS); /* u: the separating axis found */
+    if (m.depth > 0) PetscCall(ConvexContactPoint(bi->s->cvx, &bi->pose, bj->s->cvx, &bj->pose, m.n, m.depth, dem->convex_point, c, &ok));
     if (ok) PetscFunctionReturn(PETSC_SUCCESS);
-    /* touching at 0 depth, or no supporting feature: MPR below */
+    /* touching at 0 depth, or no supporting feature: MPR below (u is 0) */
   }
-  PetscCall(ConvexCollideWith(si->cvx, pi, sj->cvx, pj, dem->convex_point, c)); /* MPR's depth and normal */
+  PetscCall(ConvexCollideWith(bi->s->cvx, &bi->pose, bj->s->cvx, &bj->pose, dem->convex_point, c)); /* MPR's depth and normal */
   if (c->overlap) u[0] = u[1] = u[2] = 0;
-  else (void)dem_sat(si, Ri, sj, Rj, d, &depth, n, u); /* the axis to keep, or u = 0 */
+  else if (!sat) (void)dem_sat(bi, bj, d, &m, u); /* the axis to keep, or u = 0 */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -213,17 +219,14 @@ PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexConta
   const DemShape *si = &dem->shp[dem->shape[i]], *sj = &dem->shp[dem->shape[j]];
   const double    rs = si->r + sj->r;
   const double    d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
-  ConvexPose      pi, pj;
-  double          Ri[9], Rj[9];
+  DemBody         bi, bj;
 
   PetscFunctionBeginUser;
   c->overlap = PETSC_FALSE;
   if (dem_dot(d, d) >= rs * rs) PetscFunctionReturn(PETSC_SUCCESS);
-  dem_pose(dem, i, &pi);
-  dem_pose(dem, j, &pj);
-  dem_rotation(pi.q, Ri);
-  dem_rotation(pj.q, Rj);
-  PetscCall(dem_convex_narrow(dem, si, &pi, Ri, sj, &pj, Rj, d, NULL, c));
+  dem_body(dem, i, &bi);
+  dem_body(dem, j, &bj);
+  PetscCall(dem_convex_narrow(dem, &bi, &bj, d, NULL, c));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -243,10 +246,9 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
   ax = dem->sepax;
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *si = &dem->shp[dem->shape[i]];
-    ConvexPose      pi, pj;
-    double          fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0}, Ri[9];
-    dem_pose(dem, i, &pi);
-    dem_rotation(pi.q, Ri);
+    DemBody         bi, bj;
+    double          fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
+    dem_body(dem, i, &bi);
     in.xi = dem->x + 3 * i;
     in.vi = dem->v + 3 * i;
     in.wi = dem->w + 3 * i;
@@ -262,10 +264,8 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      double *u = ax + 3 * a, Rj[9];
-      dem_pose(dem, j, &pj);
-      dem_rotation(pj.q, Rj);
-      PetscCall(dem_convex_narrow(dem, si, &pi, Ri, sj, &pj, Rj, d, u, &c));
+      dem_body(dem, j, &bj);
+      PetscCall(dem_convex_narrow(dem, &bi, &bj, d, ax + 3 * a, &c));
       if (!c.overlap) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
@@ -310,12 +310,12 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt i    = w->idx[a];
       double        *xi_t = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
-      ConvexPose     pose;
+      DemBody        b;
       ConvexContact  c;
       double         F[3], Ti[3], Tj[3];
-      dem_pose(dem, i, &pose);
-      PetscCall(ConvexCollidePlane(dem->shp[dem->shape[i]].cvx, &pose, w->p, w->n, &c));
-      if (!c.overlap || !DemWallCovers(w, c.point, pose.x)) {
+      dem_body(dem, i, &b);
+      PetscCall(ConvexCollidePlane(b.s->cvx, &b.pose, w->p, w->n, &c));
+      if (!c.overlap || !DemWallCovers(w, c.point, b.pose.x)) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }

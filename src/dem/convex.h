@@ -85,6 +85,7 @@ PetscErrorCode ConvexCollidePlane(const ConvexShape *a, const ConvexPose *pa, co
  *           energy gives), so the energy is conserved up to the time-step error; the point
  *           jumps when the deepest vertex changes (a face nearly parallel to the other). */
 typedef enum { CONVEX_POINT_PATCH, CONVEX_POINT_SUPPORT } ConvexPointModel;
+extern const char *const ConvexPointModels[]; /* option names, for PetscOptionsEnum */
 
 /* ConvexCollide with the contact point of the given model (ConvexCollide itself: PATCH). */
 PetscErrorCode ConvexCollideWith(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, ConvexPointModel model, ConvexContact *c);
@@ -93,5 +94,5 @@ PetscErrorCode ConvexCollideWith(const ConvexShape *a, const ConvexPose *pa, con
  * penetration: unit normal n (A to B) and depth > 0 (a separating-axis test over face normals
  * and edge-edge axes gives them for polyhedra). Fills c with them and the feature point; returns
  * *ok = PETSC_FALSE (c->overlap false) when n is not a supporting normal of the pair, and the
- * caller should then use ConvexCollide. */
+ * caller should then use ConvexCollideWith. */
 PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, const PetscReal n[3], PetscReal depth, ConvexPointModel model, ConvexContact *c, PetscBool *ok);

@@ -207,6 +207,49 @@ static void collect(const Cand *C, const Frame *F, PetscReal lo, PetscReal hi, P
     if (C->h[i] >= lo - F->eps && C->h[i] <= hi + F->eps) P->p[P->k][0] = C->u[i], P->p[P->k][1] = C->v[i], P->k++;
 }
 
+/* Whether the 2-D point c lies on P (a hull: a point, a segment or a counter-clockwise polygon)
+ * to the tolerances. */
+static PetscBool inside2(const Poly2 *P, const PetscReal c[2], PetscReal eps, PetscReal eps2)
+{
+  if (P->k == 1) return (PetscBool)(PetscSqr(c[0] - P->p[0][0]) + PetscSqr(c[1] - P->p[0][1]) <= eps * eps);
+  if (P->k == 2) {
+    const PetscReal d[2] = {P->p[1][0] - P->p[0][0], P->p[1][1] - P->p[0][1]}, l2 = d[0] * d[0] + d[1] * d[1];
+    PetscReal       t    = l2 > 0 ? ((c[0] - P->p[0][0]) * d[0] + (c[1] - P->p[0][1]) * d[1]) / l2 : 0;
+    t                    = PetscMax(0, PetscMin(1, t));
+    return (PetscBool)(PetscSqr(c[0] - P->p[0][0] - t * d[0]) + PetscSqr(c[1] - P->p[0][1] - t * d[1]) <= eps * eps);
+  }
+  for (PetscInt i = 0; i < P->k; i++)
+    if (cross2(P->p[i], P->p[(i + 1) % P->k], c) < -eps2) return PETSC_FALSE;
+  return PETSC_TRUE;
+}
+
+/* The 2-D contact point c of the features PA and PB (hulled here). check: only a point that lies
+ * on both features is accepted (a single vertex or a segment crossing can miss the other feature
+ * when the normal is not the exact minimum-penetration one). */
+static PetscBool features_point(Poly2 *PA, Poly2 *PB, PetscReal eps, PetscReal eps2, PetscBool check, PetscReal c[2])
+{
+  if (check || (PA->k > 1 && PB->k > 1)) { /* else a single vertex on one side is the point (vertex-face) */
+    hull2(PA, eps, eps2);
+    hull2(PB, eps, eps2);
+  }
+  if (PA->k == 1) {
+    c[0] = PA->p[0][0], c[1] = PA->p[0][1];
+    return (PetscBool)(!check || inside2(PB, c, eps, eps2));
+  }
+  if (PB->k == 1) {
+    c[0] = PB->p[0][0], c[1] = PB->p[0][1];
+    return (PetscBool)(!check || inside2(PA, c, eps, eps2));
+  }
+  if (PA->k == 2 && PB->k == 2) {
+    segments2(PA, PB, eps, c);
+    return (PetscBool)(!check || (inside2(PA, c, eps, eps2) && inside2(PB, c, eps, eps2)));
+  }
+  Poly2 *S = PA->k >= PB->k ? PB : PA, *C = PA->k >= PB->k ? PA : PB;
+  if (!clip2(S, C, eps2)) return PETSC_FALSE;
+  centroid2(S, eps2, c);
+  return PETSC_TRUE;
+}
+
 PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, PetscBool support, PetscReal point[3])
 {
   Poly2           PA, PB;
@@ -233,20 +276,16 @@ PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const Pet
    * are meaningless. 1% leaves room for the slower convergence of the normal on curved
    * surfaces (cylinder). */
   if (hA - hB > 1.01 * depth + F.eps) return PETSC_FALSE;
-  collect(&CA, &F, support ? hA : hB, hA, &PA); /* support: the vertices on A's support plane */
-  collect(&CB, &F, hB, support ? hB : hA, &PB);
-  if (!PA.k || !PB.k) return PETSC_FALSE;
-  if (PA.k > 1 && PB.k > 1) { /* a single vertex on either side is the point (vertex-face) */
-    hull2(&PA, F.eps, eps2);
-    hull2(&PB, F.eps, eps2);
+  PetscBool found = PETSC_FALSE;
+  if (support) { /* the vertices on each body's own support plane; the patch if they miss */
+    collect(&CA, &F, hA, hA, &PA);
+    collect(&CB, &F, hB, hB, &PB);
+    found = (PetscBool)(PA.k && PB.k && features_point(&PA, &PB, F.eps, eps2, PETSC_TRUE, c));
   }
-  if (PA.k == 1) c[0] = PA.p[0][0], c[1] = PA.p[0][1];
-  else if (PB.k == 1) c[0] = PB.p[0][0], c[1] = PB.p[0][1];
-  else if (PA.k == 2 && PB.k == 2) segments2(&PA, &PB, F.eps, c);
-  else {
-    Poly2 *S = PA.k >= PB.k ? &PB : &PA, *C = PA.k >= PB.k ? &PA : &PB;
-    if (!clip2(S, C, eps2)) return PETSC_FALSE;
-    centroid2(S, eps2, c);
+  if (!found) {
+    collect(&CA, &F, hB, hA, &PA);
+    collect(&CB, &F, hB, hA, &PB);
+    if (!PA.k || !PB.k || !features_point(&PA, &PB, F.eps, eps2, PETSC_FALSE, c)) return PETSC_FALSE;
   }
   for (int k = 0; k < 3; k++) point[k] = F.o[k] + c[0] * F.t1[k] + c[1] * F.t2[k] + 0.5 * (hA + hB) * F.n[k];
   return PETSC_TRUE;

@@ -110,13 +110,8 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
   PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, NULL));
   PetscCall(PetscOptionsBool("-dem_convex_sat", "Polyhedron pairs with at most -dem_convex_sat_axes candidate axes by the exact separating-axis test instead of libccd's MPR (default true)", NULL, dem->convex_sat, &dem->convex_sat, NULL));
-  PetscCall(PetscOptionsInt("-dem_convex_sat_axes", "Most candidate axes (distinct face normals of both + edge-direction pairs) of a pair that takes the separating-axis test: 16 = box-box; 58 box-icosahedron, 245 icosahedron pairs (exact, ~10x MPR's cost)", NULL, dem->convex_sat_axes, &dem->convex_sat_axes, NULL));
-  {
-    const char *const pts[] = {"patch", "support"};
-    PetscInt          pm    = (PetscInt)dem->convex_point;
-    PetscCall(PetscOptionsEList("-dem_convex_contact_point", "Pair contact point: patch (centroid of the contact patch, smooth) or support (the deepest vertex / edge crossing: the energy's own gradient, conserves energy)", NULL, pts, 2, pts[pm], &pm, NULL));
-    dem->convex_point = (ConvexPointModel)pm;
-  }
+  PetscCall(PetscOptionsInt("-dem_convex_sat_axes", "Most candidate axes (distinct face normals of both + edge-direction pairs) of a pair that takes the separating-axis test: 16 = box-box; 58 box-icosahedron, 245 icosahedron pairs (exact, ~9x MPR's cost in a dense bed)", NULL, dem->convex_sat_axes, &dem->convex_sat_axes, NULL));
+  PetscCall(PetscOptionsEnum("-dem_convex_contact_point", "Pair contact point: patch (centroid of the contact patch, smooth) or support (the deepest vertex / edge crossing: the energy's own gradient, conserves energy with the exact depth)", NULL, ConvexPointModels, (PetscEnum)dem->convex_point, (PetscEnum *)&dem->convex_point, NULL));
   PetscCall(PetscOptionsBool("-dem_deterministic", "Full neighbour rows summed in id order: results bitwise independent of the rank count (about 2x the contact cost)", NULL, dem->full_list, &dem->full_list, NULL));
   PetscCall(PetscOptionsInt("-dem_check_every", "Debug: check the global particle count and id checksum every this many steps (0 = never)", NULL, dem->check_every, &dem->check_every, NULL));
   PetscCall(PetscOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, dem->sort_interval, &dem->sort_interval, NULL));

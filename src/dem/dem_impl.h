@@ -268,8 +268,18 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c *
 PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
 PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
 PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* contacts_convex.c */
-PetscBool      DemShapeBoxFrame(DemShape *sh);                     /* sat_box.c */
-PetscBool      DemSatBox(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double *depth, double n[3], double u[3]);
+/* A body in a pair test (contacts_convex.c, sat_box.c): shape, pose, rotation (body -> world). */
+typedef struct {
+  const DemShape *s;
+  ConvexPose      pose;
+  double          R[9];
+} DemBody;
+/* The least overlap of a pair found so far, and its axis oriented from i to j. */
+typedef struct {
+  double depth, n[3];
+} DemSatMin;
+PetscBool DemShapeBoxFrame(DemShape *sh);                                                            /* sat_box.c */
+PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3]); /* sat_box.c */
 PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c); /* contacts_convex.c: the forces' narrow phase */
 PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* contacts_convex.c */
 PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* diag_convex.c */

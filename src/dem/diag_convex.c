@@ -31,14 +31,12 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *s = &dem->shp[dem->shape[i]];
     double          R[9], wb[3];
-    ConvexPose      pi;
     convex_quat_to_matrix(dem->q + 4 * i, R);
     convex_mat_tvec(R, dem->w + 3 * i, wb);
     r[0] += 0.5 * s->m * dem_dot(dem->v + 3 * i, dem->v + 3 * i);
     for (int k = 0; k < 3; k++) r[1] += 0.5 * s->J[k] * wb[k] * wb[k];
     r[2] -= s->m * dem_dot(dem->g, dem->x + 3 * i);
     r[4] += (double)dem->id[i];
-    dem_pose_of(dem, i, &pi);
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
       const PetscInt  j  = dem->nl.nbr[a];
       const DemShape *t  = &dem->shp[dem->shape[j]];

@@ -23,6 +23,8 @@
 #include "dem/convex_impl.h"
 #include "dem/convex_quat.h"
 
+const char *const ConvexPointModels[] = {"patch", "support", "ConvexPointModel", "CONVEX_POINT_", NULL};
+
 /* Body-frame support point of a shape in direction d (body frame). */
 static inline void convex_support_body(const ConvexShape *s, const PetscReal d[3], PetscReal out[3])
 {

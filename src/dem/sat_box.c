@@ -41,7 +41,7 @@ PetscBool DemShapeBoxFrame(DemShape *sh)
 /* One axis (world, |axis|^2 = l2 > 0) with the extents ri + rj of its unit version times its
  * length: as dem_sat_axis, PETSC_TRUE when it separates (u = the unit axis). The square root is
  * taken only for a separating axis or a new least overlap. */
-static inline PetscBool dem_box_axis(const double axis[3], double l2, double rij, const double d[3], double *best, double n[3], double u[3])
+static inline PetscBool dem_box_axis(const double axis[3], double l2, double rij, const double d[3], DemSatMin *m, double u[3])
 {
   const double du = dem_dot(d, axis), s = du >= 0 ? 1.0 : -1.0, ov = rij - s * du;
   if (ov < 0) { /* apart along it */
@@ -49,18 +49,22 @@ static inline PetscBool dem_box_axis(const double axis[3], double l2, double rij
     for (int k = 0; k < 3; k++) u[k] = axis[k] * il;
     return PETSC_TRUE;
   }
-  if (ov * ov < *best * *best * l2) { /* the overlap ov / |axis| is the least so far */
+  if (ov * ov < m->depth * m->depth * l2) { /* the overlap ov / |axis| is the least so far */
     const double il = 1 / sqrt(l2);
-    *best = ov * il;
-    for (int k = 0; k < 3; k++) n[k] = s * axis[k] * il;
+    m->depth        = ov * il;
+    for (int k = 0; k < 3; k++) m->n[k] = s * axis[k] * il;
   }
   return PETSC_FALSE;
 }
 
-PetscBool DemSatBox(const DemShape *si, const double *Ri, const DemShape *sj, const double *Rj, const double d[3], double *depth, double n[3], double u[3])
+/* The separating-axis test of two boxes i (at the origin) and j (at d): PETSC_FALSE with the
+ * first separating axis in u, or PETSC_TRUE with the least overlap and its axis in m (u = 0). */
+PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3])
 {
-  const double *h = si->bh, *g = sj->bh;
-  double        A[3][3], B[3][3], C[3][3], aC[3][3], best = 1e150; /* best^2 stays finite */
+  const DemShape *si = bi->s, *sj = bj->s;
+  const double   *Ri = bi->R, *Rj = bj->R, *h = si->bh, *g = sj->bh;
+  double          A[3][3], B[3][3], C[3][3], aC[3][3];
+  m->depth = 1e150; /* its square stays finite */
 
   for (int a = 0; a < 3; a++) { /* world axes: A_a = Ri fn_a, B_b = Rj fn_b */
     const double *fa = si->fn + 3 * a, *fb = sj->fn + 3 * a;
@@ -75,9 +79,9 @@ PetscBool DemSatBox(const DemShape *si, const double *Ri, const DemShape *sj, co
       aC[a][b] = PetscAbsReal(C[a][b]);
     }
   for (int a = 0; a < 3; a++)
-    if (dem_box_axis(A[a], 1, h[a] + g[0] * aC[a][0] + g[1] * aC[a][1] + g[2] * aC[a][2], d, &best, n, u)) return PETSC_FALSE;
+    if (dem_box_axis(A[a], 1, h[a] + g[0] * aC[a][0] + g[1] * aC[a][1] + g[2] * aC[a][2], d, m, u)) return PETSC_FALSE;
   for (int b = 0; b < 3; b++)
-    if (dem_box_axis(B[b], 1, h[0] * aC[0][b] + h[1] * aC[1][b] + h[2] * aC[2][b] + g[b], d, &best, n, u)) return PETSC_FALSE;
+    if (dem_box_axis(B[b], 1, h[0] * aC[0][b] + h[1] * aC[1][b] + h[2] * aC[2][b] + g[b], d, m, u)) return PETSC_FALSE;
   for (int a = 0; a < 3; a++) {
     const int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
     for (int b = 0; b < 3; b++) {
@@ -87,10 +91,9 @@ PetscBool DemSatBox(const DemShape *si, const double *Ri, const DemShape *sj, co
       if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
       dem_cross(A[a], B[b], L);
       const double rij = h[a1] * aC[a2][b] + h[a2] * aC[a1][b] + g[b1] * aC[a][b2] + g[b2] * aC[a][b1];
-      if (dem_box_axis(L, dem_dot(L, L), rij, d, &best, n, u)) return PETSC_FALSE;
+      if (dem_box_axis(L, dem_dot(L, L), rij, d, m, u)) return PETSC_FALSE;
     }
   }
-  *depth = best;
   u[0] = u[1] = u[2] = 0;
   return PETSC_TRUE;
 }

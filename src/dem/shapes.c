@@ -265,6 +265,7 @@ PetscErrorCode DemShapesDestroy(Dem dem)
     dem->shp[s].nen = 0;
     dem->shp[s].cvx = NULL;
     dem->shp[s].nfn = 0;
+    dem->shp[s].box = PETSC_FALSE;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -75,7 +75,7 @@ struct _p_Fluid {
   PetscObjectState veps_state, vbeta_state;
   PetscReal  dt_vmat;
   PetscLogEvent ev_predict, ev_poisson, ev_correct;
-  PetscScalar  *advbuf; /* advection: one flux per ghosted face point (momentum.c) */
+  PetscScalar  *advbuf; /* advection (momentum.c): per ghosted face point, a flux, then a mass flux */
   PetscInt      advbuf_n;
 };
 

@@ -11,15 +11,15 @@
 #include "fluid/fluid_impl.h"
 
 /* Value of u_d on the interface between L and R = L+e given the neighbours LL = L-e and
- * RR = R+e and the sign of the flux through it (van Leer limited slope, upwind side). Written
- * without branches (the signs are data-dependent in a bubbling bed): both quotients are formed
- * and the one that applies kept, so a 0/0 on the unused side never reaches the result. */
+ * RR = R+e and the sign of the flux through it (van Leer limited slope, upwind side). The
+ * quotient is formed only where the slopes agree (never 0/0, also under -fp_trap). */
 static inline PetscScalar fluid_tvd_face(PetscScalar LL, PetscScalar L, PetscScalar R, PetscScalar RR, PetscScalar F)
 {
-  const PetscBool   pos = (PetscBool)(F >= 0);
-  const PetscScalar up = pos ? L : R, dn = pos ? R : L, dd = pos ? L - LL : R - RR;
-  const PetscScalar D = dn - up, r = dd * D, q = r / (dd + D);
-  return up + (r > 0 ? q : 0);
+  PetscScalar up, dn, dd;
+  if (F >= 0) { up = L; dn = R; dd = L - LL; }
+  else { up = R; dn = L; dd = R - RR; }
+  const PetscScalar D = dn - up;
+  return up + (dd * D > 0 ? dd * D / (dd + D) : 0);
 }
 
 /* rho F_m v_m at the lower e-face of the control volume around the d-face at point f: the flux
