@@ -7,17 +7,7 @@
  *    rho = 1000 kg/m^3, eps = 0.6 uniform. The fluid stays at rest and the pressure balances
  *    the weight, dp/dz = rho eps g_z: after 20 steps max |u| < 1e-10 m/s and the pressure
  *    gradient between neighbouring cells matches rho eps g_z to 1e-10 relative. */
-#include "fluid/fluid.h"
-
-static PetscErrorCode NewFluid(Domain *dom, Fluid *fl)
-{
-  PetscFunctionBeginUser;
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, dom));
-  PetscCall(FluidCreate(dom, fl));
-  PetscCall(FluidSetFromOptions(*fl));
-  PetscCall(FluidSetUp(*fl));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
+#include "fluid_common.h"
 
 static void Plug(const PetscReal x[3], PetscReal v[3], void *ctx)
 {
@@ -36,7 +26,7 @@ static PetscErrorCode RunSlip(PetscReal *err)
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_ylo", "slip"));
   PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_yhi", "slip"));
-  PetscCall(NewFluid(&dom, &fl));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
   for (PetscInt n = 0; n < 50; n++) PetscCall(FluidStep(fl, 0.01, &st));
   PetscCall(FluidVelocityError(fl, Plug, &t, &l2, err));
   *err /= t;
@@ -59,7 +49,7 @@ static PetscErrorCode RunHydrostatic(PetscReal *umax, PetscReal *gerr)
   PetscReal          e = 0, target = 1000 * 0.6 * -9.81;
 
   PetscFunctionBeginUser;
-  PetscCall(NewFluid(&dom, &fl));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
   PetscCall(FluidSetPorosityFunction(fl, Porosity, NULL));
   PetscCall(FluidInitPorosity(fl));
   for (PetscInt n = 0; n < 20; n++) PetscCall(FluidStep(fl, 0.01, &st));

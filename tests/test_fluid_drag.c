@@ -15,7 +15,7 @@
  * 3. Continuity with a sink in the Poisson coefficients: inlet/outlet channel with
  *    beta = 1e3 (a cell field moved to the faces by FluidCellsToFaces) and eps = 0.4 beyond
  *    x = 0.5; max |div(eps u)| relative to U/h < 1e-9. */
-#include "fluid/fluid.h"
+#include "fluid_common.h"
 
 static PetscReal Lambda = 4, Gmag = 0.25, Beta = 0.16;
 
@@ -24,16 +24,6 @@ static void Brinkman(const PetscReal x[3], PetscReal v[3], void *ctx)
   (void)ctx;
   v[0] = Gmag / Beta * (1 - PetscCoshReal(Lambda * (x[1] - 0.5)) / PetscCoshReal(Lambda * 0.5));
   v[1] = v[2] = 0;
-}
-
-static PetscErrorCode NewFluid(Domain *dom, Fluid *fl)
-{
-  PetscFunctionBeginUser;
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, dom));
-  PetscCall(FluidCreate(dom, fl));
-  PetscCall(FluidSetFromOptions(*fl));
-  PetscCall(FluidSetUp(*fl));
-  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode RunBrinkman(PetscInt N, PetscReal *err)
@@ -48,7 +38,7 @@ static PetscErrorCode RunBrinkman(PetscInt N, PetscReal *err)
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(buf, sizeof buf, "%d", (int)N));
   PetscCall(PetscOptionsSetValue(NULL, "-da_grid_y", buf));
-  PetscCall(NewFluid(&dom, &fl));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
   PetscCall(FluidGetDragCoefficient(fl, &beta));
   PetscCall(VecSet(beta, Beta));
   for (PetscInt n = 0; n < 600; n++) PetscCall(FluidStep(fl, 0.1, &st));
@@ -70,7 +60,7 @@ static PetscErrorCode RunStiff(PetscReal *err)
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsSetValue(NULL, "-domain_periodic_y", "1"));
   PetscCall(PetscOptionsSetValue(NULL, "-da_grid_y", "4"));
-  PetscCall(NewFluid(&dom, &fl));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
   PetscCall(FluidGetDragCoefficient(fl, &beta));
   PetscCall(FluidGetSolidVelocity(fl, &us));
   PetscCall(VecSet(beta, 1e4));
@@ -107,7 +97,7 @@ static PetscErrorCode RunPorousPlug(PetscReal *res)
   PetscCall(PetscOptionsSetValue(NULL, "-fluid_bc_xhi", "outlet"));
   PetscCall(PetscOptionsSetValue(NULL, "-da_grid_x", "32"));
   PetscCall(PetscOptionsSetValue(NULL, "-da_grid_y", "16"));
-  PetscCall(NewFluid(&dom, &fl));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
   /* beta as a cell field, as the coupling will compute it, moved to the faces */
   PetscCall(FluidGetPorosity(fl, &eps));
   PetscCall(VecDuplicate(eps, &bcell));

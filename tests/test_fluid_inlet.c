@@ -10,7 +10,7 @@
  *   linear: U = 1 m/s up to 0.1 s, then linear to 2 m/s at 0.3 s and 2 after.
  * The Poisson tolerance is 1e-12, the bound 1e-9. On 2 ranks the column is split along z, so
  * inlet and outlet lie on different ranks. */
-#include "fluid/fluid.h"
+#include "fluid_common.h"
 
 static PetscReal Band(const PetscReal x[3], void *ctx) { (void)ctx; return x[2] > 0.6 && x[2] < 1.4 ? 0.5 : 1.0; }
 
@@ -65,12 +65,7 @@ static PetscErrorCode Run(PetscBool linear, PetscReal *err, PetscReal *Ulast)
   if (size == 2) PetscCall(PetscOptionsInsertString(NULL, "-da_processors_x 1 -da_processors_y 1 -da_processors_z 2"));
   if (linear) PetscCall(PetscOptionsInsertString(NULL, "-fluid_bc_zlo_velocity_table 0.1,0,0,1,0.3,0,0,2 -fluid_inlet_interpolation linear"));
   else PetscCall(PetscOptionsInsertString(NULL, "-fluid_bc_zlo_velocity_table 0.105,0,0,1.5,0.25,0,0,0.5"));
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
-  PetscCall(FluidCreate(&dom, &fl));
-  PetscCall(FluidSetFromOptions(fl));
-  PetscCall(FluidSetUp(fl));
-  PetscCall(FluidSetPorosityFunction(fl, Band, NULL));
-  PetscCall(FluidInitPorosity(fl));
+  PetscCall(TestFluidCreate(1.0, Band, NULL, &dom, &fl));
   *err = 0;
   for (PetscInt n = 1; n <= 40; n++) {
     PetscReal U, Ue = Expected(linear, 0.01 * n);

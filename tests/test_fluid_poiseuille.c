@@ -6,7 +6,7 @@
  * is below 0.5% at 32 cells across, and the error falls at second order over 16, 32, 64 cells
  * (wall ghost values carry an O(h^2) error; interior differences of a parabola are exact).
  * The decomposition check (1, 2, 4 ranks) is test_fluid_ranks.c. */
-#include "fluid/fluid.h"
+#include "fluid_common.h"
 
 static void Exact(const PetscReal x[3], PetscReal v[3], void *ctx)
 {
@@ -34,10 +34,7 @@ static PetscErrorCode RunChannel(PetscInt N, PetscReal *err, PetscInt *steps)
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(buf, sizeof buf, "%d", (int)N));
   PetscCall(SetOpt("-da_grid_y", buf));
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 0.5, 1, &dom));
-  PetscCall(FluidCreate(&dom, &fl));
-  PetscCall(FluidSetFromOptions(fl));
-  PetscCall(FluidSetUp(fl));
+  PetscCall(TestFluidCreate(0.5, NULL, NULL, &dom, &fl));
   /* explicit viscous limit 2 dt nu sum 1/h^2 <= 0.5: hx = hz = 0.5 */
   dt = 0.45 / (2.0 * (1.0 / (h * h) + 8.0));
   *steps = (PetscInt)PetscCeilReal(T / dt);

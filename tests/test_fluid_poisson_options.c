@@ -13,7 +13,7 @@
  *   - builds: 60 with lag 0, 3 with the default lag 20 (at the 1st, 22nd and 43rd change: the
  *     iterations stay flat, so the growth rule does not fire), 1 unbounded; PETSc's own count of
  *     PCSetUp events agrees. */
-#include "fluid/fluid.h"
+#include "fluid_common.h"
 
 typedef struct {
   PetscReal t;
@@ -63,12 +63,7 @@ static PetscErrorCode Run(const char *lag, PetscBool mg, Result *r)
   if (mg)
     PetscCall(PetscOptionsInsertString(NULL, "-fluid_poisson_pc_type mg -fluid_poisson_pc_mg_levels 2 -fluid_poisson_pc_mg_galerkin pmat "
                                              "-fluid_poisson_mg_levels_ksp_type chebyshev -fluid_poisson_mg_levels_pc_type jacobi"));
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
-  PetscCall(FluidCreate(&dom, &fl));
-  PetscCall(FluidSetFromOptions(fl));
-  PetscCall(FluidSetUp(fl));
-  PetscCall(FluidSetPorosityFunction(fl, BumpEps, &b));
-  PetscCall(FluidInitPorosity(fl));
+  PetscCall(TestFluidCreate(1.0, BumpEps, &b, &dom, &fl));
   r->div = 0;
   for (PetscInt n = 1; n <= 60; n++) {
     b.t = 0.01 * n;

@@ -10,7 +10,7 @@
  *    a periodic channel with central advection. With U = eps u the equations for uniform eps are
  *    rho dU/dt = -grad p + mu lap U, those of eps = 1, so eps u at eps = 0.4 (inlet velocity
  *    U/eps) must equal u at eps = 1 and the pressures agree, to roundoff. */
-#include "fluid/fluid.h"
+#include "fluid_common.h"
 
 typedef struct {
   PetscReal t, c;
@@ -89,12 +89,7 @@ static PetscErrorCode RunStep(void)
 
   PetscFunctionBeginUser;
   PetscCall(ChannelOptions("0.1,0,0"));
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
-  PetscCall(FluidCreate(&dom, &fl));
-  PetscCall(FluidSetFromOptions(fl));
-  PetscCall(FluidSetUp(fl));
-  PetscCall(FluidSetPorosityFunction(fl, Step, NULL));
-  PetscCall(FluidInitPorosity(fl));
+  PetscCall(TestFluidCreate(1.0, Step, NULL, &dom, &fl));
   for (PetscInt n = 0; n < 100; n++) {
     PetscCall(FluidStep(fl, 2e-3, &st));
     PetscCall(PlaneFluxDeviation(fl, &dom, &dev));
@@ -117,12 +112,7 @@ static PetscErrorCode RunBump(void)
 
   PetscFunctionBeginUser;
   PetscCall(ChannelOptions("0.1,0,0"));
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
-  PetscCall(FluidCreate(&dom, &fl));
-  PetscCall(FluidSetFromOptions(fl));
-  PetscCall(FluidSetUp(fl));
-  PetscCall(FluidSetPorosityFunction(fl, BumpEps, &b));
-  PetscCall(FluidInitPorosity(fl));
+  PetscCall(TestFluidCreate(1.0, BumpEps, &b, &dom, &fl));
   PetscCall(FluidGetPorosity(fl, &eps));
   PetscCall(FluidGetPorosityOld(fl, &eps0));
   PetscCall(VecDuplicate(eps, &de));
@@ -150,10 +140,7 @@ static PetscErrorCode RunUniform(PetscReal e, PetscInt nsteps, PetscReal dt, Vec
   Vec        u, p;
 
   PetscFunctionBeginUser;
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
-  PetscCall(FluidCreate(&dom, &fl));
-  PetscCall(FluidSetFromOptions(fl));
-  PetscCall(FluidSetUp(fl));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
   if (e != 1.0) PetscCall(FluidSetPorosityFunction(fl, Uniform, &e));
   PetscCall(FluidInitPorosity(fl));
   for (PetscInt n = 0; n < nsteps; n++) PetscCall(FluidStep(fl, dt, &st));

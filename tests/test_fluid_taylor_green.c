@@ -7,7 +7,7 @@
  * second order over 16, 32, 64 cells. Checks: max and RMS velocity error relative to F(T), order
  * >= 1.9 for central advection; the TVD option is reported and must converge at order >= 1.5
  * (the van Leer limiter clips the smooth extrema). */
-#include "fluid/fluid.h"
+#include "fluid_common.h"
 
 static void Exact(const PetscReal x[3], PetscReal v[3], void *ctx)
 {
@@ -32,10 +32,7 @@ static PetscErrorCode RunVortex(PetscInt N, const char *adv, PetscReal *linf, Pe
   PetscCall(PetscOptionsSetValue(NULL, "-da_grid_x", buf));
   PetscCall(PetscOptionsSetValue(NULL, "-da_grid_y", buf));
   PetscCall(PetscOptionsSetValue(NULL, "-fluid_advection", adv));
-  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
-  PetscCall(FluidCreate(&dom, &fl));
-  PetscCall(FluidSetFromOptions(fl));
-  PetscCall(FluidSetUp(fl));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
   PetscCall(FluidSetVelocityFunction(fl, Exact, &F));
   steps = (PetscInt)PetscCeilReal(T / (0.5 * h * h));
   dt    = T / steps;
