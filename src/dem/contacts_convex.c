@@ -174,41 +174,65 @@ static PetscBool dem_sat(const DemBody *bi, const DemBody *bj, const double d[3]
   return PETSC_TRUE;
 }
 
-/* Particle i as a body of the pair tests. */
-static inline void dem_body(const Dem dem, PetscInt i, DemBody *b)
+/* Particle i as a body of the pair tests, its rotation matrix in R (9). */
+static inline void dem_body(const Dem dem, PetscInt i, const double *R, DemBody *b)
 {
   b->s = &dem->shp[dem->shape[i]];
-  for (int k = 0; k < 3; k++) b->pose.x[k] = dem->x[3 * i + k];
-  for (int k = 0; k < 4; k++) b->pose.q[k] = dem->q[4 * i + k];
-  dem_rotation(b->pose.q, b->R);
+  b->x = dem->x + 3 * i;
+  b->q = dem->q + 4 * i;
+  b->R = R;
+}
+
+static inline ConvexPose dem_pose(const DemBody *b)
+{
+  ConvexPose p = {{b->x[0], b->x[1], b->x[2]}, {b->q[0], b->q[1], b->q[2], b->q[3]}};
+  return p;
+}
+
+static inline ConvexBody dem_convex_body(const DemBody *b)
+{
+  ConvexBody c = {.s = b->s->cvx};
+  for (int k = 0; k < 3; k++) c.x[k] = b->x[k];
+  for (int k = 0; k < 9; k++) c.R[k] = b->R[k];
+  return c;
 }
 
 /* The narrow phase of one pair whose bounding spheres overlap, d = x_j - x_i. u: the pair's
- * cached separating axis (updated), or NULL for none. The forces and the statistics
- * (diag_convex.c) both call it, so the elastic energy is that of the depth the forces used. */
+ * cache entry (updated): u[0..2] a separating axis (0: none), u[3] = 1 if the pair touched at
+ * the last step (the separating tests are then skipped: they would fail); NULL for none. The
+ * forces and the statistics (diag_convex.c) both call it, so the elastic energy is that of the
+ * depth the forces used. */
 static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const DemBody *bj, const double d[3], double *u, ConvexContact *c)
 {
-  double    none[3] = {0, 0, 0};
+  double    none[4] = {0, 0, 0, 0};
   DemSatMin m;
 
   PetscFunctionBeginUser;
   if (!u) u = none;
   c->overlap = PETSC_FALSE;
-  if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(bi, bj, d, u)) PetscFunctionReturn(PETSC_SUCCESS);
-  if (dem_apart(bi, bj, d, d)) {
-    for (int k = 0; k < 3; k++) u[k] = d[k];
-    PetscFunctionReturn(PETSC_SUCCESS);
+  if (u[3] == 0) {
+    if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(bi, bj, d, u)) PetscFunctionReturn(PETSC_SUCCESS);
+    if (dem_apart(bi, bj, d, d)) {
+      for (int k = 0; k < 3; k++) u[k] = d[k];
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
   }
+  u[3]              = 0;
   const PetscBool sat = dem_sat_pair(dem, bi->s, bj->s);
   if (sat) {
-    PetscBool ok = PETSC_FALSE;
     if (!dem_sat(bi, bj, d, &m, u)) PetscFunctionReturn(PETSC_SUCCESS); /* u: the separating axis found */
-    if (m.depth > 0) PetscCall(ConvexContactPoint(bi->s->cvx, &bi->pose, bj->s->cvx, &bj->pose, m.n, m.depth, dem->convex_point, c, &ok));
-    if (ok) PetscFunctionReturn(PETSC_SUCCESS);
+    if (m.depth > 0) {
+      const ConvexBody A = dem_convex_body(bi), B = dem_convex_body(bj);
+      if (ConvexBodiesContactPoint(&A, &B, m.n, m.depth, dem->convex_point, c)) {
+        u[3] = 1;
+        PetscFunctionReturn(PETSC_SUCCESS);
+      }
+    }
     /* touching at 0 depth, or no supporting feature: MPR below (u is 0) */
   }
-  PetscCall(ConvexCollideWith(bi->s->cvx, &bi->pose, bj->s->cvx, &bj->pose, dem->convex_point, c)); /* MPR's depth and normal */
-  if (c->overlap) u[0] = u[1] = u[2] = 0;
+  const ConvexPose pi = dem_pose(bi), pj = dem_pose(bj);
+  PetscCall(ConvexCollideWith(bi->s->cvx, &pi, bj->s->cvx, &pj, dem->convex_point, c)); /* MPR's depth and normal */
+  if (c->overlap) u[0] = u[1] = u[2] = 0, u[3] = 1;
   else if (!sat) (void)dem_sat(bi, bj, d, &m, u); /* the axis to keep, or u = 0 */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -219,14 +243,32 @@ PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexConta
   const DemShape *si = &dem->shp[dem->shape[i]], *sj = &dem->shp[dem->shape[j]];
   const double    rs = si->r + sj->r;
   const double    d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
+  double          Ri[9], Rj[9];
   DemBody         bi, bj;
 
   PetscFunctionBeginUser;
   c->overlap = PETSC_FALSE;
   if (dem_dot(d, d) >= rs * rs) PetscFunctionReturn(PETSC_SUCCESS);
-  dem_body(dem, i, &bi);
-  dem_body(dem, j, &bj);
+  dem_rotation(dem->q + 4 * i, Ri);
+  dem_rotation(dem->q + 4 * j, Rj);
+  dem_body(dem, i, Ri, &bi);
+  dem_body(dem, j, Rj, &bj);
   PetscCall(dem_convex_narrow(dem, &bi, &bj, d, NULL, c));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The rotation matrices of all particles, local and ghost, once per step (dem->rot). */
+static PetscErrorCode dem_rotations(Dem dem)
+{
+  const PetscInt nt = dem->n + dem->ng;
+
+  PetscFunctionBeginUser;
+  if (nt > dem->rot_cap) {
+    PetscCall(PetscFree(dem->rot));
+    dem->rot_cap = nt + nt / 4 + 64;
+    PetscCall(PetscMalloc1(9 * (size_t)dem->rot_cap, &dem->rot));
+  }
+  for (PetscInt i = 0; i < nt; i++) dem_rotation(dem->q + 4 * i, dem->rot + 9 * i);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -240,15 +282,16 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
   PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
   if (!dem->sepax || dem->sepax_build != nl->builds) { /* a new list: a new, empty cache */
     PetscCall(PetscFree(dem->sepax));
-    PetscCall(PetscCalloc1(3 * (size_t)nl->start[dem->n] + 3, &dem->sepax));
+    PetscCall(PetscCalloc1(4 * (size_t)nl->start[dem->n] + 4, &dem->sepax));
     dem->sepax_build = nl->builds;
   }
   ax = dem->sepax;
+  PetscCall(dem_rotations(dem));
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *si = &dem->shp[dem->shape[i]];
     DemBody         bi, bj;
     double          fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
-    dem_body(dem, i, &bi);
+    dem_body(dem, i, dem->rot + 9 * i, &bi);
     in.xi = dem->x + 3 * i;
     in.vi = dem->v + 3 * i;
     in.wi = dem->w + 3 * i;
@@ -264,8 +307,8 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      dem_body(dem, j, &bj);
-      PetscCall(dem_convex_narrow(dem, &bi, &bj, d, ax + 3 * a, &c));
+      dem_body(dem, j, dem->rot + 9 * j, &bj);
+      PetscCall(dem_convex_narrow(dem, &bi, &bj, d, ax + 4 * a, &c));
       if (!c.overlap) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
@@ -310,12 +353,12 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt i    = w->idx[a];
       double        *xi_t = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
-      DemBody        b;
+      const double  *x    = dem->x + 3 * i, *q = dem->q + 4 * i;
+      ConvexPose     pose = {{x[0], x[1], x[2]}, {q[0], q[1], q[2], q[3]}};
       ConvexContact  c;
       double         F[3], Ti[3], Tj[3];
-      dem_body(dem, i, &b);
-      PetscCall(ConvexCollidePlane(b.s->cvx, &b.pose, w->p, w->n, &c));
-      if (!c.overlap || !DemWallCovers(w, c.point, b.pose.x)) {
+      PetscCall(ConvexCollidePlane(dem->shp[dem->shape[i]].cvx, &pose, w->p, w->n, &c));
+      if (!c.overlap || !DemWallCovers(w, c.point, x)) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }

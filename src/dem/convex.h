@@ -42,6 +42,14 @@ typedef struct {
   PetscReal q[4]; /* unit quaternion (w,x,y,z), body -> world */
 } ConvexPose;
 
+/* A shape placed in the world: centre of mass x and rotation matrix R (body -> world, row-major,
+ * the matrix of the pose's quaternion). */
+typedef struct {
+  const ConvexShape *s;
+  PetscReal          x[3];
+  PetscReal          R[9];
+} ConvexBody;
+
 typedef struct {
   PetscBool overlap;   /* PETSC_FALSE: the other fields are zero */
   PetscReal depth;     /* overlap distance along normal, > 0 */
@@ -96,3 +104,7 @@ PetscErrorCode ConvexCollideWith(const ConvexShape *a, const ConvexPose *pa, con
  * *ok = PETSC_FALSE (c->overlap false) when n is not a supporting normal of the pair, and the
  * caller should then use ConvexCollideWith. */
 PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, const PetscReal n[3], PetscReal depth, ConvexPointModel model, ConvexContact *c, PetscBool *ok);
+
+/* ConvexContactPoint for bodies whose rotation matrices the caller holds: PETSC_TRUE with c
+ * filled, or PETSC_FALSE (c->overlap false). */
+PetscBool ConvexBodiesContactPoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, ConvexPointModel model, ConvexContact *c);

@@ -173,29 +173,37 @@ static void segments2(const Poly2 *A, const Poly2 *B, PetscReal eps, PetscReal c
   }
 }
 
-/* Candidate points of a body in frame F: height h along n and plane coordinates (u, v). */
+/* Candidate points of a body in frame F: the height h along n of each; the plane coordinates
+ * (u, v) are formed only for the points collect() keeps (b . ub + u0, b . vb + v0). */
 typedef struct {
-  PetscInt  k;
-  PetscReal h[CONVEX_FEATURE_MAX], u[CONVEX_FEATURE_MAX], v[CONVEX_FEATURE_MAX];
+  PetscInt     k;
+  PetscReal    h[CONVEX_FEATURE_MAX];
+  PetscReal    ub[3], vb[3], u0, v0; /* the plane axes in the body frame, the centre's (u, v) */
+  const ConvexBody *B;
+  Facing       f;
 } Cand;
 
 static PetscBool candidates(const ConvexBody *B, const PetscReal dir[3], const Frame *F, Cand *C)
 {
-  const Facing f = feature_facing(B, dir);
-  PetscReal    nb[3], ub[3], vb[3], off[3], h0, u0, v0;
+  PetscReal nb[3], off[3], h0;
 
   C->k = feature_count(B);
   if (C->k > CONVEX_FEATURE_MAX) return PETSC_FALSE;
+  C->B = B;
+  C->f = feature_facing(B, dir);
   convex_mat_tvec(B->R, F->n, nb); /* project in the body frame: h = b.(R^T n) + (x - o).n */
-  convex_mat_tvec(B->R, F->t1, ub);
-  convex_mat_tvec(B->R, F->t2, vb);
+  convex_mat_tvec(B->R, F->t1, C->ub);
+  convex_mat_tvec(B->R, F->t2, C->vb);
   convex_sub(B->x, F->o, off);
-  h0 = convex_dot(off, F->n), u0 = convex_dot(off, F->t1), v0 = convex_dot(off, F->t2);
-  for (PetscInt i = 0; i < C->k; i++) {
-    PetscReal b[3];
-    feature_point(B, f, i, b);
-    C->h[i] = h0 + convex_dot(b, nb), C->u[i] = u0 + convex_dot(b, ub), C->v[i] = v0 + convex_dot(b, vb);
-  }
+  h0 = convex_dot(off, F->n), C->u0 = convex_dot(off, F->t1), C->v0 = convex_dot(off, F->t2);
+  if (B->s->kind == CONVEX_CYLINDER)
+    for (PetscInt i = 0; i < C->k; i++) {
+      PetscReal b[3];
+      feature_point(B, C->f, i, b);
+      C->h[i] = h0 + convex_dot(b, nb);
+    }
+  else
+    for (PetscInt i = 0; i < C->k; i++) C->h[i] = h0 + convex_dot(B->s->v + 3 * i, nb);
   return PETSC_TRUE;
 }
 
@@ -204,7 +212,11 @@ static void collect(const Cand *C, const Frame *F, PetscReal lo, PetscReal hi, P
 {
   P->k = 0;
   for (PetscInt i = 0; i < C->k; i++)
-    if (C->h[i] >= lo - F->eps && C->h[i] <= hi + F->eps) P->p[P->k][0] = C->u[i], P->p[P->k][1] = C->v[i], P->k++;
+    if (C->h[i] >= lo - F->eps && C->h[i] <= hi + F->eps) {
+      PetscReal b[3];
+      feature_point(C->B, C->f, i, b);
+      P->p[P->k][0] = C->u0 + convex_dot(b, C->ub), P->p[P->k][1] = C->v0 + convex_dot(b, C->vb), P->k++;
+    }
 }
 
 /* Whether the 2-D point c lies on P (a hull: a point, a segment or a counter-clockwise polygon)

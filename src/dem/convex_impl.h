@@ -23,13 +23,6 @@ PetscErrorCode ConvexHullBuild(PetscInt n, const PetscReal x[], ConvexHull *hull
 /* "all vertices are coplanar" and the like, for error messages. */
 const char *ConvexHullStatusText(ConvexHullStatus s);
 
-/* A shape placed in the world: centre of mass x and rotation matrix R (body -> world). */
-typedef struct {
-  const ConvexShape *s;
-  PetscReal          x[3];
-  PetscReal          R[9];
-} ConvexBody;
-
 /* Contact point of two overlapping bodies given the contact normal n (unit, A to B) and the
  * depth: the centroid of the intersection of their contact features (convex_feature.c).
  * Returns PETSC_FALSE, leaving point untouched, when n is not a supporting normal of A - B

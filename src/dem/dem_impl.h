@@ -24,7 +24,7 @@ typedef struct {
   double  *en;          /* distinct edge directions of a polyhedron (body frame, 3 each) */
   PetscInt nen;
   PetscBool iso;        /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
-  PetscBool box;        /* a box: 8 vertices at +-bh[k] along the orthogonal fn[0..2] (sat_box.c) */
+  PetscBool box;        /* a box: 8 vertices at +-bh[k] along fn[0..2], a right-handed frame (sat_box.c) */
   double    bh[3];
 } DemShape;
 
@@ -191,8 +191,11 @@ struct _p_Dem {
   /* convex shapes (shapes.c): the table owns them; convex = the scene has any */
   ConvexShape   cvx[DEM_MAX_SHAPES];
   PetscBool     convex, random_orient;
-  double       *sepax;       /* per Verlet-list entry: a separating axis (world), 0 = none */
+  double       *sepax;       /* per Verlet-list entry: a separating axis (world), 0 = none, and
+                                a flag: touching at the last step (4 each) */
   PetscInt      sepax_build; /* the list build it belongs to */
+  double       *rot;         /* rotation matrices of all particles (9 each) for the pair loop */
+  PetscInt      rot_cap;
   /* walls */
   DemWall   wall[DEM_MAX_WALLS];
   PetscInt  nwall;
@@ -268,11 +271,11 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c *
 PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
 PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
 PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* contacts_convex.c */
-/* A body in a pair test (contacts_convex.c, sat_box.c): shape, pose, rotation (body -> world). */
+/* A body in a pair test (contacts_convex.c, sat_box.c): shape, centre, quaternion and its
+ * rotation matrix (body -> world), pointing into the particle arrays. */
 typedef struct {
   const DemShape *s;
-  ConvexPose      pose;
-  double          R[9];
+  const double   *x, *q, *R;
 } DemBody;
 /* The least overlap of a pair found so far, and its axis oriented from i to j. */
 typedef struct {

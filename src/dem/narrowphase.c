@@ -115,15 +115,22 @@ PetscErrorCode ConvexContactPoint(const ConvexShape *a, const ConvexPose *pa, co
   ConvexBody A, B;
 
   PetscFunctionBegin;
-  PetscCall(PetscMemzero(c, sizeof(*c)));
   convex_body_set(a, pa, &A);
   convex_body_set(b, pb, &B);
-  *ok = ConvexFeaturePoint(&A, &B, n, depth, (PetscBool)(model == CONVEX_POINT_SUPPORT), c->point);
-  if (!*ok) PetscFunctionReturn(PETSC_SUCCESS);
+  *ok = ConvexBodiesContactPoint(&A, &B, n, depth, model, c);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscBool ConvexBodiesContactPoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, ConvexPointModel model, ConvexContact *c)
+{
+  c->overlap = PETSC_FALSE;
+  c->depth   = 0;
+  for (int k = 0; k < 3; k++) c->normal[k] = c->point[k] = 0;
+  if (!ConvexFeaturePoint(A, B, n, depth, (PetscBool)(model == CONVEX_POINT_SUPPORT), c->point)) return PETSC_FALSE;
   c->overlap = PETSC_TRUE;
   c->depth   = depth;
   for (int k = 0; k < 3; k++) c->normal[k] = n[k];
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return PETSC_TRUE;
 }
 
 /* Depth-weighted rim of one end circle: centre e (depth de), radius r, in-plane unit u towards

@@ -13,11 +13,12 @@
  * r_i + r_j - |d . axis|. The axes are tried in dem_sat's order (faces of i, faces of j, edge
  * pairs) with its rules: the first separating axis is returned in u, otherwise the least overlap
  * and its axis oriented from i to j (edge pairs with |A_a x B_b|^2 < 1e-12 are skipped: the face
- * axes cover them). About 200 flops against 15 x two 8-vertex scans. */
+ * axes cover them). About 200 flops against 15 x two 8-vertex scans; an edge axis is formed
+ * only for the answer (DemSatBox). */
 #include "dem/dem_impl.h"
 
 /* The box frame of a polyhedron: PETSC_TRUE and sh->bh (half extents along sh->fn[0..2]) when it
- * is a box to 1e-12 of its bounding radius. */
+ * is a box to 1e-12 of its bounding radius; fn[2] is then turned to make fn0 x fn1 = fn2. */
 PetscBool DemShapeBoxFrame(DemShape *sh)
 {
   const ConvexShape *c   = sh->cvx;
@@ -34,37 +35,60 @@ PetscBool DemShapeBoxFrame(DemShape *sh)
     for (PetscInt v = 0; v < 8; v++)
       if (PetscAbsReal(PetscAbsReal(dem_dot(c->v + 3 * v, sh->fn + 3 * k)) - sh->bh[k]) > tol) return PETSC_FALSE;
   }
-  sh->box = PETSC_TRUE;
+  double f01[3];
+  dem_cross(sh->fn, sh->fn + 3, f01);
+  if (dem_dot(f01, sh->fn + 6) < 0) /* a right-handed frame (DemSatBox): the sign of an axis is free */
+    for (int k = 0; k < 3; k++) sh->fn[6 + k] = -sh->fn[6 + k];
+  sh->box   = PETSC_TRUE;
   return PETSC_TRUE;
 }
 
-/* One axis (world, |axis|^2 = l2 > 0) with the extents ri + rj of its unit version times its
- * length: as dem_sat_axis, PETSC_TRUE when it separates (u = the unit axis). The square root is
- * taken only for a separating axis or a new least overlap. */
-static inline PetscBool dem_box_axis(const double axis[3], double l2, double rij, const double d[3], DemSatMin *m, double u[3])
+/* The least overlap so far: ov / sqrt(l2) along axis number ax (0-2 faces of i, 3-5 faces of j,
+ * 6 + 3a + b the edge pair (a, b)), du its product with d. */
+typedef struct {
+  double ov, l2, du;
+  int    ax;
+} DemBoxMin;
+
+/* One axis number ax of squared length l2 > 0 whose product with d is du and whose extents
+ * (times its length) sum to rij: PETSC_TRUE when it separates; otherwise b keeps the least
+ * overlap, compared without a square root (ov^2 l2_best < ov_best^2 l2). */
+static inline PetscBool dem_box_axis(int ax, double du, double l2, double rij, DemBoxMin *b)
 {
-  const double du = dem_dot(d, axis), s = du >= 0 ? 1.0 : -1.0, ov = rij - s * du;
+  const double ov = rij - PetscAbsReal(du);
   if (ov < 0) { /* apart along it */
-    const double il = 1 / sqrt(l2);
-    for (int k = 0; k < 3; k++) u[k] = axis[k] * il;
+    b->ov = ov, b->l2 = l2, b->du = du, b->ax = ax;
     return PETSC_TRUE;
   }
-  if (ov * ov < m->depth * m->depth * l2) { /* the overlap ov / |axis| is the least so far */
-    const double il = 1 / sqrt(l2);
-    m->depth        = ov * il;
-    for (int k = 0; k < 3; k++) m->n[k] = s * axis[k] * il;
-  }
+  if (ov * ov * b->l2 < b->ov * b->ov * l2) b->ov = ov, b->l2 = l2, b->du = du, b->ax = ax;
   return PETSC_FALSE;
 }
 
+/* The world axis of b (unit): A_a, B_b or A_a x B_b / |A_a x B_b|. */
+static inline void dem_box_unit(double A[3][3], double B[3][3], const DemBoxMin *b, double a[3])
+{
+  if (b->ax < 3) for (int k = 0; k < 3; k++) a[k] = A[b->ax][k];
+  else if (b->ax < 6) for (int k = 0; k < 3; k++) a[k] = B[b->ax - 3][k];
+  else {
+    const double il = 1 / sqrt(b->l2);
+    dem_cross(A[(b->ax - 6) / 3], B[(b->ax - 6) % 3], a);
+    for (int k = 0; k < 3; k++) a[k] *= il;
+  }
+}
+
 /* The separating-axis test of two boxes i (at the origin) and j (at d): PETSC_FALSE with the
- * first separating axis in u, or PETSC_TRUE with the least overlap and its axis in m (u = 0). */
+ * first separating axis in u, or PETSC_TRUE with the least overlap and its axis in m (u = 0).
+ * The products with d of the edge axes come from those of i's axes, t_a = A_a . d:
+ *   A_a x B_b = sum_k C_kb A_a x A_k = C_a1b A_a2 - C_a2b A_a1
+ * (the box frame is right-handed, DemShapeBoxFrame); the world axis, and the square root of its
+ * length, are formed once, for the answer. */
 PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3])
 {
   const DemShape *si = bi->s, *sj = bj->s;
   const double   *Ri = bi->R, *Rj = bj->R, *h = si->bh, *g = sj->bh;
-  double          A[3][3], B[3][3], C[3][3], aC[3][3];
-  m->depth = 1e150; /* its square stays finite */
+  double          A[3][3], B[3][3], C[3][3], aC[3][3], t[3], w[3];
+  DemBoxMin       b = {.ov = 1e75, .l2 = 1, .du = 0, .ax = 0}; /* squares stay finite */
+  PetscBool       sep = PETSC_FALSE;
 
   for (int a = 0; a < 3; a++) { /* world axes: A_a = Ri fn_a, B_b = Rj fn_b */
     const double *fa = si->fn + 3 * a, *fb = sj->fn + 3 * a;
@@ -73,27 +97,35 @@ PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], Dem
       B[a][k] = Rj[3 * k] * fb[0] + Rj[3 * k + 1] * fb[1] + Rj[3 * k + 2] * fb[2];
     }
   }
-  for (int a = 0; a < 3; a++)
-    for (int b = 0; b < 3; b++) {
-      C[a][b]  = dem_dot(A[a], B[b]);
-      aC[a][b] = PetscAbsReal(C[a][b]);
-    }
-  for (int a = 0; a < 3; a++)
-    if (dem_box_axis(A[a], 1, h[a] + g[0] * aC[a][0] + g[1] * aC[a][1] + g[2] * aC[a][2], d, m, u)) return PETSC_FALSE;
-  for (int b = 0; b < 3; b++)
-    if (dem_box_axis(B[b], 1, h[0] * aC[0][b] + h[1] * aC[1][b] + h[2] * aC[2][b] + g[b], d, m, u)) return PETSC_FALSE;
   for (int a = 0; a < 3; a++) {
-    const int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
-    for (int b = 0; b < 3; b++) {
-      const int    b1 = (b + 1) % 3, b2 = (b + 2) % 3;
-      const double l2 = 1 - C[a][b] * C[a][b];
-      double       L[3];
-      if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
-      dem_cross(A[a], B[b], L);
-      const double rij = h[a1] * aC[a2][b] + h[a2] * aC[a1][b] + g[b1] * aC[a][b2] + g[b2] * aC[a][b1];
-      if (dem_box_axis(L, dem_dot(L, L), rij, d, m, u)) return PETSC_FALSE;
+    t[a] = dem_dot(A[a], d);
+    w[a] = dem_dot(B[a], d);
+    for (int c = 0; c < 3; c++) {
+      C[a][c]  = dem_dot(A[a], B[c]);
+      aC[a][c] = PetscAbsReal(C[a][c]);
     }
   }
+  for (int a = 0; a < 3 && !sep; a++) sep = dem_box_axis(a, t[a], 1, h[a] + g[0] * aC[a][0] + g[1] * aC[a][1] + g[2] * aC[a][2], &b);
+  for (int c = 0; c < 3 && !sep; c++) sep = dem_box_axis(3 + c, w[c], 1, h[0] * aC[0][c] + h[1] * aC[1][c] + h[2] * aC[2][c] + g[c], &b);
+  for (int a = 0; a < 3 && !sep; a++) {
+    const int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
+    for (int c = 0; c < 3 && !sep; c++) {
+      const int    c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+      const double l2 = 1 - C[a][c] * C[a][c];
+      if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
+      const double du  = C[a1][c] * t[a2] - C[a2][c] * t[a1];
+      const double rij = h[a1] * aC[a2][c] + h[a2] * aC[a1][c] + g[c1] * aC[a][c2] + g[c2] * aC[a][c1];
+      sep              = dem_box_axis(6 + 3 * a + c, du, l2, rij, &b);
+    }
+  }
+  if (sep) {
+    dem_box_unit(A, B, &b, u);
+    return PETSC_FALSE;
+  }
+  dem_box_unit(A, B, &b, m->n);
+  m->depth = b.ov / sqrt(b.l2);
+  if (b.du < 0)
+    for (int k = 0; k < 3; k++) m->n[k] = -m->n[k];
   u[0] = u[1] = u[2] = 0;
   return PETSC_TRUE;
 }

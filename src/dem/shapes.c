@@ -256,6 +256,7 @@ PetscErrorCode DemShapesDestroy(Dem dem)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscFree(dem->sepax));
+  PetscCall(PetscFree(dem->rot));
   for (PetscInt s = 0; s < DEM_MAX_SHAPES; s++) {
     PetscCall(ConvexShapeDestroy(&dem->cvx[s]));
     if (dem->shp[s].cvx) {
