@@ -1,5 +1,5 @@
 #!/bin/sh
-# Coupled benchmark (issue 5): the fluidized bed of cases/fluidized_bed/fluidized_bed.opts (4,800
+# Coupled benchmark (issue 5): the fluidized bed of cases/fluidized_bed/bed.opts (4,800
 # spheres, 3,000 cells, 2 DEM steps per fluid step) from t = 0 to 12 (1,008 fluid steps), on 1
 # and 2 ranks, 3 runs each. From -log_view (max over ranks): DEM = CplDemSubsteps (all DEM work
 # with its exchange), fluid = FluidPredict + FluidPoisson + FluidCorrect, coupling = CplProject +
@@ -22,7 +22,7 @@ echo "|---|---|---|---|---|---|---|"
 for r in $RANKS; do
   for k in 1 2 3; do
     log=$O/np$r.$k.log
-    mpiexec -n "$r" bin/sable -options_file cases/fluidized_bed/fluidized_bed.opts -cpl_t_end 12 -io_interval 0 -cpl_progress_interval 0 -log_view $EXTRA > "$log"
+    mpiexec -n "$r" bin/sable -options_file cases/fluidized_bed/bed.opts -cpl_t_end 12 -io_interval 0 -cpl_progress_interval 0 -log_view $EXTRA > "$log"
   done
   steps=$(sed -n 's/^done: .*, \([0-9]*\) fluid steps in .*/\1/p' $O/np$r.1.log)
   dem=$(for k in 1 2 3; do ev $O/np$r.$k.log CplDemSubsteps; done | median)
