@@ -207,16 +207,20 @@ static PetscBool candidates(const ConvexBody *B, const PetscReal dir[3], const F
   return PETSC_TRUE;
 }
 
-/* The projected candidates with height in [lo, hi]. */
+/* The projected candidates with height in [lo, hi]. Every candidate is projected and written
+ * at the next free place, which advances only for those kept: no branch on the heights, whose
+ * outcome is unpredictable (a few of up to 8 or 12 vertices are kept). */
 static void collect(const Cand *C, const Frame *F, PetscReal lo, PetscReal hi, Poly2 *P)
 {
-  P->k = 0;
-  for (PetscInt i = 0; i < C->k; i++)
-    if (C->h[i] >= lo - F->eps && C->h[i] <= hi + F->eps) {
-      PetscReal b[3];
-      feature_point(C->B, C->f, i, b);
-      P->p[P->k][0] = C->u0 + convex_dot(b, C->ub), P->p[P->k][1] = C->v0 + convex_dot(b, C->vb), P->k++;
-    }
+  const PetscReal l = lo - F->eps, h = hi + F->eps;
+  PetscInt        k = 0;
+  for (PetscInt i = 0; i < C->k; i++) {
+    PetscReal b[3];
+    feature_point(C->B, C->f, i, b);
+    P->p[k][0] = C->u0 + convex_dot(b, C->ub), P->p[k][1] = C->v0 + convex_dot(b, C->vb);
+    k += (C->h[i] >= l) & (C->h[i] <= h);
+  }
+  P->k = k;
 }
 
 /* Whether the 2-D point c lies on P (a hull: a point, a segment or a counter-clockwise polygon)
@@ -274,8 +278,8 @@ PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const Pet
   for (int k = 1; k < 3; k++) ax = PetscAbsReal(n[k]) < PetscAbsReal(n[ax]) ? k : ax;
   for (int k = 0; k < 3; k++) F.o[k] = A->x[k], F.n[k] = n[k];
   convex_cross(n, e[ax], F.t1);
-  len = convex_norm(F.t1);
-  for (int k = 0; k < 3; k++) F.t1[k] /= len;
+  len = 1 / convex_norm(F.t1);
+  for (int k = 0; k < 3; k++) F.t1[k] *= len;
   convex_cross(n, F.t1, F.t2);
   F.eps = 1e-10 * (A->s->bounding_radius + B->s->bounding_radius);
   eps2  = F.eps * (A->s->bounding_radius + B->s->bounding_radius);
