@@ -43,35 +43,15 @@ PetscBool DemShapeBoxFrame(DemShape *sh)
   return PETSC_TRUE;
 }
 
-/* The least overlap so far: ov / sqrt(l2) along axis number ax (0-2 faces of i, 3-5 faces of j,
- * 6 + 3a + b the edge pair (a, b)), du its product with d. */
-typedef struct {
-  double ov, l2, du;
-  int    ax;
-} DemBoxMin;
-
-/* One axis number ax of squared length l2 > 0 whose product with d is du and whose extents
- * (times its length) sum to rij: PETSC_TRUE when it separates; otherwise b keeps the least
- * overlap, compared without a square root (ov^2 l2_best < ov_best^2 l2). */
-static inline PetscBool dem_box_axis(int ax, double du, double l2, double rij, DemBoxMin *b)
+/* The world unit axis number ax (0-2 faces of i, 3-5 faces of j, 6 + 3a + b the edge pair (a, b)
+ * of squared length l2). */
+static inline void dem_box_unit(double A[3][3], double B[3][3], int ax, double l2, double a[3])
 {
-  const double ov = rij - PetscAbsReal(du);
-  if (ov < 0) { /* apart along it */
-    b->ov = ov, b->l2 = l2, b->du = du, b->ax = ax;
-    return PETSC_TRUE;
-  }
-  if (ov * ov * b->l2 < b->ov * b->ov * l2) b->ov = ov, b->l2 = l2, b->du = du, b->ax = ax;
-  return PETSC_FALSE;
-}
-
-/* The world axis of b (unit): A_a, B_b or A_a x B_b / |A_a x B_b|. */
-static inline void dem_box_unit(double A[3][3], double B[3][3], const DemBoxMin *b, double a[3])
-{
-  if (b->ax < 3) for (int k = 0; k < 3; k++) a[k] = A[b->ax][k];
-  else if (b->ax < 6) for (int k = 0; k < 3; k++) a[k] = B[b->ax - 3][k];
+  if (ax < 3) for (int k = 0; k < 3; k++) a[k] = A[ax][k];
+  else if (ax < 6) for (int k = 0; k < 3; k++) a[k] = B[ax - 3][k];
   else {
-    const double il = 1 / sqrt(b->l2);
-    dem_cross(A[(b->ax - 6) / 3], B[(b->ax - 6) % 3], a);
+    const double il = 1 / sqrt(l2);
+    dem_cross(A[(ax - 6) / 3], B[(ax - 6) % 3], a);
     for (int k = 0; k < 3; k++) a[k] *= il;
   }
 }
@@ -80,15 +60,17 @@ static inline void dem_box_unit(double A[3][3], double B[3][3], const DemBoxMin 
  * first separating axis in u, or PETSC_TRUE with the least overlap and its axis in m (u = 0).
  * The products with d of the edge axes come from those of i's axes, t_a = A_a . d:
  *   A_a x B_b = sum_k C_kb A_a x A_k = C_a1b A_a2 - C_a2b A_a1
- * (the box frame is right-handed, DemShapeBoxFrame); the world axis, and the square root of its
- * length, are formed once, for the answer. */
+ * (the box frame is right-handed, DemShapeBoxFrame). All 15 overlaps (times the axis length) are
+ * formed first, without branches; the first negative one separates, else the least of
+ * ov^2 / l2; the world axis, and the square root of its length, are formed once, for the
+ * answer. */
 PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3])
 {
-  const DemShape *si = bi->s, *sj = bj->s;
-  const double   *Ri = bi->R, *Rj = bj->R, *h = si->bh, *g = sj->bh;
-  double          A[3][3], B[3][3], C[3][3], aC[3][3], t[3], w[3];
-  DemBoxMin       b = {.ov = 1e75, .l2 = 1, .du = 0, .ax = 0}; /* squares stay finite */
-  PetscBool       sep = PETSC_FALSE;
+  static const int nx1[3] = {1, 2, 0}, nx2[3] = {2, 0, 1};
+  const DemShape  *si = bi->s, *sj = bj->s;
+  const double    *Ri = bi->R, *Rj = bj->R, *h = si->bh, *g = sj->bh;
+  double           A[3][3], B[3][3], C[3][3], aC[3][3], t[3], w[3], ov[15], l2[15], du[15], key[15];
+  int              best = 0;
 
   for (int a = 0; a < 3; a++) { /* world axes: A_a = Ri fn_a, B_b = Rj fn_b */
     const double *fa = si->fn + 3 * a, *fb = sj->fn + 3 * a;
@@ -105,26 +87,34 @@ PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], Dem
       aC[a][c] = PetscAbsReal(C[a][c]);
     }
   }
-  for (int a = 0; a < 3 && !sep; a++) sep = dem_box_axis(a, t[a], 1, h[a] + g[0] * aC[a][0] + g[1] * aC[a][1] + g[2] * aC[a][2], &b);
-  for (int c = 0; c < 3 && !sep; c++) sep = dem_box_axis(3 + c, w[c], 1, h[0] * aC[0][c] + h[1] * aC[1][c] + h[2] * aC[2][c] + g[c], &b);
-  for (int a = 0; a < 3 && !sep; a++) {
-    const int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
-    for (int c = 0; c < 3 && !sep; c++) {
-      const int    c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-      const double l2 = 1 - C[a][c] * C[a][c];
-      if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
-      const double du  = C[a1][c] * t[a2] - C[a2][c] * t[a1];
+  for (int a = 0; a < 3; a++) {
+    du[a]     = t[a];
+    du[3 + a] = w[a];
+    l2[a] = l2[3 + a] = 1;
+    ov[a]     = h[a] + g[0] * aC[a][0] + g[1] * aC[a][1] + g[2] * aC[a][2] - PetscAbsReal(t[a]);
+    ov[3 + a] = h[0] * aC[0][a] + h[1] * aC[1][a] + h[2] * aC[2][a] + g[a] - PetscAbsReal(w[a]);
+  }
+  for (int a = 0; a < 3; a++) {
+    const int a1 = nx1[a], a2 = nx2[a];
+    for (int c = 0; c < 3; c++) {
+      const int    c1 = nx1[c], c2 = nx2[c], k = 6 + 3 * a + c;
+      const double q  = 1 - C[a][c] * C[a][c];
       const double rij = h[a1] * aC[a2][c] + h[a2] * aC[a1][c] + g[c1] * aC[a][c2] + g[c2] * aC[a][c1];
-      sep              = dem_box_axis(6 + 3 * a + c, du, l2, rij, &b);
+      du[k] = C[a1][c] * t[a2] - C[a2][c] * t[a1];
+      l2[k] = q < 1e-12 ? 1 : q; /* parallel edges: the face axes cover them (never chosen) */
+      ov[k] = q < 1e-12 ? 1e150 : rij - PetscAbsReal(du[k]);
     }
   }
-  if (sep) {
-    dem_box_unit(A, B, &b, u);
-    return PETSC_FALSE;
-  }
-  dem_box_unit(A, B, &b, m->n);
-  m->depth = b.ov / sqrt(b.l2);
-  if (b.du < 0)
+  for (int k = 0; k < 15; k++)
+    if (ov[k] < 0) { /* apart along it */
+      dem_box_unit(A, B, k, l2[k], u);
+      return PETSC_FALSE;
+    }
+  for (int k = 0; k < 15; k++) key[k] = ov[k] * ov[k] / l2[k];
+  for (int k = 1; k < 15; k++) best = key[k] < key[best] ? k : best;
+  dem_box_unit(A, B, best, l2[best], m->n);
+  m->depth = ov[best] / sqrt(l2[best]);
+  if (du[best] < 0)
     for (int k = 0; k < 3; k++) m->n[k] = -m->n[k];
   u[0] = u[1] = u[2] = 0;
   return PETSC_TRUE;
