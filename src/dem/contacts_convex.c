@@ -257,19 +257,42 @@ PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexConta
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The rotation matrices of all particles, local and ghost, once per step (dem->rot). */
-static PetscErrorCode dem_rotations(Dem dem)
+/* The rotation matrices of the particles, local and ghost, for one pass of the pair loop:
+ * room for all (dem->rot), each formed when a pair first needs it (a particle whose stamp is
+ * not this pass's), so a dilute scene forms few; when the last pass had at least half as many
+ * pairs with overlapping bounding spheres as particles, all are formed at once (a dense bed: a
+ * sequential sweep, measured 4% faster on the settled icosahedra than forming them on demand). */
+static PetscErrorCode dem_rotations_begin(Dem dem)
 {
   const PetscInt nt = dem->n + dem->ng;
 
   PetscFunctionBeginUser;
   if (nt > dem->rot_cap) {
-    PetscCall(PetscFree(dem->rot));
+    PetscCall(PetscFree2(dem->rot, dem->rot_stamp));
     dem->rot_cap = nt + nt / 4 + 64;
-    PetscCall(PetscMalloc1(9 * (size_t)dem->rot_cap, &dem->rot));
+    PetscCall(PetscMalloc2(9 * (size_t)dem->rot_cap, &dem->rot, dem->rot_cap, &dem->rot_stamp));
+    dem->rot_pass = PETSC_MAX_INT - 1; /* the stamps are reset below */
   }
-  for (PetscInt i = 0; i < nt; i++) dem_rotation(dem->q + 4 * i, dem->rot + 9 * i);
+  if (++dem->rot_pass == PETSC_MAX_INT) {
+    for (PetscInt i = 0; i < dem->rot_cap; i++) dem->rot_stamp[i] = -1;
+    dem->rot_pass = 0;
+  }
+  if (2 * dem->rot_pairs >= nt)
+    for (PetscInt i = 0; i < nt; i++) {
+      dem_rotation(dem->q + 4 * i, dem->rot + 9 * i);
+      dem->rot_stamp[i] = dem->rot_pass;
+    }
+  dem->rot_pairs = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static inline const double *dem_rot(Dem dem, PetscInt i)
+{
+  if (dem->rot_stamp[i] != dem->rot_pass) {
+    dem_rotation(dem->q + 4 * i, dem->rot + 9 * i);
+    dem->rot_stamp[i] = dem->rot_pass;
+  }
+  return dem->rot + 9 * i;
 }
 
 PetscErrorCode DemContactsPairsConvex(Dem dem)
@@ -286,12 +309,12 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
     dem->sepax_build = nl->builds;
   }
   ax = dem->sepax;
-  PetscCall(dem_rotations(dem));
+  PetscCall(dem_rotations_begin(dem));
   for (PetscInt i = 0; i < dem->n; i++) {
     const DemShape *si = &dem->shp[dem->shape[i]];
     DemBody         bi, bj;
     double          fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
-    dem_body(dem, i, dem->rot + 9 * i, &bi);
+    PetscBool       has_i = PETSC_FALSE;
     in.xi = dem->x + 3 * i;
     in.vi = dem->v + 3 * i;
     in.wi = dem->w + 3 * i;
@@ -307,7 +330,12 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      dem_body(dem, j, dem->rot + 9 * j, &bj);
+      dem->rot_pairs++;
+      if (!has_i) {
+        dem_body(dem, i, dem_rot(dem, i), &bi);
+        has_i = PETSC_TRUE;
+      }
+      dem_body(dem, j, dem_rot(dem, j), &bj);
       PetscCall(dem_convex_narrow(dem, &bi, &bj, d, ax + 4 * a, &c));
       if (!c.overlap) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;

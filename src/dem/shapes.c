@@ -256,7 +256,7 @@ PetscErrorCode DemShapesDestroy(Dem dem)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscFree(dem->sepax));
-  PetscCall(PetscFree(dem->rot));
+  PetscCall(PetscFree2(dem->rot, dem->rot_stamp));
   for (PetscInt s = 0; s < DEM_MAX_SHAPES; s++) {
     PetscCall(ConvexShapeDestroy(&dem->cvx[s]));
     if (dem->shp[s].cvx) {
