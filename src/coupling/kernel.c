@@ -15,16 +15,16 @@
  * SI. */
 #include "coupling/coupling_impl.h"
 
-/* 1-D overlap fractions of the segment [a, a + L] with the intervals [o + m h, o + (m+1) h]. */
-static PetscErrorCode cpl_weights_1d(double a, double L, double o, double h, PetscInt *m0, int *n, double w[4])
+/* 1-D overlap fractions of the segment [a, a + L] with the intervals [o + m h, o + (m+1) h]:
+ * PETSC_FALSE if it spans more than 4 (the caller names the limit). */
+static inline PetscBool cpl_weights_1d(double a, double L, double o, double h, PetscInt *m0, int *n, double w[4])
 {
   const PetscInt first = (PetscInt)PetscFloorReal((a - o) / h);
   PetscInt       last  = (PetscInt)PetscFloorReal((a + L - o) / h);
   double         sum   = 0;
 
-  PetscFunctionBeginUser;
   if (last > first && o + last * h >= a + L) last--; /* the segment ends exactly on a boundary */
-  PetscCheck(last - first < 4, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel of side %g spans more than 4 cells of size %g; lower -cpl_kernel_scale", a, h);
+  if (last - first >= 4) return PETSC_FALSE;
   *m0 = first;
   *n  = (int)(last - first + 1);
   for (int k = 0; k < *n - 1; k++) {
@@ -33,7 +33,7 @@ static PetscErrorCode cpl_weights_1d(double a, double L, double o, double h, Pet
     sum += w[k];
   }
   w[*n - 1] = 1.0 - sum;
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return PETSC_TRUE;
 }
 
 /* Kernel side, volume and drag diameter of a shape: the shape's true volume V and its
@@ -60,8 +60,7 @@ PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplSt
     if (dom->periodic[e]) xc = dom->lo[e] + (xc - dom->lo[e]) - dom->len[e] * PetscFloorReal((xc - dom->lo[e]) / dom->len[e]);
     a = xc - 0.5 * side;
     if (!dom->periodic[e]) a = PetscMin(PetscMax(a, dom->lo[e]), dom->hi[e] - side);
-    PetscCall(cpl_weights_1d(a, side, dom->lo[e], dom->h[e], &s->c0[e], &s->nc[e], s->wc[e]));
-    PetscCall(cpl_weights_1d(a, side, dom->lo[e] - 0.5 * dom->h[e], dom->h[e], &s->f0[e], &s->nf[e], s->wf[e]));
+    PetscCheck(cpl_weights_1d(a, side, dom->lo[e], dom->h[e], &s->c0[e], &s->nc[e], s->wc[e]) && cpl_weights_1d(a, side, dom->lo[e] - 0.5 * dom->h[e], dom->h[e], &s->f0[e], &s->nf[e], s->wf[e]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel of side %g spans more than 4 cells of size %g; lower -cpl_kernel_scale", side, dom->h[e]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -80,11 +79,17 @@ static PetscErrorCode CplBoxOf(DM da, CplBox *b)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode CplCheckFits(const CplBox *b, const PetscInt first[3], const int n[3], PetscInt id)
+static inline PetscBool cpl_fits(const CplBox *b, const PetscInt first[3], const int n[3], int e)
+{
+  return (PetscBool)(first[e] >= b->gs[e] && first[e] + n[e] <= b->gs[e] + b->gm[e]);
+}
+
+static inline PetscErrorCode CplCheckFits(const CplBox *b, const PetscInt first[3], const int n[3], PetscInt id)
 {
   PetscFunctionBeginUser;
+  if (cpl_fits(b, first, n, 0) && cpl_fits(b, first, n, 1) && cpl_fits(b, first, n, 2)) PetscFunctionReturn(PETSC_SUCCESS);
   for (int e = 0; e < 3; e++)
-    PetscCheck(first[e] >= b->gs[e] && first[e] + n[e] <= b->gs[e] + b->gm[e], PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "particle %" PetscInt_FMT ": its kernel reaches cell %" PetscInt_FMT " on axis %d, beyond this rank's ghost cells [%" PetscInt_FMT ", %" PetscInt_FMT "): the particle left its rank's box (needs particle migration) or the kernel is wider than one cell", id, first[e] < b->gs[e] ? first[e] : first[e] + n[e] - 1, e, b->gs[e], b->gs[e] + b->gm[e]);
+    PetscCheck(cpl_fits(b, first, n, e), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "particle %" PetscInt_FMT ": its kernel reaches cell %" PetscInt_FMT " on axis %d, beyond this rank's ghost cells [%" PetscInt_FMT ", %" PetscInt_FMT "): the particle left its rank's box (needs particle migration) or the kernel is wider than one cell", id, first[e] < b->gs[e] ? first[e] : first[e] + n[e] - 1, e, b->gs[e], b->gs[e] + b->gm[e]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -16,7 +16,9 @@
  * libccd finds no contact, the face directions of both bodies and the cross products of their
  * edge directions (the complete set of separating-axis candidates) are searched for one to keep.
  * A test costs two support scans (about a tenth of an MPR call). The cache is exact (an axis
- * either separates or the full test runs) and is cleared at every list build.
+ * either separates or the full test runs) and is cleared at every list build. An entry also
+ * flags a pair that touched at the last step: it goes to the full test directly (the two
+ * probes would fail). The rotation matrices are formed once per particle and step (dem->rot).
  * Few-axis pairs (box-box: 3 + 3 face normals and 3 x 3 edge-edge axes; -dem_convex_sat_axes
  * sets the limit, 16 by default; two boxes in closed form, sat_box.c) skip libccd: the
  * separating-axis test over all candidates gives the exact minimum penetration (depth and normal
@@ -217,7 +219,7 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const 
       PetscFunctionReturn(PETSC_SUCCESS);
     }
   }
-  u[3]              = 0;
+  u[3] = 0;
   const PetscBool sat = dem_sat_pair(dem, bi->s, bj->s);
   if (sat) {
     if (!dem_sat(bi, bj, d, &m, u)) PetscFunctionReturn(PETSC_SUCCESS); /* u: the separating axis found */

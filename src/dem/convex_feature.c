@@ -173,14 +173,14 @@ static void segments2(const Poly2 *A, const Poly2 *B, PetscReal eps, PetscReal c
   }
 }
 
-/* Candidate points of a body in frame F: the height h along n of each; the plane coordinates
- * (u, v) are formed only for the points collect() keeps (b . ub + u0, b . vb + v0). */
+/* Candidate points of a body in frame F: the height h along n of each; collect() forms the
+ * plane coordinates (u, v) = (b . ub + u0, b . vb + v0) of a body-frame point b. */
 typedef struct {
-  PetscInt     k;
-  PetscReal    h[CONVEX_FEATURE_MAX];
-  PetscReal    ub[3], vb[3], u0, v0; /* the plane axes in the body frame, the centre's (u, v) */
+  PetscInt          k;
+  PetscReal         h[CONVEX_FEATURE_MAX];
+  PetscReal         ub[3], vb[3], u0, v0; /* the plane axes in the body frame, the centre's (u, v) */
   const ConvexBody *B;
-  Facing       f;
+  Facing            f;
 } Cand;
 
 static PetscBool candidates(const ConvexBody *B, const PetscReal dir[3], const Frame *F, Cand *C)

@@ -195,7 +195,7 @@ struct _p_Dem {
                                 a flag: touching at the last step (4 each) */
   PetscInt      sepax_build; /* the list build it belongs to */
   double       *rot;         /* rotation matrices of the particles (9 each) for the pair loop, */
-  PetscInt     *rot_stamp;   /* valid where the stamp is the loop's pass number */
+  PetscInt     *rot_stamp;   /* each valid where its stamp is the loop's pass number */
   PetscInt      rot_cap, rot_pass, rot_pairs; /* rot_pairs: pairs the last pass tested */
   /* walls */
   DemWall   wall[DEM_MAX_WALLS];
