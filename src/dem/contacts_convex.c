@@ -17,13 +17,14 @@
  * edge directions (the complete set of separating-axis candidates) are searched for one to keep.
  * A test costs two support scans (about a tenth of an MPR call). The cache is exact (an axis
  * either separates or the full test runs) and is cleared at every list build. An entry also
- * flags a pair that touched at the last step: it goes to the full test directly (the two
- * probes would fail). The rotation matrices are formed once per particle and step (dem->rot).
+ * flags a pair that touched at the last step: a separating-axis pair then goes to its test
+ * directly (the centre-line probe usually fails). A particle's rotation matrix is formed at most
+ * once per pass of the pair loop (dem->rot).
  * Few-axis pairs (box-box: 3 + 3 face normals and 3 x 3 edge-edge axes; -dem_convex_sat_axes
  * sets the limit, 16 by default; two boxes in closed form, sat_box.c) skip libccd: the
  * separating-axis test over all candidates gives the exact minimum penetration (depth and normal
  * of the least overlap, for convex polyhedra the minimum translation), continuous in the poses,
- * where MPR's portal depth jumps; the contact point follows (ConvexContactPoint, the model of
+ * where MPR's portal depth jumps; the contact point follows (ConvexBodiesContactPoint, the model of
  * -dem_convex_contact_point), and MPR is the fallback if that point fails. With the support
  * point, pairs left to MPR take MPR's depth and normal and the support features' point.
  * The contact laws use R = d_eq/2 per shape (shapes.c). Units SI. */
@@ -201,9 +202,10 @@ static inline ConvexBody dem_convex_body(const DemBody *b)
 
 /* The narrow phase of one pair whose bounding spheres overlap, d = x_j - x_i. u: the pair's
  * cache entry (updated): u[0..2] a separating axis (0: none), u[3] = 1 if the pair touched at
- * the last step (the separating tests are then skipped: they would fail); NULL for none. The
- * forces and the statistics (diag_convex.c) both call it, so the elastic energy is that of the
- * depth the forces used. */
+ * the last step; NULL for none. A pair of the separating-axis test that touched skips the
+ * centre-line probe (it usually fails, and the test is complete without it: the same answer);
+ * a pair left to MPR always takes it, as the statistics do. The forces and the statistics
+ * (diag_convex.c) both call it, so the elastic energy is that of the depth the forces used. */
 static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const DemBody *bj, const double d[3], double *u, ConvexContact *c)
 {
   double    none[4] = {0, 0, 0, 0};
@@ -212,7 +214,8 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const 
   PetscFunctionBeginUser;
   if (!u) u = none;
   c->overlap = PETSC_FALSE;
-  if (u[3] == 0) {
+  const PetscBool sat = dem_sat_pair(dem, bi->s, bj->s);
+  if (u[3] == 0 || !sat) {
     if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(bi, bj, d, u)) PetscFunctionReturn(PETSC_SUCCESS);
     if (dem_apart(bi, bj, d, d)) {
       for (int k = 0; k < 3; k++) u[k] = d[k];
@@ -220,7 +223,6 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const 
     }
   }
   u[3] = 0;
-  const PetscBool sat = dem_sat_pair(dem, bi->s, bj->s);
   if (sat) {
     if (!dem_sat(bi, bj, d, &m, u)) PetscFunctionReturn(PETSC_SUCCESS); /* u: the separating axis found */
     if (m.depth > 0) {

@@ -209,7 +209,8 @@ static PetscBool candidates(const ConvexBody *B, const PetscReal dir[3], const F
 
 /* The projected candidates with height in [lo, hi]. Every candidate is projected and written
  * at the next free place, which advances only for those kept: no branch on the heights, whose
- * outcome is unpredictable (a few of up to 8 or 12 vertices are kept). */
+ * outcome is unpredictable (a few of a polyhedron's vertices or a cylinder's 64 rim samples
+ * are kept). */
 static void collect(const Cand *C, const Frame *F, PetscReal lo, PetscReal hi, Poly2 *P)
 {
   const PetscReal l = lo - F->eps, h = hi + F->eps;

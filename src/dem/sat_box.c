@@ -98,7 +98,7 @@ PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], Dem
     const int a1 = nx1[a], a2 = nx2[a];
     for (int c = 0; c < 3; c++) {
       const int    c1 = nx1[c], c2 = nx2[c], k = 6 + 3 * a + c;
-      const double q  = 1 - C[a][c] * C[a][c];
+      const double q  = C[a1][c] * C[a1][c] + C[a2][c] * C[a2][c]; /* |A_a x B_c|^2, not 1 - C_ac^2: no cancellation */
       const double rij = h[a1] * aC[a2][c] + h[a2] * aC[a1][c] + g[c1] * aC[a][c2] + g[c2] * aC[a][c1];
       du[k] = C[a1][c] * t[a2] - C[a2][c] * t[a1];
       l2[k] = q < 1e-12 ? 1 : q; /* parallel edges: the face axes cover them (never chosen) */

@@ -257,6 +257,7 @@ PetscErrorCode DemShapesDestroy(Dem dem)
   PetscFunctionBeginUser;
   PetscCall(PetscFree(dem->sepax));
   PetscCall(PetscFree2(dem->rot, dem->rot_stamp));
+  dem->rot_cap = dem->rot_pass = dem->rot_pairs = 0;
   for (PetscInt s = 0; s < DEM_MAX_SHAPES; s++) {
     PetscCall(ConvexShapeDestroy(&dem->cvx[s]));
     if (dem->shp[s].cvx) {
