@@ -186,12 +186,6 @@ static inline void dem_body(const Dem dem, PetscInt i, const double *R, DemBody 
   b->R = R;
 }
 
-static inline ConvexPose dem_pose(const DemBody *b)
-{
-  ConvexPose p = {{b->x[0], b->x[1], b->x[2]}, {b->q[0], b->q[1], b->q[2], b->q[3]}};
-  return p;
-}
-
 static inline ConvexBody dem_convex_body(const DemBody *b)
 {
   ConvexBody c = {.s = b->s->cvx};
@@ -234,7 +228,7 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const 
     }
     /* touching at 0 depth, or no supporting feature: MPR below (u is 0) */
   }
-  const ConvexPose pi = dem_pose(bi), pj = dem_pose(bj);
+  const ConvexPose pi = DemPose(bi->x, bi->q), pj = DemPose(bj->x, bj->q);
   PetscCall(ConvexCollideWith(bi->s->cvx, &pi, bj->s->cvx, &pj, dem->convex_point, c)); /* MPR's depth and normal */
   if (c->overlap) u[0] = u[1] = u[2] = 0, u[3] = 1;
   else if (!sat) (void)dem_sat(bi, bj, d, &m, u); /* the axis to keep, or u = 0 */
@@ -286,7 +280,6 @@ static PetscErrorCode dem_rotations_begin(Dem dem)
       dem_rotation(dem->q + 4 * i, dem->rot + 9 * i);
       dem->rot_stamp[i] = dem->rot_pass;
     }
-  dem->rot_pairs = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -303,7 +296,8 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
 {
   const DemNeigh *nl = &dem->nl;
   double         *f = dem->f, *tq = dem->tq, *hist = nl->hist, *ax;
-  DemConvexIn     in = {.law = dem->law, .dt = dem->dt};
+  DemConvexIn     in    = {.law = dem->law, .dt = dem->dt};
+  PetscInt        pairs = 0; /* with overlapping bounding spheres: the next pass's choice */
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
@@ -334,7 +328,7 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      dem->rot_pairs++;
+      pairs++;
       if (!has_i) {
         dem_body(dem, i, dem_rot(dem, i), &bi);
         has_i = PETSC_TRUE;
@@ -366,6 +360,7 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
       tq[3 * i + k] += ti[k];
     }
   }
+  dem->rot_pairs = pairs;
   PetscCall(PetscLogEventEnd(DEM_Contacts, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -385,8 +380,8 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt i    = w->idx[a];
       double        *xi_t = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
-      const double  *x    = dem->x + 3 * i, *q = dem->q + 4 * i;
-      ConvexPose     pose = {{x[0], x[1], x[2]}, {q[0], q[1], q[2], q[3]}};
+      const double  *x    = dem->x + 3 * i;
+      ConvexPose     pose = DemPose(x, dem->q + 4 * i);
       ConvexContact  c;
       double         F[3], Ti[3], Tj[3];
       PetscCall(ConvexCollidePlane(dem->shp[dem->shape[i]].cvx, &pose, w->p, w->n, &c));

@@ -273,14 +273,14 @@ PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const Pet
   Cand            CA, CB;
   Frame           F;
   const PetscReal mn[3] = {-n[0], -n[1], -n[2]}, e[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  PetscReal       hA, hB, c[2] = {0, 0}, eps2, len;
+  PetscReal       hA, hB, c[2] = {0, 0}, eps2, il;
   int             ax = 0;
 
   for (int k = 1; k < 3; k++) ax = PetscAbsReal(n[k]) < PetscAbsReal(n[ax]) ? k : ax;
   for (int k = 0; k < 3; k++) F.o[k] = A->x[k], F.n[k] = n[k];
   convex_cross(n, e[ax], F.t1);
-  len = 1 / convex_norm(F.t1);
-  for (int k = 0; k < 3; k++) F.t1[k] *= len;
+  il = 1 / convex_norm(F.t1);
+  for (int k = 0; k < 3; k++) F.t1[k] *= il;
   convex_cross(n, F.t1, F.t2);
   F.eps = 1e-10 * (A->s->bounding_radius + B->s->bounding_radius);
   eps2  = F.eps * (A->s->bounding_radius + B->s->bounding_radius);

@@ -278,6 +278,12 @@ typedef struct {
   const DemShape *s;
   const double   *x, *q, *R;
 } DemBody;
+/* The pose of a particle for the convex module: its centre x (3) and quaternion q (4). */
+static inline ConvexPose DemPose(const double *x, const double *q)
+{
+  ConvexPose p = {{x[0], x[1], x[2]}, {q[0], q[1], q[2], q[3]}};
+  return p;
+}
 /* The least overlap of a pair found so far, and its axis oriented from i to j. */
 typedef struct {
   double depth, n[3];

@@ -18,12 +18,6 @@ static double dem_elastic(const Dem dem, const DemPairParams *p, double delta, c
   return e;
 }
 
-static void dem_pose_of(const Dem dem, PetscInt i, ConvexPose *p)
-{
-  for (int k = 0; k < 3; k++) p->x[k] = dem->x[3 * i + k];
-  for (int k = 0; k < 4; k++) p->q[k] = dem->q[4 * i + k];
-}
-
 /* r: ke, ke_rot, pe_grav, pe_spring, checksum (added to); c[1], c[2]: pair and wall contacts. */
 PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax)
 {
@@ -55,9 +49,8 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
     for (PetscInt a = 0; a < wl->cnt; a++) {
       const PetscInt  i = wl->idx[a];
       const DemShape *s = &dem->shp[dem->shape[i]];
-      ConvexPose      pi;
-      ConvexContact   cc;
-      dem_pose_of(dem, i, &pi);
+      const ConvexPose pi = DemPose(dem->x + 3 * i, dem->q + 4 * i);
+      ConvexContact    cc;
       PetscCall(ConvexCollidePlane(s->cvx, &pi, wl->p, wl->n, &cc));
       if (!cc.overlap || !DemWallCovers(wl, cc.point, pi.x)) continue;
       c[2]++;
