@@ -3,7 +3,8 @@
 #   PASS <check>: <measured> (<bound>)   or   FAIL <check>: ...
 # A line "/* ranks: 1 2 4 */" in its source runs it on each of those rank counts (default 1).
 # Every tests/*.sh is a shell test printing the same kind of lines.
-# A test that exits non-zero without printing a FAIL line counts as one failure.
+# A test that exits non-zero without printing a FAIL line counts as one failure; a test still
+# running after TEST_TIMEOUT seconds (default 900) is stopped and counts as one failure.
 # Last line: "N passed, N failed"; exit status non-zero when anything failed.
 set -u
 cd "$(dirname "$0")/.."
@@ -14,17 +15,19 @@ LOG=$(mktemp -d)
 trap 'rm -rf "$LOG"' EXIT
 pass=0; fail=0
 ONLY=${ONLY:-}
+TEST_TIMEOUT=${TEST_TIMEOUT:-900}
 
 run_one() { # label, command...
   label=$1; shift
   out="$LOG/out"
-  "$@" >"$out" 2>"$LOG/err"
+  timeout -k 10 "$TEST_TIMEOUT" "$@" >"$out" 2>"$LOG/err"
   rc=$?
+  [ "$rc" -eq 124 ] && echo "timed out after $TEST_TIMEOUT s (TEST_TIMEOUT)" >>"$out"
   grep -E '^(PASS|FAIL) ' "$out" | sed "s/^\(PASS\|FAIL\) /\1 $label /"
   np=$(grep -c '^PASS ' "$out"); nf=$(grep -c '^FAIL ' "$out")
-  if [ "$rc" -ne 0 ] && [ "$nf" -eq 0 ]; then
+  if [ "$rc" -ne 0 ] && { [ "$nf" -eq 0 ] || [ "$rc" -eq 124 ]; }; then
     echo "FAIL $label: exit status $rc; last lines:"; tail -n 5 "$out" "$LOG/err" | sed 's/^/    /'
-    nf=1
+    nf=$((nf + 1))
   fi
   [ "$np" -eq 0 ] && [ "$nf" -eq 0 ] && { echo "FAIL $label: printed no check"; nf=1; }
   pass=$((pass + np)); fail=$((fail + nf))

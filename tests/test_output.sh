@@ -10,7 +10,7 @@ n=$(ls "$D/a"/*.h5 2>/dev/null | wc -l)
 [ "$n" -eq 5 ] && echo "PASS output: $n frames for t = 0..0.02 s every 0.005 s (expected 5)" || echo "FAIL output: $n frames (expected 5)"
 tmp=$(ls "$D/a" | grep -c '\.tmp$')
 [ "$tmp" -eq 0 ] && echo "PASS output: no temporary file left" || echo "FAIL output: $tmp temporary files left"
-/usr/bin/python3 - "$D/a/sable.xmf" "$D/a" <<'PY'
+/usr/bin/python3 - "$D/a/sable.xmf" "$D/a" <<'PY' || echo "FAIL output XDMF: the checking script exited with status $?"
 import sys, xml.dom.minidom, h5py, numpy as np
 doc = xml.dom.minidom.parse(sys.argv[1])
 grids = [g for g in doc.getElementsByTagName("Grid") if g.getAttribute("Name") == "particles"]
@@ -25,7 +25,7 @@ np.save(sys.argv[2] + "/../ref.npy", p[np.argsort(ids)])
 PY
 last=$(ls "$D/a"/*.h5 | tail -n 1)
 bin/sable -domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_init_file "$last" -dem_t_end 0 -io_interval 1 -io_dir "$D/b" > "$D/log2" 2>&1 || { echo "FAIL restart: exit $?"; cat "$D/log2"; exit 1; }
-/usr/bin/python3 - "$D" <<'PY'
+/usr/bin/python3 - "$D" <<'PY' || echo "FAIL restart: the checking script exited with status $?"
 import sys, glob, h5py, numpy as np
 d = sys.argv[1]
 f = h5py.File(sorted(glob.glob(d + "/b/*.h5"))[0], "r")
@@ -37,7 +37,7 @@ PY
 # the same on 2 ranks: one file per frame written collectively, every id once, then read back on 1
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mpiexec --oversubscribe -n 2 bin/sable $OPTS -io_dir "$D/c" -da_processors_x 2 -da_processors_y 1 -da_processors_z 1 -domain_cell 0.03 > "$D/log3" 2>&1 || { echo "FAIL 2-rank output run: exit $?"; exit 1; }
-/usr/bin/python3 - "$D" <<'PY'
+/usr/bin/python3 - "$D" <<'PY' || echo "FAIL 2-rank output: the checking script exited with status $?"
 import sys, glob, h5py, numpy as np
 d = sys.argv[1]
 f = h5py.File(sorted(glob.glob(d + "/c/*.h5"))[-1], "r")

@@ -15,7 +15,7 @@ OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 
 if tools/tradeoff impact --quick --out "$OUT" >"$OUT/log" 2>&1; then
-  /usr/bin/python3 - "$OUT/impact.csv" <<'PY'
+  /usr/bin/python3 - "$OUT/impact.csv" <<'PY' || echo "FAIL tradeoff impact --quick: the checking script exited with status $?"
 import csv, math, sys
 rows = [r for r in csv.DictReader(open(sys.argv[1]))]
 ok = len(rows) == 2 and all(r["status"] == "ok" for r in rows)
@@ -35,7 +35,7 @@ fi
 
 tools/tradeoff stability --plane dem --quick --out "$OUT" >"$OUT/log" 2>&1
 rc=$?
-/usr/bin/python3 - "$OUT/stability_dem.csv" "$rc" <<'PY'
+/usr/bin/python3 - "$OUT/stability_dem.csv" "$rc" <<'PY' || echo "FAIL stability map 3x3: the checking script exited with status $?"
 import csv, sys
 rows = [r for r in csv.DictReader(open(sys.argv[1]))] if sys.argv[2] in ("0", "1") else []
 bad = [r for r in rows if not (r["status"] == "stable" or (r["status"] == "stopped" and r["message"].startswith("sable: error:")))]
