@@ -51,8 +51,16 @@ static PetscErrorCode AddBodyCentres(Dem dem)
  * densest cell, and a bed of height H (0 when frozen) released from rest cannot give a particle
  * more than its free-fall speed over H; the drag cannot push a particle past the fluid. Fluid
  * and particle velocity components must stay below 2 S. */
-static PetscErrorCode Extreme(const char *name, const char *base, const char *extra, PetscReal uin, PetscReal H, PetscReal eps_want, PetscErrorCode (*add)(Dem))
+typedef struct {
+  const char *name, *base, *extra;
+  PetscReal   uin, H, eps_want;
+  PetscErrorCode (*add)(Dem);
+} ExtremeCase;
+
+static PetscErrorCode Extreme(const ExtremeCase *c)
 {
+  const char *name = c->name;
+  const PetscReal uin = c->uin, H = c->H, eps_want = c->eps_want;
   TestCpl   t;
   CplStats  st;
   char      opts[2048];
@@ -63,8 +71,8 @@ static PetscErrorCode Extreme(const char *name, const char *base, const char *ex
   Vec       u;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s %s", base, extra));
-  PetscCall(TestCplCreateWith(opts, add, &t));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s %s", c->base, c->extra));
+  PetscCall(TestCplCreateWith(opts, c->add, &t));
   PetscCall(FluidGetVelocity(t.fl, &u));
   for (PetscInt s = 0; s < 1000; s++) {
     PetscReal un, vl = 0, vg;
@@ -96,13 +104,13 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   const PetscReal a = 1.18, eps_bcc = 1 - 2 * (PETSC_PI / 6) / (a * a * a), eps_sc = 1 - PETSC_PI / 6;
 
-  PetscCall(Extreme("density ratio 1.2", Bed, "-dem_density 1.2", 0.2, 12, 0, NULL));
-  PetscCall(Extreme("density ratio 3000", Bed, "-dem_density 3000 -dem_kn 2e7 -dem_dt 0.001 -cpl_substeps 10", 0.2, 12, 0, NULL));
-  PetscCall(Extreme("porosity 0.36 (frozen BCC bed, Re_p 10)", Packed, "-domain_hi 4.72,4.72,28.32 -dem_lattice 4,4,10 -dem_lattice_spacing 1.18 -dem_lattice_origin -0.59,-0.59,5.31 -fluid_viscosity 0.1", 1, 0, eps_bcc, AddBodyCentres));
+  PetscCall(Extreme(&(ExtremeCase){"density ratio 1.2", Bed, "-dem_density 1.2", 0.2, 12, 0, NULL}));
+  PetscCall(Extreme(&(ExtremeCase){"density ratio 3000", Bed, "-dem_density 3000 -dem_kn 2e7 -dem_dt 0.001 -cpl_substeps 10", 0.2, 12, 0, NULL}));
+  PetscCall(Extreme(&(ExtremeCase){"porosity 0.36 (frozen BCC bed, Re_p 10)", Packed, "-domain_hi 4.72,4.72,28.32 -dem_lattice 4,4,10 -dem_lattice_spacing 1.18 -dem_lattice_origin -0.59,-0.59,5.31 -fluid_viscosity 0.1", 1, 0, eps_bcc, AddBodyCentres}));
   /* Re_p = rho_f d U / mu with the superficial U = 1 (the interstitial form rho d eps |u| / mu
    * is the same number in a uniform bed) */
-  PetscCall(Extreme("Re_p 0.01 (frozen lattice, mu 100)", Packed, "-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6 -fluid_viscosity 100", 1, 0, eps_sc, NULL));
-  PetscCall(Extreme("Re_p 1000 (frozen lattice, mu 0.001)", Packed, "-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6 -fluid_viscosity 0.001", 1, 0, eps_sc, NULL));
+  PetscCall(Extreme(&(ExtremeCase){"Re_p 0.01 (frozen lattice, mu 100)", Packed, "-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6 -fluid_viscosity 100", 1, 0, eps_sc, NULL}));
+  PetscCall(Extreme(&(ExtremeCase){"Re_p 1000 (frozen lattice, mu 0.001)", Packed, "-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6 -fluid_viscosity 0.001", 1, 0, eps_sc, NULL}));
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;
 }
