@@ -3,7 +3,8 @@
 # packed-bed case with a jittered lattice of spacing 1.2 d; 3 x 3 x 20 cells, split along z on
 # 2 and 4 ranks, so spheres near a rank boundary spread into the neighbour's cells) must give
 # the same pressure gradient and mean porosity to 1e-9 relative (the Poisson tolerance is 1e-8
-# relative to the residual; the steady state is reached in a few steps).
+# relative to the residual; the steady state is reached in a few steps; the run prints dp/L and
+# the porosity to 15 digits).
 # Then a short fluidized bed (the make-run case: bi-periodic sides, 80 fluid steps at 3 U_mf
 # from a touching lattice) on process grids 1x1x1, 2x1x1 and 1x1x4 (rank boundaries at x = 4 and
 # at z = 12, inside the bed: particles migrate, contacts cross through ghost particles, kernels
@@ -22,7 +23,7 @@ for n in 1 2 4; do
   line=$(grep '^packed bed:' "$out")
   dp=$(echo "$line" | sed -n 's/.*dp\/L \([-0-9.e+]*\) Pa\/m, porosity \([0-9.]*\),.*/\1 \2/p')
   if [ "$rc" -ne 0 ] || [ -z "$dp" ]; then echo "FAIL cpl_ranks_np$n: exit $rc"; tail -n 3 "$out" | sed 's/^/    /'; continue; fi
-  if [ -z "$ref" ]; then ref=$dp; echo "PASS cpl_ranks_np1: dp/L and porosity $dp (reference)"; continue; fi
+  if [ -z "$ref" ]; then ref=$dp; continue; fi # the 1-rank reference: no check of its own
   echo "$ref $dp" | awk -v n=$n '{ e1 = ($1 - $3) / $1; if (e1 < 0) e1 = -e1; e2 = ($2 - $4) / $2; if (e2 < 0) e2 = -e2;
     ok = (e1 < 1e-9 && e2 < 1e-12); printf "%s cpl_ranks_np%d: dp/L rel. diff %.2e (< 1e-9), porosity rel. diff %.2e (< 1e-12) vs 1 rank\n", ok ? "PASS" : "FAIL", n, e1, e2 }'
 done
@@ -35,7 +36,7 @@ for grid in 1,1,1 2,1,1 1,1,4; do
   rc=$?
   v=$(sed -n 's/^column: pressure drop \/ bed buoyant weight per area \([0-9.]*\), drag on the particles \/ buoyant weight \([0-9.]*\).*/\1 \2/p' "$out")
   if [ "$rc" -ne 0 ] || [ -z "$v" ]; then echo "FAIL cpl_ranks_fluidized_$label: exit $rc"; tail -n 3 "$out" | sed 's/^/    /'; continue; fi
-  if [ -z "$ref" ]; then ref=$v; echo "PASS cpl_ranks_fluidized_1x1x1: dp/W and drag/W $v (reference)"; continue; fi
+  if [ -z "$ref" ]; then ref=$v; continue; fi # the 1-rank reference
   echo "$ref $v" | awk -v g=$label '{ e1 = ($1 - $3) / $1; if (e1 < 0) e1 = -e1; e2 = ($2 - $4) / $2; if (e2 < 0) e2 = -e2;
     ok = (e1 < 1e-7 && e2 < 1e-7); printf "%s cpl_ranks_fluidized_%s: dp/W rel. diff %.2e, drag/W rel. diff %.2e (< 1e-7) vs 1 rank\n", ok ? "PASS" : "FAIL", g, e1, e2 }'
 done

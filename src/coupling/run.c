@@ -53,7 +53,7 @@ static PetscErrorCode CplProbeReport(Cpl cpl)
   PetscCall(CplMeanPorosity(cpl, 2, z0, z1, &eps));
   dpdl = (p0 - p1) / (z1 - z0);
   pred = CplPackedBedGradient(cpl->law, eps, u0, cpl->diam[0], cpl->rho, cpl->mu);
-  PetscCall(PetscPrintf(cpl->comm, "packed bed: dp/L %.10g Pa/m, porosity %.10f, superficial velocity %.6g m/s, drag law predicts %.6g Pa/m (ratio %.5f)\n", (double)dpdl, (double)eps, (double)u0, (double)pred, (double)(dpdl / pred)));
+  PetscCall(PetscPrintf(cpl->comm, "packed bed: dp/L %.15g Pa/m, porosity %.15f, superficial velocity %.6g m/s, drag law predicts %.6g Pa/m (ratio %.5f)\n", (double)dpdl, (double)eps, (double)u0, (double)pred, (double)(dpdl / pred)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
