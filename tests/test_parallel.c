@@ -8,7 +8,9 @@
  *   shear:  a fully periodic frictional box sheared by its initial velocity field (2000 steps);
  *   corner: a periodic gas crossing the corner shared by 4 ranks at half the skin per step;
  *   icosahedra: convex particles (libccd narrow phase) thrown into a box (gravity 60 m/s^2).
- * Every run checks the global count and id checksum every step (-dem_check_every 1). Also:
+ * On 1 rank the serial half list is checked against the full rows (bound 1e-4 of the box: the
+ * scene's chaotic amplification of roundoff, far below a lost pair's effect). Every run checks
+ * the global count and id checksum every step (-dem_check_every 1). Also:
  * total momentum of the periodic shear box conserved to roundoff over 10^4 steps, and a single
  * particle crossing periodic boundaries keeps its velocity bitwise. On 4 ranks the process grid
  * is 2 x 2 x 1. */
@@ -64,10 +66,16 @@ static PetscErrorCode Compare(const char *name, const char *scene, PetscInt N, d
     dp = PetscMax(dp, PetscAbsReal(x[2][i] - x[0][i]) / L);
     ds = PetscMax(ds, PetscAbsReal(x[1][i] - x[0][i]) / L);
   }
-  check((PetscBool)(dq == 0 && c[3] == c[1]), "%s, %d ranks vs 1, -dem_deterministic, %" PetscInt_FMT " steps: max |dx|/L = %.3g (bound 0), contacts %" PetscInt_FMT " vs %" PetscInt_FMT, name, size, steps, dq, c[3], c[1]);
-  /* default mode: sums differ in order, so agreement is to roundoff as amplified by the scene,
-     whose own amplification is measured by the serial half-list vs full-list difference */
-  check((PetscBool)(dp <= PetscMax(1e-10, 10 * ds)), "%s, %d ranks vs 1, default mode, %" PetscInt_FMT " steps: max |dx|/L = %.3g (bound max(1e-10, 10 x the serial half/full-list difference %.3g))", name, size, steps, dp, ds);
+  /* the serial half list against the serial full rows: the same forces summed in another order,
+     apart only by roundoff amplified by the scene (chaotic ones reach ~1e-5 L over these steps);
+     1e-4 L is far below what a missing or doubled pair does */
+  if (size == 1) check((PetscBool)(ds < 1e-4), "%s, 1 rank, half list vs -dem_deterministic full rows, %" PetscInt_FMT " steps: max |dx|/L = %.3g (bound 1e-4)", name, steps, ds);
+  else {
+    check((PetscBool)(dq == 0 && c[3] == c[1]), "%s, %d ranks vs 1, -dem_deterministic, %" PetscInt_FMT " steps: max |dx|/L = %.3g (bound 0), contacts %" PetscInt_FMT " vs %" PetscInt_FMT, name, size, steps, dq, c[3], c[1]);
+    /* default mode: sums differ in order, so agreement is to roundoff as amplified by the scene,
+       whose own amplification is measured by the serial half-list vs full-list difference */
+    check((PetscBool)(dp <= PetscMin(1e-4, PetscMax(1e-10, 10 * ds))), "%s, %d ranks vs 1, default mode, %" PetscInt_FMT " steps: max |dx|/L = %.3g (bound max(1e-10, 10 x the serial half/full-list difference %.3g), at most 1e-4)", name, size, steps, dp, ds);
+  }
   for (int k = 0; k < 4; k++) PetscCall(PetscFree(x[k]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
