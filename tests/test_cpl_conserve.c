@@ -3,9 +3,15 @@
  * References are exact identities of the scheme:
  *  1. solid volume on the grid (sum over cells of (1 - eps) V_cell) equals the particles'
  *     volume to 1e-12 relative, at the start and after the particles moved;
+ *     and the particles' volume is 64 pi/6 (the cubes': 64 x 0.9^3);
  *  2. particle momentum + fluid momentum + the exchange still owed to the fluid is constant to
  *     1e-10 relative to sum |m v| over 40 coupling steps, while the fluid picks up momentum
  *     (the drag is implicit on both sides; couple.c explains the bookkeeping);
+ *  2b. particle + fluid momentum alone (the issue's wording) differ from their start by the owed
+ *     part, the momentum in transit (the change of drag over one step): 2.5e-4 of sum |m v| after
+ *     the first step, so that sum alone is NOT constant to 1e-10 at a step's end. The check: the
+ *     owed part vanishes as the box relaxes, below 1e-2 of its first-step value after 400 steps
+ *     (nothing stays in transit; it tracks the exchange itself, which falls ~150x meanwhile);
  *  3. the same on 2 and 4 ranks, where particles near a rank boundary spread into the
  *     neighbour's cells through the ghost cells;
  *  4. checks 1-2 with cubes (edge 0.9 d, random orientations): the kernel takes the true volume.
@@ -41,6 +47,42 @@ static PetscErrorCode Total(TestCpl *t, PetscReal P[3], PetscReal *pf_norm, Pets
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Largest component of the owed momentum and of P_p + P_f - P0. */
+static PetscErrorCode Transit(TestCpl *t, const PetscReal P0[3], PetscReal *owed, PetscReal *gap)
+{
+  PetscReal pp[3], pf[3], ow[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetMomentum(t->cpl, pp, pf, ow));
+  *owed = *gap = 0;
+  for (int k = 0; k < 3; k++) {
+    *owed = PetscMax(*owed, PetscAbsReal(ow[k]));
+    *gap  = PetscMax(*gap, PetscAbsReal(pp[k] + pf[k] - P0[k]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Check 2b. */
+static PetscErrorCode OwedDecays(void)
+{
+  TestCpl   t;
+  CplStats  st;
+  PetscReal pp[3], pf[3], ow[3], P0[3], o1, g1, o2, g2, pn, s0;
+
+  PetscFunctionBeginUser;
+  PetscCall(TestCplCreate(Opts, &t));
+  PetscCall(Total(&t, P0, &pn, &s0));
+  PetscCall(CplGetMomentum(t.cpl, pp, pf, ow));
+  for (int k = 0; k < 3; k++) P0[k] = pp[k] + pf[k];
+  PetscCall(TestCplRun(&t, 1, &st));
+  PetscCall(Transit(&t, P0, &o1, &g1));
+  PetscCall(TestCplRun(&t, 399, &st));
+  PetscCall(Transit(&t, P0, &o2, &g2));
+  check((PetscBool)(o2 < 1e-2 * o1), "particle + fluid momentum alone: off by the owed part, %.2e of sum|m v| after 1 step, %.2e after 400 (owed %.2e, %.2e): it decays by %.1e (< 1e-2)", (double)(g1 / s0), (double)(g2 / s0), (double)(o1 / s0), (double)(o2 / s0), (double)(o2 / o1));
+  PetscCall(TestCplDestroy(&t));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   TestCpl   t;
@@ -55,10 +97,11 @@ int main(int argc, char **argv)
   PetscCall(CplGetSolidVolume(t.cpl, &g1, &p1));
   PetscCall(Total(&t, P1, &pf1, &s1));
   for (int k = 0; k < 3; k++) err = PetscMax(err, PetscAbsReal(P1[k] - P0[k]) / s0);
-  check((PetscBool)(PetscAbsReal(g0 / p0 - 1) < 1e-12 && PetscAbsReal(g1 / p1 - 1) < 1e-12), "solid volume on the grid vs particles: rel. error %.2e at start, %.2e after 40 steps (< 1e-12)", (double)PetscAbsReal(g0 / p0 - 1), (double)PetscAbsReal(g1 / p1 - 1));
+  check((PetscBool)(PetscAbsReal(g0 / p0 - 1) < 1e-12 && PetscAbsReal(g1 / p1 - 1) < 1e-12 && PetscAbsReal(p0 / (64 * PETSC_PI / 6) - 1) < 1e-12), "solid volume on the grid vs particles: rel. error %.2e at start, %.2e after 40 steps; particles vs 64 pi/6 %.2e (< 1e-12)", (double)PetscAbsReal(g0 / p0 - 1), (double)PetscAbsReal(g1 / p1 - 1), (double)PetscAbsReal(p0 / (64 * PETSC_PI / 6) - 1));
   check((PetscBool)(err < 1e-10), "particle + fluid + owed momentum over 40 steps: max change / sum|m v| %.2e (< 1e-10)", (double)err);
   check((PetscBool)(pf1 > 1e-2 * s0 && s1 < s0), "momentum went to the fluid: |P_fluid| / sum|m v|(0) %.3f (> 0.01), particles slowed: sum|m v| %.4g -> %.4g", (double)(pf1 / s0), (double)s0, (double)s1);
   PetscCall(TestCplDestroy(&t));
+  PetscCall(OwedDecays());
   {
     char opts[2048];
     PetscCall(PetscSNPrintf(opts, sizeof opts, "%s -dem_shape cube -dem_shape_size 0.9 -dem_lattice_random_orientation", Opts));
