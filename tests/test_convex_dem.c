@@ -10,7 +10,9 @@
  *    friction, linear law, dt = Tc/100): total linear and angular momentum (orbital + spin)
  *    conserved to 1e-10 (forces and torques are equal and opposite about the common contact
  *    point), energy drift (mean of the last tenth against the first) below 1e-4 over 1e5 steps
- *    for gentle impacts; faster impacts (0.12 m/s, 10 rad/s) drift by about 5e-3 (bound 1e-2).
+ *    for gentle impacts; faster impacts (0.12 m/s, 10 rad/s): below 1e-4 with the exact depth and
+ *    the support point (an energy gradient); the defaults drift by about 5e-3 there, reported on
+ *    a NOTE line (a known limitation of the patch point, not a check).
  *    Boxes only, whose pairs use the exact separating-axis narrow phase: momenta checked as above,
  *    the energy drift only reported (1.1e-3 with it and with libccd's MPR alike, above the 1e-4
  *    of the issue: the drift comes from the contact point model, see src/dem/CONVEX.md).
@@ -508,10 +510,10 @@ int main(int argc, char **argv)
     check((PetscBool)(d1 < 1e-4), "fast collisions of boxes and icosahedra, exact depth + support point, dt = Tc/100, 1e5 steps: energy drift %.2e relative (bound 1e-4)", d1);
     check((PetscBool)(d2 < 0.25 * d1), "fast collisions, exact depth + support point: the drift falls with dt, %.2e at Tc/100 to %.2e at Tc/400 (bound: below 1/4 of it)", d1, d2);
     /* the defaults (patch point; MPR's depth for icosahedra) are not an energy gradient: their
-       drift does not fall with dt; bounded only against regressions */
+       drift does not fall with dt; reported, not checked */
     PetscCall(Collisions(PETSC_FALSE, 0.1, 10, "", 1, &d3));
     PetscCall(Collisions(PETSC_FALSE, 0.1, 10, "", 4, &d4));
-    check((PetscBool)(d3 < 1e-2 && d4 < 1e-2), "fast collisions with the defaults (patch point, MPR for icosahedra): energy drift %.2e at Tc/100, %.2e at Tc/400 (a regression bound, 1e-2: this model is not an energy gradient, its drift does not fall with dt)", d3, d4);
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "NOTE fast collisions with the defaults (patch point, MPR for icosahedra): energy drift %.2e at Tc/100, %.2e at Tc/400 (not checked: this model is not an energy gradient and misses the issue's 1e-4, CONVEX.md)\n", d3, d4));
     PetscCall(Collisions(PETSC_TRUE, 0.1, 10, "-dem_convex_contact_point support", 1, &d1));
     PetscCall(Collisions(PETSC_TRUE, 0.1, 10, "-dem_convex_contact_point support", 4, &d2));
     check((PetscBool)(d2 < 1e-4), "fast collisions of boxes (separating axes by default) + support point, dt = Tc/400: energy drift %.2e relative (bound 1e-4; %.2e at Tc/100)", d2, d1);
