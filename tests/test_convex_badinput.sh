@@ -14,7 +14,7 @@ expect() { # name, pattern the message must match, arguments...
     echo "FAIL bad input, $name: exit $rc, $lines error lines, expected /$pat/; got: $out"
   fi
 }
-expect "unknown shape" "-dem_shape" $OK -dem_shape dodecahedron -dem_shape_size 0.01
+expect "unknown shape" "-dem_shape: unknown shape 'dodecahedron'; valid: sphere, cube, tetrahedron, octahedron, icosahedron, cylinder, polyhedron" $OK -dem_shape dodecahedron -dem_shape_size 0.01
 expect "shape without size" "-dem_shape cube needs -dem_shape_size or -dem_shape_deq" $OK -dem_shape cube
 expect "negative size" "-dem_shape_size -0.01 must be > 0" $OK -dem_shape cube -dem_shape_size -0.01
 expect "size count" "-dem_shape_size has 1 values for 2 shapes" $OK -dem_shape cube,icosahedron -dem_shape_size 0.01

@@ -26,9 +26,9 @@ check relaxation_time 'coupling step .* particle relaxation times .* above -cpl_
 check inconsistent_dt '-fluid_dt 0.1 differs from -cpl_substeps 5 x -dem_dt' -fluid_dt 0.1
 check porosity_floor '-cpl_porosity_floor 1.5 must be in \(0,1\)' -cpl_porosity_floor 1.5
 check substeps '-cpl_substeps 0 must be >= 1' -cpl_substeps 0
-check bad_drag_name 'cpl_drag' -cpl_drag stokes
+check bad_drag_name 'Unknown option stokes for -cpl_drag. Available options: beetstra difelice gidaspow' -cpl_drag stokes
 check fluid_gravity '-fluid_gravity .* must be 0,0,0 in a coupled run' -fluid_gravity 0,0,-1
-check misspelled_option 'cpl_substep' -cpl_substep 3
+check misspelled_option 'option -cpl_substep 3 was given but nothing reads it' -cpl_substep 3
 
 bin/sable -options_file $case -io_dir "$out.d" -cpl_t_end 0.5 >"$out" 2>&1; rc=$?
 if [ "$rc" -eq 0 ] && grep -q '^modules: DEM on; fluid on; coupling on' "$out" && grep -q '^pre-flight: coupling step / particle relaxation time' "$out" && grep -q '^pre-flight: cell / diameter' "$out"; then

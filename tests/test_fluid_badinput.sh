@@ -39,7 +39,7 @@ check inlet_interpolation_name 'Unknown option cubic for -fluid_inlet_interpolat
 check mg_levels_too_many '-fluid_poisson_pc_mg_levels 2: the fluid grid \(-da_grid_x 16\) has 16 cells along the bounded x axis after 0 coarsenings and cannot be coarsened again' 1 -fluid_poisson_pc_type mg -fluid_poisson_pc_mg_levels 2
 check negative_pc_lag '-fluid_poisson_pc_lag -1 must be >= 0' 1 -fluid_poisson_pc_lag -1
 check pc_lag_growth_below_1 '-fluid_poisson_pc_lag_growth 0.5 must be >= 1' 1 -fluid_poisson_pc_lag_growth 0.5
-check bad_advection_name 'fluid_advection' 1 -fluid_advection upwind3
+check bad_advection_name 'Unknown option upwind3 for -fluid_advection. Available options: central tvd none' 1 -fluid_advection upwind3
 # the same too-large dt with adaptive stepping: the step is cut to 0.9 of the CFL limit
 "$exe" -io_dir "${out}.d" -fluid_dt 0.5 -fluid_adaptive_dt >"$out" 2>&1; rc=$?
 rm -rf "${out}.d"

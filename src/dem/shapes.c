@@ -81,6 +81,26 @@ static PetscErrorCode DemShapeBuild(Dem dem, PetscInt s, const DemShapeSpec *sp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* PETSc's own message for an unknown enum in an array does not list the valid names: check the
+ * raw -dem_shape value first. */
+static PetscErrorCode DemShapeKindsCheck(Dem dem)
+{
+  const char *val;
+  char        buf[PETSC_MAX_PATH_LEN], *tok, *save = NULL;
+  PetscBool   set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsFindPair(NULL, NULL, "-dem_shape", &val, &set));
+  if (!set || !val) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscStrncpy(buf, val, sizeof buf));
+  for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    PetscBool eq = PETSC_FALSE; /* case-insensitive, as the enum parser compares */
+    for (PetscInt k = 0; k < 7 && !eq; k++) PetscCall(PetscStrcasecmp(tok, DemShapeKinds[k], &eq));
+    PetscCheck(eq, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_shape: unknown shape '%s'; valid: sphere, cube, tetrahedron, octahedron, icosahedron, cylinder, polyhedron (one per shape, comma-separated)", tok);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode DemShapeSpecsRead(Dem dem, PetscInt *ns, DemShapeSpec sp[], char *files[])
 {
   PetscEnum kind[DEM_MAX_SHAPES] = {0}; /* initialised: -help prints the arrays */
@@ -89,6 +109,7 @@ static PetscErrorCode DemShapeSpecsRead(Dem dem, PetscInt *ns, DemShapeSpec sp[]
   PetscBool kset, sset, dset, fset, rset;
 
   PetscFunctionBeginUser;
+  PetscCall(DemShapeKindsCheck(dem));
   PetscOptionsBegin(dem->comm, NULL, "DEM shapes", NULL);
   PetscCall(PetscOptionsEnumArray("-dem_shape", "Shape of each particle type: sphere, cube, tetrahedron, octahedron, icosahedron, cylinder, polyhedron", NULL, DemShapeKinds, kind, &nk, &kset));
   PetscCall(PetscOptionsRealArray("-dem_shape_size", "Edge (polyhedra), diameter (sphere, cylinder) or scale of the vertex file, per shape (m)", NULL, size, &nsz, &sset));
