@@ -139,7 +139,8 @@ int main(int argc, char **argv)
   if (SableCheckOptionsFiles(argc, argv)) return 1;
   PetscCall(PetscInitialize(&argc, &argv, NULL, "sable: parallel CFD-DEM. Options: see -help.\n"));
   PetscCall(PetscPushErrorHandler(SableErrorHandler, NULL));
-  ierr = SableRun();
+  ierr = SableCheckOptionValues(PETSC_COMM_WORLD);
+  if (!ierr) ierr = SableRun();
   if (ierr) {
     PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
     if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1); /* another rank may wait in a collective */

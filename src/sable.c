@@ -1,5 +1,82 @@
-/* Sable-wide helpers: the unused-option check (DESIGN §9). */
+/* Sable-wide helpers: the unused-option check (DESIGN §9) and the check of the values given to
+ * Sable's own options (finite numbers, a value where one is needed, the count of a list). */
 #include "sable.h"
+#include <math.h>
+#include <stdlib.h>
+
+/* Sable's options that are flags: given alone they mean true. Every other option of Sable's
+ * prefixes takes a value (tests/test_options_values.sh keeps this list complete). */
+static const char *const SableFlags[] = {"dem_convex_sat", "dem_deterministic", "dem_frozen", "dem_lattice_random_orientation", "domain_periodic_x", "domain_periodic_y", "domain_periodic_z", "fluid_adaptive_dt", "lb_verbose"};
+
+/* Sable's own option prefixes; fluid_poisson_ and fluid_viscous_ are PETSc solvers' prefixes
+ * (their flags, such as -fluid_poisson_ksp_monitor, are PETSc's business). */
+static PetscBool SableOwnOption(const char *name)
+{
+  const char *own[] = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
+  if (!strncmp(name, "fluid_poisson_", 14) || !strncmp(name, "fluid_viscous_", 14)) return PETSC_FALSE;
+  for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
+    if (!strncmp(name, own[k], strlen(own[k]))) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* One option's value: a flag needs none, every other option one; no comma-separated item that
+ * reads as a number may be NaN or infinite (no option of Sable means "forever" by inf). */
+static PetscErrorCode SableCheckOptionValue(MPI_Comm comm, const char *name, const char *value)
+{
+  char   buf[4096], *tok, *save = NULL;
+  size_t k;
+
+  PetscFunctionBeginUser;
+  if (!SableOwnOption(name)) PetscFunctionReturn(PETSC_SUCCESS);
+  for (k = 0; k < sizeof SableFlags / sizeof SableFlags[0]; k++)
+    if (!strcmp(name, SableFlags[k])) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(value && value[0], comm, PETSC_ERR_ARG_WRONG, "option -%s needs a value (-help lists it with its default)", name);
+  PetscCall(PetscStrncpy(buf, value, sizeof buf));
+  for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    char        *end;
+    const double x = strtod(tok, &end);
+    PetscCheck(end == tok || *end || isfinite(x), comm, PETSC_ERR_ARG_OUTOFRANGE, "option -%s %s: '%s' is not a finite number", name, value, tok);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableCheckOptionValues(MPI_Comm comm)
+{
+  char *all, *save = NULL, *tok, *name = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(NULL, &all));
+  /* "-name value -flag -name2 -1,2 ...": a token is a key when PETSc says so (a dash and a
+     letter), else the value of the key before it */
+  for (tok = strtok_r(all, " ", &save); tok; tok = strtok_r(NULL, " ", &save)) {
+    PetscBool key;
+    PetscCall(PetscOptionsValidKey(tok, &key));
+    if (key) {
+      if (name) PetscCall(SableCheckOptionValue(comm, name, NULL));
+      name = tok + 1;
+    } else if (name) {
+      PetscCall(SableCheckOptionValue(comm, name, tok));
+      name = NULL;
+    }
+  }
+  if (name) PetscCall(SableCheckOptionValue(comm, name, NULL));
+  PetscCall(PetscFree(all));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionCount(const char *opt, PetscInt *count)
+{
+  const char *v;
+  PetscBool   set;
+
+  PetscFunctionBeginUser;
+  *count = 0;
+  PetscCall(PetscOptionsFindPair(NULL, NULL, opt, &v, &set));
+  if (!set || !v || !v[0]) PetscFunctionReturn(PETSC_SUCCESS);
+  *count = 1;
+  for (; *v; v++) *count += *v == ',';
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* Options of a multigrid preconditioner's levels are read when the solver is set up, after the
  * start-up check: they are checked at the end of the run instead (SableWarnOptionsUnused). */

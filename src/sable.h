@@ -18,16 +18,23 @@ PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm);
  * check has to let through (multigrid level options, read when a solver is set up). */
 PetscErrorCode SableWarnOptionsUnused(MPI_Comm comm);
 
+/* Collective. Errors when one of Sable's options (-dem_, -fluid_, -cpl_, -domain_, -io_, -lb_)
+ * that takes a value has none, or has an item that reads as NaN or inf. Call once at start-up. */
+PetscErrorCode SableCheckOptionValues(MPI_Comm comm);
+/* Not collective. The number of comma-separated items given to option opt (0 if not given). */
+PetscErrorCode SableOptionCount(const char *opt, PetscInt *count);
+
 /* PETSc 3.18 predates PETSC_SUCCESS. */
 #ifndef PETSC_SUCCESS
   #define PETSC_SUCCESS 0
 #endif
 
 /* Inside a PetscOptionsBegin block: a real array option of exactly n values ("a,b,c"); a wrong
- * count is an error naming the option. */
+ * count, fewer or more (PETSc drops the surplus silently), is an error naming the option. */
 #define SableOptionsRealN(opt, text, man, v, n, set) \
   do { \
     PetscInt got_ = (n); \
     PetscCall(PetscOptionsRealArray(opt, text, man, v, &got_, set)); \
+    if (*(set)) PetscCall(SableOptionCount(opt, &got_)); \
     PetscCheck(!*(set) || got_ == (n), PETSC_COMM_WORLD, PETSC_ERR_ARG_SIZ, "%s takes %d comma-separated values, got %d", opt, (int)(n), (int)got_); \
   } while (0)

@@ -1,0 +1,28 @@
+#!/bin/sh
+# Values given to Sable's own options (src/sable.c, SableCheckOptionValues): a NaN or infinite
+# number, an option that needs a value given none, and a list with a surplus item are each an
+# error naming the option and the value (exit 1), never a run with a default or a dropped
+# item; a negative first item is a value, not an option. Also: every flag that the code reads
+# with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving it alone
+# would be refused).
+cd "$(dirname "$0")/.." || exit 1
+Q="bin/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
+expect() { # name, pattern, options...
+  name=$1; pat=$2; shift 2
+  out=$($Q "$@" 2>&1); rc=$?
+  if [ "$rc" -eq 1 ] && printf '%s\n' "$out" | grep -q -- "$pat"; then echo "PASS options $name: exit 1, \"$(printf '%s\n' "$out" | grep 'sable: error' | head -n 1)\""
+  else echo "FAIL options $name: exit $rc, expected \"$pat\"; got: $(printf '%s\n' "$out" | tail -n 1)"; fi
+}
+expect "NaN item" "option -dem_gravity 0,nan,-9.81: 'nan' is not a finite number" -dem_gravity 0,nan,-9.81
+expect "infinite end time" "option -dem_t_end inf: 'inf' is not a finite number" -dem_t_end inf
+expect "infinite inlet" "option -fluid_bc_zlo_velocity 0,0,-inf: '-inf' is not a finite number" -fluid_bc_zlo_velocity 0,0,-inf
+expect "missing value" "option -dem_box needs a value" -dem_box
+expect "missing value last" "option -dem_kn needs a value" -dem_kn
+expect "surplus item" "-domain_hi takes 3 comma-separated values, got 4" -domain_hi 0.1449,0.1449,0.24633,7
+out=$($Q -dem_plane_0 -1,0,0,0,0,1 -dem_frozen 2>&1); rc=$?
+if [ "$rc" -eq 0 ]; then echo "PASS options negative first item and a flag alone: exit 0"; else echo "FAIL options negative first item and a flag alone: exit $rc: $(printf '%s\n' "$out" | tail -n 1)"; fi
+missing=""
+for f in $(grep -rhoE 'PetscOptionsBool\("-(dem|fluid|cpl|domain|io|lb)_[a-z0-9_]*"' src | sed 's/.*("-//; s/"$//' | sort -u); do
+  grep -q "\"$f\"" src/sable.c || missing="$missing $f"
+done
+[ -z "$missing" ] && echo "PASS options: every PetscOptionsBool flag under Sable's prefixes is in SableFlags" || echo "FAIL options: flags missing from SableFlags (src/sable.c):$missing"
