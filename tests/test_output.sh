@@ -1,7 +1,9 @@
 #!/bin/sh
 # Output and restart: a short settle run writes HDF5 frames and an XDMF index (well-formed XML
 # that lists every frame), leaves no temporary file, and a run started from its last frame
-# (-dem_init_file) holds the same particles (count and id checksum) with the same positions.
+# (-dem_init_file) holds the same particles (count and id checksum) with the same positions; an
+# edited frame with a repeated id or a zero quaternion is refused, and a lattice added to a
+# file continues after its ids.
 cd "$(dirname "$0")/.." || exit 1
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
 OPTS="-domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_lattice 5,5,4 -dem_lattice_spacing 0.0145 -dem_lattice_speed 0.05 -dem_t_end 0.02 -io_interval 0.005 -io_dir $D/a"
@@ -47,4 +49,30 @@ ref = np.load(d + "/ref.npy")
 err = np.abs(p - ref).max() if p.shape == ref.shape else float("inf")
 ok = len(ids) == 100 and len(set(ids.tolist())) == 100 and err < 1e-12
 print(("PASS" if ok else "FAIL") + " 2-rank output: %d rows, %d distinct ids, max position difference to the 1-rank run %.2e m (bound 1e-12)" % (len(ids), len(set(ids.tolist())), err))
+PY
+# a frame edited into bad input: a repeated id, a zero quaternion (each an error naming the file
+# and the row or id); a lattice added to a file's particles continues after the file's ids
+last=$(ls "$D/a"/*.h5 | tail -n 1)
+/usr/bin/python3 - "$last" "$D" <<'PY' || echo "FAIL init file edits: the editing script exited with status $?"
+import sys, shutil, h5py
+src, d = sys.argv[1], sys.argv[2]
+shutil.copy(src, d + "/dup.h5"); shutil.copy(src, d + "/quat.h5")
+with h5py.File(d + "/dup.h5", "r+") as f:
+    i = f["particles/id"]; a = i[:]; a[5] = a[3]; i[...] = a
+with h5py.File(d + "/quat.h5", "r+") as f:
+    q = f["particles/quaternion"]; a = q[:]; a[7] = 0; q[...] = a
+PY
+B="-domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_t_end 0 -io_interval 0"
+for bad in "dup.h5:particle id [0-9]* appears more than once in /particles/id" "quat.h5:row 7 of /particles/quaternion, (0., 0., 0., 0.), is not a rotation"; do
+  f=${bad%%:*}; pat=${bad#*:}
+  out=$(bin/sable $B -dem_init_file "$D/$f" 2>&1); rc=$?
+  if [ "$rc" -eq 1 ] && printf '%s\n' "$out" | grep -q "sable: error: -dem_init_file $D/$f: $pat"; then echo "PASS init file $f: exit 1, $(printf '%s\n' "$out" | grep 'sable: error')"
+  else echo "FAIL init file $f: exit $rc, expected /$pat/; got: $(printf '%s\n' "$out" | tail -n 1)"; fi
+done
+bin/sable $B -dem_init_file "$last" -dem_lattice 2,2,1 -dem_lattice_origin 0,0,0.07 -io_interval 1 -io_dir "$D/e" > "$D/log5" 2>&1 || echo "FAIL init file + lattice: exit $?: $(tail -n 1 "$D/log5")"
+/usr/bin/python3 - "$D/e/sable_000000.h5" <<'PY' || echo "FAIL init file + lattice: the checking script exited with status $?"
+import sys, h5py
+ids = h5py.File(sys.argv[1], "r")["particles/id"][:].tolist()
+ok = len(ids) == 104 and len(set(ids)) == 104 and max(ids) == 103
+print(("PASS" if ok else "FAIL") + " init file + lattice: %d particles, %d distinct ids, largest %d (expected 104, 104, 103)" % (len(ids), len(set(ids)), max(ids)))
 PY

@@ -44,9 +44,11 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscOptionsBegin(dem->comm, NULL, "DEM insertion", NULL);
   PetscInt nl = 3;
   PetscCall(PetscOptionsIntArray("-dem_lattice", "Cubic lattice site counts nx,ny,nz (0 = no lattice)", NULL, dem->lat, &nl, &set));
+  if (set) PetscCall(SableOptionCount("-dem_lattice", &nl)); /* PETSc drops a surplus count */
   PetscCheck(!set || nl == 3, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_lattice takes 3 counts nx,ny,nz, got %" PetscInt_FMT, nl);
   PetscCall(PetscOptionsInt("-dem_lattice_count", "Fill only the first this many lattice sites, x fastest then y then z (default all nx*ny*nz)", NULL, dem->lat_count, &dem->lat_count, NULL));
-  PetscCall(PetscOptionsReal("-dem_lattice_spacing", "Lattice spacing (m); default 1.05 x the largest diameter", NULL, dem->lat_a, &dem->lat_a, NULL));
+  PetscCall(PetscOptionsReal("-dem_lattice_spacing", "Lattice spacing (m); default 1.05 x the largest diameter", NULL, dem->lat_a, &dem->lat_a, &set));
+  PetscCheck(!set || dem->lat_a > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_spacing %g must be > 0 (m)", (double)dem->lat_a);
   SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region (m); default the domain's lower corner", NULL, dem->lat_origin, 3, &dem->lat_origin_set);
   PetscCall(PetscOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2, in [0,1]", NULL, dem->lat_jitter, &dem->lat_jitter, NULL));
   PetscCall(PetscOptionsReal("-dem_lattice_speed", "Amplitude of the deterministic random initial velocity (m/s)", NULL, dem->lat_speed, &dem->lat_speed, NULL));
@@ -55,6 +57,10 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles)", NULL, dem->init_file, dem->init_file, sizeof dem->init_file, NULL));
   PetscOptionsEnd();
   for (int k = 0; k < 3; k++) PetscCheck(dem->lat[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice count %" PetscInt_FMT " must be >= 0", dem->lat[k]);
+  {
+    const double sites = (double)dem->lat[0] * (double)dem->lat[1] * (double)dem->lat[2];
+    PetscCheck(sites <= (double)PETSC_MAX_INT, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ": %.0f sites, more than %" PetscInt_FMT " (the integer size PETSc was built with)", dem->lat[0], dem->lat[1], dem->lat[2], sites, (PetscInt)PETSC_MAX_INT);
+  }
   PetscCheck(dem->lat_count >= -1 && dem->lat_count <= dem->lat[0] * dem->lat[1] * dem->lat[2], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_count %" PetscInt_FMT " must be in [0, nx*ny*nz = %" PetscInt_FMT "]", dem->lat_count, dem->lat[0] * dem->lat[1] * dem->lat[2]);
   if (dem->lat_count < 0) dem->lat_count = dem->lat[0] * dem->lat[1] * dem->lat[2];
   PetscCheck(dem->lat_jitter >= 0 && dem->lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->lat_jitter);
@@ -72,7 +78,9 @@ static PetscBool dem_in_box(const Domain *dom, const double *x)
   return PETSC_TRUE;
 }
 
-static PetscErrorCode DemInsertLattice(Dem dem)
+/* Site n gets id base + n: base is 0, or one past the largest id of the -dem_init_file
+ * particles (ids stay unique). */
+static PetscErrorCode DemInsertLattice(Dem dem, PetscInt base)
 {
   double   dmax = 0, a, gap;
   PetscInt nsite = dem->lat_count;
@@ -90,7 +98,7 @@ static PetscErrorCode DemInsertLattice(Dem dem)
     DemParticle    p;
     double         u = dem_uniform(dem->seed, n, 0), acc = 0;
     PetscCall(PetscMemzero(&p, sizeof p));
-    p.id    = n;
+    p.id    = base + n;
     p.q[0]  = 1;
     p.shape = dem->nshape - 1;
     for (PetscInt s = 0; s < dem->nshape; s++) {
@@ -124,6 +132,23 @@ static PetscErrorCode DemShapeForRadius(Dem dem, double r, PetscInt *s)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Every rank reads all rows of /particles/id: each checks they are whole, >= 0 and distinct. */
+static PetscErrorCode DemCheckFileIds(Dem dem, const PetscReal *d, PetscInt rows)
+{
+  PetscInt *ids;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(rows + 1, &ids));
+  for (PetscInt i = 0; i < rows; i++) {
+    PetscCheck(d[i] >= 0 && d[i] == PetscFloorReal(d[i]) && d[i] <= (PetscReal)PETSC_MAX_INT, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/id, %g, is not an id (a whole number >= 0)", dem->init_file, i, (double)d[i]);
+    ids[i] = (PetscInt)d[i];
+  }
+  PetscCall(PetscSortInt(rows, ids));
+  for (PetscInt i = 1; i < rows; i++) PetscCheck(ids[i] != ids[i - 1], dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: particle id %" PetscInt_FMT " appears more than once in /particles/id", dem->init_file, ids[i]);
+  PetscCall(PetscFree(ids));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
 {
   const char *names[6] = {"/particles/position", "/particles/velocity", "/particles/angular_velocity", "/particles/quaternion", "/particles/id", "/particles/radius"};
@@ -150,11 +175,16 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
         PetscCall(DemAddParticle(dem, &p));
       }
     }
+    if (k == 4) PetscCall(DemCheckFileIds(dem, d, rows));
     for (PetscInt a = 0; a < nmine && k > 0; a++) {
       const PetscInt i = n0 + a, row = mine[a];
       if (k == 1) for (int c = 0; c < 3; c++) dem->v[3 * i + c] = d[3 * row + c];
       if (k == 2) for (int c = 0; c < 3; c++) dem->w[3 * i + c] = d[3 * row + c];
-      if (k == 3) for (int c = 0; c < 4; c++) dem->q[4 * i + c] = d[4 * row + c];
+      if (k == 3) {
+        const PetscReal *q = d + 4 * row, nq = PetscSqrtReal(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        PetscCheck(PetscIsNormalReal(nq) && nq > 1e-12, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/quaternion, (%g, %g, %g, %g), is not a rotation (norm %g)", dem->init_file, row, (double)q[0], (double)q[1], (double)q[2], (double)q[3], (double)nq);
+        for (int c = 0; c < 4; c++) dem->q[4 * i + c] = q[c] / nq; /* Sable writes unit ones; others are normalised */
+      }
       if (k == 4) dem->id[i] = (PetscInt)d[row];
       if (k == 5) PetscCall(DemShapeForRadius(dem, d[row], &dem->shape[i]));
     }
@@ -191,7 +221,9 @@ PetscErrorCode DemInsert(Dem dem)
     want += nfile;
   }
   if (dem->lat_count > 0) {
-    PetscCall(DemInsertLattice(dem));
+    PetscInt base = 0;
+    if (nfile) PetscCallMPI(MPI_Allreduce(&dem->next_id, &base, 1, MPIU_INT, MPI_MAX, dem->comm));
+    PetscCall(DemInsertLattice(dem, base));
     want += dem->lat_count;
   }
   /* a particle outside every rank's box would be lost silently: refuse */
