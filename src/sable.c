@@ -80,7 +80,11 @@ PetscErrorCode SableOptionCount(const char *opt, PetscInt *count)
 
 /* Options of a multigrid preconditioner's levels are read when the solver is set up, after the
  * start-up check: they are checked at the end of the run instead (SableWarnOptionsUnused). */
-static PetscBool SableReadAtSolverSetUp(const char *name) { return (PetscBool)(strstr(name, "_mg_levels_") || strstr(name, "_mg_coarse_")); }
+static PetscBool SableReadAtSolverSetUp(const char *name)
+{
+  const PetscBool solver = (PetscBool)(!strncmp(name, "fluid_poisson_", 14) || !strncmp(name, "fluid_viscous_", 14));
+  return (PetscBool)(solver && (strstr(name, "_mg_levels_") || strstr(name, "_mg_coarse_")));
+}
 
 PetscErrorCode SableWarnOptionsUnused(MPI_Comm comm)
 {
@@ -105,10 +109,10 @@ PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm)
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt i = 0; i < n && bad < 0; i++) {
     /* options that steer PETSc's run-time system, read after us or not at all */
-    const char *skip[] = {"options_left", "log_view", "malloc", "help", "on_error", "info", "history", "options_file", "fp_trap", "check_pointer_intensity", "use_gpu_aware_mpi"};
+    const char *skip[] = {"options_left", "log_view", "log_view_memory", "log_view_gpu_time", "log_trace", "malloc_debug", "malloc_dump", "malloc_test", "malloc_view", "help", "on_error_abort", "on_error_attach_debugger", "info", "history", "options_file", "options_monitor", "fp_trap", "check_pointer_intensity", "use_gpu_aware_mpi"};
     PetscBool   ok     = SableReadAtSolverSetUp(names[i]);
-    for (size_t k = 0; k < sizeof skip / sizeof skip[0]; k++)
-      if (!strncmp(names[i], skip[k], strlen(skip[k]))) ok = PETSC_TRUE;
+    for (size_t k = 0; k < sizeof skip / sizeof skip[0]; k++) /* whole names: -log_vieww is a typo */
+      if (!strcmp(names[i], skip[k])) ok = PETSC_TRUE;
     if (!ok) {
       bad = i;
       PetscCall(PetscSNPrintf(msg, sizeof msg, "option -%s %s was given but nothing reads it (a typo? -help lists the valid options)", names[i], values[i] ? values[i] : ""));

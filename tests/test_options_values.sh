@@ -2,7 +2,8 @@
 # Values given to Sable's own options (src/sable.c, SableCheckOptionValues): a NaN or infinite
 # number, an option that needs a value given none, and a list with a surplus item are each an
 # error naming the option and the value (exit 1), never a run with a default or a dropped
-# item; a negative first item is a value, not an option. Also: every flag that the code reads
+# item; a negative first item is a value, not an option; the unused-option check lets through
+# PETSc's run-time options by whole name only (-log_vieww is a typo). Also: every flag that the code reads
 # with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving it alone
 # would be refused).
 cd "$(dirname "$0")/.." || exit 1
@@ -19,6 +20,8 @@ expect "infinite inlet" "option -fluid_bc_zlo_velocity 0,0,-inf: '-inf' is not a
 expect "missing value" "option -dem_box needs a value" -dem_box
 expect "missing value last" "option -dem_kn needs a value" -dem_kn
 expect "surplus item" "-domain_hi takes 3 comma-separated values, got 4" -domain_hi 0.1449,0.1449,0.24633,7
+expect "typo of a PETSc option" "option -log_vieww  was given but nothing reads it" -log_vieww
+expect "multigrid-like name outside the solvers" "option -dem_mg_levels_foo 1 was given but nothing reads it" -dem_mg_levels_foo 1
 out=$($Q -dem_plane_0 -1,0,0,0,0,1 -dem_frozen 2>&1); rc=$?
 if [ "$rc" -eq 0 ]; then echo "PASS options negative first item and a flag alone: exit 0"; else echo "FAIL options negative first item and a flag alone: exit $rc: $(printf '%s\n' "$out" | tail -n 1)"; fi
 missing=""

@@ -72,7 +72,7 @@ PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
         const double d = x[3 * i + k] - x0[3 * i + k];
         d2 += d * d;
       }
-      d2max = d2 > d2max ? d2 : d2max;
+      d2max = d2 > d2max || d2 != d2 ? d2 : d2max; /* a NaN displacement is kept: DemStep stops on it */
     }
   }
   if (dem->convex) PetscCall(DemRotateFirstHalf(dem)); /* full inertia tensor (rotation.c) */
