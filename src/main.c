@@ -8,7 +8,9 @@
 #include "dem/dem.h"
 #include "io/io.h"
 #include "coupling/coupling.h"
+#include <ctype.h>
 #include <errno.h>
+#include <sys/stat.h>
 #include <sys/resource.h>
 
 static PetscBool sable_traceback = PETSC_FALSE;
@@ -34,17 +36,53 @@ static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *fun
   return n;
 }
 
-/* PETSc's own message for a missing options file is a traceback; say it in one line first. */
+/* PETSc's own messages for a bad options file are tracebacks: check each -options_file first
+ * and say what is wrong in one line (file, line, text). A line is "-name [value]", "alias -a -b"
+ * or blank; # starts a comment. */
+static int SableCheckOptionsFile(const char *path)
+{
+  struct stat st;
+  char        line[4096];
+  int         n = 0, bad = 0;
+  FILE       *fp;
+
+  if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+    fprintf(stderr, "sable: error: -options_file %s: is a directory, not a file of options\n", path);
+    return 1;
+  }
+  fp = fopen(path, "r");
+  if (!fp) {
+    fprintf(stderr, "sable: error: -options_file %s: cannot open (%s)\n", path, strerror(errno));
+    return 1;
+  }
+  while (!bad && fgets(line, sizeof line, fp)) {
+    char *tok[3] = {NULL, NULL, NULL}, *save = NULL, *c = strchr(line, '#');
+    int   nt = 0;
+    n++;
+    if (c) *c = 0;
+    for (char *t = strtok_r(line, " \t\r\n", &save); t && nt < 3; t = strtok_r(NULL, " \t\r\n", &save)) tok[nt++] = t;
+    if (!nt || !strcmp(tok[0], "alias")) continue;
+    if (tok[0][0] != '-' || !isalpha((unsigned char)tok[0][1])) {
+      fprintf(stderr, "sable: error: -options_file %s, line %d: '%s' is not an option (a line is -name value)\n", path, n, tok[0]);
+      bad = 1;
+    } else if (nt > 2) {
+      fprintf(stderr, "sable: error: -options_file %s, line %d: %s has more than one value ('%s %s ...'; lists are comma-separated)\n", path, n, tok[0], tok[1], tok[2]);
+      bad = 1;
+    }
+  }
+  fclose(fp);
+  return bad;
+}
+
 static int SableCheckOptionsFiles(int argc, char **argv)
 {
-  for (int i = 1; i + 1 < argc; i++)
+  for (int i = 1; i < argc; i++)
     if (!strcmp(argv[i], "-options_file")) {
-      FILE *fp = fopen(argv[i + 1], "r");
-      if (!fp) {
-        fprintf(stderr, "sable: error: -options_file %s: cannot open (%s)\n", argv[i + 1], strerror(errno));
+      if (i + 1 == argc || argv[i + 1][0] == 0) {
+        fprintf(stderr, "sable: error: -options_file needs a file name\n");
         return 1;
       }
-      fclose(fp);
+      if (SableCheckOptionsFile(argv[i + 1])) return 1;
     }
   return 0;
 }

@@ -3,7 +3,8 @@
 # number, an option that needs a value given none, and a list with a surplus item are each an
 # error naming the option and the value (exit 1), never a run with a default or a dropped
 # item; a negative first item is a value, not an option; the unused-option check lets through
-# PETSc's run-time options by whole name only (-log_vieww is a typo). Also: every flag that the code reads
+# PETSc's run-time options by whole name only (-log_vieww is a typo); a bad options file is one
+# line naming the file and line, not PETSc's traceback. Also: every flag that the code reads
 # with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving it alone
 # would be refused).
 cd "$(dirname "$0")/.." || exit 1
@@ -24,6 +25,17 @@ expect "typo of a PETSc option" "option -log_vieww  was given but nothing reads 
 expect "multigrid-like name outside the solvers" "option -dem_mg_levels_foo 1 was given but nothing reads it" -dem_mg_levels_foo 1
 out=$($Q -dem_plane_0 -1,0,0,0,0,1 -dem_frozen 2>&1); rc=$?
 if [ "$rc" -eq 0 ]; then echo "PASS options negative first item and a flag alone: exit 0"; else echo "FAIL options negative first item and a flag alone: exit $rc: $(printf '%s\n' "$out" | tail -n 1)"; fi
+# options files: a line that is not an option, a second value, a directory, no file name
+T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+printf -- '-dem_t_end 0.001\nthis is not an option\n' > "$T/a.opts"; printf -- '-dem_t_end 0.001 0.002\n' > "$T/b.opts"
+for c in "a.opts:line 2: 'this' is not an option" "b.opts:line 1: -dem_t_end has more than one value" ":is a directory"; do
+  f="$T/${c%%:*}"; pat=${c#*:}
+  out=$(bin/sable -options_file "$f" 2>&1); rc=$?
+  if [ "$rc" -eq 1 ] && [ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] && printf '%s' "$out" | grep -q -- "$pat"; then echo "PASS options file ${c%%:*}: exit 1, one line: $out"
+  else echo "FAIL options file ${c%%:*}: exit $rc, expected one line /$pat/; got: $(printf '%s\n' "$out" | head -n 3)"; fi
+done
+out=$(bin/sable -options_file 2>&1); rc=$?
+if [ "$rc" -eq 1 ] && [ "$out" = "sable: error: -options_file needs a file name" ]; then echo "PASS options file missing name: exit 1, $out"; else echo "FAIL options file missing name: exit $rc, $out"; fi
 missing=""
 for f in $(grep -rhoE 'PetscOptionsBool\("-(dem|fluid|cpl|domain|io|lb)_[a-z0-9_]*"' src | sed 's/.*("-//; s/"$//' | sort -u); do
   grep -q "\"$f\"" src/sable.c || missing="$missing $f"
