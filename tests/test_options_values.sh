@@ -21,6 +21,14 @@ expect "infinite inlet" "option -fluid_bc_zlo_velocity 0,0,-inf: '-inf' is not a
 expect "missing value" "option -dem_box needs a value" -dem_box
 expect "missing value last" "option -dem_kn needs a value" -dem_kn
 expect "surplus item" "-domain_hi takes 3 comma-separated values, got 4" -domain_hi 0.1449,0.1449,0.24633,7
+expect "negative skin" "-dem_skin -1. must be > 0 (m)" -dem_skin -1
+expect "negative progress interval" "-dem_progress_interval -1. must be >= 0" -dem_progress_interval -1
+expect "more radii than shapes" "-dem_radius has 34 values; at most 32 shapes" -dem_radius "$(awk 'BEGIN {for (i = 0; i < 34; i++) printf "%s0.0069", i ? "," : ""}')"
+Q="bin/sable -options_file cases/fluidized_bed/small.opts -cpl_t_end 0.5 -io_interval 0"
+expect "probe heights equal" "-cpl_probe_z 10.,10.: need lo <= z1 < z2 <= hi with the domain's z range \[0., 48.\]" -cpl_probe_z 10,10
+expect "probe above the domain" "-cpl_probe_z 100.,200.: need lo <= z1 < z2 <= hi" -cpl_probe_z 100,200
+expect "surplus inlet component" "-fluid_bc_zlo_velocity takes 3 comma-separated values, got 4" -fluid_bc_zlo_velocity 0,0,0.3,4
+Q="bin/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
 expect "typo of a PETSc option" "option -log_vieww  was given but nothing reads it" -log_vieww
 expect "multigrid-like name outside the solvers" "option -dem_mg_levels_foo 1 was given but nothing reads it" -dem_mg_levels_foo 1
 out=$($Q -dem_plane_0 -1,0,0,0,0,1 -dem_frozen 2>&1); rc=$?

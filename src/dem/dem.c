@@ -88,7 +88,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
 {
   PetscReal r[DEM_MAX_SHAPES], fr[DEM_MAX_SHAPES], sum = 0;
   PetscInt  nr = DEM_MAX_SHAPES, nf = DEM_MAX_SHAPES, law = dem->law;
-  PetscBool rset, fset, gset;
+  PetscBool rset, fset, gset, sset;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(dem->comm, NULL, "DEM: particles, contacts, time stepping", NULL);
@@ -108,7 +108,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run (s)", NULL, dem->t_end, &dem->t_end, NULL));
   PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, dem->progress_dt, &dem->progress_dt, NULL));
   SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
-  PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, NULL));
+  PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, &sset));
   PetscCall(PetscOptionsBool("-dem_convex_sat", "Polyhedron pairs with at most -dem_convex_sat_axes candidate axes by the exact separating-axis test instead of libccd's MPR (default true)", NULL, dem->convex_sat, &dem->convex_sat, NULL));
   PetscCall(PetscOptionsInt("-dem_convex_sat_axes", "Most candidate axes (distinct face normals of both + edge-direction pairs) of a pair that takes the separating-axis test: 16 = box-box; 58 box-icosahedron, 245 icosahedron pairs (exact, ~9x MPR's cost in a dense bed)", NULL, dem->convex_sat_axes, &dem->convex_sat_axes, NULL));
   PetscCall(PetscOptionsEnum("-dem_convex_contact_point", "Pair contact point: patch (centroid of the contact patch, smooth) or support (the deepest vertex / edge crossing: the energy's own gradient, conserves energy with the exact depth)", NULL, ConvexPointModels, (PetscEnum)dem->convex_point, (PetscEnum *)&dem->convex_point, NULL));
@@ -116,6 +116,15 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsInt("-dem_check_every", "Debug: check the global particle count and id checksum every this many steps (0 = never)", NULL, dem->check_every, &dem->check_every, NULL));
   PetscCall(PetscOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, dem->sort_interval, &dem->sort_interval, NULL));
   PetscOptionsEnd();
+  PetscCheck(!sset || dem->skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->skin);
+  PetscCheck(dem->progress_dt >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_progress_interval %g must be >= 0 (s; 0 = no progress lines)", (double)dem->progress_dt);
+  PetscCheck(dem->check_every >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_check_every %d must be >= 0 (0 = never)", (int)dem->check_every);
+  for (int k = 0; k < 2; k++) { /* PETSc stops reading an array at its capacity without a word */
+    const char *opt = k ? "-dem_radius_fraction" : "-dem_radius";
+    PetscInt    cnt;
+    PetscCall(SableOptionCount(opt, &cnt));
+    PetscCheck(cnt <= DEM_MAX_SHAPES, dem->comm, PETSC_ERR_ARG_SIZ, "%s has %d values; at most %d shapes", opt, (int)cnt, DEM_MAX_SHAPES);
+  }
   PetscCheck(dem->convex_sat_axes >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_convex_sat_axes %d must be >= 0 (candidate axes of a pair; 16 covers box-box pairs)", (int)dem->convex_sat_axes);
   if (rset) {
     PetscCheck(nr >= 1, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius needs at least one value");

@@ -183,7 +183,8 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
       if (k == 3) {
         const PetscReal *q = d + 4 * row, nq = PetscSqrtReal(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
         PetscCheck(PetscIsNormalReal(nq) && nq > 1e-12, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/quaternion, (%g, %g, %g, %g), is not a rotation (norm %g)", dem->init_file, row, (double)q[0], (double)q[1], (double)q[2], (double)q[3], (double)nq);
-        for (int c = 0; c < 4; c++) dem->q[4 * i + c] = q[c] / nq; /* Sable writes unit ones; others are normalised */
+        const PetscReal sc = PetscAbsReal(nq - 1) < 1e-12 ? 1 : 1 / nq; /* Sable's own (unit) ones kept bitwise, others normalised */
+        for (int c = 0; c < 4; c++) dem->q[4 * i + c] = q[c] * sc;
       }
       if (k == 4) dem->id[i] = (PetscInt)d[row];
       if (k == 5) PetscCall(DemShapeForRadius(dem, d[row], &dem->shape[i]));

@@ -34,6 +34,7 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
       fl->bc[d][s].type = t;
       n                 = 3;
       PetscCall(PetscOptionsRealArray(optv, "Inlet velocity on this face (m/s; default 0,0,0)", NULL, fl->bc[d][s].vel, &n, &set));
+      if (set) PetscCall(SableOptionCount(optv, &n)); /* PETSc drops a surplus value */
       PetscCheck(!set || n == 3, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes 3 comma-separated values, got %d", optv, (int)n);
       PetscCheck(!set || t == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but %s is %s, not inlet", optv, opt, FluidBCNames[t]);
       if (t == FLUID_BC_OUTLET) any_outlet = PETSC_TRUE;
