@@ -15,7 +15,7 @@ bin/sable $GEO -dem_lattice 5,5,1 -dem_lattice_spacing 0.018 -dem_lattice_random
 import sys, glob, itertools, xml.dom.minidom, h5py, numpy as np
 d, a = sys.argv[1], float(sys.argv[2])
 doc = xml.dom.minidom.parse(d + "/a/sable.xmf")
-surf = [g for g in doc.getElementsByTagName("Grid") if g.getAttribute("Name") == "surface"]
+surf = [g for g in doc.getElementsByTagName("Grid") if g.getAttribute("Name") == "surface" and g.getAttribute("GridType") == "Uniform"]
 last = sorted(glob.glob(d + "/a/*.h5"))[-1]
 f = h5py.File(last, "r")
 x, q, ids = f["particles/position"][:], f["particles/quaternion"][:], f["particles/id"][:]

@@ -15,7 +15,7 @@ tmp=$(ls "$D/a" | grep -c '\.tmp$')
 /usr/bin/python3 - "$D/a/sable.xmf" "$D/a" <<'PY' || echo "FAIL output XDMF: the checking script exited with status $?"
 import sys, xml.dom.minidom, h5py, numpy as np
 doc = xml.dom.minidom.parse(sys.argv[1])
-grids = [g for g in doc.getElementsByTagName("Grid") if g.getAttribute("Name") == "particles"]
+grids = [g for g in doc.getElementsByTagName("Grid") if g.getAttribute("Name") == "particles" and g.getAttribute("GridType") == "Uniform"]
 ok = len(grids) == 5
 last = sorted(__import__("glob").glob(sys.argv[2] + "/*.h5"))[-1]
 f = h5py.File(last, "r")

@@ -3,8 +3,9 @@
  *   /fluid/<name>      [nz, ny, nx] or [nz, ny, nx, ncomp], cell centred
  *   attribute "time" on the root group.
  *   /surface/points [P, 3], /surface/tag [P], /surface/triangles [T, 3] (global point indices)
- * The XDMF index lists, per frame, a Polyvertex grid for particles, a Triangle grid for the
- * surface (when written) and a 3DCoRectMesh for the fluid, inside a temporal collection. */
+ *   /particles/vertex [N]: 0..N-1, the Polyvertex connectivity (for the Xdmf3 readers).
+ * The XDMF index holds one temporal collection per kind: a Polyvertex grid per frame for the
+ * particles, a Triangle grid for the surface (when written), a 3DCoRectMesh for the fluid. */
 #include "io/io.h"
 #include <hdf5.h>
 #include <errno.h>
@@ -165,10 +166,17 @@ static PetscErrorCode IoWriteBlock(hid_t group, const char *name, hid_t type, in
     SableCallH5(H5Sselect_none(fspace));
     SableCallH5(H5Sselect_none(mspace));
   }
-  dxpl = H5Pcreate(H5P_DATASET_XFER);
-  SableCallH5(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE));
-  SableCallH5(H5Dwrite(dset, type, mspace, fspace, dxpl, data));
-  SableCallH5(H5Pclose(dxpl));
+  { /* an empty dataset (a scene with no particles) is created but not written: HDF5's
+       collective write of nothing fails */
+    hsize_t total = 1;
+    for (int k = 0; k < rank; k++) total *= dims[k];
+    if (total) {
+      dxpl = H5Pcreate(H5P_DATASET_XFER);
+      SableCallH5(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE));
+      SableCallH5(H5Dwrite(dset, type, mspace, fspace, dxpl, data));
+      SableCallH5(H5Pclose(dxpl));
+    }
+  }
   SableCallH5(H5Sclose(mspace));
   SableCallH5(H5Sclose(fspace));
   SableCallH5(H5Dclose(dset));
@@ -191,6 +199,13 @@ static PetscErrorCode IoWriteRows(Io io, const char *name, PetscInt nlocal, Pets
   count[0] = (hsize_t)n;
   count[1] = (hsize_t)ncomp;
   PetscCall(IoWriteBlock(io->gpart, name, type, ncomp > 1 ? 2 : 1, dims, start, count, data));
+  if (!strcmp(name, "position")) { /* the Polyvertex connectivity 0..N-1: the Xdmf3 readers make no cells without it */
+    long long *vtx;
+    PetscCall(PetscMalloc1(n + 1, &vtx));
+    for (long long i = 0; i < n; i++) vtx[i] = off + i;
+    PetscCall(IoWriteBlock(io->gpart, "vertex", H5T_NATIVE_LLONG, 1, dims, start, count, vtx));
+    PetscCall(PetscFree(vtx));
+  }
   PetscCall(PetscStrncpy(fr->part[fr->npart].name, name, sizeof fr->part[0].name));
   fr->part[fr->npart].ncomp = ncomp;
   fr->part[fr->npart].isint = isint;
@@ -283,51 +298,62 @@ static void IoXdmfAttribute(FILE *fp, const char *file, const char *group, const
   fprintf(fp, "        </Attribute>\n");
 }
 
-static void IoXdmfFrame(Io io, FILE *fp, const IoFrame *fr)
+/* One frame's grid of one kind (0 particles, 1 surface, 2 fluid), with its time. */
+static void IoXdmfGrid(Io io, FILE *fp, const IoFrame *fr, int kind)
 {
   char d[64];
 
-  fprintf(fp, "    <Grid Name=\"frame\" GridType=\"Collection\" CollectionType=\"Spatial\">\n      <Time Value=\"%.17g\"/>\n", (double)fr->t);
-  if (fr->npart) {
+  if (kind == 0) {
     PetscSNPrintf(d, sizeof d, "%d", (int)fr->np);
-    fprintf(fp, "      <Grid Name=\"particles\" GridType=\"Uniform\">\n");
-    fprintf(fp, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\"/>\n", (int)fr->np);
+    fprintf(fp, "      <Grid Name=\"particles\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
+    fprintf(fp, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\">\n          <DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/particles/vertex</DataItem>\n        </Topology>\n", (int)fr->np, (int)fr->np, fr->file);
     fprintf(fp, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/position</DataItem>\n        </Geometry>\n", (int)fr->np, fr->file);
     for (PetscInt i = 0; i < fr->npart; i++)
       if (strcmp(fr->part[i].name, "position")) IoXdmfAttribute(fp, fr->file, "particles", &fr->part[i], "Node", d);
-    fprintf(fp, "      </Grid>\n");
-  }
-  if (fr->nsurft) {
-    fprintf(fp, "      <Grid Name=\"surface\" GridType=\"Uniform\">\n");
+  } else if (kind == 1) {
+    fprintf(fp, "      <Grid Name=\"surface\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
     fprintf(fp, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%lld\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/triangles</DataItem>\n        </Topology>\n", fr->nsurft, fr->nsurft, fr->file);
     fprintf(fp, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/surface/points</DataItem>\n        </Geometry>\n", fr->nsurfp, fr->file);
-    fprintf(fp, "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\"%lld\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/tag</DataItem>\n        </Attribute>\n      </Grid>\n", fr->nsurfp, fr->file);
-  }
-  if (fr->nfluid) {
+    fprintf(fp, "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\"%lld\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/tag</DataItem>\n        </Attribute>\n", fr->nsurfp, fr->file);
+  } else {
     PetscSNPrintf(d, sizeof d, "%d %d %d", (int)io->fcells[2], (int)io->fcells[1], (int)io->fcells[0]);
-    fprintf(fp, "      <Grid Name=\"fluid\" GridType=\"Uniform\">\n");
+    fprintf(fp, "      <Grid Name=\"fluid\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
     fprintf(fp, "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"%d %d %d\"/>\n", (int)io->fcells[2] + 1, (int)io->fcells[1] + 1, (int)io->fcells[0] + 1);
     fprintf(fp, "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n");
     fprintf(fp, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n", (double)io->flo[2], (double)io->flo[1], (double)io->flo[0]);
     fprintf(fp, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n        </Geometry>\n", (double)io->fh[2], (double)io->fh[1], (double)io->fh[0]);
     for (PetscInt i = 0; i < fr->nfluid; i++) IoXdmfAttribute(fp, fr->file, "fluid", &fr->fluid[i], "Cell", d);
-    fprintf(fp, "      </Grid>\n");
   }
-  fprintf(fp, "    </Grid>\n");
+  fprintf(fp, "      </Grid>\n");
 }
 
+/* The index: one temporal collection per kind (particles, surface, fluid) directly in the
+ * domain, so that ParaView's XDMF reader keeps one block of a fixed name ("particles", ...)
+ * through time (a spatial collection per frame gave particles[1], particles[2], ... and broke
+ * Extract Block after the first frame). */
 static PetscErrorCode IoWriteIndex(Io io)
 {
-  char  tmp[PETSC_MAX_PATH_LEN];
-  FILE *fp;
+  const char *kinds[3] = {"particles", "surface", "fluid"};
+  char        tmp[PETSC_MAX_PATH_LEN];
+  FILE       *fp;
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(tmp, sizeof tmp, "%s.tmp", io->index));
   fp = fopen(tmp, "w");
   PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-io_dir: cannot write %s", tmp);
-  fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n  <Grid Name=\"sable\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
-  for (PetscInt i = 0; i < io->nframes; i++) IoXdmfFrame(io, fp, &io->frames[i]);
-  fprintf(fp, "  </Grid>\n  </Domain>\n</Xdmf>\n");
+  fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n");
+  for (int k = 0; k < 3; k++) {
+    PetscInt n = 0;
+    for (PetscInt i = 0; i < io->nframes; i++) n += k == 0 ? io->frames[i].npart > 0 : (k == 1 ? io->frames[i].nsurft > 0 : io->frames[i].nfluid > 0);
+    if (!n) continue;
+    fprintf(fp, "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", kinds[k]);
+    for (PetscInt i = 0; i < io->nframes; i++) {
+      const IoFrame *fr = &io->frames[i];
+      if (k == 0 ? fr->npart > 0 : (k == 1 ? fr->nsurft > 0 : fr->nfluid > 0)) IoXdmfGrid(io, fp, fr, k);
+    }
+    fprintf(fp, "    </Grid>\n");
+  }
+  fprintf(fp, "  </Domain>\n</Xdmf>\n");
   PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "-io_dir: cannot finish %s", tmp);
   PetscCheck(rename(tmp, io->index) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s", tmp, io->index);
   PetscFunctionReturn(PETSC_SUCCESS);
