@@ -1,11 +1,13 @@
 # Sable build. `make` builds bin/sable and build/libsable.a (the tests link it).
-#   make DEBUG=1      debug build (-O0 -g, PetscAssert active), in build-debug/
+#   make DEBUG=1      debug build (-O0 -g, PetscAssert active), all in build-debug/ (its
+#                     binary build-debug/bin/sable; bin/sable stays the optimised one)
 #   make test         installs missing packages, builds, runs the whole suite
 #   make run          installs missing packages, builds, runs the default case
 #   make bench        the performance benchmarks (never part of `make test`)
 DEBUG ?= 0
 ifeq ($(DEBUG),1)
   BUILD ?= build-debug
+  BIN ?= build-debug/bin
   OPT = -O0 -g -DSABLE_DEBUG
 else
   BUILD ?= build
@@ -49,7 +51,7 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libsable.a $(HDRS)
 # The targets that a fresh machine runs first install what is missing, then build.
 test: deps
 	@$(MAKE) --no-print-directory -s all
-	@BUILD=$(BUILD) tests/run.sh
+	@BUILD=$(BUILD) BIN=$(BIN) tests/run.sh
 
 run: deps
 	@$(MAKE) --no-print-directory -s all

@@ -10,6 +10,8 @@
 set -u
 cd "$(dirname "$0")/.."
 BUILD=${BUILD:-build}
+BIN=${BIN:-bin} # the driver the shell tests run (make DEBUG=1 test: build-debug/bin)
+export BUILD BIN
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 LOG=$(mktemp -d)

@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.." || exit 1
 Q="-options_file cases/settle/quick.opts -dem_t_end 0.02 -dem_progress_interval 0 -io_interval 0 -domain_cell 0.02 -da_processors_x 1 -da_processors_y 1"
 expect() { # name, pattern, arguments...
   name=$1; pat=$2; shift 2
-  out=$(mpiexec --oversubscribe -n 2 bin/sable "$@" 2>&1); rc=$?
+  out=$(mpiexec --oversubscribe -n 2 ${BIN:-bin}/sable "$@" 2>&1); rc=$?
   lines=$(printf '%s\n' "$out" | grep -c 'sable: error')
   if [ "$rc" -ne 0 ] && [ "$lines" -eq 1 ] && printf '%s' "$out" | grep -q -- "$pat"; then
     echo "PASS bad input, $name: exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""
@@ -24,7 +24,7 @@ expect "unknown scheme" "-lb_scheme sometimes is not known; valid values: none, 
 expect "unknown weight model" "-lb_weight cubic is not known; valid values: linear, quadratic, measured" $Q -lb_scheme once -lb_weight cubic
 expect "zero interval" "-lb_interval 0 must be >= 1" $Q -lb_scheme frequent -lb_interval 0
 for s in none once frequent dynamic; do
-  out=$(mpiexec --oversubscribe -n 2 bin/sable $Q -lb_scheme $s -lb_interval 500 -lb_threshold 0.1 -dem_check_every 100 2>&1); rc=$?
+  out=$(mpiexec --oversubscribe -n 2 ${BIN:-bin}/sable $Q -lb_scheme $s -lb_interval 500 -lb_threshold 0.1 -dem_check_every 100 2>&1); rc=$?
   checks=$(printf '%s\n' "$out" | grep -c '^lb: step')
   # 2000 steps: once (-lb_step 0) checks after step 1; frequent and dynamic after step 1, then at 501, 1001, 1501
   case $s in none) want=0; first=0 ;; once) want=1; first=1 ;; *) want=4; first=1 ;; esac

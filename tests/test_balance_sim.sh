@@ -5,7 +5,7 @@
 # column grid is balanced to within 10% (about 29 loaded planes, each ~3.5% of the load).
 cd "$(dirname "$0")/.." || exit 1
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
-bin/sable -options_file cases/settle/quick.opts -dem_t_end 0.3 -dem_progress_interval 1 -io_interval 0.3 -io_dir "$D" > "$D/log" 2>&1 || { echo "FAIL balance-sim: settle run exit $?"; tail -3 "$D/log"; exit 1; }
+${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.3 -dem_progress_interval 1 -io_interval 0.3 -io_dir "$D" > "$D/log" 2>&1 || { echo "FAIL balance-sim: settle run exit $?"; tail -3 "$D/log"; exit 1; }
 frame=$(ls "$D"/*.h5 | tail -n 1)
 BUILD=${BUILD:-build} tools/balance-sim -bsim_frame "$frame" -domain_lo 0,0,0 -domain_hi 0.1449,0.1449,0.24633 -bsim_cell 0.005 -bsim_minw 2 -bsim_ranks 8,64 -bsim_grid 1,1,4 > "$D/table" 2>&1 || { echo "FAIL balance-sim: exit $?"; tail -5 "$D/table"; exit 1; }
 awk -F'|' '/^\| [0-9]/ {

@@ -2,7 +2,7 @@
 # Bad input for shapes and walls of issue 6: one clear line naming the option, the value and the
 # valid range, a non-zero exit status, nothing run.
 cd "$(dirname "$0")/.." || exit 1
-S=bin/sable
+S=${BIN:-bin}/sable
 OK="-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_box 0,0,0,0.1,0.1,0.1 -dem_kn 1e4 -dem_lattice 2,2,2 -dem_t_end 0.001"
 expect() { # name, pattern the message must match, arguments...
   name=$1; pat=$2; shift 2

@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.." || exit 1
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
 A=0.01
 GEO="-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_box 0,0,0,0.1,0.1,0.1 -dem_shape cube -dem_shape_size $A -dem_kn 1e4"
-bin/sable $GEO -dem_lattice 5,5,1 -dem_lattice_spacing 0.018 -dem_lattice_random_orientation -dem_t_end 0.02 -io_interval 0.01 -io_dir "$D/a" > "$D/log" 2>&1 || { echo "FAIL convex output run: exit $?"; tail -3 "$D/log"; exit 1; }
+${BIN:-bin}/sable $GEO -dem_lattice 5,5,1 -dem_lattice_spacing 0.018 -dem_lattice_random_orientation -dem_t_end 0.02 -io_interval 0.01 -io_dir "$D/a" > "$D/log" 2>&1 || { echo "FAIL convex output run: exit $?"; tail -3 "$D/log"; exit 1; }
 /usr/bin/python3 - "$D" $A <<'PY' || echo "FAIL convex output: the checking script exited with status $?"
 import sys, glob, itertools, xml.dom.minidom, h5py, numpy as np
 d, a = sys.argv[1], float(sys.argv[2])
@@ -38,7 +38,7 @@ print(("PASS" if err < 1e-12 and same else "FAIL") + " convex output: surface po
 np.save(d + "/ref.npy", np.hstack([x, q])[np.argsort(ids)])
 PY
 last=$(ls "$D/a"/*.h5 | tail -n 1)
-bin/sable $GEO -dem_init_file "$last" -dem_t_end 0 -io_interval 1 -io_dir "$D/b" > "$D/log2" 2>&1 || { echo "FAIL convex restart: exit $?"; tail -3 "$D/log2"; exit 1; }
+${BIN:-bin}/sable $GEO -dem_init_file "$last" -dem_t_end 0 -io_interval 1 -io_dir "$D/b" > "$D/log2" 2>&1 || { echo "FAIL convex restart: exit $?"; tail -3 "$D/log2"; exit 1; }
 /usr/bin/python3 - "$D" <<'PY' || echo "FAIL convex restart: the checking script exited with status $?"
 import sys, glob, h5py, numpy as np
 d = sys.argv[1]
@@ -51,8 +51,8 @@ print(("PASS" if err == 0 else "FAIL") + " convex restart from -dem_init_file: %
 PY
 # two shapes with the same bounding radius: the restart keeps each particle's shape index
 G2="-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_box 0,0,0,0.1,0.1,0.1 -dem_shape cube,cube -dem_shape_size $A,$A -dem_radius_fraction 1,1 -dem_kn 1e4"
-bin/sable $G2 -dem_lattice 5,5,1 -dem_lattice_spacing 0.018 -dem_t_end 0 -io_interval 1 -io_dir "$D/c" > "$D/log3" 2>&1 || { echo "FAIL convex restart with two shapes: exit $?"; tail -3 "$D/log3"; exit 1; }
-bin/sable $G2 -dem_init_file "$D/c/sable_000000.h5" -dem_t_end 0 -io_interval 1 -io_dir "$D/d" > "$D/log4" 2>&1 || { echo "FAIL convex restart with two shapes: exit $?"; tail -3 "$D/log4"; exit 1; }
+${BIN:-bin}/sable $G2 -dem_lattice 5,5,1 -dem_lattice_spacing 0.018 -dem_t_end 0 -io_interval 1 -io_dir "$D/c" > "$D/log3" 2>&1 || { echo "FAIL convex restart with two shapes: exit $?"; tail -3 "$D/log3"; exit 1; }
+${BIN:-bin}/sable $G2 -dem_init_file "$D/c/sable_000000.h5" -dem_t_end 0 -io_interval 1 -io_dir "$D/d" > "$D/log4" 2>&1 || { echo "FAIL convex restart with two shapes: exit $?"; tail -3 "$D/log4"; exit 1; }
 /usr/bin/python3 - "$D" <<'PY' || echo "FAIL convex restart two shapes: the checking script exited with status $?"
 import sys, h5py, numpy as np
 d = sys.argv[1]

@@ -1,6 +1,6 @@
 #!/bin/sh
 # Coupled runs that cross a hard limit or carry a mistake must stop with a clear message and a
-# non-zero exit status. Drives bin/sable on the small fluidized bed (cases/fluidized_bed/small.opts)
+# non-zero exit status. Drives ${BIN:-bin}/sable on the small fluidized bed (cases/fluidized_bed/small.opts)
 # with one bad setting at a time; also checks that the start-up log lists the modules and the
 # pre-flight ratios, and that a frozen bed says it integrates nothing.
 cd "$(dirname "$0")/.."
@@ -11,7 +11,7 @@ trap 'rm -rf "$out" "$out.d"' EXIT
 
 check() { # name, expected message (grep -E), options...
   name=$1; msg=$2; shift 2
-  bin/sable -options_file ${CASE:-$case} -io_dir "$out.d" -cpl_t_end 0.1 "$@" >"$out" 2>&1; rc=$?
+  ${BIN:-bin}/sable -options_file ${CASE:-$case} -io_dir "$out.d" -cpl_t_end 0.1 "$@" >"$out" 2>&1; rc=$?
   if [ "$rc" -ne 0 ] && grep -Eq -- "$msg" "$out"; then
     echo "PASS cpl_badinput_$name: exit $rc, message found ($msg)"
   else
@@ -30,11 +30,11 @@ check bad_drag_name 'Unknown option stokes for -cpl_drag. Available options: bee
 check fluid_gravity '-fluid_gravity .* must be 0,0,0 in a coupled run' -fluid_gravity 0,0,-1
 check misspelled_option 'option -cpl_substep 3 was given but nothing reads it' -cpl_substep 3
 
-bin/sable -options_file $case -io_dir "$out.d" -cpl_t_end 0.5 >"$out" 2>&1; rc=$?
+${BIN:-bin}/sable -options_file $case -io_dir "$out.d" -cpl_t_end 0.5 >"$out" 2>&1; rc=$?
 if [ "$rc" -eq 0 ] && grep -q '^modules: DEM on; fluid on; coupling on' "$out" && grep -q '^pre-flight: coupling step / particle relaxation time' "$out" && grep -q '^pre-flight: cell / diameter' "$out"; then
   echo "PASS cpl_startup_log: modules line and pre-flight ratios printed"
 else echo "FAIL cpl_startup_log: exit $rc"; head -n 12 "$out" | sed 's/^/    /'; fi
-bin/sable -options_file cases/packed_bed/packed_bed.opts -io_dir "$out.d" -cpl_t_end 0.5 >"$out" 2>&1; rc=$?
+${BIN:-bin}/sable -options_file cases/packed_bed/packed_bed.opts -io_dir "$out.d" -cpl_t_end 0.5 >"$out" 2>&1; rc=$?
 if [ "$rc" -eq 0 ] && grep -q 'DEM on (frozen: no particle integration)' "$out"; then
   echo "PASS cpl_frozen_log: the frozen bed says it integrates no particles"
 else echo "FAIL cpl_frozen_log: exit $rc"; head -n 4 "$out" | sed 's/^/    /'; fi

@@ -18,7 +18,7 @@ trap 'rm -rf "$out" "$out.d"' EXIT
 opts="-options_file cases/packed_bed/packed_bed.opts -io_dir $out.d -domain_hi 3.6,3.6,24 -da_grid_x 3 -da_grid_y 3 -da_grid_z 20 -dem_lattice 3,3,15 -dem_lattice_spacing 1.2 -dem_lattice_origin 0,0,3 -dem_lattice_jitter 1 -dem_seed 7 -cpl_probe_z 6,18 -cpl_t_end 3 -cpl_progress_interval 0"
 ref=""
 for n in 1 2 4; do
-  if [ "$n" -eq 1 ]; then bin/sable $opts >"$out" 2>&1; else mpiexec -n $n bin/sable $opts >"$out" 2>&1; fi
+  if [ "$n" -eq 1 ]; then ${BIN:-bin}/sable $opts >"$out" 2>&1; else mpiexec -n $n ${BIN:-bin}/sable $opts >"$out" 2>&1; fi
   rc=$?
   line=$(grep '^packed bed:' "$out")
   dp=$(echo "$line" | sed -n 's/.*dp\/L \([-0-9.e+]*\) Pa\/m, porosity \([0-9.]*\),.*/\1 \2/p')
@@ -32,7 +32,7 @@ opts="-options_file cases/fluidized_bed/small.opts -io_dir $out.d -cpl_t_end 2 -
 ref=""
 for grid in 1,1,1 2,1,1 1,1,4; do
   px=${grid%%,*}; pz=${grid##*,}; n=$((px * pz)); label=$(echo "$grid" | tr , x)
-  if [ "$n" -eq 1 ]; then bin/sable $opts >"$out" 2>&1; else mpiexec -n $n bin/sable $opts -da_processors_x $px -da_processors_z $pz >"$out" 2>&1; fi
+  if [ "$n" -eq 1 ]; then ${BIN:-bin}/sable $opts >"$out" 2>&1; else mpiexec -n $n ${BIN:-bin}/sable $opts -da_processors_x $px -da_processors_z $pz >"$out" 2>&1; fi
   rc=$?
   v=$(sed -n 's/^column: pressure drop \/ bed buoyant weight per area \([0-9.]*\), drag on the particles \/ buoyant weight \([0-9.]*\).*/\1 \2/p' "$out")
   if [ "$rc" -ne 0 ] || [ -z "$v" ]; then echo "FAIL cpl_ranks_fluidized_$label: exit $rc"; tail -n 3 "$out" | sed 's/^/    /'; continue; fi

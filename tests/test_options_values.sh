@@ -8,7 +8,7 @@
 # with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving it alone
 # would be refused).
 cd "$(dirname "$0")/.." || exit 1
-Q="bin/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
+Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
 expect() { # name, pattern, options...
   name=$1; pat=$2; shift 2
   out=$($Q "$@" 2>&1); rc=$?
@@ -24,11 +24,11 @@ expect "surplus item" "-domain_hi takes 3 comma-separated values, got 4" -domain
 expect "negative skin" "-dem_skin -1. must be > 0 (m)" -dem_skin -1
 expect "negative progress interval" "-dem_progress_interval -1. must be >= 0" -dem_progress_interval -1
 expect "more radii than shapes" "-dem_radius has 34 values; at most 32 shapes" -dem_radius "$(awk 'BEGIN {for (i = 0; i < 34; i++) printf "%s0.0069", i ? "," : ""}')"
-Q="bin/sable -options_file cases/fluidized_bed/small.opts -cpl_t_end 0.5 -io_interval 0"
+Q="${BIN:-bin}/sable -options_file cases/fluidized_bed/small.opts -cpl_t_end 0.5 -io_interval 0"
 expect "probe heights equal" "-cpl_probe_z 10.,10.: need lo <= z1 < z2 <= hi with the domain's z range \[0., 48.\]" -cpl_probe_z 10,10
 expect "probe above the domain" "-cpl_probe_z 100.,200.: need lo <= z1 < z2 <= hi" -cpl_probe_z 100,200
 expect "surplus inlet component" "-fluid_bc_zlo_velocity takes 3 comma-separated values, got 4" -fluid_bc_zlo_velocity 0,0,0.3,4
-Q="bin/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
+Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
 expect "typo of a PETSc option" "option -log_vieww  was given but nothing reads it" -log_vieww
 expect "multigrid-like name outside the solvers" "option -dem_mg_levels_foo 1 was given but nothing reads it" -dem_mg_levels_foo 1
 out=$($Q -dem_plane_0 -1,0,0,0,0,1 -dem_frozen 2>&1); rc=$?
@@ -38,11 +38,11 @@ T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 printf -- '-dem_t_end 0.001\nthis is not an option\n' > "$T/a.opts"; printf -- '-dem_t_end 0.001 0.002\n' > "$T/b.opts"
 for c in "a.opts:line 2: 'this' is not an option" "b.opts:line 1: -dem_t_end has more than one value" ":is a directory"; do
   f="$T/${c%%:*}"; pat=${c#*:}
-  out=$(bin/sable -options_file "$f" 2>&1); rc=$?
+  out=$(${BIN:-bin}/sable -options_file "$f" 2>&1); rc=$?
   if [ "$rc" -eq 1 ] && [ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] && printf '%s' "$out" | grep -q -- "$pat"; then echo "PASS options file ${c%%:*}: exit 1, one line: $out"
   else echo "FAIL options file ${c%%:*}: exit $rc, expected one line /$pat/; got: $(printf '%s\n' "$out" | head -n 3)"; fi
 done
-out=$(bin/sable -options_file 2>&1); rc=$?
+out=$(${BIN:-bin}/sable -options_file 2>&1); rc=$?
 if [ "$rc" -eq 1 ] && [ "$out" = "sable: error: -options_file needs a file name" ]; then echo "PASS options file missing name: exit 1, $out"; else echo "FAIL options file missing name: exit $rc, $out"; fi
 missing=""
 for f in $(grep -rhoE 'PetscOptionsBool\("-(dem|fluid|cpl|domain|io|lb)_[a-z0-9_]*"' src | sed 's/.*("-//; s/"$//' | sort -u); do

@@ -7,7 +7,7 @@
 cd "$(dirname "$0")/.." || exit 1
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
 OPTS="-domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_lattice 5,5,4 -dem_lattice_spacing 0.0145 -dem_lattice_speed 0.05 -dem_t_end 0.02 -io_interval 0.005 -io_dir $D/a"
-bin/sable $OPTS > "$D/log" 2>&1 || { echo "FAIL output run: exit $?"; exit 1; }
+${BIN:-bin}/sable $OPTS > "$D/log" 2>&1 || { echo "FAIL output run: exit $?"; exit 1; }
 n=$(ls "$D/a"/*.h5 2>/dev/null | wc -l)
 [ "$n" -eq 5 ] && echo "PASS output: $n frames for t = 0..0.02 s every 0.005 s (expected 5)" || echo "FAIL output: $n frames (expected 5)"
 tmp=$(ls "$D/a" | grep -c '\.tmp$')
@@ -26,7 +26,7 @@ print(("PASS" if ok and finite and len(ids) == 100 else "FAIL") + " output: XDMF
 np.save(sys.argv[2] + "/../ref.npy", p[np.argsort(ids)])
 PY
 last=$(ls "$D/a"/*.h5 | tail -n 1)
-bin/sable -domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_init_file "$last" -dem_t_end 0 -io_interval 1 -io_dir "$D/b" > "$D/log2" 2>&1 || { echo "FAIL restart: exit $?"; cat "$D/log2"; exit 1; }
+${BIN:-bin}/sable -domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_init_file "$last" -dem_t_end 0 -io_interval 1 -io_dir "$D/b" > "$D/log2" 2>&1 || { echo "FAIL restart: exit $?"; cat "$D/log2"; exit 1; }
 /usr/bin/python3 - "$D" <<'PY' || echo "FAIL restart: the checking script exited with status $?"
 import sys, glob, h5py, numpy as np
 d = sys.argv[1]
@@ -38,7 +38,7 @@ print(("PASS" if err == 0 else "FAIL") + " restart from -dem_init_file: %d parti
 PY
 # the same on 2 ranks: one file per frame written collectively, every id once, then read back on 1
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mpiexec --oversubscribe -n 2 bin/sable $OPTS -io_dir "$D/c" -da_processors_x 2 -da_processors_y 1 -da_processors_z 1 -domain_cell 0.03 > "$D/log3" 2>&1 || { echo "FAIL 2-rank output run: exit $?"; exit 1; }
+mpiexec --oversubscribe -n 2 ${BIN:-bin}/sable $OPTS -io_dir "$D/c" -da_processors_x 2 -da_processors_y 1 -da_processors_z 1 -domain_cell 0.03 > "$D/log3" 2>&1 || { echo "FAIL 2-rank output run: exit $?"; exit 1; }
 /usr/bin/python3 - "$D" <<'PY' || echo "FAIL 2-rank output: the checking script exited with status $?"
 import sys, glob, h5py, numpy as np
 d = sys.argv[1]
@@ -65,11 +65,11 @@ PY
 B="-domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_t_end 0 -io_interval 0"
 for bad in "dup.h5:particle id [0-9]* appears more than once in /particles/id" "quat.h5:row 7 of /particles/quaternion, (0., 0., 0., 0.), is not a rotation"; do
   f=${bad%%:*}; pat=${bad#*:}
-  out=$(bin/sable $B -dem_init_file "$D/$f" 2>&1); rc=$?
+  out=$(${BIN:-bin}/sable $B -dem_init_file "$D/$f" 2>&1); rc=$?
   if [ "$rc" -eq 1 ] && printf '%s\n' "$out" | grep -q "sable: error: -dem_init_file $D/$f: $pat"; then echo "PASS init file $f: exit 1, $(printf '%s\n' "$out" | grep 'sable: error')"
   else echo "FAIL init file $f: exit $rc, expected /$pat/; got: $(printf '%s\n' "$out" | tail -n 1)"; fi
 done
-bin/sable $B -dem_init_file "$last" -dem_lattice 2,2,1 -dem_lattice_origin 0,0,0.07 -io_interval 1 -io_dir "$D/e" > "$D/log5" 2>&1 || echo "FAIL init file + lattice: exit $?: $(tail -n 1 "$D/log5")"
+${BIN:-bin}/sable $B -dem_init_file "$last" -dem_lattice 2,2,1 -dem_lattice_origin 0,0,0.07 -io_interval 1 -io_dir "$D/e" > "$D/log5" 2>&1 || echo "FAIL init file + lattice: exit $?: $(tail -n 1 "$D/log5")"
 /usr/bin/python3 - "$D/e/sable_000000.h5" <<'PY' || echo "FAIL init file + lattice: the checking script exited with status $?"
 import sys, h5py
 ids = h5py.File(sys.argv[1], "r")["particles/id"][:].tolist()

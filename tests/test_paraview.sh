@@ -6,7 +6,7 @@
 cd "$(dirname "$0")/.." || exit 1
 command -v pvpython >/dev/null || { echo "FAIL paraview: pvpython not found (tools/install-deps.sh installs paraview)"; exit 1; }
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
-bin/sable -options_file cases/fluidized_bed/small.opts -cpl_t_end 10 -io_interval 5 -io_dir "$D" > "$D/log" 2>&1 || { echo "FAIL paraview: the run failed: $(tail -3 "$D/log")"; exit 1; }
+${BIN:-bin}/sable -options_file cases/fluidized_bed/small.opts -cpl_t_end 10 -io_interval 5 -io_dir "$D" > "$D/log" 2>&1 || { echo "FAIL paraview: the run failed: $(tail -3 "$D/log")"; exit 1; }
 cat > "$D/read.py" <<PY
 from paraview.simple import XDMFReader, Xdmf3ReaderS, ExtractBlock, servermanager
 r = XDMFReader(FileNames=["$D/sable.xmf"])

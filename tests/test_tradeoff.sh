@@ -47,7 +47,7 @@ for r in bad:
     print(f"    cell dt_tc={r['dt_tc']} density_ratio={r['density_ratio']}: {r['status']} {r.get('message', '')}")
 PY
 
-out=$(bin/sable -options_file cases/settle/quick.opts -io_interval 0.05 -io_dir "$OUT/div" -dem_dt 1e-4 -dem_dt_max_fraction 1 -dem_t_end 0.3 -dem_progress_interval 0.02 2>&1)
+out=$(${BIN:-bin}/sable -options_file cases/settle/quick.opts -io_interval 0.05 -io_dir "$OUT/div" -dem_dt 1e-4 -dem_dt_max_fraction 1 -dem_t_end 0.3 -dem_progress_interval 0.02 2>&1)
 rc=$?
 msg=$(printf '%s\n' "$out" | grep 'sable: error')
 if [ "$rc" -eq 1 ] && printf '%s' "$msg" | grep -q "above -dem_overlap_max" && ! printf '%s' "$out" | grep -qi '\bnan\b'; then
@@ -57,6 +57,6 @@ else
 fi
 
 # -dem_dt_tc (the presets' way to set dt): dt is that fraction of the shortest contact time
-out=$(bin/sable -options_file cases/settle/quick.opts -io_interval 0 -io_dir "$OUT/dttc" -dem_dt_tc 0.05 -dem_t_end 0.002 2>&1)
+out=$(${BIN:-bin}/sable -options_file cases/settle/quick.opts -io_interval 0 -io_dir "$OUT/dttc" -dem_dt_tc 0.05 -dem_t_end 0.002 2>&1)
 got=$(printf '%s\n' "$out" | sed -n 's/.*with particle: .*dt\/Tc = \([0-9.]*\) .*/\1/p')
 if [ "$got" = "0.05" ]; then echo "PASS -dem_dt_tc 0.05: the log's particle-particle dt/Tc $got (0.05)"; else echo "FAIL -dem_dt_tc 0.05: dt/Tc '$got'; $(printf '%s' "$out" | tail -n 1)"; fi
