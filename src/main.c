@@ -162,7 +162,7 @@ static PetscErrorCode SableRun(void)
   }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "bed: packing fraction %.4f, mean coordination number %.3f\n", (double)phi, (double)coord));
   PetscCall(IoGetIndexPath(io, &index));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "output: %s (open it in ParaView)\n", index));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
   PetscCall(DemDestroy(&dem));
   PetscCall(IoDestroy(&io));
   PetscCall(DomainDestroy(&dom));

@@ -3,7 +3,8 @@
 # that lists every frame), leaves no temporary file, and a run started from its last frame
 # (-dem_init_file) holds the same particles (count and id checksum) with the same positions; an
 # edited frame with a repeated id or a zero quaternion is refused, and a lattice added to a
-# file continues after its ids.
+# file continues after its ids; a run whose end is off the output grid still writes its final
+# state.
 cd "$(dirname "$0")/.." || exit 1
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
 OPTS="-domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_lattice 5,5,4 -dem_lattice_spacing 0.0145 -dem_lattice_speed 0.05 -dem_t_end 0.02 -io_interval 0.005 -io_dir $D/a"
@@ -75,4 +76,12 @@ import sys, h5py
 ids = h5py.File(sys.argv[1], "r")["particles/id"][:].tolist()
 ok = len(ids) == 104 and len(set(ids)) == 104 and max(ids) == 103
 print(("PASS" if ok else "FAIL") + " init file + lattice: %d particles, %d distinct ids, largest %d (expected 104, 104, 103)" % (len(ids), len(set(ids)), max(ids)))
+PY
+# the end time off the output grid: the final state still gets a frame (t = 0.012 after 0.010)
+${BIN:-bin}/sable $OPTS -dem_t_end 0.012 -io_dir "$D/f" > "$D/log6" 2>&1 || echo "FAIL final frame run: exit $?: $(tail -n 1 "$D/log6")"
+/usr/bin/python3 - "$D/f" <<'PY' || echo "FAIL final frame: the checking script exited with status $?"
+import sys, glob, h5py
+t = [float(h5py.File(f, "r").attrs["time"]) for f in sorted(glob.glob(sys.argv[1] + "/*.h5"))]
+ok = len(t) == 4 and abs(t[-1] - 0.012) < 1e-9 and abs(t[-2] - 0.010) < 1e-9
+print(("PASS" if ok else "FAIL") + " final frame: frames at t = %s s for -dem_t_end 0.012, -io_interval 0.005 (expected 0, 0.005, 0.010 and the end 0.012)" % ", ".join("%.4g" % x for x in t))
 PY

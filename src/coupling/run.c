@@ -106,6 +106,8 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
       next += cpl->progress_dt;
     }
   }
+  PetscCall(IoDueFinal(io, cpl->t, &due));
+  if (due) PetscCall(CplOutput(cpl, io));
   PetscCall(PetscPrintf(cpl->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * cpl->dom->len[0] * cpl->dom->len[1])) : 0.0, (double)w, cpl->clipped_total));
   if (cpl->probe_set) PetscCall(CplProbeReport(cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -144,7 +146,7 @@ PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
     PetscCall(BalanceView(lb, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s\n", (double)cpl->t, cpl->step, t1 - t0));
     PetscCall(IoGetIndexPath(io, &index));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "output: %s (open it in ParaView)\n", index));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
     PetscCall(SableWarnOptionsUnused(PETSC_COMM_WORLD));
   }
   PetscCall(BalanceDestroy(&lb));

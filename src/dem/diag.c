@@ -232,5 +232,9 @@ PetscErrorCode DemRun(Dem dem, Io io)
       next += dem->progress_dt;
     }
   }
+  if (io) {
+    PetscCall(IoDueFinal(io, dem->t, &due));
+    if (due) PetscCall(DemOutput(dem, io));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -70,7 +70,7 @@ PetscErrorCode IoSetFromOptions(Io io)
 PetscErrorCode IoGetIndexPath(Io io, const char **path)
 {
   PetscFunctionBeginUser;
-  *path = io->index;
+  *path = io->nframes ? io->index : NULL;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -82,6 +82,13 @@ PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due)
      is not followed by another just above it */
   *due = (io->interval > 0 && t >= io->next - 1e-6 * io->interval) ? PETSC_TRUE : PETSC_FALSE;
   if (*due) io->next = (PetscFloorReal(t / io->interval + 1e-6) + 1) * io->interval;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due)
+{
+  PetscFunctionBeginUser;
+  *due = (PetscBool)(io->interval > 0 && (io->nframes == 0 || io->frames[io->nframes - 1].t < t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

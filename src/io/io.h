@@ -15,7 +15,11 @@ PetscErrorCode IoSetFromOptions(Io io);
 PetscErrorCode IoDestroy(Io *io);
 /* Whether an output is due at simulated time t (first call: always, when output is on). */
 PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due);
-/* The directory and the XDMF index path, for messages. */
+/* Not collective (the same on every rank). At the end of a run: whether the state at t still
+ * needs a frame (output is on and the last frame is older than t), so that a run always leaves
+ * its final state, also when the end time is not a multiple of -io_interval. */
+PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due);
+/* The XDMF index path, for messages; NULL when this run wrote no frame (-io_interval 0). */
 PetscErrorCode IoGetIndexPath(Io io, const char **path);
 
 /* Collective. Opens <dir>/<prefix>_<frame>.h5 (under a temporary name). */
