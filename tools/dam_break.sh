@@ -4,11 +4,12 @@
 # One process; about 10-20 minutes on one core. Output and logs in out/dam_break/.
 set -eu
 cd "$(dirname "$0")/.."
+. tools/run_logged.sh
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 make -s bin/sable build/tools/column_runout
 mkdir -p out/dam_break
-bin/sable -options_file cases/dam_break/fill.opts | tee out/dam_break/fill.log
-bin/sable -options_file cases/dam_break/collapse.opts | tee out/dam_break/collapse.log
+run_logged out/dam_break/fill.log bin/sable -options_file cases/dam_break/fill.opts
+run_logged out/dam_break/collapse.log bin/sable -options_file cases/dam_break/collapse.opts
 last=$(ls out/dam_break/collapse_*.h5 | tail -n 1)
 build/tools/column_runout -runout_initial out/dam_break/fill_000001.h5 -runout_final "$last" \
   -runout_gate 0.015 -runout_width 0.015 -runout_d 0.003
