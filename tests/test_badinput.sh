@@ -41,3 +41,6 @@ if $S $OK >/dev/null 2>&1; then echo "PASS good input runs: exit 0"; else echo "
 out=$($S -help 2>&1); rc=$?
 n=$(printf '%s\n' "$out" | grep -c -e '-dem_shape <' -e '-lb_scheme <' -e '-fluid_density <' -e '-cpl_drag <' -e '-domain_lo <')
 if [ "$rc" -eq 0 ] && [ "$n" -eq 5 ]; then echo "PASS -help: exit 0, lists -domain_, -dem_, -fluid_, -cpl_, -lb_ options ($n of 5 probes)"; else echo "FAIL -help: exit $rc, $n of 5 probes found"; fi
+# not an option but a scene: particles falling through a side with no wall stop the run at the
+# next list build, naming the particle and the side (no particle silently drifts away)
+expect "particle leaves the domain" "particle [0-9]* left the domain across its lower z side .*close that side with walls" -domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_kn 1e4 -dem_lattice 2,2,2 -dem_radius 0.005 -dem_t_end 0.3

@@ -387,7 +387,7 @@ static PetscErrorCode Collisions(PetscBool boxes, double vs, double ws, const ch
   const double tc = PETSC_PI * sqrt(0.5 * m / kn);
   if (boxes) PetscCall(PetscSNPrintf(shapes, sizeof shapes, "-dem_shape polyhedron -dem_shape_file test_convex_box.txt -dem_shape_size 1"));
   else PetscCall(PetscSNPrintf(shapes, sizeof shapes, "-dem_shape polyhedron,icosahedron -dem_shape_file test_convex_box.txt -dem_shape_size 1,%g -dem_radius_fraction 1,1", 0.5 * A));
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.05 -domain_hi 0.05,0.05,0.05 %s -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt %g -dem_lattice 3,3,3 -dem_lattice_spacing %g -dem_lattice_origin %g,%g,%g -dem_lattice_random_orientation -dem_lattice_speed 0.05 %s", shapes, RHO, kn, tc / (100.0 * dtf), 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A, model));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.5,-0.5,-0.5 -domain_hi 0.5,0.5,0.5 %s -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt %g -dem_lattice 3,3,3 -dem_lattice_spacing %g -dem_lattice_origin %g,%g,%g -dem_lattice_random_orientation -dem_lattice_speed 0.05 %s", shapes, RHO, kn, tc / (100.0 * dtf), 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A, -1.5 * 1.25 * A, model));
   PetscCall(TestDemCreate(opts, &dom, &dem));
   PetscCall(DemSetUp(dem));
   { /* give every body a spin, and aim them at the centre */

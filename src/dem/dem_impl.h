@@ -249,6 +249,8 @@ PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n); /* exchange.c
 size_t         DemMigSize(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec);
 size_t         DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b);
 PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used);
+/* Errors when a local particle is wholly outside the domain across a non-periodic side. */
+PetscErrorCode DemCheckInDomain(Dem dem);
 PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* redistribute.c */
 PetscErrorCode DemGhostsCreate(Dem dem);                           /* exchange.c */
 PetscErrorCode DemGhostsUpdate(Dem dem);                           /* exchange.c */

@@ -215,6 +215,30 @@ PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Not collective (called at every list build). A particle wholly outside the domain across a side that is not periodic has
+ * nowhere to go (Sable has no outlet region that deletes particles): an error naming it, not a
+ * particle silently drifting away. */
+PetscErrorCode DemCheckInDomain(Dem dem)
+{
+  const Domain *dom = dem->dom;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dem->n; i++)
+    for (int k = 0; k < 3; k++) {
+      const double x = dem->x[3 * i + k], r = dem->shp[dem->shape[i]].r;
+      if (dom->periodic[k] || (x >= dom->lo[k] - r && x <= dom->hi[k] + r)) continue;
+      for (PetscInt w = 0; w < dem->nwall; w++) { /* wholly behind an unbounded plane: it went through, the step cannot resolve the contact */
+        const DemWall *wl = &dem->wall[w];
+        double         s  = 0;
+        if (wl->kind != DEM_WALL_PLANE || wl->finite) continue;
+        for (int c = 0; c < 3; c++) s += (dem->x[3 * i + c] - wl->p[c]) * wl->n[c];
+        PetscCheck(s >= -r, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "t = %g s: particle %" PetscInt_FMT " went through wall %d and left the domain (%c = %g m): the run is diverging; lower -dem_dt (now %g s) or raise -dem_kn", (double)dem->t, dem->id[i], (int)w, "xyz"[k], x, (double)dem->dt);
+      }
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "t = %g s: particle %" PetscInt_FMT " left the domain across its %s %c side (%c = %g m, domain [%g, %g] m); close that side with walls (-dem_box, -dem_plane_k) or enlarge -domain_lo/-domain_hi", (double)dem->t, dem->id[i], x < dom->lo[k] ? "lower" : "upper", "xyz"[k], "xyz"[k], x, (double)dom->lo[k], (double)dom->hi[k]);
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Collective. Sends every local particle that left the box to its new owner with its state and
  * springs (recs, sorted by owner id on entry and on exit; received springs are appended). */
 PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec)

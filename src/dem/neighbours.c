@@ -288,6 +288,7 @@ PetscErrorCode DemNeighBuild(Dem dem)
   PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
   dem->ng = 0;
   PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
+  PetscCall(DemCheckInDomain(dem));
   if (dem->remap) PetscCall(DemMigrateGlobal(dem, &recs, &nrec, &caprec));
   else PetscCall(DemMigrate(dem, &recs, &nrec, &caprec));
   dem->remap = PETSC_FALSE;
