@@ -13,6 +13,13 @@
 
 #define IO_MAX_SETS 32
 
+/* HDF5 prints its own error stack (a dozen lines) before returning the failure that our checks
+ * turn into one message: silence it. Called before every HDF5 use of this file. */
+static void io_quiet(void)
+{
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+}
+
 typedef struct {
   char    name[64];
   PetscInt ncomp;
@@ -120,6 +127,7 @@ PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
   IoFrame *fr;
 
   PetscFunctionBeginUser;
+  io_quiet();
   (void)step;
   if (!io->nframes) PetscCall(IoMakeDir(io));
   if (io->nframes == io->capframes) {
@@ -396,8 +404,9 @@ PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows,
   int     rank;
 
   PetscFunctionBeginUser;
+  io_quiet();
   f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open HDF5 file %s", file);
+  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "%s is not an HDF5 file (or cannot be opened as one)", file);
   d = H5Dopen2(f, name, H5P_DEFAULT);
   PetscCheck(d >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "file %s has no dataset %s", file, name);
   s    = H5Dget_space(d);
@@ -420,8 +429,9 @@ PetscErrorCode IoReadTime(const char *file, PetscReal *t, PetscBool *has)
   double v = 0;
 
   PetscFunctionBeginUser;
+  io_quiet();
   f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open HDF5 file %s", file);
+  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "%s is not an HDF5 file (or cannot be opened as one)", file);
   *has = (PetscBool)(H5Aexists(f, "time") > 0);
   if (*has) {
     a = H5Aopen(f, "time", H5P_DEFAULT);
@@ -440,8 +450,9 @@ PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has)
   char  group[PETSC_MAX_PATH_LEN], *slash;
 
   PetscFunctionBeginUser;
+  io_quiet();
   f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot open HDF5 file %s", file);
+  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "%s is not an HDF5 file (or cannot be opened as one)", file);
   PetscCall(PetscStrncpy(group, name, sizeof group));
   slash = strrchr(group, '/');
   if (slash && slash != group) *slash = 0;
