@@ -38,3 +38,4 @@ ${BIN:-bin}/sable -options_file cases/packed_bed/packed_bed.opts -io_dir "$out.d
 if [ "$rc" -eq 0 ] && grep -q 'DEM on (frozen: no particle integration)' "$out"; then
   echo "PASS cpl_frozen_log: the frozen bed says it integrates no particles"
 else echo "FAIL cpl_frozen_log: exit $rc"; head -n 4 "$out" | sed 's/^/    /'; fi
+CASE=; check dry_end_time_in_coupled_run '-dem_t_end applies to dry runs; this run is coupled .*use -cpl_t_end' -dem_t_end 5

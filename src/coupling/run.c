@@ -130,6 +130,12 @@ PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
   PetscCall(BalanceCreate(dom, dem, cpl, &lb));
   PetscCall(BalanceSetFromOptions(lb));
   if (!help) {
+    const char *dry[2] = {"-dem_t_end", "-dem_progress_interval"}, *wet[2] = {"-cpl_t_end", "-cpl_progress_interval"};
+    for (int k = 0; k < 2; k++) { /* the DEM reads them, but the coupled loop runs on its own clock */
+      PetscBool set;
+      PetscCall(PetscOptionsHasName(NULL, NULL, dry[k], &set));
+      PetscCheck(!set, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "%s applies to dry runs; this run is coupled (it has -fluid_ or -cpl_ options): use %s", dry[k], wet[k]);
+    }
     PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
     PetscCall(DemGetFrozen(dem, &frozen));
     PetscCall(DemHasConvexShapes(dem, &convex));
