@@ -47,4 +47,4 @@ expect "particle leaves the domain" "particle [0-9]* left the domain across its 
 # an init file that is missing, or not HDF5: one line each (no HDF5 error stack)
 expect "missing init file" "-dem_init_file none.h5: cannot open (No such file or directory)" $OK -dem_init_file none.h5
 expect "init file not HDF5" "tests/run.sh is not an HDF5 file" $OK -dem_init_file tests/run.sh
-expect "plane with zero normal" "-dem_plane_0 0,0,0,0,0,0: the normal (the last 3 values) must be non-zero" $OK -dem_plane_0 0,0,0,0,0,0
+expect "plane with zero normal" "-dem_plane_0 0.,0.,0.,0.,0.,0.: the normal (the last 3 values) must be non-zero" $OK -dem_plane_0 0,0,0,0,0,0
