@@ -48,3 +48,5 @@ expect "particle leaves the domain" "particle [0-9]* left the domain across its 
 expect "missing init file" "-dem_init_file none.h5: cannot open (No such file or directory)" $OK -dem_init_file none.h5
 expect "init file not HDF5" "tests/run.sh is not an HDF5 file" $OK -dem_init_file tests/run.sh
 expect "plane with zero normal" "-dem_plane_0 0.,0.,0.,0.,0.,0.: the normal (the last 3 values) must be non-zero" $OK -dem_plane_0 0,0,0,0,0,0
+expect "prefix with a directory" "-io_prefix a/b: a file name prefix, without '/'" $OK -io_prefix a/b
+expect "prefix too long" "-io_prefix x*: at most 63 characters" $OK -io_prefix xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx

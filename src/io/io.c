@@ -69,6 +69,15 @@ PetscErrorCode IoSetFromOptions(Io io)
   PetscCall(PetscOptionsReal("-io_interval", "Simulated time between outputs (s); 0 = no output", NULL, io->interval, &io->interval, NULL));
   PetscOptionsEnd();
   PetscCheck(io->interval >= 0, io->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_interval %g must be >= 0", (double)io->interval);
+  { /* the raw values: PETSc cuts a string at the buffer's size without a word */
+    const char *v;
+    PetscBool   set;
+    PetscCall(PetscOptionsFindPair(NULL, NULL, "-io_prefix", &v, &set));
+    PetscCheck(!set || (v && strlen(v) < sizeof io->prefix), io->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_prefix %s: at most %d characters", v ? v : "(none)", (int)sizeof io->prefix - 1);
+    PetscCheck(!strchr(io->prefix, '/') && io->prefix[0], io->comm, PETSC_ERR_ARG_WRONG, "-io_prefix %s: a file name prefix, without '/' (the directory is -io_dir)", io->prefix);
+    PetscCall(PetscOptionsFindPair(NULL, NULL, "-io_dir", &v, &set));
+    PetscCheck(!set || (v && strlen(v) < sizeof io->dir - 80), io->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_dir: at most %d characters", (int)sizeof io->dir - 81);
+  }
   PetscCall(PetscSNPrintf(io->index, sizeof io->index, "%s/%s.xmf", io->dir, io->prefix));
   io->next = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
