@@ -26,11 +26,17 @@ static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *fun
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &wsize);
   if (!rank || size == 1) {
+    char        buf[512];
+    const char *what = mess;
+    if (n == PETSC_ERR_MEM || (func && (strstr(func, "MallocAlign") || strstr(func, "ReallocAlign")))) { /* PETSc's message names only the caller */
+      snprintf(buf, sizeof buf, "out of memory in %s: the scene needs more memory than this machine gives one rank (fewer particles or fluid cells, or more ranks)", mess && mess[0] ? mess : (func ? func : "?"));
+      what = buf;
+    }
     if (size == 1 && wsize > 1) { /* one rank's error: say which */
       int wr = 0;
       MPI_Comm_rank(MPI_COMM_WORLD, &wr);
-      fprintf(stderr, "sable: error (rank %d): %s\n", wr, mess ? mess : "unknown error");
-    } else fprintf(stderr, "sable: error: %s\n", mess ? mess : "unknown error");
+      fprintf(stderr, "sable: error (rank %d): %s\n", wr, what ? what : "unknown error");
+    } else fprintf(stderr, "sable: error: %s\n", what ? what : "unknown error");
     fflush(stderr);
   }
   return n;
