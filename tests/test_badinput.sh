@@ -50,3 +50,4 @@ expect "init file not HDF5" "tests/run.sh is not an HDF5 file" $OK -dem_init_fil
 expect "plane with zero normal" "-dem_plane_0 0.,0.,0.,0.,0.,0.: the normal (the last 3 values) must be non-zero" $OK -dem_plane_0 0,0,0,0,0,0
 expect "prefix with a directory" "-io_prefix a/b: a file name prefix, without '/'" $OK -io_prefix a/b
 expect "prefix too long" "-io_prefix x*: at most 63 characters" $OK -io_prefix xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx
+expect "box across a periodic axis" "-dem_box puts walls across the x axis, which is periodic" $OK -domain_periodic_x

@@ -6,7 +6,8 @@
  * -dem_deterministic mode (full rows summed in id order: bitwise equal, bound 0):
  *   settle: spheres falling into a closed box with friction and springs (2000 steps);
  *   shear:  a fully periodic frictional box sheared by its initial velocity field (2000 steps);
- *   corner: a periodic gas crossing the corner shared by 4 ranks at half the skin per step;
+ *   corner: a gas crossing the corner shared by 4 ranks and the periodic x and y sides at half
+ *           the skin per step (planes close z);
  *   icosahedra: convex particles (libccd narrow phase) thrown into a box (gravity 60 m/s^2).
  * On 1 rank the serial half list is checked against the full rows (bound 1e-4 of the box: the
  * scene's chaotic amplification of roundoff, far below a lost pair's effect). Every run checks
@@ -19,7 +20,7 @@
 #define SETTLE "-domain_lo 0,0,0 -domain_hi 0.11592,0.11592,0.2 -dem_box 0,0,0,0.11592,0.11592,0.2 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_lattice 8,8,10 -dem_lattice_spacing 0.01449 -dem_lattice_jitter 0.5 -dem_lattice_speed 0.05"
 #define SHEAR  "-domain_cell 0.0207 -domain_lo 0,0,0 -domain_hi 0.0828,0.0828,0.0828 -domain_periodic_x -domain_periodic_y -domain_periodic_z -dem_radius 0.0069 -dem_kn 7.2e5 -dem_restitution 0.8 -dem_friction 0.5 -dem_gravity 0,0,0 -dem_lattice 6,6,6 -dem_lattice_spacing 0.0138 -dem_lattice_jitter 0 -dem_lattice_speed 0.3"
 #define ICOSA  "-domain_cell 0.03 -domain_lo 0,0,0 -domain_hi 0.09,0.09,0.12 -dem_box 0,0,0,0.09,0.09,0.12 -dem_shape icosahedron -dem_shape_deq 0.0138 -dem_kn 7.2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_lattice 5,5,6 -dem_lattice_spacing 0.018 -dem_lattice_jitter 0.5 -dem_lattice_speed 0.2 -dem_gravity 0,0,-60"
-#define CORNER "-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.04 -domain_periodic_x -domain_periodic_y -dem_box 0,0,0,0.1,0.1,0.04 -dem_radius 0.003 -dem_kn 1e4 -dem_restitution 0.9 -dem_friction 0.3 -dem_gravity 0,0,0 -dem_dt 2e-5 -dem_lattice 12,12,4 -dem_lattice_spacing 0.0083 -dem_lattice_jitter 0.5 -dem_lattice_speed 8.66"
+#define CORNER "-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.04 -domain_periodic_x -domain_periodic_y -dem_plane_0 0,0,0,0,0,1 -dem_plane_1 0,0,0.04,0,0,-1 -dem_radius 0.003 -dem_kn 1e4 -dem_restitution 0.9 -dem_friction 0.3 -dem_gravity 0,0,0 -dem_dt 2e-5 -dem_lattice 12,12,4 -dem_lattice_spacing 0.0083 -dem_lattice_jitter 0.5 -dem_lattice_speed 8.66"
 
 static PetscErrorCode Run(MPI_Comm comm, const char *scene, const char *extra, PetscInt steps, PetscInt N, double *x, PetscInt *contacts)
 {

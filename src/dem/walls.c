@@ -97,6 +97,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     for (int k = 0; k < 3; k++) {
       double p[3] = {0, 0, 0}, n[3] = {0, 0, 0}, z[3] = {0, 0, 0};
       PetscCheck(box[k + 3] > box[k], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_box: upper bound %g must exceed lower bound %g on axis %d", (double)box[k + 3], (double)box[k], k);
+      PetscCheck(!dem->dom->periodic[k], dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_box puts walls across the %c axis, which is periodic (-domain_periodic_%c): nothing could cross it; close the other axes with -dem_plane_k", "xyz"[k], "xyz"[k]);
       p[k] = box[k];
       n[k] = 1;
       PetscCall(DemWallAdd(dem, p, n, z));
