@@ -42,7 +42,7 @@ PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
   double *restrict       x = dem->x, *restrict v = dem->v, *restrict w = dem->w, *restrict q = dem->q;
   const double *restrict f = dem->f, *restrict tq = dem->tq, *restrict x0 = dem->x0;
   const PetscInt         n = dem->n, *restrict shape = dem->shape;
-  double                 d2max = 0;
+  double                 d2max = 0, d2sum = 0;
 
   PetscFunctionBeginUser;
   *maxdisp2 = 0;
@@ -72,9 +72,11 @@ PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
         const double d = x[3 * i + k] - x0[3 * i + k];
         d2 += d * d;
       }
-      d2max = d2 > d2max || d2 != d2 ? d2 : d2max; /* a NaN displacement is kept: DemStep stops on it */
+      d2max = d2 > d2max ? d2 : d2max;
+      d2sum += d2; /* a NaN, which the max drops, survives a sum (one add: the loop still vectorises) */
     }
   }
+  if (d2sum != d2sum) d2max = d2sum; /* DemStep stops on a non-finite displacement */
   if (dem->convex) PetscCall(DemRotateFirstHalf(dem)); /* full inertia tensor (rotation.c) */
   else if (dem->rotation)
     for (PetscInt i = 0; i < n; i++) {
