@@ -226,6 +226,7 @@ PetscErrorCode DemCheckInDomain(Dem dem)
   for (PetscInt i = 0; i < dem->n; i++)
     for (int k = 0; k < 3; k++) {
       const double x = dem->x[3 * i + k], r = dem->shp[dem->shape[i]].r;
+      PetscCheck(PetscIsInfOrNanReal(x) == PETSC_FALSE, PETSC_COMM_SELF, PETSC_ERR_FP, "t = %g s: particle %" PetscInt_FMT " has a non-finite position; the run is diverging: lower -dem_dt (now %g s)", (double)dem->t, dem->id[i], (double)dem->dt);
       if (dom->periodic[k] || (x >= dom->lo[k] - r && x <= dom->hi[k] + r)) continue;
       for (PetscInt w = 0; w < dem->nwall; w++) { /* wholly behind an unbounded plane: it went through, the step cannot resolve the contact */
         const DemWall *wl = &dem->wall[w];
