@@ -9,6 +9,7 @@
 #include "io/io.h"
 #include "coupling/coupling.h"
 #include <ctype.h>
+#include <stdarg.h>
 #include <errno.h>
 #include <sys/stat.h>
 #include <sys/resource.h>
@@ -42,9 +43,45 @@ static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *fun
   return n;
 }
 
+/* An error before MPI starts: printed by the first process only (under mpiexec every process
+ * checks the same files). */
+static void SableEarlyError(const char *fmt, ...)
+{
+  const char *r = getenv("OMPI_COMM_WORLD_RANK");
+  va_list     ap;
+
+  if (!r) r = getenv("PMI_RANK");
+  if (r && strcmp(r, "0")) return;
+  fputs("sable: error: ", stderr);
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fputc('\n', stderr);
+}
+
+/* Splits a line of an options file into at most 3 tokens, as PETSc does: blanks separate, a
+ * double-quoted string is one token. Returns the count (3 means "3 or more"). */
+static int SableOptionsTokens(char *line, char *tok[3])
+{
+  int n = 0;
+  for (char *c = line; *c && n < 3;) {
+    while (*c && isspace((unsigned char)*c)) c++;
+    if (!*c) break;
+    if (*c == '"') {
+      tok[n++] = ++c;
+      while (*c && *c != '"') c++;
+    } else {
+      tok[n++] = c;
+      while (*c && !isspace((unsigned char)*c)) c++;
+    }
+    if (*c) *c++ = 0;
+  }
+  return n;
+}
+
 /* PETSc's own messages for a bad options file are tracebacks: check each -options_file first
  * and say what is wrong in one line (file, line, text). A line is "-name [value]", "alias -a -b"
- * or blank; # starts a comment. */
+ * or blank; # starts a comment; a key may start with -- as PETSc allows. */
 static int SableCheckOptionsFile(const char *path)
 {
   struct stat st;
@@ -53,26 +90,32 @@ static int SableCheckOptionsFile(const char *path)
   FILE       *fp;
 
   if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-    fprintf(stderr, "sable: error: -options_file %s: is a directory, not a file of options\n", path);
+    SableEarlyError("-options_file %s: is a directory, not a file of options", path);
     return 1;
   }
   fp = fopen(path, "r");
   if (!fp) {
-    fprintf(stderr, "sable: error: -options_file %s: cannot open (%s)\n", path, strerror(errno));
+    SableEarlyError("-options_file %s: cannot open (%s)", path, strerror(errno));
     return 1;
   }
   while (!bad && fgets(line, sizeof line, fp)) {
-    char *tok[3] = {NULL, NULL, NULL}, *save = NULL, *c = strchr(line, '#');
-    int   nt = 0;
+    char *tok[3] = {NULL, NULL, NULL}, *c = strchr(line, '#');
+    int   nt;
     n++;
+    if (!strchr(line, '\n') && !feof(fp)) {
+      SableEarlyError("-options_file %s, line %d: longer than 4095 characters", path, n);
+      bad = 1;
+      break;
+    }
     if (c) *c = 0;
-    for (char *t = strtok_r(line, " \t\r\n", &save); t && nt < 3; t = strtok_r(NULL, " \t\r\n", &save)) tok[nt++] = t;
+    nt = SableOptionsTokens(line, tok);
     if (!nt || !strcmp(tok[0], "alias")) continue;
-    if (tok[0][0] != '-' || !isalpha((unsigned char)tok[0][1])) {
-      fprintf(stderr, "sable: error: -options_file %s, line %d: '%s' is not an option (a line is -name value)\n", path, n, tok[0]);
+    const char *key = tok[0][0] == '-' && tok[0][1] == '-' ? tok[0] + 1 : tok[0];
+    if (key[0] != '-' || !isalpha((unsigned char)key[1])) {
+      SableEarlyError("-options_file %s, line %d: '%s' is not an option (a line is -name value)", path, n, tok[0]);
       bad = 1;
     } else if (nt > 2) {
-      fprintf(stderr, "sable: error: -options_file %s, line %d: %s has more than one value ('%s %s ...'; lists are comma-separated)\n", path, n, tok[0], tok[1], tok[2]);
+      SableEarlyError("-options_file %s, line %d: %s has more than one value (lists are comma-separated; quote a value with blanks)", path, n, tok[0]);
       bad = 1;
     }
   }
@@ -85,7 +128,7 @@ static int SableCheckOptionsFiles(int argc, char **argv)
   for (int i = 1; i < argc; i++)
     if (!strcmp(argv[i], "-options_file")) {
       if (i + 1 == argc || argv[i + 1][0] == 0) {
-        fprintf(stderr, "sable: error: -options_file needs a file name\n");
+        SableEarlyError("-options_file needs a file name");
         return 1;
       }
       if (SableCheckOptionsFile(argv[i + 1])) return 1;

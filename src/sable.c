@@ -8,11 +8,18 @@
  * prefixes takes a value (tests/test_options_values.sh keeps this list complete). */
 static const char *const SableFlags[] = {"dem_convex_sat", "dem_deterministic", "dem_frozen", "dem_lattice_random_orientation", "domain_periodic_x", "domain_periodic_y", "domain_periodic_z", "fluid_adaptive_dt", "lb_verbose"};
 
+/* Sable's options whose values are names (of files, directories, shapes): no number check. */
+static const char *const SableStrings[] = {"io_dir", "io_prefix", "dem_init_file", "dem_shape_file", "dem_shape"};
+
 /* Sable's own option prefixes; fluid_poisson_ and fluid_viscous_ are PETSc solvers' prefixes
- * (their flags, such as -fluid_poisson_ksp_monitor, are PETSc's business). */
+ * (their flags, such as -fluid_poisson_ksp_monitor, are PETSc's business) except for the three
+ * options of Sable's that share them. */
 static PetscBool SableOwnOption(const char *name)
 {
   const char *own[] = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
+  const char *shared[] = {"fluid_poisson_pc_lag", "fluid_poisson_pc_lag_growth", "fluid_viscous_number_max"};
+  for (size_t k = 0; k < sizeof shared / sizeof shared[0]; k++)
+    if (!strcmp(name, shared[k])) return PETSC_TRUE;
   if (!strncmp(name, "fluid_poisson_", 14) || !strncmp(name, "fluid_viscous_", 14)) return PETSC_FALSE;
   for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
     if (!strncmp(name, own[k], strlen(own[k]))) return PETSC_TRUE;
@@ -31,6 +38,8 @@ static PetscErrorCode SableCheckOptionValue(MPI_Comm comm, const char *name, con
   for (k = 0; k < sizeof SableFlags / sizeof SableFlags[0]; k++)
     if (!strcmp(name, SableFlags[k])) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(value && value[0], comm, PETSC_ERR_ARG_WRONG, "option -%s needs a value (-help lists it with its default)", name);
+  for (k = 0; k < sizeof SableStrings / sizeof SableStrings[0]; k++) /* a file named "inf" is a file */
+    if (!strcmp(name, SableStrings[k])) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscStrncpy(buf, value, sizeof buf));
   for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
     char        *end;
@@ -109,7 +118,7 @@ PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm)
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt i = 0; i < n && bad < 0; i++) {
     /* options that steer PETSc's run-time system, read after us or not at all */
-    const char *skip[] = {"options_left", "log_view", "log_view_memory", "log_view_gpu_time", "log_trace", "malloc_debug", "malloc_dump", "malloc_test", "malloc_view", "help", "on_error_abort", "on_error_attach_debugger", "info", "history", "options_file", "options_monitor", "fp_trap", "check_pointer_intensity", "use_gpu_aware_mpi"};
+    const char *skip[] = {"options_left", "log_view", "log_view_memory", "log_view_gpu_time", "log_trace", "malloc_debug", "malloc_dump", "malloc_test", "malloc_view", "malloc_view_threshold", "options_view", "help", "on_error_abort", "on_error_attach_debugger", "info", "history", "options_file", "options_monitor", "fp_trap", "check_pointer_intensity", "use_gpu_aware_mpi"};
     PetscBool   ok     = SableReadAtSolverSetUp(names[i]);
     for (size_t k = 0; k < sizeof skip / sizeof skip[0]; k++) /* whole names: -log_vieww is a typo */
       if (!strcmp(names[i], skip[k])) ok = PETSC_TRUE;

@@ -25,10 +25,11 @@ run_one() { # label, command...
   out="$LOG/out"
   timeout -k 10 "$TEST_TIMEOUT" "$@" >"$out" 2>"$LOG/err"
   rc=$?
-  [ "$rc" -eq 124 ] && echo "timed out after $TEST_TIMEOUT s (TEST_TIMEOUT)" >>"$out"
+  timedout=0 # timeout's TERM (124) or, when the test ignored it, KILL 10 s later (137)
+  { [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; } && timedout=1 && echo "timed out after $TEST_TIMEOUT s (TEST_TIMEOUT)" >>"$out"
   grep -E '^(PASS|FAIL|NOTE) ' "$out" | sed "s/^\(PASS\|FAIL\|NOTE\) /\1 $label /"
   np=$(grep -c '^PASS ' "$out"); nf=$(grep -c '^FAIL ' "$out")
-  if [ "$rc" -ne 0 ] && { [ "$nf" -eq 0 ] || [ "$rc" -eq 124 ]; }; then
+  if [ "$rc" -ne 0 ] && { [ "$nf" -eq 0 ] || [ "$timedout" -eq 1 ]; }; then
     echo "FAIL $label: exit status $rc; last lines:"; tail -n 5 "$out" "$LOG/err" | sed 's/^/    /'
     nf=$((nf + 1))
   fi

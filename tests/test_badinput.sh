@@ -46,7 +46,7 @@ if [ "$rc" -eq 0 ] && [ "$n" -eq 5 ]; then echo "PASS -help: exit 0, lists -doma
 expect "particle leaves the domain" "particle [0-9]* left the domain across its lower z side .*close that side with walls" -domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_kn 1e4 -dem_lattice 2,2,2 -dem_radius 0.005 -dem_t_end 0.3
 # an init file that is missing, or not HDF5: one line each (no HDF5 error stack)
 expect "missing init file" "-dem_init_file none.h5: cannot open (No such file or directory)" $OK -dem_init_file none.h5
-expect "init file not HDF5" "tests/run.sh is not an HDF5 file" $OK -dem_init_file tests/run.sh
+expect "init file not HDF5" "-dem_init_file tests/run.sh: not an HDF5 file" $OK -dem_init_file tests/run.sh
 expect "plane with zero normal" "-dem_plane_0 0.,0.,0.,0.,0.,0.: the normal (the last 3 values) must be non-zero" $OK -dem_plane_0 0,0,0,0,0,0
 expect "prefix with a directory" "-io_prefix a/b: a file name prefix, without '/'" $OK -io_prefix a/b
 expect "prefix too long" "-io_prefix x*: at most 63 characters" $OK -io_prefix xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx

@@ -8,6 +8,7 @@
 # with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving it alone
 # would be refused).
 cd "$(dirname "$0")/.." || exit 1
+T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
 expect() { # name, pattern, options...
   name=$1; pat=$2; shift 2
@@ -21,6 +22,8 @@ expect "infinite inlet" "option -fluid_bc_zlo_velocity 0,0,-inf: '-inf' is not a
 expect "missing value" "option -dem_box needs a value" -dem_box
 expect "missing value last" "option -dem_kn needs a value" -dem_kn
 expect "surplus item" "-domain_hi takes 3 comma-separated values, got 4" -domain_hi 0.1449,0.1449,0.24633,7
+expect "Sable option under a solver prefix, no value" "option -fluid_viscous_number_max needs a value" -fluid_viscous_number_max
+expect "Sable option under a solver prefix, inf" "option -fluid_poisson_pc_lag_growth inf: 'inf' is not a finite number" -fluid_poisson_pc_lag_growth inf
 expect "negative skin" "-dem_skin -1. must be > 0 (m)" -dem_skin -1
 expect "negative progress interval" "-dem_progress_interval -1. must be >= 0" -dem_progress_interval -1
 expect "more radii than shapes" "-dem_radius has 34 values; at most 32 shapes" -dem_radius "$(awk 'BEGIN {for (i = 0; i < 34; i++) printf "%s0.0069", i ? "," : ""}')"
@@ -31,10 +34,12 @@ expect "surplus inlet component" "-fluid_bc_zlo_velocity takes 3 comma-separated
 Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
 expect "typo of a PETSc option" "option -log_vieww  was given but nothing reads it" -log_vieww
 expect "multigrid-like name outside the solvers" "option -dem_mg_levels_foo 1 was given but nothing reads it" -dem_mg_levels_foo 1
-out=$($Q -dem_plane_0 -1,0,0,0,0,1 -dem_frozen 2>&1); rc=$?
-if [ "$rc" -eq 0 ]; then echo "PASS options negative first item and a flag alone: exit 0"; else echo "FAIL options negative first item and a flag alone: exit $rc: $(printf '%s\n' "$out" | tail -n 1)"; fi
+out=$($Q -dem_plane_0 -1,0,0,0,0,1 -dem_frozen -io_prefix inf -io_dir "$T/inf" -io_interval 0.001 2>&1); rc=$?
+if [ "$rc" -eq 0 ] && [ -f "$T/inf/inf.xmf" ]; then echo "PASS options negative first item, a flag alone, a file prefix named inf: exit 0"; else echo "FAIL options negative first item, a flag alone, a file prefix named inf: exit $rc: $(printf '%s\n' "$out" | tail -n 1)"; fi
+printf -- '-io_prefix "my run"\n-dem_t_end 0.001\n-io_dir %s/q\n-io_interval 0.001\n' "$T" > "$T/q.opts"
+out=$($Q -options_file "$T/q.opts" 2>&1); rc=$?
+if [ "$rc" -eq 0 ] && [ -f "$T/q/my run.xmf" ]; then echo "PASS options file with a quoted value holding a blank: exit 0"; else echo "FAIL options file with a quoted value holding a blank: exit $rc: $(printf '%s\n' "$out" | tail -n 1)"; fi
 # options files: a line that is not an option, a second value, a directory, no file name
-T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 printf -- '-dem_t_end 0.001\nthis is not an option\n' > "$T/a.opts"; printf -- '-dem_t_end 0.001 0.002\n' > "$T/b.opts"
 for c in "a.opts:line 2: 'this' is not an option" "b.opts:line 1: -dem_t_end has more than one value" ":is a directory"; do
   f="$T/${c%%:*}"; pat=${c#*:}

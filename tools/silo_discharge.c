@@ -11,12 +11,35 @@
 #include "io/io.h"
 #include <unistd.h>
 
+/* The run's XDMF index <dir>/<prefix>.xmf as text (NULL if absent): a frame file counts only if
+ * the index names it, so frames left by an earlier, longer run with the same prefix are not read. */
+static PetscErrorCode ReadIndex(const char *dir, const char *prefix, char **text)
+{
+  char  path[PETSC_MAX_PATH_LEN + 80];
+  FILE *fp;
+  long  len;
+
+  PetscFunctionBeginUser;
+  *text = NULL;
+  PetscCall(PetscSNPrintf(path, sizeof path, "%s/%s.xmf", dir, prefix));
+  fp = fopen(path, "r");
+  if (!fp) PetscFunctionReturn(PETSC_SUCCESS);
+  fseek(fp, 0, SEEK_END);
+  len = ftell(fp);
+  rewind(fp);
+  PetscCall(PetscMalloc1(len + 1, text));
+  (*text)[fread(*text, 1, (size_t)len, fp)] = 0;
+  fclose(fp);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   char      dir[PETSC_MAX_PATH_LEN] = "out/silo_cubes", prefix[64] = "discharge", path[PETSC_MAX_PATH_LEN + 80];
   PetscReal dt = 0.05, z0 = 0, mass = 0, t20 = -1, t80 = -1;
   PetscInt  n0 = -1, n20 = 0, n80 = 0, n01 = 0, nlast = 0;
   PetscReal tlast = 0, tempty = -1, rate = 0, t0 = 0;
+  char     *index;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "silo_discharge: particles above the orifice against time\n"));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "silo discharge", NULL);
@@ -27,13 +50,14 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsReal("-silo_mass", "Mass of one particle (kg), for kg/s", NULL, mass, &mass, NULL));
   PetscOptionsEnd();
   PetscCheck(dt > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-silo_interval %g must be > 0 (s)", (double)dt);
+  PetscCall(ReadIndex(dir, prefix, &index));
   for (PetscInt f = 0;; f++) {
     PetscReal *x;
     PetscInt   n, nc, above = 0;
     PetscReal  tf;
     PetscBool  has_t;
     PetscCall(PetscSNPrintf(path, sizeof path, "%s/%s_%06" PetscInt_FMT ".h5", dir, prefix, f));
-    if (access(path, R_OK)) {
+    if (access(path, R_OK) || (index && !strstr(index, strrchr(path, '/') + 1))) {
       PetscCheck(f > 0, PETSC_COMM_WORLD, PETSC_ERR_FILE_OPEN, "no frame %s", path);
       break;
     }
@@ -60,6 +84,7 @@ int main(int argc, char **argv)
   } else PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge rate: no discharge in the frames read\n"));
   if (tempty >= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge time (no particle left above the orifice): %.2f s\n", (double)tempty));
   else if (rate > 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "discharge time: not reached (%" PetscInt_FMT " of %" PetscInt_FMT " left at %.2f s); at the rate above, N0 / rate = %.1f s\n", nlast, n0, (double)tlast, (double)(n0 / rate)));
+  PetscCall(PetscFree(index));
   PetscCall(PetscFinalize());
   return 0;
 }

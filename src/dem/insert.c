@@ -8,7 +8,6 @@
  *   -dem_lattice_random_orientation, a uniformly random orientation (for convex shapes).
  * Or: particles from an HDF5 file that Sable wrote (-dem_init_file), the last frame's state. */
 #include "dem/dem_impl.h"
-#include <errno.h>
 
 static double dem_hash_frac(double n, int c)
 {
@@ -66,11 +65,7 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   if (dem->lat_count < 0) dem->lat_count = dem->lat[0] * dem->lat[1] * dem->lat[2];
   PetscCheck(dem->lat_jitter >= 0 && dem->lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->lat_jitter);
   PetscCheck(dem->lat_speed >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_speed %g must be >= 0", (double)dem->lat_speed);
-  if (dem->init_file[0]) {
-    FILE *fp = fopen(dem->init_file, "r");
-    PetscCheck(fp, dem->comm, PETSC_ERR_FILE_OPEN, "-dem_init_file %s: cannot open (%s)", dem->init_file, strerror(errno));
-    fclose(fp);
-  }
+  if (dem->init_file[0]) PetscCall(IoCheckReadable(dem->comm, "-dem_init_file", dem->init_file));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

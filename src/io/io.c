@@ -453,6 +453,19 @@ PetscErrorCode IoReadTime(const char *file, PetscReal *t, PetscBool *has)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode IoCheckReadable(MPI_Comm comm, const char *opt, const char *file)
+{
+  FILE *fp;
+
+  PetscFunctionBeginUser;
+  io_quiet();
+  fp = fopen(file, "r");
+  PetscCheck(fp, comm, PETSC_ERR_FILE_OPEN, "%s %s: cannot open (%s)", opt, file, strerror(errno));
+  fclose(fp);
+  PetscCheck(H5Fis_hdf5(file) > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "%s %s: not an HDF5 file (Sable reads the frames it writes, *_NNNNNN.h5)", opt, file);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has)
 {
   hid_t f;

@@ -49,3 +49,5 @@ PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows,
 /* Whether a Sable HDF5 file holds the dataset /<group>/<name> (group and name given as one
  * path, e.g. "/particles/shape"). Not collective. */
 PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has);
+/* Collective on comm. Errors, naming the option opt, unless file can be opened as HDF5. */
+PetscErrorCode IoCheckReadable(MPI_Comm comm, const char *opt, const char *file);
