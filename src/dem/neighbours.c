@@ -84,11 +84,13 @@ static PetscErrorCode DemCellsSetUp(Dem dem)
 
   PetscFunctionBeginUser;
   for (int k = 0; k < 3; k++) len[k] = dem->dom->subhi[k] - dem->dom->sublo[k] + 2 * dem->reach;
-  /* never more than ~2 cells per particle (+1000): a huge box with few particles stays cheap */
+  /* never more than ~8 cells per particle (+1000): a huge box with few particles stays cheap,
+     and a tall column whose bed fills a fifth of it (a fluidized bed) keeps cells of one reach
+     (at 2 per particle its cells grew to 1.56 reach: 3.8x the candidate pairs, +23% list time) */
   for (;;) {
     ncell = 1;
     for (int k = 0; k < 3; k++) ncell *= PetscMax(1.0, PetscFloorReal(len[k] / c));
-    if (ncell <= 2.0 * dem->n + 1000) break;
+    if (ncell <= 8.0 * dem->n + 1000) break;
     c *= 1.25;
   }
   PetscCall(PetscFree(nl->cstart));
