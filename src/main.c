@@ -123,8 +123,32 @@ static int SableCheckOptionsFile(const char *path)
   return bad;
 }
 
+/* A command-line token is an option's name when it is a dash and a letter (or two dashes and a
+ * letter, as PETSc allows); "-1.5" is a value. */
+static int SableIsKey(const char *t)
+{
+  if (t[0] == '-' && t[1] == '-') t++;
+  return t[0] == '-' && isalpha((unsigned char)t[1]);
+}
+
+/* PETSc ignores a second value after an option without a word ("-dem_restitution 0.5 0.9"):
+ * refuse it, naming the option. */
+static int SableCheckCommandLine(int argc, char **argv)
+{
+  for (int i = 1; i < argc; i++) {
+    if (SableIsKey(argv[i])) continue;
+    if (i == 1 || !SableIsKey(argv[i - 1])) {
+      if (i == 1) SableEarlyError("'%s' is not an option (options are -name value)", argv[i]);
+      else SableEarlyError("%s has more than one value ('%s' follows '%s'; lists are comma-separated)", argv[i - 2], argv[i], argv[i - 1]);
+      return 1;
+    }
+  }
+  return 0;
+}
+
 static int SableCheckOptionsFiles(int argc, char **argv)
 {
+  if (SableCheckCommandLine(argc, argv)) return 1;
   for (int i = 1; i < argc; i++)
     if (!strcmp(argv[i], "-options_file")) {
       if (i + 1 == argc || argv[i + 1][0] == 0) {

@@ -32,6 +32,7 @@ expect "probe heights equal" "-cpl_probe_z 10.,10.: need lo <= z1 < z2 <= hi wit
 expect "probe above the domain" "-cpl_probe_z 100.,200.: need lo <= z1 < z2 <= hi" -cpl_probe_z 100,200
 expect "surplus inlet component" "-fluid_bc_zlo_velocity takes 3 comma-separated values, got 4" -fluid_bc_zlo_velocity 0,0,0.3,4
 Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
+expect "second value on the command line" "-dem_restitution has more than one value ('0.9' follows '0.5'" -dem_restitution 0.5 0.9
 expect "typo of a PETSc option" "option -log_vieww  was given but nothing reads it" -log_vieww
 expect "multigrid-like name outside the solvers" "option -dem_mg_levels_foo 1 was given but nothing reads it" -dem_mg_levels_foo 1
 out=$($Q -dem_plane_0 -1,0,0,0,0,1 -dem_frozen -io_prefix inf -io_dir "$T/inf" -io_interval 0.001 2>&1); rc=$?
