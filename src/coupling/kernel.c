@@ -15,21 +15,23 @@
  * SI. */
 #include "coupling/coupling_impl.h"
 
-/* 1-D overlap fractions of the segment [a, a + L] with the intervals [o + m h, o + (m+1) h]:
- * PETSC_FALSE if it spans more than 4 (the caller names the limit). */
-static inline PetscBool cpl_weights_1d(double a, double L, double o, double h, PetscInt *m0, int *n, double w[4])
+/* 1-D overlap fractions of the segment [u, u + l] (in units of the interval width, from the
+ * first interval's lower end) with the unit intervals [m, m + 1]: PETSC_FALSE if it spans more
+ * than 4 (the caller names the limit). il = 1/l. The last weight is one minus the others. */
+static inline PetscBool cpl_weights_1d(double u, double l, double il, PetscInt *m0, int *n, double w[4])
 {
-  const PetscInt first = (PetscInt)PetscFloorReal((a - o) / h);
-  PetscInt       last  = (PetscInt)PetscFloorReal((a + L - o) / h);
+  const double   e     = u + l;
+  const PetscInt first = (PetscInt)PetscFloorReal(u);
+  PetscInt       last  = (PetscInt)PetscFloorReal(e);
   double         sum   = 0;
 
-  if (last > first && o + last * h >= a + L) last--; /* the segment ends exactly on a boundary */
+  if (last > first && (double)last >= e) last--; /* the segment ends exactly on a boundary */
   if (last - first >= 4) return PETSC_FALSE;
   *m0 = first;
   *n  = (int)(last - first + 1);
   for (int k = 0; k < *n - 1; k++) {
-    const double lo = o + (first + k) * h, hi = lo + h;
-    w[k] = (PetscMin(a + L, hi) - PetscMax(a, lo)) / L;
+    const double lo = (double)(first + k), hi = lo + 1;
+    w[k] = (PetscMin(e, hi) - PetscMax(u, lo)) * il;
     sum += w[k];
   }
   w[*n - 1] = 1.0 - sum;
@@ -56,11 +58,15 @@ PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplSt
 
   PetscFunctionBeginUser;
   for (int e = 0; e < 3; e++) {
-    double xc = x[e], a;
+    const double ih = 1.0 / dom->h[e], l = side * ih, il = 1.0 / l;
+    double       xc = x[e], a;
     if (dom->periodic[e]) xc = dom->lo[e] + (xc - dom->lo[e]) - dom->len[e] * PetscFloorReal((xc - dom->lo[e]) / dom->len[e]);
     a = xc - 0.5 * side;
     if (!dom->periodic[e]) a = PetscMin(PetscMax(a, dom->lo[e]), dom->hi[e] - side);
-    PetscCheck(cpl_weights_1d(a, side, dom->lo[e], dom->h[e], &s->c0[e], &s->nc[e], s->wc[e]) && cpl_weights_1d(a, side, dom->lo[e] - 0.5 * dom->h[e], dom->h[e], &s->f0[e], &s->nf[e], s->wf[e]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel of side %g spans more than 4 cells of size %g; lower -cpl_kernel_scale", side, dom->h[e]);
+    { /* cells from lo, face control volumes from lo - h/2: the same u shifted by a half */
+      const double u = (a - dom->lo[e]) * ih;
+      PetscCheck(cpl_weights_1d(u, l, il, &s->c0[e], &s->nc[e], s->wc[e]) && cpl_weights_1d(u + 0.5, l, il, &s->f0[e], &s->nf[e], s->wf[e]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel of side %g spans more than 4 cells of size %g; lower -cpl_kernel_scale", side, dom->h[e]);
+    }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
