@@ -8,8 +8,10 @@
  * prefixes takes a value (tests/test_options_values.sh keeps this list complete). */
 static const char *const SableFlags[] = {"dem_convex_sat", "dem_deterministic", "dem_frozen", "dem_lattice_random_orientation", "domain_periodic_x", "domain_periodic_y", "domain_periodic_z", "fluid_adaptive_dt", "lb_verbose"};
 
-/* Sable's options whose values are names (of files, directories, shapes): no number check. */
-static const char *const SableStrings[] = {"io_dir", "io_prefix", "dem_init_file", "dem_shape_file", "dem_shape"};
+/* Sable's options whose values are words (file, directory, shape and model names): no number
+ * check; every other value-taking option of Sable's takes numbers (tests/test_options_values.sh
+ * keeps this list complete). */
+static const char *const SableWords[] = {"io_dir", "io_prefix", "dem_init_file", "dem_shape_file", "dem_shape", "dem_contact_law", "dem_convex_contact_point", "cpl_drag", "fluid_advection", "fluid_inlet_interpolation", "fluid_viscous", "fluid_bc_xlo", "fluid_bc_xhi", "fluid_bc_ylo", "fluid_bc_yhi", "fluid_bc_zlo", "fluid_bc_zhi", "lb_scheme", "lb_weight"};
 
 /* Sable's own option prefixes; fluid_poisson_ and fluid_viscous_ are PETSc solvers' prefixes
  * (their flags, such as -fluid_poisson_ksp_monitor, are PETSc's business) except for the three
@@ -26,8 +28,9 @@ static PetscBool SableOwnOption(const char *name)
   return PETSC_FALSE;
 }
 
-/* One option's value: a flag needs none, every other option one; no comma-separated item that
- * reads as a number may be NaN or infinite (no option of Sable means "forever" by inf). */
+/* One option's value: a flag needs none, every other option one; a numeric option's
+ * comma-separated items must each be a finite number (PETSc's own message for "abc" names no
+ * option, and no option of Sable's means "forever" by inf). */
 static PetscErrorCode SableCheckOptionValue(MPI_Comm comm, const char *name, const char *value)
 {
   char   buf[4096], *tok, *save = NULL;
@@ -38,13 +41,14 @@ static PetscErrorCode SableCheckOptionValue(MPI_Comm comm, const char *name, con
   for (k = 0; k < sizeof SableFlags / sizeof SableFlags[0]; k++)
     if (!strcmp(name, SableFlags[k])) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(value && value[0], comm, PETSC_ERR_ARG_WRONG, "option -%s needs a value (-help lists it with its default)", name);
-  for (k = 0; k < sizeof SableStrings / sizeof SableStrings[0]; k++) /* a file named "inf" is a file */
-    if (!strcmp(name, SableStrings[k])) PetscFunctionReturn(PETSC_SUCCESS);
+  for (k = 0; k < sizeof SableWords / sizeof SableWords[0]; k++) /* a file named "inf" is a file */
+    if (!strcmp(name, SableWords[k])) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscStrncpy(buf, value, sizeof buf));
   for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
     char        *end;
     const double x = strtod(tok, &end);
-    PetscCheck(end == tok || *end || isfinite(x), comm, PETSC_ERR_ARG_OUTOFRANGE, "option -%s %s: '%s' is not a finite number", name, value, tok);
+    PetscCheck(end != tok && !*end, comm, PETSC_ERR_ARG_WRONG, "option -%s %s: '%s' is not a number", name, value, tok);
+    PetscCheck(isfinite(x), comm, PETSC_ERR_ARG_OUTOFRANGE, "option -%s %s: '%s' is not a finite number", name, value, tok);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,12 +1,14 @@
 #!/bin/sh
-# Values given to Sable's own options (src/sable.c, SableCheckOptionValues): a NaN or infinite
+# Values given to Sable's own options (src/sable.c, SableCheckOptionValues): a word where a
+# number is expected, a NaN or infinite
 # number, an option that needs a value given none, and a list with a surplus item are each an
 # error naming the option and the value (exit 1), never a run with a default or a dropped
 # item; a negative first item is a value, not an option; the unused-option check lets through
 # PETSc's run-time options by whole name only (-log_vieww is a typo); a bad options file is one
 # line naming the file and line, not PETSc's traceback. Also: every flag that the code reads
 # with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving it alone
-# would be refused).
+# would be refused), and every option read as a word (enum, string) is in SableWords (else its
+# value would be refused as not a number).
 cd "$(dirname "$0")/.." || exit 1
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
@@ -19,6 +21,7 @@ expect() { # name, pattern, options...
 expect "NaN item" "option -dem_gravity 0,nan,-9.81: 'nan' is not a finite number" -dem_gravity 0,nan,-9.81
 expect "infinite end time" "option -dem_t_end inf: 'inf' is not a finite number" -dem_t_end inf
 expect "infinite inlet" "option -fluid_bc_zlo_velocity 0,0,-inf: '-inf' is not a finite number" -fluid_bc_zlo_velocity 0,0,-inf
+expect "word for a number" "option -dem_kn abc: 'abc' is not a number" -dem_kn abc
 expect "missing value" "option -dem_box needs a value" -dem_box
 expect "missing value last" "option -dem_kn needs a value" -dem_kn
 expect "surplus item" "-domain_hi takes 3 comma-separated values, got 4" -domain_hi 0.1449,0.1449,0.24633,7
@@ -55,3 +58,9 @@ for f in $(grep -rhoE 'PetscOptionsBool\("-(dem|fluid|cpl|domain|io|lb)_[a-z0-9_
   grep -q "\"$f\"" src/sable.c || missing="$missing $f"
 done
 [ -z "$missing" ] && echo "PASS options: every PetscOptionsBool flag under Sable's prefixes is in SableFlags" || echo "FAIL options: flags missing from SableFlags (src/sable.c):$missing"
+missing=""
+words=$(grep -rhoE '(PetscOptionsEnum|PetscOptionsEList|PetscOptionsString|PetscOptionsStringArray|PetscOptionsEnumArray|PetscOptionsGetString|BalanceOptionName)\((PetscOptionsObject, [^,]*, |NULL, NULL, )?"-(dem|fluid|cpl|domain|io|lb)_[a-z0-9_]*"' src | sed 's/.*"-//; s/"$//' | sort -u)
+for f in $words fluid_bc_xlo fluid_bc_xhi fluid_bc_ylo fluid_bc_yhi fluid_bc_zlo fluid_bc_zhi; do
+  grep -q "\"$f\"" src/sable.c || missing="$missing $f"
+done
+[ -z "$missing" ] && echo "PASS options: every word-valued option under Sable's prefixes ($(echo $words | wc -w) read by name, 6 boundary faces) is in SableWords" || echo "FAIL options: word-valued options missing from SableWords (src/sable.c):$missing"
