@@ -1,13 +1,13 @@
 #!/bin/sh
-# Values given to Sable's own options (src/sable.c, SableCheckOptionValues): a word where a
-# number is expected, a NaN or infinite number, an option that needs a value given none, and a
-# list with a surplus item are each an error naming the option and the value (exit 1), never a
-# run with a default or a dropped item; a negative first item is a value, not an option; the unused-option check lets through
-# PETSc's run-time options by whole name only (-log_vieww is a typo); a bad options file is one
-# line naming the file and line, not PETSc's traceback. Also: every flag that the code reads
-# with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving it alone
-# would be refused), and every option read as a word (enum, string) is in SableWords (else its
-# value would be refused as not a number).
+# Values given to Sable's own options (src/sable.c, SableCheckOptionValues): a word where a number
+# is expected, a NaN or infinite number, an option that needs a value given none, and a list with
+# a surplus item are each an error naming the option and the value (exit 1), never a run with a
+# default or a dropped item; a negative first item is a value, not an option; the unused-option
+# check lets through PETSc's run-time options by whole name only (-log_vieww is a typo); a bad
+# options file is one line naming the file and line, not PETSc's traceback. Also: every flag that
+# the code reads with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving
+# it alone would be refused), and every option read as a word (enum, string) is in SableWords
+# (else its value would be refused as not a number).
 cd "$(dirname "$0")/.." || exit 1
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
