@@ -79,6 +79,14 @@ static int SableOptionsTokens(char *line, char *tok[3])
   return n;
 }
 
+/* A command-line token is an option's name when it is a dash and a letter (or two dashes and a
+ * letter, as PETSc allows); "-1.5" is a value. */
+static int SableIsKey(const char *t)
+{
+  if (t[0] == '-' && t[1] == '-') t++;
+  return t[0] == '-' && isalpha((unsigned char)t[1]);
+}
+
 /* PETSc's own messages for a bad options file are tracebacks: check each -options_file first
  * and say what is wrong in one line (file, line, text). A line is "-name [value]", "alias -a -b"
  * or blank; # starts a comment; a key may start with -- as PETSc allows. */
@@ -110,8 +118,7 @@ static int SableCheckOptionsFile(const char *path)
     if (c) *c = 0;
     nt = SableOptionsTokens(line, tok);
     if (!nt || !strcmp(tok[0], "alias")) continue;
-    const char *key = tok[0][0] == '-' && tok[0][1] == '-' ? tok[0] + 1 : tok[0];
-    if (key[0] != '-' || !isalpha((unsigned char)key[1])) {
+    if (!SableIsKey(tok[0])) {
       SableEarlyError("-options_file %s, line %d: '%s' is not an option (a line is -name value)", path, n, tok[0]);
       bad = 1;
     } else if (nt > 2) {
@@ -121,14 +128,6 @@ static int SableCheckOptionsFile(const char *path)
   }
   fclose(fp);
   return bad;
-}
-
-/* A command-line token is an option's name when it is a dash and a letter (or two dashes and a
- * letter, as PETSc allows); "-1.5" is a value. */
-static int SableIsKey(const char *t)
-{
-  if (t[0] == '-' && t[1] == '-') t++;
-  return t[0] == '-' && isalpha((unsigned char)t[1]);
 }
 
 /* PETSc ignores a second value after an option without a word ("-dem_restitution 0.5 0.9"):

@@ -57,7 +57,6 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
 
 PetscErrorCode CplSetFromOptions(Cpl cpl)
 {
-  PetscInt n = 2;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
@@ -68,10 +67,8 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(PetscOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit), > 0", NULL, cpl->relax_max, &cpl->relax_max, NULL));
   PetscCall(PetscOptionsReal("-cpl_t_end", "Simulated time of a coupled run (s)", NULL, cpl->t_end, &cpl->t_end, NULL));
   PetscCall(PetscOptionsReal("-cpl_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, cpl->progress_dt, &cpl->progress_dt, NULL));
-  PetscCall(PetscOptionsRealArray("-cpl_probe_z", "Two heights z1,z2 (m) between which the run reports dp/L, porosity and the drag law's prediction", NULL, cpl->probe, &n, &cpl->probe_set));
+  SableOptionsRealN("-cpl_probe_z", "Two heights z1,z2 (m) between which the run reports dp/L, porosity and the drag law's prediction", NULL, cpl->probe, 2, &cpl->probe_set);
   PetscOptionsEnd();
-  if (cpl->probe_set) PetscCall(SableOptionCount("-cpl_probe_z", &n));
-  PetscCheck(!cpl->probe_set || n == 2, cpl->comm, PETSC_ERR_ARG_SIZ, "-cpl_probe_z takes 2 heights z1,z2, got %d", (int)n);
   PetscCheck(!cpl->probe_set || (cpl->probe[0] >= cpl->dom->lo[2] && cpl->probe[0] < cpl->probe[1] && cpl->probe[1] <= cpl->dom->hi[2]), cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_probe_z %g,%g: need lo <= z1 < z2 <= hi with the domain's z range [%g, %g] (m)", (double)cpl->probe[0], (double)cpl->probe[1], (double)cpl->dom->lo[2], (double)cpl->dom->hi[2]);
   PetscCheck(cpl->progress_dt >= 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_progress_interval %g must be >= 0 (s; 0 = no progress lines)", (double)cpl->progress_dt);
   PetscCheck(cpl->substeps >= 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_substeps %d must be >= 1", (int)cpl->substeps);

@@ -19,7 +19,6 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
   const char *side[2] = {"lo", "hi"}, *ax = "xyz";
   char        opt[64], optv[64];
   PetscBool   set, any_outlet = PETSC_FALSE;
-  PetscInt    n;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid boundary conditions", NULL);
@@ -32,10 +31,7 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
       PetscCall(PetscOptionsEnum(opt, "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", NULL, FluidBCNames, (PetscEnum)t, (PetscEnum *)&t, &set));
       PetscCheck(!set || fl->dom->periodic[d] == (t == FLUID_BC_PERIODIC), fl->comm, PETSC_ERR_ARG_WRONG, "%s %s: the %c axis is %speriodic (-domain_periodic_%c); valid values here: %s", opt, FluidBCNames[t], ax[d], fl->dom->periodic[d] ? "" : "not ", ax[d], fl->dom->periodic[d] ? "periodic" : "wall, slip, inlet, outlet");
       fl->bc[d][s].type = t;
-      n                 = 3;
-      PetscCall(PetscOptionsRealArray(optv, "Inlet velocity on this face (m/s; default 0,0,0)", NULL, fl->bc[d][s].vel, &n, &set));
-      if (set) PetscCall(SableOptionCount(optv, &n)); /* PETSc drops a surplus value */
-      PetscCheck(!set || n == 3, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes 3 comma-separated values, got %d", optv, (int)n);
+      SableOptionsRealN(optv, "Inlet velocity on this face (m/s; default 0,0,0)", NULL, fl->bc[d][s].vel, 3, &set);
       PetscCheck(!set || t == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but %s is %s, not inlet", optv, opt, FluidBCNames[t]);
       if (t == FLUID_BC_OUTLET) any_outlet = PETSC_TRUE;
     }
