@@ -57,7 +57,6 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
 
 PetscErrorCode CplSetFromOptions(Cpl cpl)
 {
-
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
   PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu)", NULL, CplDragNames, (PetscEnum)cpl->law, (PetscEnum *)&cpl->law, NULL));
