@@ -13,8 +13,30 @@
 #include <errno.h>
 #include <sys/stat.h>
 #include <sys/resource.h>
+#include <signal.h>
+#include <unistd.h>
+#include <time.h>
 
 static PetscBool sable_traceback = PETSC_FALSE;
+
+/* The first error of this process: its message, whether it was printed, and whether it was
+ * raised on a communicator smaller than the world's (one rank's error, which the others may not
+ * share): such an error is printed at the end, once it is known whether every rank failed. */
+static struct {
+  char           msg[600];
+  PetscErrorCode code;
+  int            printed, partial;
+} sable_err;
+static MPI_Comm sable_end_comm = MPI_COMM_NULL; /* the end-of-run agreement's own communicator */
+
+static void SablePrintError(int rank)
+{
+  if (sable_err.code == PETSC_ERR_SIG) fprintf(stderr, "sable: stopped: %s\n", sable_err.msg);
+  else if (rank >= 0) fprintf(stderr, "sable: error (rank %d): %s\n", rank, sable_err.msg);
+  else fprintf(stderr, "sable: error: %s\n", sable_err.msg);
+  fflush(stderr);
+  sable_err.printed = 1;
+}
 
 static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *func, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
@@ -22,25 +44,46 @@ static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *fun
 
   (void)ctx;
   if (sable_traceback) return PetscTraceBackErrorHandler(comm, line, func, file, n, p, mess, NULL);
-  if (p != PETSC_ERROR_INITIAL) return n;
+  if (p != PETSC_ERROR_INITIAL || sable_err.code) return n;
   MPI_Comm_size(comm, &size);
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &wsize);
-  if (!rank || size == 1) {
-    char        buf[512];
-    const char *what = mess;
-    if (n == PETSC_ERR_MEM || (func && (strstr(func, "MallocAlign") || strstr(func, "ReallocAlign")))) { /* PETSc's message names only the caller */
-      snprintf(buf, sizeof buf, "out of memory in %s: the scene needs more memory than this machine gives one rank (fewer particles or fluid cells, or more ranks)", mess && mess[0] ? mess : (func ? func : "?"));
-      what = buf;
-    }
-    if (size == 1 && wsize > 1) { /* one rank's error: say which */
-      int wr = 0;
-      MPI_Comm_rank(MPI_COMM_WORLD, &wr);
-      fprintf(stderr, "sable: error (rank %d): %s\n", wr, what ? what : "unknown error");
-    } else fprintf(stderr, "sable: error: %s\n", what ? what : "unknown error");
-    fflush(stderr);
-  }
+  sable_err.code = n;
+  if (n == PETSC_ERR_MEM || (func && (strstr(func, "MallocAlign") || strstr(func, "ReallocAlign")))) /* PETSc's message names only the caller */
+    snprintf(sable_err.msg, sizeof sable_err.msg, "out of memory in %s: the scene needs more memory than this machine gives one rank (fewer particles or fluid cells, or more ranks)", mess && mess[0] ? mess : (func ? func : "?"));
+  else snprintf(sable_err.msg, sizeof sable_err.msg, "%s", mess && mess[0] ? mess : "unknown error");
+  sable_err.partial = size < wsize;
+  if (wsize == 1 || (!sable_err.partial && !rank)) SablePrintError(-1);
+  else if (!sable_err.partial) sable_err.printed = 1; /* rank 0 says it */
   return n;
+}
+
+/* The end of a failed run on several ranks. When every rank failed (a mistake all of them see),
+ * they agree within SABLE_END_WAIT seconds, one line has been (or is now) printed by rank 0, and
+ * all finalize and exit with the same status. Otherwise this rank's error is its own: it prints
+ * its line with its rank and exits at once; the launcher then ends the ranks still running
+ * (Open MPI's mpiexec adds its own note of the non-zero exit; mpiexec -q leaves it out). */
+#define SABLE_END_WAIT 0.5
+static int SableEndParallel(int status)
+{
+  MPI_Request req;
+  int         done = 0, rank = 0;
+  double      t0   = MPI_Wtime();
+
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Ibarrier(sable_end_comm, &req);
+  while (!done && MPI_Wtime() - t0 < SABLE_END_WAIT) {
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    if (!done) nanosleep(&(struct timespec){0, 1000000}, NULL);
+  }
+  if (done) {
+    if (!rank && !sable_err.printed) SablePrintError(-1);
+    MPI_Comm_free(&sable_end_comm);
+    PetscFinalize();
+    return status;
+  }
+  if (!sable_err.printed) SablePrintError(rank);
+  _exit(status);
 }
 
 /* An error before MPI starts: printed by the first process only (under mpiexec every process
@@ -245,18 +288,24 @@ int main(int argc, char **argv)
 {
   PetscErrorCode ierr;
   PetscMPIInt    size;
+  int            status;
 
   if (SableCheckOptionsFiles(argc, argv)) return 1;
   PetscCall(PetscInitialize(&argc, &argv, NULL, "sable: parallel CFD-DEM. Options: see -help.\n"));
   PetscCall(PetscPushErrorHandler(SableErrorHandler, NULL));
-  ierr = SableCheckOptionValues(PETSC_COMM_WORLD);
+  PetscCallMPI(MPI_Comm_dup(MPI_COMM_WORLD, &sable_end_comm));
+  ierr = SableSignalsInstall();
+  if (!ierr) ierr = SableCheckOptionValues(PETSC_COMM_WORLD);
   if (!ierr) ierr = SableRun();
   if (ierr) {
+    SableTempRemove(); /* a frame or index being written when the error came */
+    status = ierr == PETSC_ERR_SIG ? 128 + (SableSignalCaught() ? SableSignalCaught() : SIGTERM) : 1;
     PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
-    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1); /* another rank may wait in a collective */
+    if (size > 1) return SableEndParallel(status);
     PetscFinalize();
-    return 1;
+    return status;
   }
+  PetscCallMPI(MPI_Comm_free(&sable_end_comm));
   PetscCall(PetscPopErrorHandler());
   PetscCall(PetscFinalize());
   return 0;

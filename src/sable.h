@@ -24,6 +24,23 @@ PetscErrorCode SableCheckOptionValues(MPI_Comm comm);
 /* Not collective. The number of comma-separated items given to option opt (0 if not given). */
 PetscErrorCode SableOptionCount(const char *opt, PetscInt *count);
 
+/* Stopping early (stop.c). Not collective: installs the handlers of SIGTERM, SIGINT and SIGUSR1,
+ * which record the signal (a second one, or none acted on within a grace time, ends the process
+ * at once after removing the registered temporary file). */
+PetscErrorCode SableSignalsInstall(void);
+/* The signal caught by this process (0 if none) and its name. */
+int         SableSignalCaught(void);
+const char *SableSignalName(int sig);
+/* Collective on comm, once a step of a run loop: sig is the signal caught by any rank (0 if
+ * none), the same on every rank at the same step. SableStopFinish completes the last poll (call
+ * it once the loop has ended, on every rank). */
+PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig);
+PetscErrorCode SableStopFinish(void);
+/* Not collective. The temporary file this process is writing (NULL: none): removed by
+ * SableTempRemove and by a forced stop, so that no partial file outlives the run. */
+void SableTempSet(const char *path);
+void SableTempRemove(void);
+
 /* PETSc 3.18 predates PETSC_SUCCESS. */
 #ifndef PETSC_SUCCESS
   #define PETSC_SUCCESS 0

@@ -72,6 +72,17 @@ static PetscErrorCode CplOutput(Cpl cpl, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. Ends the run on a signal (between two steps: no frame is being written). */
+static PetscErrorCode CplStopped(Cpl cpl, Io io, int sig)
+{
+  const char *index;
+
+  PetscFunctionBeginUser;
+  PetscCall(SableStopFinish());
+  PetscCall(IoGetIndexPath(io, &index));
+  SETERRQ(cpl->comm, PETSC_ERR_SIG, "%s received at t = %g s, fluid step %" PetscInt_FMT "; %s%s", SableSignalName(sig), (double)cpl->t, cpl->step, index ? "the frames written are complete: " : "no output was written", index ? index : "");
+}
+
 static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
 {
   PetscLogDouble t0, now;
@@ -86,6 +97,9 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
   PetscCall(IoDue(io, cpl->t, &due));
   if (due) PetscCall(CplOutput(cpl, io));
   while (cpl->t < cpl->t_end - 0.5 * cpl->dt) {
+    int sig;
+    PetscCall(SableStopPoll(cpl->comm, &sig));
+    if (sig) PetscCall(CplStopped(cpl, io, sig));
     PetscCall(CplStep(cpl, &st));
     PetscCall(BalanceCheck(lb, PETSC_FALSE, NULL));
     PetscCall(IoDue(io, cpl->t, &due));
@@ -106,6 +120,7 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
       next += cpl->progress_dt;
     }
   }
+  PetscCall(SableStopFinish());
   PetscCall(IoDueFinal(io, cpl->t, &due));
   if (due) PetscCall(CplOutput(cpl, io));
   PetscCall(PetscPrintf(cpl->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * cpl->dom->len[0] * cpl->dom->len[1])) : 0.0, (double)w, cpl->clipped_total));

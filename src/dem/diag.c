@@ -202,6 +202,17 @@ static PetscErrorCode DemOutput(Dem dem, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. Ends the run on a signal (between two steps: no frame is being written). */
+static PetscErrorCode DemStopped(Dem dem, Io io, int sig)
+{
+  const char *index = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(SableStopFinish());
+  if (io) PetscCall(IoGetIndexPath(io, &index));
+  SETERRQ(dem->comm, PETSC_ERR_SIG, "%s received at t = %g s, step %" PetscInt_FMT "; %s%s", SableSignalName(sig), (double)dem->t, dem->step, index ? "the frames written are complete: " : "no output was written", index ? index : "");
+}
+
 PetscErrorCode DemRun(Dem dem, Io io)
 {
   PetscLogDouble t0, now;
@@ -216,6 +227,9 @@ PetscErrorCode DemRun(Dem dem, Io io)
     if (due) PetscCall(DemOutput(dem, io));
   }
   while (dem->t < dem->t_end - 0.5 * dem->dt) {
+    int sig;
+    PetscCall(SableStopPoll(dem->comm, &sig));
+    if (sig) PetscCall(DemStopped(dem, io, sig));
     PetscCall(DemStep(dem));
     if (dem->monitor) PetscCall(dem->monitor(dem, dem->monitor_ctx));
     if (io) {
@@ -232,6 +246,7 @@ PetscErrorCode DemRun(Dem dem, Io io)
       next += dem->progress_dt;
     }
   }
+  PetscCall(SableStopFinish());
   if (io) {
     PetscCall(IoDueFinal(io, dem->t, &due));
     if (due) PetscCall(DemOutput(dem, io));

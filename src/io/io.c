@@ -152,6 +152,7 @@ PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
   fr->t = t;
   PetscCall(PetscSNPrintf(fr->file, sizeof fr->file, "%s_%06" PetscInt_FMT ".h5", io->prefix, io->nframes));
   PetscCall(PetscSNPrintf(io->tmpname, sizeof io->tmpname, "%s/%s.tmp", io->dir, fr->file));
+  SableTempSet(io->tmpname); /* removed if the run ends before the rename */
   fapl = H5Pcreate(H5P_FILE_ACCESS);
   SableCallH5(fapl);
   SableCallH5(H5Pset_fapl_mpio(fapl, io->comm, MPI_INFO_NULL));
@@ -363,6 +364,7 @@ static PetscErrorCode IoWriteIndex(Io io)
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(tmp, sizeof tmp, "%s.tmp", io->index));
+  SableTempSet(tmp);
   fp = fopen(tmp, "w");
   PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-io_dir: cannot write %s", tmp);
   fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n");
@@ -380,6 +382,7 @@ static PetscErrorCode IoWriteIndex(Io io)
   fprintf(fp, "  </Domain>\n</Xdmf>\n");
   PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "-io_dir: cannot finish %s", tmp);
   PetscCheck(rename(tmp, io->index) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s", tmp, io->index);
+  SableTempSet(NULL);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -402,6 +405,7 @@ PetscErrorCode IoFrameEnd(Io io)
     else PetscCall(IoWriteIndex(io));
   }
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, io->comm));
+  if (!err) SableTempSet(NULL);
   PetscCheck(!err, io->comm, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s (%s)", io->tmpname, final, strerror(err));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

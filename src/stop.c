@@ -1,0 +1,126 @@
+/* Stopping a run early without leaving a mess: signals and temporary files.
+ *
+ * SIGTERM, SIGINT and SIGUSR1 (a batch system's preemption, Ctrl-C, a user's request) are caught:
+ * the handler only records the signal. The run loops poll SableStopPoll once a step; every rank
+ * gets the same answer at the same step (a non-blocking MAX reduction started at one step and
+ * completed at the next, so polling costs no wait), and the loop ends the run there with an error
+ * of code PETSC_ERR_SIG, after the output being written, if any, is complete. A second signal, or
+ * a first one not acted on within SABLE_STOP_GRACE seconds (a rank stuck in a collective whose
+ * partner died), ends the process at once: the handler removes the temporary file this process
+ * is writing and exits with status 128 + signal.
+ *
+ * Every writer registers the temporary file it is writing (SableTempSet) and clears it once the
+ * file is renamed into place, so that whatever ends the process early can remove it. Only
+ * async-signal-safe calls (unlink, write, _exit, alarm) are made inside the handlers. */
+#include "sable.h"
+#include <signal.h>
+#include <unistd.h>
+
+#define SABLE_STOP_GRACE 10 /* s between a signal and a forced exit when no step boundary comes */
+
+static volatile sig_atomic_t stop_sig, temp_valid;
+static char                  temp_path[PETSC_MAX_PATH_LEN];
+static MPI_Request           stop_req = MPI_REQUEST_NULL;
+static int                   stop_send, stop_recv;
+
+const char *SableSignalName(int sig)
+{
+  switch (sig) {
+  case SIGTERM:
+    return "SIGTERM";
+  case SIGINT:
+    return "SIGINT";
+  case SIGUSR1:
+    return "SIGUSR1";
+  case SIGALRM:
+    return "SIGALRM";
+  default:
+    return "a signal";
+  }
+}
+
+static void SableWriteStr(const char *s)
+{
+  size_t n = 0;
+  while (s[n]) n++;
+  if (write(STDERR_FILENO, s, n) < 0) return;
+}
+
+/* Ends the process now: removes the temporary being written, says why, exits 128 + sig. */
+static void SableStopNow(int sig)
+{
+  if (temp_valid) unlink(temp_path);
+  SableWriteStr("sable: stopped: ");
+  SableWriteStr(SableSignalName(sig));
+  SableWriteStr(sig == SIGALRM ? " (no step boundary came within the grace time after a signal); the file being written was removed\n" : " received twice; the file being written was removed\n");
+  _exit(128 + (sig == SIGALRM ? (int)stop_sig : sig));
+}
+
+static void SableSignalHandler(int sig)
+{
+  if (sig == SIGALRM || stop_sig) SableStopNow(sig);
+  stop_sig = sig;
+  alarm(SABLE_STOP_GRACE);
+}
+
+PetscErrorCode SableSignalsInstall(void)
+{
+  struct sigaction sa;
+  const int        sigs[] = {SIGTERM, SIGINT, SIGUSR1, SIGALRM};
+
+  PetscFunctionBeginUser;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = SableSignalHandler;
+  sa.sa_flags   = SA_RESTART; /* a write interrupted by the signal goes on */
+  sigemptyset(&sa.sa_mask);
+  for (size_t k = 0; k < sizeof sigs / sizeof sigs[0]; k++) PetscCheck(sigaction(sigs[k], &sa, NULL) == 0, PETSC_COMM_SELF, PETSC_ERR_SYS, "cannot install the handler of %s", SableSignalName(sigs[k]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int SableSignalCaught(void)
+{
+  return (int)stop_sig;
+}
+
+void SableTempSet(const char *path)
+{
+  temp_valid = 0;
+  if (!path) return;
+  strncpy(temp_path, path, sizeof temp_path - 1);
+  temp_path[sizeof temp_path - 1] = 0;
+  temp_valid = 1;
+}
+
+void SableTempRemove(void)
+{
+  if (temp_valid) unlink(temp_path);
+  temp_valid = 0;
+}
+
+PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig)
+{
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size == 1) {
+    *sig = (int)stop_sig;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  *sig = 0;
+  if (stop_req != MPI_REQUEST_NULL) {
+    PetscCallMPI(MPI_Wait(&stop_req, MPI_STATUS_IGNORE));
+    *sig = stop_recv;
+  }
+  if (*sig) PetscFunctionReturn(PETSC_SUCCESS);
+  stop_send = (int)stop_sig;
+  PetscCallMPI(MPI_Iallreduce(&stop_send, &stop_recv, 1, MPI_INT, MPI_MAX, comm, &stop_req));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableStopFinish(void)
+{
+  PetscFunctionBeginUser;
+  if (stop_req != MPI_REQUEST_NULL) PetscCallMPI(MPI_Wait(&stop_req, MPI_STATUS_IGNORE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
