@@ -32,6 +32,16 @@ all: $(BIN)/sable $(TEST_BIN) $(BUILD)/tools/tradeoff_run
 deps:
 	@tools/install-deps.sh
 
+# The option names written in src/ (tools/gen-options.sh); rewritten only when they change, so
+# that sable.c, which includes it, is rebuilt only then.
+$(BUILD)/gen/sable_options.h: $(LIB_SRC) src/main.c tools/gen-options.sh
+	@mkdir -p $(dir $@)
+	@tools/gen-options.sh src > $@.tmp
+	@if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
+
+$(BUILD)/src/sable.o: $(BUILD)/gen/sable_options.h
+$(BUILD)/src/sable.o: CFLAGS += -I$(BUILD)/gen
+
 $(BUILD)/%.o: %.c $(HDRS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@

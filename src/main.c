@@ -130,13 +130,43 @@ static int SableIsKey(const char *t)
   return t[0] == '-' && isalpha((unsigned char)t[1]);
 }
 
+/* The bytes of line n (len bytes, newline removed) before it is split: a NUL or another
+ * control byte means a file that is not text (an HDF5 or image file given by mistake), a
+ * byte-order mark an editor's UTF-8 header that PETSc would read as part of the first name.
+ * Returns 1 after printing the error. */
+static int SableCheckLineBytes(const char *path, int n, const char *line, size_t len)
+{
+  if (memchr(line, 0, len)) {
+    SableEarlyError("-options_file %s, line %d: contains a NUL byte (not a text file?)", path, n);
+    return 1;
+  }
+  if (n == 1 && len >= 3 && !memcmp(line, "\xef\xbb\xbf", 3)) {
+    SableEarlyError("-options_file %s, line 1: starts with a UTF-8 byte-order mark (save the file as plain text without it)", path);
+    return 1;
+  }
+  for (size_t k = 0; k < len; k++) {
+    const unsigned char c = (unsigned char)line[k];
+    if ((c < 0x20 && !isspace(c)) || c == 0x7f) {
+      SableEarlyError("-options_file %s, line %d: contains the control byte 0x%02x at column %d (not a text file?)", path, n, c, (int)k + 1);
+      return 1;
+    }
+  }
+  if (len > 4095) {
+    SableEarlyError("-options_file %s, line %d: longer than 4095 characters", path, n);
+    return 1;
+  }
+  return 0;
+}
+
 /* PETSc's own messages for a bad options file are tracebacks: check each -options_file first
  * and say what is wrong in one line (file, line, text). A line is "-name [value]", "alias -a -b"
  * or blank; # starts a comment; a key may start with -- as PETSc allows. */
 static int SableCheckOptionsFile(const char *path)
 {
   struct stat st;
-  char        line[4096];
+  char       *line = NULL;
+  size_t      cap  = 0;
+  ssize_t     len;
   int         n = 0, bad = 0;
   FILE       *fp;
 
@@ -149,26 +179,25 @@ static int SableCheckOptionsFile(const char *path)
     SableEarlyError("-options_file %s: cannot open (%s)", path, strerror(errno));
     return 1;
   }
-  while (!bad && fgets(line, sizeof line, fp)) {
-    char *tok[3] = {NULL, NULL, NULL}, *c = strchr(line, '#');
+  while (!bad && (len = getline(&line, &cap, fp)) >= 0) {
+    char *tok[3] = {NULL, NULL, NULL}, *c;
     int   nt;
     n++;
-    if (!strchr(line, '\n') && !feof(fp)) {
-      SableEarlyError("-options_file %s, line %d: longer than 4095 characters", path, n);
-      bad = 1;
-      break;
-    }
-    if (c) *c = 0;
+    if (len > 0 && line[len - 1] == '\n') line[--len] = 0;
+    if ((bad = SableCheckLineBytes(path, n, line, (size_t)len))) break;
+    if ((c = strchr(line, '#'))) *c = 0;
     nt = SableOptionsTokens(line, tok);
     if (!nt || !strcmp(tok[0], "alias")) continue;
-    if (!SableIsKey(tok[0])) {
-      SableEarlyError("-options_file %s, line %d: '%s' is not an option (a line is -name value)", path, n, tok[0]);
+    if (!SableIsKey(tok[0])) { /* a dash pasted from a document is U+2013, U+2014 or U+2212 */
+      const PetscBool dash = (PetscBool)(!strncmp(tok[0], "\xe2\x80\x93", 3) || !strncmp(tok[0], "\xe2\x80\x94", 3) || !strncmp(tok[0], "\xe2\x88\x92", 3));
+      SableEarlyError("-options_file %s, line %d: '%s' is not an option (%s)", path, n, tok[0], dash ? "it starts with a typographic dash, not the ASCII '-'" : "a line is -name value");
       bad = 1;
     } else if (nt > 2) {
       SableEarlyError("-options_file %s, line %d: %s has more than one value (lists are comma-separated; quote a value with blanks)", path, n, tok[0]);
       bad = 1;
     }
   }
+  free(line);
   fclose(fp);
   return bad;
 }

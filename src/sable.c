@@ -1,8 +1,15 @@
 /* Sable-wide helpers: the unused-option check (DESIGN §9) and the check of the values given to
- * Sable's own options (finite numbers, a value where one is needed, the count of a list). */
+ * Sable's own options (finite numbers, a value where one is needed, the count of a list, an
+ * integer that fits in PetscInt). The names of the options Sable reads come from the sources
+ * themselves: the Makefile writes sable_options.h (tools/gen-options.sh) with every option name
+ * written in src/ and those read as integers; a typo is compared with them ("did you mean"). */
 #include "sable.h"
+#include "sable_options.h"
+#include <ctype.h>
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
+#include <strings.h>
 
 /* Sable's options that are flags: given alone they mean true. Every other option of Sable's
  * prefixes takes a value (tests/test_options_values.sh keeps this list complete). */
@@ -28,15 +35,74 @@ static PetscBool SableOwnOption(const char *name)
   return PETSC_FALSE;
 }
 
+/* PETSc's integer options that Sable's cases and tools give (PETSc reads them, not Sable, so no
+ * source of ours names them all): the DMDA's, read by DMSetFromOptions (PETSc 3.18,
+ * src/dm/impls/da/dacreate.c), and the solver ones, matched as the end of a name under Sable's
+ * solver prefixes (-fluid_poisson_ksp_max_it, -fluid_poisson_mg_levels_ksp_max_it). */
+static const char *const SablePetscIntOptions[] = {"da_grid_x", "da_grid_y", "da_grid_z", "da_processors_x", "da_processors_y", "da_processors_z", "da_overlap", "da_overlap_x", "da_overlap_y", "da_overlap_z", "da_refine", "da_refine_x", "da_refine_y", "da_refine_z", "da_refine_hierarchy_x", "da_refine_hierarchy_y", "da_refine_hierarchy_z"};
+static const char *const SablePetscSolverIntSuffixes[] = {"ksp_max_it", "ksp_gmres_restart", "pc_mg_levels", "pc_hypre_boomeramg_max_iter", "pc_hypre_boomeramg_max_levels", "pc_hypre_boomeramg_agg_nl", "pc_gamg_agg_nsmooths"};
+
+static PetscBool SableInList(const char *name, const char *const *list, size_t n)
+{
+  for (size_t k = 0; k < n && list[k]; k++)
+    if (!strcmp(name, list[k])) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* Whether option name (no dash) takes integers; *petsc: PETSc reads it (it also takes PETSc's
+ * words DECIDE, DEFAULT, DETERMINE). */
+static PetscBool SableIntOption(const char *name, PetscBool *petsc)
+{
+  const size_t len = strlen(name);
+
+  *petsc = PETSC_FALSE;
+  if (SableInList(name, SableIntOptions, sizeof SableIntOptions / sizeof SableIntOptions[0])) return PETSC_TRUE;
+  *petsc = PETSC_TRUE;
+  if (SableInList(name, SablePetscIntOptions, sizeof SablePetscIntOptions / sizeof SablePetscIntOptions[0])) return PETSC_TRUE;
+  if (strncmp(name, "fluid_poisson_", 14) && strncmp(name, "fluid_viscous_", 14)) return PETSC_FALSE;
+  for (size_t k = 0; k < sizeof SablePetscSolverIntSuffixes / sizeof SablePetscSolverIntSuffixes[0]; k++) {
+    const size_t ls = strlen(SablePetscSolverIntSuffixes[k]);
+    if (len > ls && name[len - ls - 1] == '_' && !strcmp(name + len - ls, SablePetscSolverIntSuffixes[k])) return PETSC_TRUE;
+  }
+  return PETSC_FALSE;
+}
+
+/* An integer option's items: each a whole number that fits in PetscInt. PETSc itself would
+ * wrap 2147483648 to -2147483648 and report that number without the option's name. */
+static PetscErrorCode SableCheckIntValue(MPI_Comm comm, const char *name, const char *value, PetscBool petsc)
+{
+  const char *const words[] = {"decide", "petsc_decide", "default", "petsc_default", "determine", "petsc_determine"};
+  char              buf[4096], *tok, *save = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCheck(value && value[0], comm, PETSC_ERR_ARG_WRONG, "option -%s needs a value: an integer in [%" PetscInt_FMT ", %" PetscInt_FMT "]", name, (PetscInt)PETSC_MIN_INT, (PetscInt)PETSC_MAX_INT);
+  PetscCall(PetscStrncpy(buf, value, sizeof buf));
+  for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    char     *end;
+    long long v;
+    PetscBool word = PETSC_FALSE;
+    for (size_t k = 0; petsc && k < sizeof words / sizeof words[0]; k++)
+      if (!strcasecmp(tok, words[k])) word = PETSC_TRUE;
+    if (word) continue;
+    errno = 0;
+    v     = strtoll(tok, &end, 10);
+    PetscCheck(end != tok && !*end && !isspace((unsigned char)tok[0]), comm, PETSC_ERR_ARG_WRONG, "option -%s %s: '%s' is not an integer (an integer in [%" PetscInt_FMT ", %" PetscInt_FMT "])", name, value, tok, (PetscInt)PETSC_MIN_INT, (PetscInt)PETSC_MAX_INT);
+    PetscCheck(errno != ERANGE && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE, "option -%s %s: '%s' does not fit in PetscInt (an integer in [%" PetscInt_FMT ", %" PetscInt_FMT "])", name, value, tok, (PetscInt)PETSC_MIN_INT, (PetscInt)PETSC_MAX_INT);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* One option's value: a flag needs none, every other option one; a numeric option's
  * comma-separated items must each be a finite number (PETSc's own message for "abc" names no
  * option, and no option of Sable's means "forever" by inf). */
 static PetscErrorCode SableCheckOptionValue(MPI_Comm comm, const char *name, const char *value)
 {
-  char   buf[4096], *tok, *save = NULL;
-  size_t k;
+  char      buf[4096], *tok, *save = NULL;
+  size_t    k;
+  PetscBool petsc;
 
   PetscFunctionBeginUser;
+  if (SableIntOption(name, &petsc)) PetscCall(SableCheckIntValue(comm, name, value, petsc));
   if (!SableOwnOption(name)) PetscFunctionReturn(PETSC_SUCCESS);
   for (k = 0; k < sizeof SableFlags / sizeof SableFlags[0]; k++)
     if (!strcmp(name, SableFlags[k])) PetscFunctionReturn(PETSC_SUCCESS);
@@ -112,6 +178,102 @@ PetscErrorCode SableWarnOptionsUnused(MPI_Comm comm)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Optimal string alignment distance: insertions, deletions, substitutions and swaps of two
+ * neighbours ("-dem_nk" -> "-dem_kn" is 1); names longer than 63 characters count as far. */
+static int SableEditDistance(const char *a, const char *b)
+{
+  const int la = (int)strlen(a), lb = (int)strlen(b);
+  int       d[3][64], *p2 = d[0], *p1 = d[1], *c = d[2];
+
+  if (la > 63 || lb > 63) return 64;
+  for (int j = 0; j <= lb; j++) p1[j] = j;
+  for (int i = 1; i <= la; i++) {
+    c[0] = i;
+    for (int j = 1; j <= lb; j++) {
+      int v = PetscMin(p1[j] + 1, c[j - 1] + 1);
+      v     = PetscMin(v, p1[j - 1] + (a[i - 1] != b[j - 1]));
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) v = PetscMin(v, p2[j - 2] + 1);
+      c[j] = v;
+    }
+    int *t = p2;
+    p2 = p1;
+    p1 = c;
+    c  = t;
+  }
+  return p1[lb];
+}
+
+/* The words of a name (split at '_') sorted: "dem_kn_wall" and "dem_wall_kn" share it. */
+static void SableSortedWords(const char *name, char *key, size_t size)
+{
+  char  buf[128], *w[32], *save = NULL;
+  int   n = 0;
+
+  key[0] = 0;
+  if (strlen(name) >= sizeof buf) return;
+  strcpy(buf, name);
+  for (char *t = strtok_r(buf, "_", &save); t && n < 32; t = strtok_r(NULL, "_", &save)) w[n++] = t;
+  for (int i = 1; i < n; i++) /* insertion sort: a handful of words */
+    for (int j = i; j > 0 && strcmp(w[j - 1], w[j]) > 0; j--) {
+      char *t  = w[j];
+      w[j]     = w[j - 1];
+      w[j - 1] = t;
+    }
+  for (int i = 0; i < n; i++) {
+    if (i) strncat(key, "_", size - strlen(key) - 1);
+    strncat(key, w[i], size - strlen(key) - 1);
+  }
+}
+
+/* The first all-digit word of name replaced by %d (the index of -dem_plane_3_velocity), and
+ * that word, so that a typo of an indexed name is compared with its pattern. */
+static void SableIndexPattern(const char *name, char *pat, size_t size, char *index, size_t isize)
+{
+  const char *s = name;
+
+  index[0] = 0;
+  snprintf(pat, size, "%s", name);
+  for (; *s; s++) {
+    size_t n = 0;
+    if (s != name && s[-1] != '_') continue;
+    while (isdigit((unsigned char)s[n])) n++;
+    if (n && n < isize && (!s[n] || s[n] == '_')) {
+      memcpy(index, s, n);
+      index[n] = 0;
+      snprintf(pat, size, "%.*s%%d%s", (int)(s - name), name, s + n);
+      return;
+    }
+  }
+}
+
+/* The known option (SableKnownOptions) closest to an unknown name: at most 2 edits away, or the
+ * same words in another order; an empty string when none is. */
+static void SableSuggest(const char *name, char *best, size_t size)
+{
+  char pat[128], index[16], key[128], kkey[128];
+  int  bd = 3;
+
+  best[0] = 0;
+  SableIndexPattern(name, pat, sizeof pat, index, sizeof index);
+  SableSortedWords(name, key, sizeof key);
+  for (size_t k = 0; SableKnownOptions[k]; k++) {
+    const char     *known   = SableKnownOptions[k];
+    const PetscBool indexed = (PetscBool)(strstr(known, "%d") != NULL);
+    const char     *given   = indexed ? pat : name;
+    int             d;
+    if (indexed && !index[0]) continue;
+    d = SableEditDistance(given, known);
+    SableSortedWords(known, kkey, sizeof kkey);
+    if (d > 1 && key[0] && !strcmp(key, kkey)) d = 1;
+    if (d == 0 || d >= bd) continue; /* 0: a known name unread here (e.g. an index past the last) */
+    bd = d;
+    if (indexed) {
+      const char *f = strstr(known, "%d");
+      snprintf(best, size, "%.*s%s%s", (int)(f - known), known, index, f + 2);
+    } else snprintf(best, size, "%s", known);
+  }
+}
+
 PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm)
 {
   PetscInt n, bad = -1;
@@ -127,8 +289,11 @@ PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm)
     for (size_t k = 0; k < sizeof skip / sizeof skip[0]; k++) /* whole names: -log_vieww is a typo */
       if (!strcmp(names[i], skip[k])) ok = PETSC_TRUE;
     if (!ok) {
+      char hint[128], guess[128];
       bad = i;
-      PetscCall(PetscSNPrintf(msg, sizeof msg, "option -%s %s was given but nothing reads it (a typo? -help lists the valid options)", names[i], values[i] ? values[i] : ""));
+      SableSuggest(names[i], guess, sizeof guess);
+      PetscCall(PetscSNPrintf(hint, sizeof hint, "did you mean -%s?", guess));
+      PetscCall(PetscSNPrintf(msg, sizeof msg, "option -%s %s was given but nothing reads it (%s -help lists the valid options)", names[i], values[i] ? values[i] : "", guess[0] ? hint : "a typo?"));
     }
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));

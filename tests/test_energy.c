@@ -20,7 +20,7 @@ static PetscErrorCode Run(const char *law, double dt, double *drift_out)
   int          nf = 0, nl = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo 0,0,0 -domain_hi %.17g,%.17g,%.17g -dem_box 0,0,0,%.17g,%.17g,%.17g -dem_radius %g -dem_contact_law %s -dem_kn 1e4 -dem_youngs_modulus 1e7 -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt %g -dem_impact_velocity 0.5 -dem_lattice %d,%d,%d -dem_lattice_spacing %.17g -dem_lattice_jitter 1 -dem_lattice_speed 0.5", L * a, L * a, L * a, L * a, L * a, L * a, r, law, dt, L, L, L, a));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo 0,0,0 -domain_hi %.17g,%.17g,%.17g -dem_box 0,0,0,%.17g,%.17g,%.17g -dem_radius %g -dem_contact_law %s %s -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt %g -dem_impact_velocity 0.5 -dem_lattice %d,%d,%d -dem_lattice_spacing %.17g -dem_lattice_jitter 1 -dem_lattice_speed 0.5", L * a, L * a, L * a, L * a, L * a, L * a, r, law, strcmp(law, "hertz") ? "-dem_kn 1e4" : "-dem_youngs_modulus 1e7", dt, L, L, L, a));
   PetscCall(TestDemCreate(opts, &dom, &dem));
   PetscCall(DemSetUp(dem));
   for (int s = 0; s <= N; s++) {

@@ -106,6 +106,15 @@ PetscErrorCode BalanceSetFromOptions(Balance b)
   PetscCall(PetscOptionsInt("-lb_max_sweeps", "Coordinate-descent rounds of the cut search (>= 0; 0: the marginal cuts only get refined by the default 20)", NULL, b->max_sweeps, &b->max_sweeps, NULL));
   PetscCall(PetscOptionsBool("-lb_verbose", "Print one line per check", NULL, b->verbose, &b->verbose, NULL));
   PetscOptionsEnd();
+  { /* the time-based option replaces the step-based one: both given, one would be ignored */
+    const char *steps[2] = {"-lb_interval", "-lb_step"}, *times[2] = {"-lb_interval_time", "-lb_time"};
+    for (int k = 0; k < 2; k++) {
+      PetscBool hs, ht;
+      PetscCall(PetscOptionsHasName(NULL, NULL, steps[k], &hs));
+      PetscCall(PetscOptionsHasName(NULL, NULL, times[k], &ht));
+      PetscCheck(!hs || !ht, b->comm, PETSC_ERR_ARG_INCOMP, "%s and %s are both given; %s replaces %s, which would be ignored: give one of them", steps[k], times[k], times[k], steps[k]);
+    }
+  }
   PetscCheck((PetscIsNormalReal(b->alpha) || b->alpha == 0) && b->alpha >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_alpha %g must be finite and >= 0 (a particle's weight)", (double)b->alpha);
   PetscCheck((PetscIsNormalReal(b->beta) || b->beta == 0) && b->beta >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_beta %g must be finite and >= 0 (a cell's weight)", (double)b->beta);
   PetscCheck(b->alpha > 0 || b->beta > 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_alpha and -lb_beta are both 0: every cell would weigh nothing");

@@ -60,11 +60,11 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
   PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu)", NULL, CplDragNames, (PetscEnum)cpl->law, (PetscEnum *)&cpl->law, NULL));
-  PetscCall(PetscOptionsInt("-cpl_substeps", "DEM steps per fluid step (>= 1); the fluid step is this times -dem_dt", NULL, cpl->substeps, &cpl->substeps, NULL));
+  PetscCall(PetscOptionsInt("-cpl_substeps", "DEM steps per fluid step (>= 1); the fluid step is this times -dem_dt", NULL, cpl->substeps, &cpl->substeps, &cpl->substeps_set));
   PetscCall(PetscOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d, > 0", NULL, cpl->kscale, &cpl->kscale, NULL));
   PetscCall(PetscOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log), in (0,1)", NULL, cpl->eps_floor, &cpl->eps_floor, NULL));
   PetscCall(PetscOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit), > 0", NULL, cpl->relax_max, &cpl->relax_max, NULL));
-  PetscCall(PetscOptionsReal("-cpl_t_end", "Simulated time of a coupled run (s)", NULL, cpl->t_end, &cpl->t_end, NULL));
+  PetscCall(PetscOptionsReal("-cpl_t_end", "Simulated time of a coupled run (s); a coupled run needs it", NULL, cpl->t_end, &cpl->t_end, &cpl->t_end_set));
   PetscCall(PetscOptionsReal("-cpl_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, cpl->progress_dt, &cpl->progress_dt, NULL));
   SableOptionsRealN("-cpl_probe_z", "Two heights z1,z2 (m) between which the run reports dp/L, porosity and the drag law's prediction", NULL, cpl->probe, 2, &cpl->probe_set);
   PetscOptionsEnd();
@@ -123,6 +123,8 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
   PetscCall(FluidGetTimeStep(cpl->fl, &dtf));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-fluid_dt", &fset));
+  /* a frozen bed takes no DEM steps: the coupling step is the fluid's */
+  PetscCheck(!cpl->frozen || !cpl->substeps_set, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_substeps %d is ignored with -dem_frozen (no DEM steps; the step is -fluid_dt): give one of them", (int)cpl->substeps);
   if (cpl->frozen) cpl->dt = dtf;
   else {
     cpl->dt = cpl->substeps * dtd;

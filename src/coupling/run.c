@@ -83,6 +83,33 @@ static PetscErrorCode CplStopped(Cpl cpl, Io io, int sig)
   SETERRQ(cpl->comm, PETSC_ERR_SIG, "%s received at t = %g s, fluid step %" PetscInt_FMT "; %s%s", SableSignalName(sig), (double)cpl->t, cpl->step, index ? "the frames written are complete: " : "no output was written", index ? index : "");
 }
 
+/* The length and cadences of a coupled run, as DemRun checks a dry one: an end must be given;
+ * the DEM steps (substeps per coupling step) must fit the step counter (PetscInt); a progress
+ * or output interval shorter than one coupling step would print or write at every step. An end
+ * equal to the start runs 0 steps, and says so. */
+static PetscErrorCode CplCheckRunLength(Cpl cpl, Io io)
+{
+  const PetscInt sub   = cpl->frozen ? 1 : cpl->substeps;
+  const double   steps = (cpl->t_end - cpl->t) / cpl->dt;
+  char           dtopt[64];
+  PetscReal      dtd, iodt;
+  PetscInt       s0;
+
+  PetscFunctionBeginUser;
+  PetscCheck(cpl->t_end_set, cpl->comm, PETSC_ERR_ARG_WRONG, "the run has no end: give -cpl_t_end, the simulated time to reach (s)");
+  PetscCall(DemGetTimeStep(cpl->dem, &dtd));
+  PetscCall(DemGetTime(cpl->dem, NULL, &s0));
+  if (cpl->frozen) PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-fluid_dt"));
+  else PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-cpl_substeps %d x -dem_dt %g s", (int)cpl->substeps, (double)dtd));
+  PetscCheck(steps * sub <= (double)(PETSC_MAX_INT - PetscMax(s0, cpl->step)), cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_t_end %g s at a coupling step of %g s (%s) takes %.4g %s steps, more than the step counter holds (%" PetscInt_FMT "): lower -cpl_t_end or raise %s", (double)cpl->t_end, (double)cpl->dt, dtopt, steps * sub, cpl->frozen ? "fluid" : "DEM", (PetscInt)PETSC_MAX_INT, cpl->frozen ? "-fluid_dt" : "-dem_dt");
+  PetscCheck(cpl->progress_dt == 0 || cpl->progress_dt >= cpl->dt, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_progress_interval %g s is shorter than the coupling step %g s (%s): give 0 (no progress lines) or at least one step", (double)cpl->progress_dt, (double)cpl->dt, dtopt);
+  PetscCall(IoGetInterval(io, &iodt));
+  PetscCheck(iodt == 0 || iodt >= cpl->dt, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_interval %g s is shorter than the coupling step %g s (%s): give 0 (no output) or at least one step", (double)iodt, (double)cpl->dt, dtopt);
+  if (cpl->t < cpl->t_end - 0.5 * cpl->dt) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscPrintf(cpl->comm, "run: -cpl_t_end %g s is not after the start time %g s: 0 steps, the initial state only\n", (double)cpl->t_end, (double)cpl->t));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
 {
   PetscLogDouble t0, now;
@@ -92,6 +119,7 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
   CplStats       st;
 
   PetscFunctionBeginUser;
+  PetscCall(CplCheckRunLength(cpl, io));
   PetscCall(CplBedWeight(cpl, &w));
   PetscCall(PetscTime(&t0));
   PetscCall(IoDue(io, cpl->t, &due));

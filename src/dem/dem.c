@@ -56,14 +56,17 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode DemMaterialOptions(PetscOptionItems *PetscOptionsObject, Dem dem, const char *pre, DemMaterial *m, const DemMaterial *dflt)
-{
-  char o[7][64];
-  const char *name[7] = {"kn", "kt", "restitution", "friction", "youngs_modulus", "poisson_ratio", NULL};
+/* The material options of the particles and of the walls, written out so that grep (and the
+ * option list the Makefile builds from the sources) finds them. */
+static const char *const DemMaterialNames[2][6] = {
+  {"-dem_kn", "-dem_kt", "-dem_restitution", "-dem_friction", "-dem_youngs_modulus", "-dem_poisson_ratio"},
+  {"-dem_wall_kn", "-dem_wall_kt", "-dem_wall_restitution", "-dem_wall_friction", "-dem_wall_youngs_modulus", "-dem_wall_poisson_ratio"}
+};
 
+static PetscErrorCode DemMaterialOptions(PetscOptionItems *PetscOptionsObject, Dem dem, const char *const o[6], DemMaterial *m, const DemMaterial *dflt)
+{
   PetscFunctionBeginUser;
   if (dflt) *m = *dflt;
-  for (int k = 0; k < 6; k++) PetscCall(PetscSNPrintf(o[k], sizeof o[k], "-dem_%s%s", pre, name[k]));
   PetscCall(PetscOptionsReal(o[0], "Normal stiffness of the linear laws (N/m)", NULL, m->kn, &m->kn, &m->kn_set));
   PetscCall(PetscOptionsReal(o[1], "Tangential stiffness (N/m); default 2/7 kn", NULL, m->kt, &m->kt, &m->kt_set));
   PetscCall(PetscOptionsReal(o[2], "Coefficient of restitution, in (0,1]", NULL, m->e, &m->e, NULL));
@@ -84,6 +87,31 @@ static PetscErrorCode DemMaterialOptions(PetscOptionItems *PetscOptionsObject, D
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Material options that the contact law or another option would leave unread are refused,
+ * naming both: hertz takes its stiffness from E and nu, not kn and kt; linear_nohist has no
+ * tangential spring (kt); under the linear laws -dem_kn sets every contact's stiffness (walls
+ * inherit it), so E and nu, which only derive a stiffness, would be ignored. */
+static PetscErrorCode DemCheckMaterialConflicts(Dem dem)
+{
+  const char *const *o = DemMaterialNames[0], *const *w = DemMaterialNames[1];
+  PetscBool          has[2][6];
+
+  PetscFunctionBeginUser;
+  for (int m = 0; m < 2; m++)
+    for (int k = 0; k < 6; k++) PetscCall(PetscOptionsHasName(NULL, NULL, DemMaterialNames[m][k], &has[m][k]));
+  for (int m = 0; m < 2; m++) {
+    const char *const *n = DemMaterialNames[m];
+    for (int k = 0; k < 2; k++) PetscCheck(dem->law != DEM_LAW_HERTZ || !has[m][k], dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_contact_law hertz, which takes the stiffness from %s and %s: give one of them", n[k], n[4], n[5]);
+    PetscCheck(dem->law != DEM_LAW_LINEAR_NOHIST || !has[m][1], dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_contact_law linear_nohist, which has no tangential spring: give one of them", n[1]);
+  }
+  if (dem->law == DEM_LAW_HERTZ) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int k = 4; k < 6; k++) {
+    PetscCheck(!has[0][0] || !has[0][k], dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the contact stiffness of -dem_contact_law %s; %s wins and %s would be ignored: give one of them", o[0], o[k], DemLawNames[dem->law], o[0], o[k]);
+    PetscCheck(!(has[0][0] || has[1][0]) || !has[1][k], dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the wall stiffness of -dem_contact_law %s%s; %s wins and %s would be ignored: give one of them", has[1][0] ? w[0] : o[0], w[k], DemLawNames[dem->law], has[1][0] ? "" : " (walls take -dem_kn unless -dem_wall_kn is given)", has[1][0] ? w[0] : o[0], w[k]);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemSetFromOptions(Dem dem)
 {
   PetscReal r[DEM_MAX_SHAPES], fr[DEM_MAX_SHAPES], sum = 0;
@@ -97,15 +125,15 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsReal("-dem_density", "Particle density (kg/m^3)", NULL, dem->shp[0].rho, &dem->shp[0].rho, NULL));
   PetscCall(PetscOptionsEList("-dem_contact_law", "Contact law", NULL, DemLawNames, 3, DemLawNames[dem->law], &law, NULL));
   dem->law = (DemLaw)law;
-  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, "", &dem->mat, NULL));
-  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, "wall_", &dem->wmat, &dem->mat));
+  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[0], &dem->mat, NULL));
+  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[1], &dem->wmat, &dem->mat));
   PetscCall(PetscOptionsReal("-dem_tangential_damping", "Tangential over normal damping ratio, >= 0", NULL, dem->tdamp_ratio, &dem->tdamp_ratio, NULL));
   PetscCall(PetscOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates (m/s)", NULL, dem->vimpact, &dem->vimpact, NULL));
-  PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->dt, &dem->dt, NULL));
+  PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->dt, &dem->dt, &dem->dt_set));
   PetscCall(PetscOptionsReal("-dem_dt_tc", "Time step as this fraction of the shortest contact time (every pair type, at -dem_impact_velocity); replaces -dem_dt when > 0 (the presets in cases/presets use it)", NULL, dem->dt_tc, &dem->dt_tc, NULL));
   PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->dt_frac, &dem->dt_frac, NULL));
   PetscCall(PetscOptionsReal("-dem_overlap_max", "Largest overlap / radius allowed at a progress line or output frame; above it the run is diverging and stops, > 0", NULL, dem->overlap_max, &dem->overlap_max, NULL));
-  PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run (s)", NULL, dem->t_end, &dem->t_end, NULL));
+  PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run to (s); a dry run needs it", NULL, dem->t_end, &dem->t_end, &dem->t_end_set));
   PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, dem->progress_dt, &dem->progress_dt, NULL));
   SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
   PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, &sset));
@@ -116,6 +144,8 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsInt("-dem_check_every", "Debug: check the global particle count and id checksum every this many steps (0 = never)", NULL, dem->check_every, &dem->check_every, NULL));
   PetscCall(PetscOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, dem->sort_interval, &dem->sort_interval, NULL));
   PetscOptionsEnd();
+  dem->dt_given = dem->dt;
+  PetscCall(DemCheckMaterialConflicts(dem));
   PetscCheck(!sset || dem->skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->skin);
   PetscCheck(dem->progress_dt >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_progress_interval %g must be >= 0 (s; 0 = no progress lines)", (double)dem->progress_dt);
   PetscCheck(dem->check_every >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_check_every %d must be >= 0 (0 = never)", (int)dem->check_every);

@@ -218,6 +218,8 @@ struct _p_Dem {
   PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
   /* time */
   PetscReal g[3], dt, t, t_end, dt_frac, dt_tc, progress_dt, overlap_max;
+  PetscReal dt_given;          /* -dem_dt as given, for the log when -dem_dt_tc replaces it */
+  PetscBool t_end_set, dt_set; /* -dem_t_end, -dem_dt given */
   PetscInt  step;
   PetscInt  state; /* changes whenever positions or the local order may have (DemGetState) */
   /* insertion */

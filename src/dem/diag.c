@@ -109,6 +109,7 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
 
   PetscFunctionBeginUser;
   PetscCall(DemGetStats(dem, &st));
+  if (dem->dt_tc > 0 && dem->dt_set) PetscCall(PetscViewerASCIIPrintf(v, "time step: -dem_dt_tc %g gives dt = %g s, replacing -dem_dt %g s\n", (double)dem->dt_tc, (double)dem->dt, (double)dem->dt_given));
   PetscCall(PetscViewerASCIIPrintf(v, "DEM: %" PetscInt_FMT " %s, %" PetscInt_FMT " shape(s), %s; rotation %s; %" PetscInt_FMT " wall(s)\n", st.n, dem->convex ? "convex particles" : "spheres", dem->nshape, law[dem->law], dem->rotation ? "on" : "off (no friction)", dem->nwall));
   for (PetscInt s = 0; s < dem->nshape; s++)
     for (PetscInt t = -1; t < dem->nshape; t++) {
@@ -213,6 +214,27 @@ static PetscErrorCode DemStopped(Dem dem, Io io, int sig)
   SETERRQ(dem->comm, PETSC_ERR_SIG, "%s received at t = %g s, step %" PetscInt_FMT "; %s%s", SableSignalName(sig), (double)dem->t, dem->step, index ? "the frames written are complete: " : "no output was written", index ? index : "");
 }
 
+/* The length and cadences of a dry run, against the final time step (after -dem_dt_tc): an end
+ * must be given; the step count must fit the step counter (PetscInt: beyond it the count wraps
+ * and the run never ends); a progress or output interval shorter than one step would print or
+ * write at every step. An end equal to the start runs 0 steps, and says so. */
+static PetscErrorCode DemCheckRunLength(Dem dem, Io io)
+{
+  const char  *dtopt = dem->dt_tc > 0 ? "-dem_dt_tc" : "-dem_dt";
+  const double steps = (dem->t_end - dem->t) / dem->dt;
+  PetscReal    iodt  = 0;
+
+  PetscFunctionBeginUser;
+  PetscCheck(dem->t_end_set, dem->comm, PETSC_ERR_ARG_WRONG, "the run has no end: give -dem_t_end, the simulated time to reach (s)");
+  PetscCheck(steps <= (double)(PETSC_MAX_INT - dem->step), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_t_end %g s at a time step of %g s (%s) takes %.4g steps, more than the step counter holds (%" PetscInt_FMT "): lower -dem_t_end or raise %s", (double)dem->t_end, (double)dem->dt, dtopt, steps, (PetscInt)PETSC_MAX_INT, dtopt);
+  PetscCheck(dem->progress_dt == 0 || dem->progress_dt >= dem->dt, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_progress_interval %g s is shorter than the time step %g s (%s): give 0 (no progress lines) or at least one step", (double)dem->progress_dt, (double)dem->dt, dtopt);
+  if (io) PetscCall(IoGetInterval(io, &iodt));
+  PetscCheck(iodt == 0 || iodt >= dem->dt, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_interval %g s is shorter than the time step %g s (%s): give 0 (no output) or at least one step", (double)iodt, (double)dem->dt, dtopt);
+  if (dem->t < dem->t_end - 0.5 * dem->dt) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscPrintf(dem->comm, "run: -dem_t_end %g s is not after the start time %g s: 0 steps, the initial state only\n", (double)dem->t_end, (double)dem->t));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemRun(Dem dem, Io io)
 {
   PetscLogDouble t0, now;
@@ -221,6 +243,7 @@ PetscErrorCode DemRun(Dem dem, Io io)
   const PetscInt s0 = dem->step;
 
   PetscFunctionBeginUser;
+  PetscCall(DemCheckRunLength(dem, io));
   PetscCall(PetscTime(&t0));
   if (io) {
     PetscCall(IoDue(io, dem->t, &due));

@@ -15,9 +15,10 @@ static const char *const FluidInletInterpNames[] = {"step", "linear", "FluidInle
 /* Collective. Reads the tables and -fluid_inlet_interpolation; call after the face types are known. */
 PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
 {
-  const char      *side[2] = {"lo", "hi"}, *ax = "xyz";
-  char             opt[64];
-  PetscBool        set;
+  /* written out so that grep (and the option list the Makefile builds) finds them */
+  const char *const table[3][2] = {{"-fluid_bc_xlo_velocity_table", "-fluid_bc_xhi_velocity_table"}, {"-fluid_bc_ylo_velocity_table", "-fluid_bc_yhi_velocity_table"}, {"-fluid_bc_zlo_velocity_table", "-fluid_bc_zhi_velocity_table"}};
+  const char       *side[2] = {"lo", "hi"}, *ax = "xyz";
+  PetscBool         set;
   FluidInletInterp interp = fl->inlet_linear ? FLUID_INLET_LINEAR : FLUID_INLET_STEP;
   PetscReal        buf[4 * FLUID_INLET_TABLE_MAX + 4]; /* one row more than allowed: PETSc stops silently at the array's size */
 
@@ -27,11 +28,11 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
   fl->inlet_linear = interp == FLUID_INLET_LINEAR ? PETSC_TRUE : PETSC_FALSE;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      FluidBC *bc = &fl->bc[d][s];
-      PetscInt n  = 4 * FLUID_INLET_TABLE_MAX + 4;
+      FluidBC    *bc  = &fl->bc[d][s];
+      PetscInt    n   = 4 * FLUID_INLET_TABLE_MAX + 4;
+      const char *opt = table[d][s];
 
       for (int k = 0; k < 3; k++) bc->vel0[k] = bc->vel[k];
-      PetscCall(PetscSNPrintf(opt, sizeof opt, "-fluid_bc_%c%s_velocity_table", ax[d], side[s]));
       PetscCall(PetscOptionsRealArray(opt, "Inlet velocity from each time on: t1,u1,v1,w1,t2,... (s, m/s; default none)", NULL, buf, &n, &set));
       if (!set) continue;
       PetscCheck(bc->type == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but -fluid_bc_%c%s is %s, not inlet", opt, ax[d], side[s], FluidBCNames[bc->type]);

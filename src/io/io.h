@@ -19,6 +19,9 @@ PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due);
  * needs a frame (output is on and the last frame is older than t), so that a run always leaves
  * its final state, also when the end time is not a multiple of -io_interval. */
 PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due);
+/* Not collective. The simulated time between outputs (s; 0 = no output), for the drivers' check
+ * that it is not shorter than their time step. */
+PetscErrorCode IoGetInterval(Io io, PetscReal *interval);
 /* The XDMF index path, for messages; NULL when this run wrote no frame (-io_interval 0). */
 PetscErrorCode IoGetIndexPath(Io io, const char **path);
 
