@@ -33,6 +33,7 @@ typedef enum { DEM_WALL_PLANE, DEM_WALL_RECT, DEM_WALL_POLYGON, DEM_WALL_CYLINDE
 
 typedef struct {
   DemWallKind kind;
+  char   name[32];         /* the option that made it, for messages: -dem_plane_0, -dem_box zlo */
   double p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity;
                               a cylinder: a point of its axis, the unit axis, v = 0 */
   double moved;            /* distance moved since the last list build (m) */
@@ -261,7 +262,7 @@ PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c
 PetscErrorCode DemContactsWalls(Dem dem);                          /* walls.c */
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls.c */
 PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec); /* walls.c */
-PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3]); /* walls.c */
+PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3]); /* walls.c */
 PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first); /* walls.c */
 PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_polygon.c */
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_cylinder.c */

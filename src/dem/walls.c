@@ -21,7 +21,8 @@
  * overrides -dem_wall_friction for that wall. At most DEM_MAX_WALLS walls in all. */
 #include "dem/dem_impl.h"
 
-PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3])
+/* Adds a plane wall; name is the option that made it (messages name the wall by it). */
+PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3])
 {
   DemWall *w;
   double   nn = sqrt(dem_dot(n, n));
@@ -32,6 +33,7 @@ PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const d
   w = &dem->wall[dem->nwall++];
   PetscCall(PetscMemzero(w, sizeof *w));
   w->mu = -1; /* the wall material's friction */
+  PetscCall(PetscStrncpy(w->name, name, sizeof w->name));
   for (int k = 0; k < 3; k++) {
     w->p[k] = p[k];
     w->n[k] = n[k] / nn;
@@ -53,7 +55,7 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
   dem_cross(e1, e2, n);
   const double l1 = sqrt(dem_dot(e1, e1)), l2 = sqrt(dem_dot(e2, e2));
   PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
-  PetscCall(DemWallAdd(dem, r, n, z));
+  PetscCall(DemWallAdd(dem, opt, r, n, z));
   w         = &dem->wall[dem->nwall - 1];
   w->finite = PETSC_TRUE;
   w->kind   = DEM_WALL_RECT;
@@ -100,10 +102,12 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
       PetscCheck(!dem->dom->periodic[k], dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_box puts walls across the %c axis, which is periodic (-domain_periodic_%c): nothing could cross it; close the other axes with -dem_plane_k", "xyz"[k], "xyz"[k]);
       p[k] = box[k];
       n[k] = 1;
-      PetscCall(DemWallAdd(dem, p, n, z));
+      PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_box %clo", "xyz"[k]));
+      PetscCall(DemWallAdd(dem, opt, p, n, z));
       p[k] = box[k + 3];
       n[k] = -1;
-      PetscCall(DemWallAdd(dem, p, n, z));
+      PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_box %chi", "xyz"[k]));
+      PetscCall(DemWallAdd(dem, opt, p, n, z));
     }
     PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, dem->nwall - 6));
   }
@@ -115,7 +119,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     SableOptionsRealN(optv, "Translation velocity of the plane wall (m/s)", NULL, vel, 3, &vset);
     PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
     PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
-    if (set) PetscCall(DemWallAdd(dem, pl, pl + 3, vel));
+    if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
     if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
   }
