@@ -227,6 +227,10 @@ struct _p_Dem {
   PetscBool lat_origin_set;
   PetscInt  seed;
   char      init_file[PETSC_MAX_PATH_LEN];
+  /* where the inserted particles came from, by id (placement.c): the lattice's ids are
+     [lat_base, lat_base + lat_count), the file's are below file_end (0: no file) */
+  PetscInt  lat_base, file_end;
+  PetscReal init_overlap_max; /* -dem_init_file_overlap_max (radii); 0: from the contact design */
   /* external forces from a coupling (external.c); NULL unless DemSetExternal was called */
   double   *fext, *kdrag, *udrag, *jdrag;
   PetscBool external, frozen;
@@ -268,6 +272,9 @@ PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem d
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_cylinder.c */
 PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
 PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
+double         DemLatticeSpacing(Dem dem);                         /* insert.c */
+double         DemImpactOverlap(Dem dem, const DemPairParams *p);  /* diag.c */
+PetscErrorCode DemCheckPlacement(Dem dem);                         /* placement.c */
 PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
 PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
 void           DemExternalKick(Dem dem, double h);                 /* external.c */
@@ -300,4 +307,4 @@ PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* diag_conve
 PetscErrorCode DemRotateFirstHalf(Dem dem);                        /* rotation.c */
 PetscErrorCode DemRotateSecondHalf(Dem dem);                       /* rotation.c */
 
-extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
+extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
