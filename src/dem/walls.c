@@ -137,6 +137,53 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Whether corner c, behind or on wall w's plane, projects onto the rectangle or polygon. */
+static PetscBool dem_wall_spans(const DemWall *w, const double c[3], double tol)
+{
+  const double d[3] = {c[0] - w->p[0], c[1] - w->p[1], c[2] - w->p[2]};
+  if (w->kind == DEM_WALL_POLYGON) {
+    for (PetscInt e = 0; e < w->nv; e++) {
+      const double de[3] = {c[0] - w->vert[e][0], c[1] - w->vert[e][1], c[2] - w->vert[e][2]};
+      if (dem_dot(de, w->en[e]) < -tol) return PETSC_FALSE;
+    }
+    return PETSC_TRUE;
+  }
+  const double l1 = sqrt(dem_dot(w->e1, w->e1)), l2 = sqrt(dem_dot(w->e2, w->e2));
+  const double s = dem_dot(d, w->e1) / l1, t = dem_dot(d, w->e2) / l2;
+  return (PetscBool)(s >= -tol && s <= l1 + tol && t >= -tol && t <= l2 + tol);
+}
+
+PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
+{
+  const Domain *dom = dem->dom;
+  const int     a = (d + 1) % 3, b = (d + 2) % 3;
+  const double  tol = 1e-9 * PetscMax(dom->len[0], PetscMax(dom->len[1], dom->len[2]));
+  double        c[4][3]; /* the face's corners */
+
+  PetscFunctionBeginUser;
+  for (int q = 0; q < 4; q++) {
+    c[q][d] = side ? dom->hi[d] : dom->lo[d];
+    c[q][a] = q & 1 ? dom->hi[a] : dom->lo[a];
+    c[q][b] = q & 2 ? dom->hi[b] : dom->lo[b];
+  }
+  *closed = PETSC_FALSE;
+  for (PetscInt wi = 0; wi < dem->nwall && !*closed; wi++) {
+    const DemWall *w      = &dem->wall[wi];
+    PetscBool      behind = PETSC_TRUE, spans = PETSC_TRUE;
+    if (w->kind == DEM_WALL_CYLINDER) { /* parallel to the face and wholly inside of it */
+      if (PetscAbsReal(w->n[d]) < 1e-12) *closed = (PetscBool)(side ? w->p[d] + w->R <= dom->hi[d] + tol : w->p[d] - w->R >= dom->lo[d] - tol);
+      continue;
+    }
+    for (int q = 0; q < 4; q++) {
+      const double dq[3] = {c[q][0] - w->p[0], c[q][1] - w->p[1], c[q][2] - w->p[2]};
+      behind = (PetscBool)(behind && dem_dot(dq, w->n) <= tol);
+      if (w->finite) spans = (PetscBool)(spans && dem_wall_spans(w, c[q], tol));
+    }
+    *closed = (PetscBool)(behind && spans);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Lists of the local particles within r + skin of each wall; springs restored from the id-keyed
  * records (partner = -1 - wall index). */
 PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
