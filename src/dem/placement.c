@@ -189,13 +189,23 @@ static PetscErrorCode DemPlaceOriginHint(Dem dem, const DemWall *w, const double
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Where particle i is, a ghost's periodic image wrapped back into the domain. */
+static void dem_place_position(const Dem dem, PetscInt i, double x[3])
+{
+  const Domain *dom = dem->dom;
+  for (int k = 0; k < 3; k++) {
+    x[k] = dem->x[3 * i + k];
+    if (dom->periodic[k] && (x[k] < dom->lo[k] || x[k] >= dom->hi[k])) x[k] -= dom->len[k] * floor((x[k] - dom->lo[k]) / dom->len[k]);
+  }
+}
+
 /* The message of the finding f (on the rank that made it). */
 static PetscErrorCode DemPlaceMessage(Dem dem, const DemPlaceFind *f, double limit, char *msg)
 {
   const DemPlaceKind kind = (DemPlaceKind)f->key[0];
   const double       depth = f->key[1];
   PetscInt           i = f->i, j = f->j;
-  char               lat[320], wall[96], hint[128], how[160], lim[160];
+  char               lat[320], wall[96], hint[128], how[160], lim[256];
   double             ext[3];
 
   PetscFunctionBeginUser;
@@ -208,7 +218,9 @@ static PetscErrorCode DemPlaceMessage(Dem dem, const DemPlaceFind *f, double lim
     i = f->j;
     j = f->i;
   }
-  const double *xi = dem->x + 3 * i, *xj = j >= 0 ? dem->x + 3 * j : NULL;
+  double xi[3], xj[3] = {0, 0, 0};
+  dem_place_position(dem, i, xi);
+  if (j >= 0) dem_place_position(dem, j, xj);
   PetscCall(PetscSNPrintf(lim, sizeof lim, "more than a contact reaches (limit %.3g radii, -dem_init_file_overlap_max%s)", limit, dem->init_overlap_max > 0 ? "" : ": by default twice the contact design's overlap at -dem_impact_velocity, at least 0.05"));
   if (f->wall >= 0) {
     PetscCall(DemPlaceWallText(&dem->wall[f->wall], wall, sizeof wall));
