@@ -6,8 +6,32 @@
  *    within one step and the exchange lags a step: hard limit -cpl_relaxation_ratio_max (1);
  *  - cell size / diameter (below 1 the porosity of a cell fluctuates with every particle that
  *    enters it: a warning) and kernel side / cell size (hard limit 2: the cube must reach at most
- *    one cell beyond its own, the ghost width of the grids). */
+ *    one cell beyond its own, the ghost width of the grids);
+ *  - every fluid face that is a wall, a slip wall or an inlet has a DEM wall at it or inside the
+ *    domain before it (DemWallsCloseFace): else a particle that reaches it leaves the domain and
+ *    the run stops (exchange.c). A warning per face, none for a frozen bed. Periodicity cannot
+ *    differ: both read -domain_periodic_*, and a periodic fluid condition on a non-periodic
+ *    axis (bc.c), a non-periodic one on a periodic axis (bc.c) or a -dem_box across a periodic
+ *    axis (walls.c) is an error where it is read. */
 #include "coupling/coupling_impl.h"
+
+static PetscErrorCode CplCheckFaces(Cpl cpl, PetscViewer viewer)
+{
+  const char *side[2] = {"lo", "hi"}, *ax = "xyz";
+
+  PetscFunctionBeginUser;
+  if (cpl->frozen) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      FluidBCType t;
+      PetscBool   closed;
+      PetscCall(FluidGetBC(cpl->fl, d, s, &t));
+      if (t != FLUID_BC_WALL && t != FLUID_BC_SLIP && t != FLUID_BC_INLET) continue;
+      PetscCall(DemWallsCloseFace(cpl->dem, d, s, &closed));
+      if (!closed) PetscCall(PetscViewerASCIIPrintf(viewer, "warning: -fluid_bc_%c%s %s at %c = %.6g has no DEM wall there (-dem_box or -dem_plane_k): particles that reach it leave the domain and stop the run\n", ax[d], side[s], FluidBCNames[t], ax[d], (double)(s ? cpl->dom->hi[d] : cpl->dom->lo[d])));
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce)
 {
@@ -29,6 +53,7 @@ PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce)
     PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: coupling step / particle relaxation time %.3g (tau = %.4g s at porosity %.3f; limit -cpl_relaxation_ratio_max %g)\n", (double)(cpl->dt / tau), (double)tau, (double)cpl->eps_min0, (double)cpl->relax_max));
     PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: cell / diameter %.3g, kernel side / cell %.3g (limit 2)\n", (double)(hmin / dmax), (double)(smax / hmin)));
     if (hmin < dmax) PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: warning: cells smaller than a particle diameter; the porosity will fluctuate cell by cell\n"));
+    PetscCall(CplCheckFaces(cpl, viewer));
   }
   if (!enforce) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(smax <= 2 * hmin * (1 + 1e-12), cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel side %g is %g cells of size %g, above the limit of 2: coarsen the grid (-da_grid_x/y/z) or lower -cpl_kernel_scale %g", (double)smax, (double)(smax / hmin), (double)hmin, (double)cpl->kscale);

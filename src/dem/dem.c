@@ -8,7 +8,7 @@
  * line or output frame when the largest overlap exceeds -dem_overlap_max radii (diag.c). */
 #include "dem/dem_impl.h"
 
-PetscLogEvent        DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
+PetscLogEvent        DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
 static PetscClassId  DEM_CLASSID;
 static PetscBool     dem_registered = PETSC_FALSE;
 static const char   *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
@@ -26,6 +26,7 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
     PetscCall(PetscLogEventRegister("DemWalls", DEM_CLASSID, &DEM_Walls));
     PetscCall(PetscLogEventRegister("DemIntegrate", DEM_CLASSID, &DEM_Integrate));
     PetscCall(PetscLogEventRegister("DemOutput", DEM_CLASSID, &DEM_Output));
+    PetscCall(PetscLogEventRegister("DemPlacement", DEM_CLASSID, &DEM_Placement));
     dem_registered = PETSC_TRUE;
   }
   PetscCall(PetscNew(&d));
@@ -258,6 +259,7 @@ PetscErrorCode DemSetUp(Dem dem)
   for (PetscInt w = 0; w < dem->nwall; w++) dem->rotation = (PetscBool)(dem->rotation || dem->wall[w].mu > 0);
   PetscCall(DemExchangeSetUp(dem));
   PetscCall(DemNeighBuild(dem));
+  PetscCall(DemCheckPlacement(dem)); /* needs the ghosts: pairs across ranks */
   PetscCall(DemGetStats(dem, &dem->initial));
   PetscCall(DemComputeForces(dem));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -72,6 +72,12 @@ PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v
  * of each set; they must agree. Not collective. */
 PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]);
 
+/* Whether the walls keep the particles off the domain face side (0: lower, 1: upper) of axis d:
+ * the whole face lies behind or on a plane (a -dem_box side, a -dem_plane_k at the face or
+ * inside the domain, a cylinder cap), behind or on a rectangle or polygon spanning it, or
+ * outside a cylinder parallel to it (walls.c). Not collective. */
+PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed);
+
 /* Coupling hooks (external.c). DemGetArrays: read-only views of the particle arrays, local
  * particles first, then ghosts (copies of other ranks' particles and periodic images); valid until the next
  * DemStep or DemAddParticle (a list rebuild may re-sort, a growth may move them). */

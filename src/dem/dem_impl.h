@@ -33,6 +33,7 @@ typedef enum { DEM_WALL_PLANE, DEM_WALL_RECT, DEM_WALL_POLYGON, DEM_WALL_CYLINDE
 
 typedef struct {
   DemWallKind kind;
+  char   name[32];         /* the option that made it, for messages: -dem_plane_0, -dem_box zlo */
   double p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity;
                               a cylinder: a point of its axis, the unit axis, v = 0 */
   double moved;            /* distance moved since the last list build (m) */
@@ -228,6 +229,10 @@ struct _p_Dem {
   PetscBool lat_origin_set;
   PetscInt  seed;
   char      init_file[PETSC_MAX_PATH_LEN];
+  /* where the inserted particles came from, by id (placement.c): the lattice's ids are
+     [lat_base, lat_base + lat_count), the file's are below file_end (0: no file) */
+  PetscInt  lat_base, file_end;
+  PetscReal init_overlap_max; /* -dem_init_file_overlap_max (radii); 0: from the contact design */
   /* external forces from a coupling (external.c); NULL unless DemSetExternal was called */
   double   *fext, *kdrag, *udrag, *jdrag;
   PetscBool external, frozen;
@@ -263,12 +268,15 @@ PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c
 PetscErrorCode DemContactsWalls(Dem dem);                          /* walls.c */
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls.c */
 PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec); /* walls.c */
-PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3]); /* walls.c */
+PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3]); /* walls.c */
 PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first); /* walls.c */
 PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_polygon.c */
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_cylinder.c */
 PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
 PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
+double         DemLatticeSpacing(Dem dem);                         /* insert.c */
+double         DemImpactOverlap(Dem dem, const DemPairParams *p);  /* diag.c */
+PetscErrorCode DemCheckPlacement(Dem dem);                         /* placement.c */
 PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
 PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
 void           DemExternalKick(Dem dem, double h);                 /* external.c */
@@ -301,4 +309,4 @@ PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* diag_conve
 PetscErrorCode DemRotateFirstHalf(Dem dem);                        /* rotation.c */
 PetscErrorCode DemRotateSecondHalf(Dem dem);                       /* rotation.c */
 
-extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output;
+extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;

@@ -102,6 +102,14 @@ PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Undamped overlap bound of a contact at the impact speed V (-dem_impact_velocity): linear
+ * V sqrt(meff/kn), hertz 1.0934 X (m). */
+double DemImpactOverlap(Dem dem, const DemPairParams *p)
+{
+  if (dem->law == DEM_LAW_HERTZ) return 1.0934 * pow(p->meff * dem->vimpact * dem->vimpact / (4.0 / 3.0 * p->es * sqrt(p->reff)), 0.4);
+  return dem->vimpact * sqrt(p->meff / p->kn);
+}
+
 PetscErrorCode DemView(Dem dem, PetscViewer v)
 {
   const char *law[] = {"linear spring-dashpot, Coulomb without history", "linear spring-dashpot with tangential history", "Hertz-Mindlin with tangential history"};
@@ -116,8 +124,7 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
       PetscReal tc, e;
       PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
       const DemPairParams *p = t < 0 ? &dem->pw[s] : &dem->pp[s * dem->nshape + t];
-      /* undamped overlap bound at the impact speed: linear V sqrt(meff/kn), hertz 1.0934 X */
-      double ov = dem->law == DEM_LAW_HERTZ ? 1.0934 * pow(p->meff * dem->vimpact * dem->vimpact / (4.0 / 3.0 * p->es * sqrt(p->reff)), 0.4) : dem->vimpact * sqrt(p->meff / p->kn);
+      const double         ov = DemImpactOverlap(dem, p);
       PetscCall(PetscViewerASCIIPrintf(v, "  contact r=%g m with %s: Tc = %.3g s, dt/Tc = %.3g (limit %g), e = %g, overlap at %g m/s <= %.3g r\n", (double)dem->shp[s].r, t < 0 ? "wall" : "particle", (double)tc, (double)(dem->dt / tc), (double)dem->dt_frac, (double)e, (double)dem->vimpact, ov / dem->shp[s].r));
     }
   PetscFunctionReturn(PETSC_SUCCESS);

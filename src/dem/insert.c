@@ -6,7 +6,9 @@
  *   c = 1, 2, 3 — the symmetry-breaking velocity of the LIGGGHTS peer decks, so both codes start
  *   from the same state; shapes drawn by number fraction (-dem_radius_fraction); with
  *   -dem_lattice_random_orientation, a uniformly random orientation (for convex shapes).
- * Or: particles from an HDF5 file that Sable wrote (-dem_init_file), the last frame's state. */
+ * Or: particles from an HDF5 file that Sable wrote (-dem_init_file), the last frame's state.
+ * Both at once: the lattice's ids follow the file's. Whether they start clear of the walls and
+ * of each other is checked once the ghosts exist (placement.c). */
 #include "dem/dem_impl.h"
 
 static double dem_hash_frac(double n, int c)
@@ -55,7 +57,9 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscCall(PetscOptionsBool("-dem_lattice_random_orientation", "Uniformly random initial orientations (convex shapes)", NULL, dem->random_orient, &dem->random_orient, NULL));
   PetscCall(PetscOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, dem->seed, &dem->seed, NULL));
   PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles)", NULL, dem->init_file, dem->init_file, sizeof dem->init_file, NULL));
+  PetscCall(PetscOptionsReal("-dem_init_file_overlap_max", "Largest overlap / radius a -dem_init_file particle may start with, with another or with a wall; default twice the contact design's overlap at -dem_impact_velocity, at least 0.05", NULL, dem->init_overlap_max, &dem->init_overlap_max, &set));
   PetscOptionsEnd();
+  PetscCheck(!set || (dem->init_overlap_max > 0 && dem->init_overlap_max < 2), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file_overlap_max %g must be in (0,2) (radii)", (double)dem->init_overlap_max);
   for (int k = 0; k < 3; k++) PetscCheck(dem->lat[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice count %" PetscInt_FMT " must be >= 0", dem->lat[k]);
   {
     const double sites = (double)dem->lat[0] * (double)dem->lat[1] * (double)dem->lat[2];
@@ -79,6 +83,25 @@ static PetscBool dem_in_box(const Domain *dom, const double *x)
   return PETSC_TRUE;
 }
 
+/* A frame holds positions as the run had them, up to skin/2 past a periodic side between list
+ * builds: they are wrapped into the box. */
+static void dem_wrap_periodic(const Domain *dom, double *x)
+{
+  for (int k = 0; k < 3; k++) {
+    if (!dom->periodic[k]) continue;
+    x[k] -= dom->len[k] * floor((x[k] - dom->lo[k]) / dom->len[k]);
+    if (x[k] >= dom->hi[k]) x[k] = dom->lo[k]; /* round-off */
+  }
+}
+
+/* The lattice spacing: -dem_lattice_spacing, or 1.05 x the largest diameter. */
+double DemLatticeSpacing(Dem dem)
+{
+  double dmax = 0;
+  for (PetscInt s = 0; s < dem->nshape; s++) dmax = PetscMax(dmax, 2 * dem->shp[s].r);
+  return dem->lat_a > 0 ? dem->lat_a : 1.05 * dmax;
+}
+
 /* Site n gets id base + n: base is 0, or one past the largest id of the -dem_init_file
  * particles (ids stay unique). */
 static PetscErrorCode DemInsertLattice(Dem dem, PetscInt base)
@@ -88,7 +111,7 @@ static PetscErrorCode DemInsertLattice(Dem dem, PetscInt base)
 
   PetscFunctionBeginUser;
   for (PetscInt s = 0; s < dem->nshape; s++) dmax = PetscMax(dmax, 2 * dem->shp[s].r);
-  a = dem->lat_a > 0 ? dem->lat_a : 1.05 * dmax;
+  a = DemLatticeSpacing(dem);
   PetscCheck(a >= dmax, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_spacing %g must be >= the largest diameter %g", a, dmax);
   gap = 0.5 * (a - dmax) * dem->lat_jitter;
   if (!dem->lat_origin_set)
@@ -165,8 +188,10 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
     if (k == 0) {
       rows = r;
       PetscCall(PetscMalloc1(rows + 1, &mine));
-      for (PetscInt i = 0; i < rows; i++)
+      for (PetscInt i = 0; i < rows; i++) {
+        dem_wrap_periodic(dem->dom, d + 3 * i);
         if (dem_in_box(dem->dom, d + 3 * i)) mine[nmine++] = i;
+      }
       PetscCall(DemParticlesReserve(dem, n0 + nmine));
       for (PetscInt a = 0; a < nmine; a++) {
         DemParticle p;
@@ -215,22 +240,25 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
 /* Collective. Inserts the lattice and/or the file's particles. */
 PetscErrorCode DemInsert(Dem dem)
 {
-  PetscInt want = 0, got = 0, nfile = 0, n0 = dem->n, added;
+  PetscInt nfile = 0, n0 = dem->n, added, got;
 
   PetscFunctionBeginUser;
+  /* a particle outside every rank's box would be lost silently: refuse */
   if (dem->init_file[0]) {
     PetscCall(DemInsertFile(dem, &nfile));
-    want += nfile;
+    added = dem->n - n0;
+    PetscCallMPI(MPI_Allreduce(&added, &got, 1, MPIU_INT, MPI_SUM, dem->comm));
+    PetscCheck(got == nfile, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: %" PetscInt_FMT " of its %" PetscInt_FMT " particles lie outside the domain box (-domain_lo/-domain_hi): give the domain of the run that wrote it", dem->init_file, nfile - got, nfile);
+    /* one past the file's largest id: its particles have ids below it, the lattice's start there */
+    if (nfile) PetscCallMPI(MPI_Allreduce(&dem->next_id, &dem->file_end, 1, MPIU_INT, MPI_MAX, dem->comm));
   }
   if (dem->lat_count > 0) {
-    PetscInt base = 0;
-    if (nfile) PetscCallMPI(MPI_Allreduce(&dem->next_id, &base, 1, MPIU_INT, MPI_MAX, dem->comm));
-    PetscCall(DemInsertLattice(dem, base));
-    want += dem->lat_count;
+    n0            = dem->n;
+    dem->lat_base = dem->file_end;
+    PetscCall(DemInsertLattice(dem, dem->lat_base));
+    added = dem->n - n0;
+    PetscCallMPI(MPI_Allreduce(&added, &got, 1, MPIU_INT, MPI_SUM, dem->comm));
+    PetscCheck(got == dem->lat_count, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " of %" PetscInt_FMT " lattice particles lie outside the domain box (-domain_lo/-domain_hi); enlarge it or move the lattice (-dem_lattice_origin)", dem->lat_count - got, dem->lat_count);
   }
-  /* a particle outside every rank's box would be lost silently: refuse */
-  added = dem->n - n0;
-  PetscCallMPI(MPI_Allreduce(&added, &got, 1, MPIU_INT, MPI_SUM, dem->comm));
-  PetscCheck(got == want, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " of %" PetscInt_FMT " inserted particles lie outside the domain box (-domain_lo/-domain_hi); enlarge it or move the lattice (-dem_lattice_origin)", want - got, want);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -21,7 +21,8 @@
  * overrides -dem_wall_friction for that wall. At most DEM_MAX_WALLS walls in all. */
 #include "dem/dem_impl.h"
 
-PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const double v[3])
+/* Adds a plane wall; name is the option that made it (messages name the wall by it). */
+PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3])
 {
   DemWall *w;
   double   nn = sqrt(dem_dot(n, n));
@@ -32,6 +33,7 @@ PetscErrorCode DemWallAdd(Dem dem, const double p[3], const double n[3], const d
   w = &dem->wall[dem->nwall++];
   PetscCall(PetscMemzero(w, sizeof *w));
   w->mu = -1; /* the wall material's friction */
+  PetscCall(PetscStrncpy(w->name, name, sizeof w->name));
   for (int k = 0; k < 3; k++) {
     w->p[k] = p[k];
     w->n[k] = n[k] / nn;
@@ -53,7 +55,7 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
   dem_cross(e1, e2, n);
   const double l1 = sqrt(dem_dot(e1, e1)), l2 = sqrt(dem_dot(e2, e2));
   PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
-  PetscCall(DemWallAdd(dem, r, n, z));
+  PetscCall(DemWallAdd(dem, opt, r, n, z));
   w         = &dem->wall[dem->nwall - 1];
   w->finite = PETSC_TRUE;
   w->kind   = DEM_WALL_RECT;
@@ -100,10 +102,12 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
       PetscCheck(!dem->dom->periodic[k], dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_box puts walls across the %c axis, which is periodic (-domain_periodic_%c): nothing could cross it; close the other axes with -dem_plane_k", "xyz"[k], "xyz"[k]);
       p[k] = box[k];
       n[k] = 1;
-      PetscCall(DemWallAdd(dem, p, n, z));
+      PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_box %clo", "xyz"[k]));
+      PetscCall(DemWallAdd(dem, opt, p, n, z));
       p[k] = box[k + 3];
       n[k] = -1;
-      PetscCall(DemWallAdd(dem, p, n, z));
+      PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_box %chi", "xyz"[k]));
+      PetscCall(DemWallAdd(dem, opt, p, n, z));
     }
     PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, dem->nwall - 6));
   }
@@ -115,7 +119,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     SableOptionsRealN(optv, "Translation velocity of the plane wall (m/s)", NULL, vel, 3, &vset);
     PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
     PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
-    if (set) PetscCall(DemWallAdd(dem, pl, pl + 3, vel));
+    if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
     if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
   }
@@ -130,6 +134,53 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
   PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));  /* -dem_quad_<k>, -dem_hopper */
   PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem)); /* -dem_cylinder (drum) */
   PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Whether corner c, behind or on wall w's plane, projects onto the rectangle or polygon. */
+static PetscBool dem_wall_spans(const DemWall *w, const double c[3], double tol)
+{
+  const double d[3] = {c[0] - w->p[0], c[1] - w->p[1], c[2] - w->p[2]};
+  if (w->kind == DEM_WALL_POLYGON) {
+    for (PetscInt e = 0; e < w->nv; e++) {
+      const double de[3] = {c[0] - w->vert[e][0], c[1] - w->vert[e][1], c[2] - w->vert[e][2]};
+      if (dem_dot(de, w->en[e]) < -tol) return PETSC_FALSE;
+    }
+    return PETSC_TRUE;
+  }
+  const double l1 = sqrt(dem_dot(w->e1, w->e1)), l2 = sqrt(dem_dot(w->e2, w->e2));
+  const double s = dem_dot(d, w->e1) / l1, t = dem_dot(d, w->e2) / l2;
+  return (PetscBool)(s >= -tol && s <= l1 + tol && t >= -tol && t <= l2 + tol);
+}
+
+PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
+{
+  const Domain *dom = dem->dom;
+  const int     a = (d + 1) % 3, b = (d + 2) % 3;
+  const double  tol = 1e-9 * PetscMax(dom->len[0], PetscMax(dom->len[1], dom->len[2]));
+  double        c[4][3]; /* the face's corners */
+
+  PetscFunctionBeginUser;
+  for (int q = 0; q < 4; q++) {
+    c[q][d] = side ? dom->hi[d] : dom->lo[d];
+    c[q][a] = q & 1 ? dom->hi[a] : dom->lo[a];
+    c[q][b] = q & 2 ? dom->hi[b] : dom->lo[b];
+  }
+  *closed = PETSC_FALSE;
+  for (PetscInt wi = 0; wi < dem->nwall && !*closed; wi++) {
+    const DemWall *w      = &dem->wall[wi];
+    PetscBool      behind = PETSC_TRUE, spans = PETSC_TRUE;
+    if (w->kind == DEM_WALL_CYLINDER) { /* parallel to the face and wholly inside of it */
+      if (PetscAbsReal(w->n[d]) < 1e-12) *closed = (PetscBool)(side ? w->p[d] + w->R <= dom->hi[d] + tol : w->p[d] - w->R >= dom->lo[d] - tol);
+      continue;
+    }
+    for (int q = 0; q < 4; q++) {
+      const double dq[3] = {c[q][0] - w->p[0], c[q][1] - w->p[1], c[q][2] - w->p[2]};
+      behind = (PetscBool)(behind && dem_dot(dq, w->n) <= tol);
+      if (w->finite) spans = (PetscBool)(spans && dem_wall_spans(w, c[q], tol));
+    }
+    *closed = (PetscBool)(behind && spans);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

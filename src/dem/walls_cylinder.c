@@ -38,14 +38,14 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
   PetscCheck(!dem->convex, dem->comm, PETSC_ERR_SUP, "-dem_cylinder: implemented for spheres only, not with -dem_shape");
   const double a[3] = {cyl[0], cyl[1], cyl[2]}, un[3] = {u[0] / lu, u[1] / lu, u[2] / lu};
   const PetscInt first = dem->nwall;
-  PetscCall(DemWallAdd(dem, a, un, (double[3]){0, 0, 0}));
+  PetscCall(DemWallAdd(dem, "-dem_cylinder", a, un, (double[3]){0, 0, 0}));
   w       = &dem->wall[dem->nwall - 1];
   w->kind = DEM_WALL_CYLINDER;
   w->R    = cyl[6];
   for (int c = 0; c < 2 && cset; c++) { /* caps facing inward: +u at s0, -u at s1 */
     const double p[3] = {a[0] + caps[c] * un[0], a[1] + caps[c] * un[1], a[2] + caps[c] * un[2]};
     const double n[3] = {c ? -un[0] : un[0], c ? -un[1] : un[1], c ? -un[2] : un[2]};
-    PetscCall(DemWallAdd(dem, p, n, (double[3]){0, 0, 0}));
+    PetscCall(DemWallAdd(dem, c ? "-dem_cylinder_caps s1" : "-dem_cylinder_caps s0", p, n, (double[3]){0, 0, 0}));
   }
   for (PetscInt k = first; k < dem->nwall; k++) {
     w        = &dem->wall[k];

@@ -55,7 +55,7 @@ static PetscErrorCode DemWallAddPolygon(Dem dem, const char *opt, PetscInt nv, c
     dem_cross(ab, bc, t);
     PetscCheck(dem_dot(t, n) > 1e-9 * L * L, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the polygon is not convex, or its vertices are not in order around it (turn at vertex %" PetscInt_FMT " is %s)", opt, (e + 1) % nv, dem_dot(t, n) < 0 ? "the wrong way" : "straight");
   }
-  PetscCall(DemWallAdd(dem, v, n, (double[3]){0, 0, 0}));
+  PetscCall(DemWallAdd(dem, opt, v, n, (double[3]){0, 0, 0}));
   w         = &dem->wall[dem->nwall - 1];
   w->kind   = DEM_WALL_POLYGON;
   w->finite = PETSC_TRUE;

@@ -43,6 +43,14 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode FluidGetBC(Fluid fl, int d, int side, FluidBCType *type)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(d >= 0 && d < 3 && (side == 0 || side == 1), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "face %d,%d: the axis must be in [0,2], the side 0 or 1", d, side);
+  *type = fl->bc[d][side].type;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Fills the ghosts of one non-periodic face of the local face array. */
 static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, int d, int s)
 {

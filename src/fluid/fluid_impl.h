@@ -7,8 +7,6 @@
 #pragma once
 #include "fluid/fluid.h"
 
-typedef enum { FLUID_BC_PERIODIC, FLUID_BC_WALL, FLUID_BC_SLIP, FLUID_BC_INLET, FLUID_BC_OUTLET } FluidBCType;
-extern const char *const FluidBCNames[]; /* bc.c: option values, indexed by FluidBCType */
 typedef enum { FLUID_ADV_CENTRAL, FLUID_ADV_TVD, FLUID_ADV_NONE } FluidAdvection;
 typedef enum { FLUID_VISC_EXPLICIT, FLUID_VISC_IMPLICIT } FluidViscous;
 
