@@ -178,13 +178,13 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
   const char *names[6] = {"/particles/position", "/particles/velocity", "/particles/angular_velocity", "/particles/quaternion", "/particles/id", "/particles/radius"};
   const int   width[6] = {3, 3, 3, 4, 1, 1};
   PetscReal  *d;
-  PetscInt    rows = 0, nc, r, *mine, nmine = 0, n0 = dem->n;
+  PetscInt    rows = 0, r, *mine, nmine = 0, n0 = dem->n;
 
   PetscFunctionBeginUser;
   /* one dataset at a time, keeping only this rank's rows: the peak is one column of the file */
   for (int k = 0; k < 6; k++) {
-    PetscCall(IoReadDataset(dem->init_file, names[k], &r, &nc, &d));
-    PetscCheck(nc == width[k] && (k == 0 || r == rows), dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " x %" PetscInt_FMT " values, expected %" PetscInt_FMT " x %d", dem->init_file, names[k], r, nc, k ? rows : r, width[k]);
+    PetscCall(IoReadDatasetAll(dem->comm, dem->init_file, names[k], width[k], &r, &d));
+    PetscCheck(k == 0 || r == rows, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " rows, expected %" PetscInt_FMT " (as /particles/position)", dem->init_file, names[k], r, rows);
     if (k == 0) {
       rows = r;
       PetscCall(PetscMalloc1(rows + 1, &mine));
@@ -222,7 +222,7 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
     PetscBool hasshape;
     PetscCall(IoHasDataset(dem->init_file, "/particles/shape", &hasshape));
     if (hasshape) {
-      PetscCall(IoReadDataset(dem->init_file, "/particles/shape", &r, &nc, &d));
+      PetscCall(IoReadDatasetAll(dem->comm, dem->init_file, "/particles/shape", 1, &r, &d));
       PetscCheck(r == rows, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: /particles/shape has %" PetscInt_FMT " rows, expected %" PetscInt_FMT, dem->init_file, r, rows);
       for (PetscInt a = 0; a < nmine; a++) {
         const PetscInt i = n0 + a, s = (PetscInt)d[mine[a]];

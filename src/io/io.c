@@ -5,20 +5,30 @@
  *   /surface/points [P, 3], /surface/tag [P], /surface/triangles [T, 3] (global point indices)
  *   /particles/vertex [N]: 0..N-1, the Polyvertex connectivity (for the Xdmf3 readers).
  * The XDMF index holds one temporal collection per kind: a Polyvertex grid per frame for the
- * particles, a Triangle grid for the surface (when written), a 3DCoRectMesh for the fluid. */
-#include "io/io.h"
-#include <hdf5.h>
+ * particles, a Triangle grid for the surface (when written), a 3DCoRectMesh for the fluid.
+ * Failures (a full disk, an I/O error): a frame is written in steps (open, one per dataset,
+ * close); the ranks agree after each step whether any of them failed (a collective write can fail
+ * on one rank only), and if so all of them close every handle of the frame, rank 0 removes the
+ * temporary, and the run ends with one error naming the file, the step and the reason. Frames
+ * already renamed into place and the index listing them stay valid. */
+#include "io/io_private.h"
 #include <errno.h>
+#include <stdarg.h>
+#include <fcntl.h>
+#include <unistd.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 
 #define IO_MAX_SETS 32
-
-/* HDF5 prints its own error stack (a dozen lines) before returning the failure that our checks
- * turn into one message: silence it. Called before every HDF5 use of this file. */
-static void io_quiet(void)
-{
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-}
+/* A failed write on a file system with less free space than the write needed plus this margin
+   (bytes, for HDF5's metadata) is reported as a full disk. */
+#define IO_FULL_MARGIN (1LL << 20)
+/* Disk space (bytes) rank 0 holds in -io_dir while the run writes frames and gives back when a
+   frame fails: closing the failed frame's file flushes HDF5's metadata, and a close whose flush
+   fails leaves HDF5 (1.10) holding a freed file, which crashes at exit. Measured: a 100-particle
+   frame failing on a full tmpfs closed cleanly with 14 kB given back; 64 kB leaves room for the
+   fluid fields and surfaces of larger frames. */
+#define IO_RESERVE (64 * 1024)
 
 typedef struct {
   char    name[64];
@@ -29,7 +39,7 @@ typedef struct {
 typedef struct {
   PetscReal t;
   char      file[PETSC_MAX_PATH_LEN];
-  PetscInt  np;                         /* global particle count */
+  long long np;                         /* global particle count */
   IoSet     part[IO_MAX_SETS], fluid[IO_MAX_SETS];
   PetscInt  npart, nfluid;
   long long nsurfp, nsurft;             /* surface points and triangles (0: none) */
@@ -46,6 +56,7 @@ struct _p_Io {
   PetscInt  nframes, capframes;
   hid_t     file, gpart, gfluid;
   char      tmpname[PETSC_MAX_PATH_LEN];
+  int       reserve; /* rank 0: the descriptor of the reserve (an unlinked file), or -1 */
 };
 
 PetscErrorCode IoCreate(MPI_Comm comm, Io *io)
@@ -57,6 +68,9 @@ PetscErrorCode IoCreate(MPI_Comm comm, Io *io)
   PetscCall(PetscStrcpy((*io)->prefix, "sable"));
   (*io)->interval = 0;
   (*io)->file     = -1;
+  (*io)->gpart    = -1;
+  (*io)->gfluid   = -1;
+  (*io)->reserve  = -1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -80,13 +94,6 @@ PetscErrorCode IoSetFromOptions(Io io)
   }
   PetscCall(PetscSNPrintf(io->index, sizeof io->index, "%s/%s.xmf", io->dir, io->prefix));
   io->next = 0;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode IoGetInterval(Io io, PetscReal *interval)
-{
-  PetscFunctionBeginUser;
-  *interval = io->interval;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -119,28 +126,204 @@ PetscErrorCode IoDestroy(Io *io)
 {
   PetscFunctionBeginUser;
   if (!*io) PetscFunctionReturn(PETSC_SUCCESS);
+  if ((*io)->reserve >= 0) close((*io)->reserve);
   PetscCall(PetscFree((*io)->frames));
   PetscCall(PetscFree(*io));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Rank 0: takes the reserve of IO_RESERVE bytes, a file unlinked at once and held open (the
+ * system frees it however the process ends). Returns an errno; a file system that cannot
+ * allocate ahead (not ENOSPC) is written without a reserve. */
+static int io_reserve(Io io)
+{
+  char path[PETSC_MAX_PATH_LEN + 96];
+  int  fd, err;
+
+  snprintf(path, sizeof path, "%s/.%s.reserveXXXXXX", io->dir, io->prefix);
+  fd = mkstemp(path);
+  if (fd < 0) return errno;
+  unlink(path);
+  err = posix_fallocate(fd, 0, IO_RESERVE);
+  if (err) {
+    close(fd);
+    return err == ENOSPC ? err : 0;
+  }
+  io->reserve = fd;
+  return 0;
+}
+
 static PetscErrorCode IoMakeDir(Io io)
 {
   PetscMPIInt rank;
-  int         err = 0;
+  int         err[2] = {0, 0}; /* errno of mkdir, of the reserve */
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
-  if (!rank && mkdir(io->dir, 0755) != 0 && errno != EEXIST) err = errno;
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, io->comm));
-  PetscCheck(!err, io->comm, PETSC_ERR_FILE_OPEN, "-io_dir %s: cannot create the directory (%s)", io->dir, strerror(err));
+  if (!rank && mkdir(io->dir, 0755) != 0 && errno != EEXIST) err[0] = errno;
+  if (!rank && !err[0] && io->reserve < 0) err[1] = io_reserve(io);
+  PetscCallMPI(MPI_Bcast(err, 2, MPI_INT, 0, io->comm));
+  PetscCheck(!err[0], io->comm, PETSC_ERR_FILE_OPEN, "-io_dir %s: cannot create the directory (%s)", io->dir, strerror(err[0]));
+  PetscCheck(!err[1], io->comm, PETSC_ERR_FILE_WRITE, "-io_dir %s: cannot write there: %s%s", io->dir, strerror(err[1]), err[1] == ENOSPC ? " (Sable needs 64 kB free there before its first frame, a reserve to end cleanly should the disk fill)" : "");
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The first failure of a step of a frame (its opening, one dataset, its closing): what was being
+ * done, what HDF5 says, and how many bytes the step was writing (0: metadata only). */
+typedef struct {
+  char      what[PETSC_MAX_PATH_LEN];
+  char      h5[256];
+  long long need;
+} IoStep;
+
+static void io_step_failed(IoStep *st, const char *fmt, ...)
+{
+  va_list ap;
+
+  io_h5_last_error(st->h5, sizeof st->h5);
+  va_start(ap, fmt);
+  vsnprintf(st->what, sizeof st->what, fmt, ap);
+  va_end(ap);
+}
+
+/* An HDF5 call of a step: skipped once a call of the step has failed. IoClose always runs (a
+ * handle is closed whatever happened before) and records only a first failure. */
+#define IoTry(st, call, ...) \
+  do { \
+    if (!(st)->what[0] && (call) < 0) io_step_failed(st, __VA_ARGS__); \
+  } while (0)
+#define IoClose(st, call, ...) \
+  do { \
+    if ((call) < 0 && !(st)->what[0]) io_step_failed(st, __VA_ARGS__); \
+  } while (0)
+
+/* Rank 0: the system's reason for a failed step, as far as it is known. errno after a failed
+ * HDF5 call says nothing (HDF5 and MPI-IO overwrite it; measured: 0 after a write that hit a
+ * full disk), so the free space of -io_dir decides: less than the step needed, plus a margin,
+ * is a full disk; otherwise HDF5's own words are all that is known. */
+static void io_reason(Io io, const IoStep *st, char *buf, size_t len)
+{
+  struct statvfs sv;
+  long long      avail;
+
+  if (statvfs(io->dir, &sv) != 0) {
+    snprintf(buf, len, "the cause is not known (HDF5 says %s), and the free space of %s cannot be checked: %s", st->h5, io->dir, strerror(errno));
+    return;
+  }
+  avail = (long long)sv.f_bavail * (long long)sv.f_frsize;
+  if (avail < st->need + IO_FULL_MARGIN) snprintf(buf, len, "%s, with %lld bytes free in %s", strerror(ENOSPC), avail, io->dir);
+  else snprintf(buf, len, "the cause is not known (HDF5 says %s), with %lld bytes free in %s", st->h5, avail, io->dir);
+}
+
+/* Collective. Ends a frame whose step failed: closes every HDF5 object of the file and the file,
+ * and removes the temporary. Rank 0 first gives back the reserve and empties the temporary, so
+ * that the closing flush of HDF5's metadata finds room on a full disk. */
+static PetscErrorCode IoFrameAbort(Io io)
+{
+  const unsigned kinds = H5F_OBJ_LOCAL | H5F_OBJ_DATASET | H5F_OBJ_GROUP | H5F_OBJ_DATATYPE | H5F_OBJ_ATTR;
+  PetscMPIInt    rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
+  if (!rank && io->reserve >= 0) {
+    close(io->reserve);
+    io->reserve = -1;
+  }
+  if (!rank && truncate(io->tmpname, 0) != 0) { /* nothing to empty: the file was not created */ }
+  PetscCallMPI(MPI_Barrier(io->comm));
+  if (io->file >= 0) {
+    ssize_t n = H5Fget_obj_count(io->file, kinds);
+    if (n > 0) {
+      hid_t *ids;
+      PetscCall(PetscMalloc1(n, &ids));
+      n = H5Fget_obj_ids(io->file, kinds, (size_t)n, ids);
+      for (ssize_t i = 0; i < n; i++) {
+        if (H5Iget_type(ids[i]) == H5I_ATTR) H5Aclose(ids[i]);
+        else H5Oclose(ids[i]);
+      }
+      PetscCall(PetscFree(ids));
+    }
+    H5Fclose(io->file); /* with the reserve given back it succeeds; were it to fail, HDF5 could crash at exit */
+  }
+  io->file = io->gpart = io->gfluid = -1;
+  if (!rank) unlink(io->tmpname);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The lowest rank whose step failed (the size of the communicator if none did). */
+static PetscErrorCode IoFirstFailed(Io io, const IoStep *st, PetscMPIInt *first)
+{
+  PetscMPIInt rank, size, mine;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
+  PetscCallMPI(MPI_Comm_size(io->comm, &size));
+  mine = st->what[0] ? rank : size;
+  PetscCallMPI(MPI_Allreduce(&mine, first, 1, MPI_INT, MPI_MIN, io->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. When a step failed on any rank, ends the frame on every rank (IoFrameAbort) and
+ * returns one error: the file, the reason (rank 0's diagnosis) and the step (the first failing
+ * rank's). */
+static PetscErrorCode IoFrameAgree(Io io, IoStep *st)
+{
+  PetscMPIInt first, rank, size;
+  char        reason[PETSC_MAX_PATH_LEN + 512] = "", kept[PETSC_MAX_PATH_LEN + 64] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(IoFirstFailed(io, st, &first));
+  PetscCallMPI(MPI_Comm_size(io->comm, &size));
+  if (first == size) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
+  PetscCallMPI(MPI_Bcast(st, sizeof *st, MPI_BYTE, first, io->comm));
+  if (!rank) io_reason(io, st, reason, sizeof reason);
+  PetscCallMPI(MPI_Bcast(reason, sizeof reason, MPI_CHAR, 0, io->comm));
+  PetscCall(IoFrameAbort(io));
+  if (io->nframes) PetscCall(PetscSNPrintf(kept, sizeof kept, "; the earlier frame%s (%" PetscInt_FMT ") and %s are complete", io->nframes > 1 ? "s" : "", io->nframes, io->index));
+  SETERRQ(io->comm, PETSC_ERR_FILE_WRITE, "cannot write %s/%s: %s (while %s; the partial file was removed%s)", io->dir, io->frames[io->nframes].file, reason, st->what, kept);
+}
+
+/* Collective. Creates the frame's temporary file; when that fails, rank 0 says why by creating
+ * the file itself (the errno of that open is meaningful, unlike the one after H5Fcreate). */
+static PetscErrorCode IoFrameCreate(Io io)
+{
+  hid_t       fapl;
+  IoStep      st;
+  PetscMPIInt first, rank, size;
+  char        reason[PETSC_MAX_PATH_LEN + 512] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&st, sizeof st));
+  fapl = H5Pcreate(H5P_FILE_ACCESS);
+  PetscCheck(fapl >= 0 && H5Pset_fapl_mpio(fapl, io->comm, MPI_INFO_NULL) >= 0, io->comm, PETSC_ERR_LIB, "HDF5 cannot set up parallel (MPI-IO) access for %s", io->tmpname);
+  IoTry(&st, io->file = H5Fcreate(io->tmpname, H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "creating the file");
+  H5Pclose(fapl);
+  PetscCall(IoFirstFailed(io, &st, &first));
+  PetscCallMPI(MPI_Comm_size(io->comm, &size));
+  if (first == size) PetscFunctionReturn(PETSC_SUCCESS);
+  /* a rank that did create the file cannot close it alone (closing is collective): when ranks
+     disagree, main's MPI_Abort ends them */
+  PetscCallMPI(MPI_Bcast(&st, sizeof st, MPI_BYTE, first, io->comm));
+  PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
+  if (!rank) {
+    int fd = open(io->tmpname, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) PetscCall(PetscStrncpy(reason, strerror(errno), sizeof reason));
+    else {
+      close(fd);
+      unlink(io->tmpname);
+      io_reason(io, &st, reason, sizeof reason);
+    }
+  }
+  PetscCallMPI(MPI_Bcast(reason, sizeof reason, MPI_CHAR, 0, io->comm));
+  SETERRQ(io->comm, PETSC_ERR_FILE_OPEN, "-io_dir %s: cannot create %s: %s", io->dir, io->tmpname, reason);
 }
 
 PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
 {
-  hid_t    fapl, attr, space;
+  hid_t    attr = -1, space = -1;
   IoFrame *fr;
+  IoStep   st;
 
   PetscFunctionBeginUser;
   io_quiet();
@@ -159,90 +342,95 @@ PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
   fr->t = t;
   PetscCall(PetscSNPrintf(fr->file, sizeof fr->file, "%s_%06" PetscInt_FMT ".h5", io->prefix, io->nframes));
   PetscCall(PetscSNPrintf(io->tmpname, sizeof io->tmpname, "%s/%s.tmp", io->dir, fr->file));
-  SableTempSet(io->tmpname); /* removed if the run ends before the rename */
-  fapl = H5Pcreate(H5P_FILE_ACCESS);
-  SableCallH5(fapl);
-  SableCallH5(H5Pset_fapl_mpio(fapl, io->comm, MPI_INFO_NULL));
-  io->file = H5Fcreate(io->tmpname, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-  SableCallH5(H5Pclose(fapl));
-  PetscCheck(io->file >= 0, io->comm, PETSC_ERR_FILE_OPEN, "-io_dir: cannot create %s", io->tmpname);
-  io->gpart  = H5Gcreate2(io->file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  io->gfluid = H5Gcreate2(io->file, "fluid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  SableCallH5(io->gpart);
-  SableCallH5(io->gfluid);
-  space = H5Screate(H5S_SCALAR);
-  attr  = H5Acreate2(io->file, "time", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
-  SableCallH5(attr);
-  SableCallH5(H5Awrite(attr, H5T_NATIVE_DOUBLE, &t));
-  SableCallH5(H5Aclose(attr));
-  SableCallH5(H5Sclose(space));
+  io->gpart = io->gfluid = -1;
+  SableTempSet(io->tmpname); /* removed should the run end before the rename */
+  PetscCall(IoFrameCreate(io));
+  PetscCall(PetscMemzero(&st, sizeof st));
+  IoTry(&st, io->gpart = H5Gcreate2(io->file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating the group /particles");
+  IoTry(&st, io->gfluid = H5Gcreate2(io->file, "fluid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating the group /fluid");
+  IoTry(&st, space = H5Screate(H5S_SCALAR), "writing the attribute time");
+  IoTry(&st, attr = H5Acreate2(io->file, "time", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT), "writing the attribute time");
+  IoTry(&st, H5Awrite(attr, H5T_NATIVE_DOUBLE, &t), "writing the attribute time");
+  if (attr >= 0) IoClose(&st, H5Aclose(attr), "closing the attribute time");
+  if (space >= 0) IoClose(&st, H5Sclose(space), "closing the attribute time");
+  PetscCall(IoFrameAgree(io, &st));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective write of a block [start, start+count) of a dataset of global dims (rank-1..4). */
-static PetscErrorCode IoWriteBlock(hid_t group, const char *name, hid_t type, int rank, const hsize_t *dims, const hsize_t *start, const hsize_t *count, const void *data)
+/* The shape of a block: global dims of a rank-1..4 dataset, this rank's start and count. */
+typedef struct {
+  int     rank;
+  hsize_t dims[4], start[4], count[4];
+} IoShape;
+
+/* Collective write of this rank's block of a new dataset group/name. The ranks agree before the
+ * write (a rank whose dataset was not created must not leave the others in a collective write)
+ * and after it. */
+static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t type, const IoShape *sh, const void *data)
 {
-  hid_t    fspace, mspace, dset, dxpl;
-  hsize_t  n = 1;
+  hid_t       fspace = -1, mspace = -1, dset = -1, dxpl = -1;
+  hsize_t     n = 1, total = 1;
+  IoStep      st;
+  PetscMPIInt first, size;
+  char        path[PETSC_MAX_PATH_LEN] = "";
 
   PetscFunctionBeginUser;
-  for (int k = 0; k < rank; k++) n *= count[k];
-  fspace = H5Screate_simple(rank, dims, NULL);
-  SableCallH5(fspace);
-  dset = H5Dcreate2(group, name, type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  SableCallH5(dset);
-  mspace = H5Screate_simple(1, &n, NULL);
-  SableCallH5(mspace);
-  if (n) SableCallH5(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL));
+  PetscCall(PetscMemzero(&st, sizeof st));
+  for (int k = 0; k < sh->rank; k++) n *= sh->count[k], total *= sh->dims[k];
+  if (H5Iget_name(group, path, sizeof path) < 0) path[0] = 0;
+  PetscCall(PetscStrlcat(path, "/", sizeof path));
+  PetscCall(PetscStrlcat(path, name, sizeof path));
+  st.need = (long long)(total * H5Tget_size(type));
+  IoTry(&st, fspace = H5Screate_simple(sh->rank, sh->dims, NULL), "creating %s", path);
+  IoTry(&st, dset = H5Dcreate2(group, name, type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating %s", path);
+  IoTry(&st, mspace = H5Screate_simple(1, &n, NULL), "creating %s", path);
+  if (n) IoTry(&st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, sh->start, NULL, sh->count, NULL), "selecting this rank's rows of %s", path);
   else {
-    SableCallH5(H5Sselect_none(fspace));
-    SableCallH5(H5Sselect_none(mspace));
+    IoTry(&st, H5Sselect_none(fspace), "selecting this rank's rows of %s", path);
+    IoTry(&st, H5Sselect_none(mspace), "selecting this rank's rows of %s", path);
   }
-  { /* an empty dataset (a scene with no particles) is created but not written: HDF5's
-       collective write of nothing fails */
-    hsize_t total = 1;
-    for (int k = 0; k < rank; k++) total *= dims[k];
-    if (total) {
-      dxpl = H5Pcreate(H5P_DATASET_XFER);
-      SableCallH5(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE));
-      SableCallH5(H5Dwrite(dset, type, mspace, fspace, dxpl, data));
-      SableCallH5(H5Pclose(dxpl));
-    }
+  PetscCall(IoFirstFailed(io, &st, &first));
+  PetscCallMPI(MPI_Comm_size(io->comm, &size));
+  if (first == size && total) { /* an empty dataset (a scene with no particles) is created but
+                                   not written: HDF5's collective write of nothing fails */
+    IoTry(&st, dxpl = H5Pcreate(H5P_DATASET_XFER), "writing %s", path);
+    IoTry(&st, H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "writing %s", path);
+    IoTry(&st, H5Dwrite(dset, type, mspace, fspace, dxpl, data), "writing %s", path);
   }
-  SableCallH5(H5Sclose(mspace));
-  SableCallH5(H5Sclose(fspace));
-  SableCallH5(H5Dclose(dset));
+  if (dxpl >= 0) IoClose(&st, H5Pclose(dxpl), "writing %s", path);
+  if (mspace >= 0) IoClose(&st, H5Sclose(mspace), "closing %s", path);
+  if (fspace >= 0) IoClose(&st, H5Sclose(fspace), "closing %s", path);
+  if (dset >= 0) IoClose(&st, H5Dclose(dset), "closing %s", path);
+  PetscCall(IoFrameAgree(io, &st));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode IoWriteRows(Io io, const char *name, PetscInt nlocal, PetscInt ncomp, hid_t type, const void *data, PetscBool isint)
 {
   long long n = nlocal, off = 0, total = 0;
-  hsize_t   dims[2], start[2] = {0, 0}, count[2];
-  IoFrame  *fr = &io->frames[io->nframes];
+  IoShape   sh  = {ncomp > 1 ? 2 : 1, {0, (hsize_t)ncomp}, {0, 0}, {(hsize_t)n, (hsize_t)ncomp}};
+  IoFrame  *fr  = &io->frames[io->nframes];
 
   PetscFunctionBeginUser;
   PetscCheck(fr->npart < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many particle datasets in one frame");
   PetscCallMPI(MPI_Exscan(&n, &off, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
   PetscCallMPI(MPI_Allreduce(&n, &total, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
-  dims[0]  = (hsize_t)total;
-  dims[1]  = (hsize_t)ncomp;
-  start[0] = (hsize_t)off;
-  count[0] = (hsize_t)n;
-  count[1] = (hsize_t)ncomp;
-  PetscCall(IoWriteBlock(io->gpart, name, type, ncomp > 1 ? 2 : 1, dims, start, count, data));
+  sh.dims[0]  = (hsize_t)total;
+  sh.start[0] = (hsize_t)off;
+  PetscCall(IoWriteBlock(io, io->gpart, name, type, &sh, data));
   if (!strcmp(name, "position")) { /* the Polyvertex connectivity 0..N-1: the Xdmf3 readers make no cells without it */
+    IoShape    sv = {1, {(hsize_t)total}, {(hsize_t)off}, {(hsize_t)n}};
     long long *vtx;
     PetscCall(PetscMalloc1(n + 1, &vtx));
     for (long long i = 0; i < n; i++) vtx[i] = off + i;
-    PetscCall(IoWriteBlock(io->gpart, "vertex", H5T_NATIVE_LLONG, 1, dims, start, count, vtx));
+    PetscCall(IoWriteBlock(io, io->gpart, "vertex", H5T_NATIVE_LLONG, &sv, vtx));
     PetscCall(PetscFree(vtx));
   }
   PetscCall(PetscStrncpy(fr->part[fr->npart].name, name, sizeof fr->part[0].name));
   fr->part[fr->npart].ncomp = ncomp;
   fr->part[fr->npart].isint = isint;
   fr->npart++;
-  fr->np = (PetscInt)total;
+  fr->np = total;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -263,9 +451,10 @@ PetscErrorCode IoWriteParticlesInt(Io io, const char *name, PetscInt nlocal, con
 PetscErrorCode IoWriteSurface(Io io, PetscInt np, const PetscReal *xyz, const PetscInt *tag, PetscInt nt, const PetscInt *tri)
 {
   long long n[2] = {np, nt}, off[2] = {0, 0}, tot[2] = {0, 0}, *gtri, *gtag;
-  hsize_t   dims[2], start[2] = {0, 0}, count[2];
+  IoShape   sh;
   IoFrame  *fr = &io->frames[io->nframes];
-  hid_t     g;
+  IoStep    st;
+  hid_t     g = -1;
 
   PetscFunctionBeginUser;
   PetscCheck(!fr->nsurft, io->comm, PETSC_ERR_ORDER, "IoWriteSurface: at most one surface per frame");
@@ -274,14 +463,17 @@ PetscErrorCode IoWriteSurface(Io io, PetscInt np, const PetscReal *xyz, const Pe
   PetscCall(PetscMalloc2(3 * nt + 1, &gtri, np + 1, &gtag));
   for (PetscInt k = 0; k < 3 * nt; k++) gtri[k] = off[0] + tri[k];
   for (PetscInt k = 0; k < np; k++) gtag[k] = tag[k];
-  g = H5Gcreate2(io->file, "surface", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  SableCallH5(g);
-  dims[0] = (hsize_t)tot[0], dims[1] = 3, start[0] = (hsize_t)off[0], count[0] = (hsize_t)np, count[1] = 3;
-  PetscCall(IoWriteBlock(g, "points", H5T_NATIVE_DOUBLE, 2, dims, start, count, xyz));
-  PetscCall(IoWriteBlock(g, "tag", H5T_NATIVE_LLONG, 1, dims, start, count, gtag));
-  dims[0] = (hsize_t)tot[1], start[0] = (hsize_t)off[1], count[0] = (hsize_t)nt;
-  PetscCall(IoWriteBlock(g, "triangles", H5T_NATIVE_LLONG, 2, dims, start, count, gtri));
-  SableCallH5(H5Gclose(g));
+  PetscCall(PetscMemzero(&st, sizeof st));
+  IoTry(&st, g = H5Gcreate2(io->file, "surface", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating the group /surface");
+  PetscCall(IoFrameAgree(io, &st));
+  sh = (IoShape){2, {(hsize_t)tot[0], 3}, {(hsize_t)off[0], 0}, {(hsize_t)np, 3}};
+  PetscCall(IoWriteBlock(io, g, "points", H5T_NATIVE_DOUBLE, &sh, xyz));
+  sh.rank = 1;
+  PetscCall(IoWriteBlock(io, g, "tag", H5T_NATIVE_LLONG, &sh, gtag));
+  sh = (IoShape){2, {(hsize_t)tot[1], 3}, {(hsize_t)off[1], 0}, {(hsize_t)nt, 3}};
+  PetscCall(IoWriteBlock(io, g, "triangles", H5T_NATIVE_LLONG, &sh, gtri));
+  IoClose(&st, H5Gclose(g), "closing the group /surface");
+  PetscCall(IoFrameAgree(io, &st));
   PetscCall(PetscFree2(gtri, gtag));
   fr->nsurfp = tot[0];
   fr->nsurft = tot[1];
@@ -302,194 +494,154 @@ PetscErrorCode IoSetFluidMesh(Io io, const PetscReal lo[3], const PetscReal h[3]
 
 PetscErrorCode IoWriteField(Io io, const char *name, PetscInt ncomp, const PetscInt start[3], const PetscInt count[3], const PetscReal *data)
 {
-  hsize_t  dims[4], st[4] = {0, 0, 0, 0}, cnt[4];
+  IoShape  sh = {ncomp > 1 ? 4 : 3, {0}, {0}, {0}};
   IoFrame *fr = &io->frames[io->nframes];
 
   PetscFunctionBeginUser;
   PetscCheck(io->fluidmesh, io->comm, PETSC_ERR_ORDER, "IoSetFluidMesh must precede IoWriteField");
   PetscCheck(fr->nfluid < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many fluid datasets in one frame");
   for (int k = 0; k < 3; k++) { /* HDF5 order is z, y, x */
-    dims[k] = (hsize_t)io->fcells[2 - k];
-    st[k]   = (hsize_t)start[2 - k];
-    cnt[k]  = (hsize_t)count[2 - k];
+    sh.dims[k]  = (hsize_t)io->fcells[2 - k];
+    sh.start[k] = (hsize_t)start[2 - k];
+    sh.count[k] = (hsize_t)count[2 - k];
   }
-  dims[3] = cnt[3] = (hsize_t)ncomp;
-  PetscCall(IoWriteBlock(io->gfluid, name, H5T_NATIVE_DOUBLE, ncomp > 1 ? 4 : 3, dims, st, cnt, data));
+  sh.dims[3] = sh.count[3] = (hsize_t)ncomp;
+  PetscCall(IoWriteBlock(io, io->gfluid, name, H5T_NATIVE_DOUBLE, &sh, data));
   PetscCall(PetscStrncpy(fr->fluid[fr->nfluid].name, name, sizeof fr->fluid[0].name));
   fr->fluid[fr->nfluid].ncomp = ncomp;
   fr->nfluid++;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static void IoXdmfAttribute(FILE *fp, const char *file, const char *group, const IoSet *s, const char *center, const char *dims)
+/* The XDMF index is written through this: the first failed write keeps its errno, and later
+ * writes are skipped. */
+typedef struct {
+  FILE *fp;
+  int   err;
+} IoText;
+
+static void io_printf(IoText *w, const char *fmt, ...)
+{
+  va_list ap;
+
+  if (w->err) return;
+  va_start(ap, fmt);
+  if (vfprintf(w->fp, fmt, ap) < 0) w->err = errno ? errno : EIO;
+  va_end(ap);
+}
+
+static void IoXdmfAttribute(IoText *w, const char *file, const char *group, const IoSet *s, const char *center, const char *dims)
 {
   const char *type = s->ncomp == 3 ? "Vector" : (s->ncomp == 1 ? "Scalar" : "Matrix");
-  fprintf(fp, "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", s->name, type, center);
-  if (s->ncomp > 1) fprintf(fp, "          <DataItem Dimensions=\"%s %d\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, (int)s->ncomp, s->isint ? "Int" : "Float", file, group, s->name);
-  else fprintf(fp, "          <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->isint ? "Int" : "Float", file, group, s->name);
-  fprintf(fp, "        </Attribute>\n");
+  io_printf(w, "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", s->name, type, center);
+  if (s->ncomp > 1) io_printf(w, "          <DataItem Dimensions=\"%s %" PetscInt_FMT "\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->ncomp, s->isint ? "Int" : "Float", file, group, s->name);
+  else io_printf(w, "          <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->isint ? "Int" : "Float", file, group, s->name);
+  io_printf(w, "        </Attribute>\n");
 }
 
-/* One frame's grid of one kind (0 particles, 1 surface, 2 fluid), with its time. */
-static void IoXdmfGrid(Io io, FILE *fp, const IoFrame *fr, int kind)
+/* One frame's grid of one kind (0 particles, 1 surface, 2 fluid), with its time. Counts are
+ * printed in 64 bits. */
+static void IoXdmfGrid(Io io, IoText *w, const IoFrame *fr, int kind)
 {
-  char d[64];
+  char d[96];
 
   if (kind == 0) {
-    PetscSNPrintf(d, sizeof d, "%d", (int)fr->np);
-    fprintf(fp, "      <Grid Name=\"particles\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
-    fprintf(fp, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\">\n          <DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/particles/vertex</DataItem>\n        </Topology>\n", (int)fr->np, (int)fr->np, fr->file);
-    fprintf(fp, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/position</DataItem>\n        </Geometry>\n", (int)fr->np, fr->file);
+    snprintf(d, sizeof d, "%lld", fr->np);
+    io_printf(w, "      <Grid Name=\"particles\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
+    io_printf(w, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n          <DataItem Dimensions=\"%lld\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/particles/vertex</DataItem>\n        </Topology>\n", fr->np, fr->np, fr->file);
+    io_printf(w, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/position</DataItem>\n        </Geometry>\n", fr->np, fr->file);
     for (PetscInt i = 0; i < fr->npart; i++)
-      if (strcmp(fr->part[i].name, "position")) IoXdmfAttribute(fp, fr->file, "particles", &fr->part[i], "Node", d);
+      if (strcmp(fr->part[i].name, "position")) IoXdmfAttribute(w, fr->file, "particles", &fr->part[i], "Node", d);
   } else if (kind == 1) {
-    fprintf(fp, "      <Grid Name=\"surface\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
-    fprintf(fp, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%lld\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/triangles</DataItem>\n        </Topology>\n", fr->nsurft, fr->nsurft, fr->file);
-    fprintf(fp, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/surface/points</DataItem>\n        </Geometry>\n", fr->nsurfp, fr->file);
-    fprintf(fp, "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\"%lld\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/tag</DataItem>\n        </Attribute>\n", fr->nsurfp, fr->file);
+    io_printf(w, "      <Grid Name=\"surface\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
+    io_printf(w, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%lld\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/triangles</DataItem>\n        </Topology>\n", fr->nsurft, fr->nsurft, fr->file);
+    io_printf(w, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/surface/points</DataItem>\n        </Geometry>\n", fr->nsurfp, fr->file);
+    io_printf(w, "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\"%lld\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/tag</DataItem>\n        </Attribute>\n", fr->nsurfp, fr->file);
   } else {
-    PetscSNPrintf(d, sizeof d, "%d %d %d", (int)io->fcells[2], (int)io->fcells[1], (int)io->fcells[0]);
-    fprintf(fp, "      <Grid Name=\"fluid\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
-    fprintf(fp, "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"%d %d %d\"/>\n", (int)io->fcells[2] + 1, (int)io->fcells[1] + 1, (int)io->fcells[0] + 1);
-    fprintf(fp, "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n");
-    fprintf(fp, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n", (double)io->flo[2], (double)io->flo[1], (double)io->flo[0]);
-    fprintf(fp, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n        </Geometry>\n", (double)io->fh[2], (double)io->fh[1], (double)io->fh[0]);
-    for (PetscInt i = 0; i < fr->nfluid; i++) IoXdmfAttribute(fp, fr->file, "fluid", &fr->fluid[i], "Cell", d);
+    snprintf(d, sizeof d, "%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT, io->fcells[2], io->fcells[1], io->fcells[0]);
+    io_printf(w, "      <Grid Name=\"fluid\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
+    io_printf(w, "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"%lld %lld %lld\"/>\n", (long long)io->fcells[2] + 1, (long long)io->fcells[1] + 1, (long long)io->fcells[0] + 1);
+    io_printf(w, "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n");
+    io_printf(w, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n", (double)io->flo[2], (double)io->flo[1], (double)io->flo[0]);
+    io_printf(w, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n        </Geometry>\n", (double)io->fh[2], (double)io->fh[1], (double)io->fh[0]);
+    for (PetscInt i = 0; i < fr->nfluid; i++) IoXdmfAttribute(w, fr->file, "fluid", &fr->fluid[i], "Cell", d);
   }
-  fprintf(fp, "      </Grid>\n");
+  io_printf(w, "      </Grid>\n");
 }
 
-/* The index: one temporal collection per kind (particles, surface, fluid) directly in the
+/* Rank 0. The index: one temporal collection per kind (particles, surface, fluid) directly in the
  * domain, so that ParaView's XDMF reader keeps one block of a fixed name ("particles", ...)
  * through time (a spatial collection per frame gave particles[1], particles[2], ... and broke
- * Extract Block after the first frame). */
-static PetscErrorCode IoWriteIndex(Io io)
+ * Extract Block after the first frame). Written to <index>.tmp, renamed into place; *err is the
+ * errno of the first failure (0: none), after which the temporary is removed. */
+static PetscErrorCode IoWriteIndex(Io io, int *err)
 {
   const char *kinds[3] = {"particles", "surface", "fluid"};
   char        tmp[PETSC_MAX_PATH_LEN];
-  FILE       *fp;
+  IoText      w = {NULL, 0};
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(tmp, sizeof tmp, "%s.tmp", io->index));
+  *err = 0;
   SableTempSet(tmp);
-  fp = fopen(tmp, "w");
-  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-io_dir: cannot write %s", tmp);
-  fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n");
+  w.fp = fopen(tmp, "w");
+  if (!w.fp) {
+    *err = errno;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  io_printf(&w, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n");
   for (int k = 0; k < 3; k++) {
     PetscInt n = 0;
     for (PetscInt i = 0; i < io->nframes; i++) n += k == 0 ? io->frames[i].npart > 0 : (k == 1 ? io->frames[i].nsurft > 0 : io->frames[i].nfluid > 0);
     if (!n) continue;
-    fprintf(fp, "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", kinds[k]);
+    io_printf(&w, "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", kinds[k]);
     for (PetscInt i = 0; i < io->nframes; i++) {
       const IoFrame *fr = &io->frames[i];
-      if (k == 0 ? fr->npart > 0 : (k == 1 ? fr->nsurft > 0 : fr->nfluid > 0)) IoXdmfGrid(io, fp, fr, k);
+      if (k == 0 ? fr->npart > 0 : (k == 1 ? fr->nsurft > 0 : fr->nfluid > 0)) IoXdmfGrid(io, &w, fr, k);
     }
-    fprintf(fp, "    </Grid>\n");
+    io_printf(&w, "    </Grid>\n");
   }
-  fprintf(fp, "  </Domain>\n</Xdmf>\n");
-  PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "-io_dir: cannot finish %s", tmp);
-  PetscCheck(rename(tmp, io->index) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s", tmp, io->index);
-  SableTempSet(NULL);
+  io_printf(&w, "  </Domain>\n</Xdmf>\n");
+  if (fflush(w.fp) != 0 && !w.err) w.err = errno; /* the buffered tail: where a full disk shows */
+  if (fclose(w.fp) != 0 && !w.err) w.err = errno;
+  if (!w.err && rename(tmp, io->index) != 0) w.err = errno;
+  if (w.err) unlink(tmp);
+  *err = w.err;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. Closes the frame (the ranks agree that every step succeeded), renames it into
+ * place and rewrites the index on rank 0; a failure of either ends the run on every rank. */
 PetscErrorCode IoFrameEnd(Io io)
 {
   PetscMPIInt rank;
   char        final[PETSC_MAX_PATH_LEN];
-  int         err = 0;
+  int         err[2] = {0, 0}; /* errno of the rename of the frame, of the index */
+  IoStep      st;
 
   PetscFunctionBeginUser;
-  SableCallH5(H5Gclose(io->gpart));
-  SableCallH5(H5Gclose(io->gfluid));
-  SableCallH5(H5Fclose(io->file));
-  io->file = -1;
+  PetscCall(PetscMemzero(&st, sizeof st));
+  IoClose(&st, H5Gclose(io->gpart), "closing the group /particles");
+  IoClose(&st, H5Gclose(io->gfluid), "closing the group /fluid");
+  io->gpart = io->gfluid = -1; /* if a close failed, IoFrameAbort finds the group among the file's objects */
+  IoTry(&st, H5Fflush(io->file, H5F_SCOPE_GLOBAL), "flushing the file");
+  PetscCall(IoFrameAgree(io, &st));
+  IoTry(&st, H5Fclose(io->file), "closing the file");
+  io->file = -1; /* a failed close is not retried */
+  PetscCall(IoFrameAgree(io, &st));
   PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
   PetscCall(PetscSNPrintf(final, sizeof final, "%s/%s", io->dir, io->frames[io->nframes].file));
   io->nframes++;
   if (!rank) {
-    if (rename(io->tmpname, final) != 0) err = errno;
-    else PetscCall(IoWriteIndex(io));
+    if (rename(io->tmpname, final) != 0) {
+      err[0] = errno;
+      unlink(io->tmpname);
+    } else PetscCall(IoWriteIndex(io, &err[1]));
   }
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, io->comm));
-  if (!err) SableTempSet(NULL);
-  PetscCheck(!err, io->comm, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s (%s)", io->tmpname, final, strerror(err));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows, PetscInt *ncomp, PetscReal **data)
-{
-  hid_t   f, d, s;
-  hsize_t dims[2] = {0, 1};
-  int     rank;
-
-  PetscFunctionBeginUser;
-  io_quiet();
-  f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "%s is not an HDF5 file (or cannot be opened as one)", file);
-  d = H5Dopen2(f, name, H5P_DEFAULT);
-  PetscCheck(d >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "file %s has no dataset %s", file, name);
-  s    = H5Dget_space(d);
-  rank = H5Sget_simple_extent_ndims(s);
-  PetscCheck(rank == 1 || rank == 2, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s:%s has rank %d, expected 1 or 2", file, name, rank);
-  SableCallH5(H5Sget_simple_extent_dims(s, dims, NULL));
-  *rows  = (PetscInt)dims[0];
-  *ncomp = rank == 2 ? (PetscInt)dims[1] : 1;
-  PetscCall(PetscMalloc1(PetscMax(1, *rows * *ncomp), data));
-  if (*rows) SableCallH5(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, *data));
-  SableCallH5(H5Sclose(s));
-  SableCallH5(H5Dclose(d));
-  SableCallH5(H5Fclose(f));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode IoReadTime(const char *file, PetscReal *t, PetscBool *has)
-{
-  hid_t  f, a;
-  double v = 0;
-
-  PetscFunctionBeginUser;
-  io_quiet();
-  f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "%s is not an HDF5 file (or cannot be opened as one)", file);
-  *has = (PetscBool)(H5Aexists(f, "time") > 0);
-  if (*has) {
-    a = H5Aopen(f, "time", H5P_DEFAULT);
-    SableCallH5(a);
-    SableCallH5(H5Aread(a, H5T_NATIVE_DOUBLE, &v));
-    SableCallH5(H5Aclose(a));
-  }
-  *t = v;
-  SableCallH5(H5Fclose(f));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode IoCheckReadable(MPI_Comm comm, const char *opt, const char *file)
-{
-  FILE *fp;
-
-  PetscFunctionBeginUser;
-  io_quiet();
-  fp = fopen(file, "r");
-  PetscCheck(fp, comm, PETSC_ERR_FILE_OPEN, "%s %s: cannot open (%s)", opt, file, strerror(errno));
-  fclose(fp);
-  PetscCheck(H5Fis_hdf5(file) > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "%s %s: not an HDF5 file (Sable reads the frames it writes, *_NNNNNN.h5)", opt, file);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has)
-{
-  hid_t f;
-  char  group[PETSC_MAX_PATH_LEN], *slash;
-
-  PetscFunctionBeginUser;
-  io_quiet();
-  f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "%s is not an HDF5 file (or cannot be opened as one)", file);
-  PetscCall(PetscStrncpy(group, name, sizeof group));
-  slash = strrchr(group, '/');
-  if (slash && slash != group) *slash = 0;
-  *has = (PetscBool)((!slash || slash == group || H5Lexists(f, group, H5P_DEFAULT) > 0) && H5Lexists(f, name, H5P_DEFAULT) > 0);
-  SableCallH5(H5Fclose(f));
+  PetscCallMPI(MPI_Bcast(err, 2, MPI_INT, 0, io->comm));
+  SableTempSet(NULL); /* renamed, or removed on failure */
+  if (err[0]) io->nframes--;
+  PetscCheck(!err[0], io->comm, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s: %s (the frame was removed)", io->tmpname, final, strerror(err[0]));
+  PetscCheck(!err[1], io->comm, PETSC_ERR_FILE_WRITE, "cannot write %s.tmp: %s (the temporary was removed; %s is complete, but the index %s, if any, lists only the frames before it)", io->index, strerror(err[1]), final, io->index);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -44,11 +44,15 @@ PetscErrorCode IoWriteField(Io io, const char *name, PetscInt ncomp, const Petsc
 /* Collective. Closes, renames into place, rewrites the XDMF index. */
 PetscErrorCode IoFrameEnd(Io io);
 
-/* Every rank reads a whole dataset of a Sable HDF5 file (rows x ncomp, as written); free with
- * PetscFree. Errors name the file and the dataset. */
 /* The simulated time of a frame (its root attribute "time"); has = false if it has none. */
 PetscErrorCode IoReadTime(const char *file, PetscReal *t, PetscBool *has);
+/* Not collective. Reads a whole dataset of numbers of an HDF5 file (rows x ncomp, as written) as
+ * reals; free with PetscFree. The type, the dimensions and the declared size are checked before
+ * anything is read; errors name the file and the dataset. */
 PetscErrorCode IoReadDataset(const char *file, const char *name, PetscInt *rows, PetscInt *ncomp, PetscReal **data);
+/* Collective on comm: every rank reads the whole dataset, which must have ncomp columns (1: a
+ * vector [N] or [N, 1]). A problem found by any rank ends every rank with one message. */
+PetscErrorCode IoReadDatasetAll(MPI_Comm comm, const char *file, const char *name, PetscInt ncomp, PetscInt *rows, PetscReal **data);
 /* Whether a Sable HDF5 file holds the dataset /<group>/<name> (group and name given as one
  * path, e.g. "/particles/shape"). Not collective. */
 PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has);
