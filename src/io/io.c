@@ -97,6 +97,13 @@ PetscErrorCode IoSetFromOptions(Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode IoGetInterval(Io io, PetscReal *interval)
+{
+  PetscFunctionBeginUser;
+  *interval = io->interval;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode IoGetIndexPath(Io io, const char **path)
 {
   PetscFunctionBeginUser;
