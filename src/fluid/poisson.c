@@ -21,6 +21,27 @@
 #include "fluid/fluid_impl.h"
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: rebuild the matrix only when eps, beta or dt changed */
 
+/* Defensive check of a PETSc option: PETSc 3.18's PCSetFromOptions_MG dereferences a level
+ * array that it never allocates when -<prefix>pc_mg_levels is 0 or negative (a segfault), so the
+ * raw value is checked before KSPSetFromOptions reads it. Collective (every rank reads the same
+ * options). */
+PetscErrorCode FluidCheckMGLevelsOption(Fluid fl, const char *prefix)
+{
+  char        name[64];
+  const char *v;
+  char       *end;
+  long        L;
+  PetscBool   set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(name, sizeof name, "-%spc_mg_levels", prefix));
+  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &v, &set));
+  if (!set) PetscFunctionReturn(PETSC_SUCCESS);
+  L = v ? strtol(v, &end, 10) : 0;
+  PetscCheck(v && end != v && !*end && L >= 1 && L <= 30, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s: the number of multigrid levels must be an integer in [1,30]", name, v ? v : "(no value)");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Collective. The KSP and its options (-fluid_poisson_), read with the other -fluid_ options so
  * that the unused-option check sees them. */
 PetscErrorCode FluidPoissonCreateKSP(Fluid fl)
@@ -35,6 +56,7 @@ PetscErrorCode FluidPoissonCreateKSP(Fluid fl)
   PetscCall(PCSetType(pc, PCHYPRE));
   PetscCall(PCHYPRESetType(pc, "boomeramg"));
   PetscCall(KSPSetTolerances(fl->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 500));
+  PetscCall(FluidCheckMGLevelsOption(fl, "fluid_poisson_"));
   PetscCall(KSPSetFromOptions(fl->ksp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
