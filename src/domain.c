@@ -37,6 +37,7 @@ static PetscErrorCode DomainCheckProcessGrid(MPI_Comm comm, const PetscInt m[3])
     cells = m[k];
     PetscCall(PetscOptionsGetInt(NULL, NULL, grid[k], &cells, &gset));
     c[k] = cells;
+    PetscCheck(cells >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT " must be >= 1", grid[k], cells);
     if (!set[k]) {
       all = PETSC_FALSE;
       continue;

@@ -17,7 +17,8 @@
  * plus one, or when dt changes. The solution is the same to the solver tolerance either way; a
  * solve that fails with a kept preconditioner is repeated with a new one (a warning line, counted
  * in FluidStats). Geometric multigrid (-fluid_poisson_pc_type mg) coarsens the pressure DMDA:
- * its levels are checked against the grid at set-up. */
+ * its levels are checked against the grid at set-up, and its coarse operators must be Galerkin
+ * products (-fluid_poisson_pc_mg_galerkin pmat): only the fine one is assembled. */
 #include "fluid/fluid_impl.h"
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: rebuild the matrix only when eps, beta or dt changed */
 
@@ -83,6 +84,11 @@ static PetscErrorCode FluidPoissonCheckMG(Fluid fl)
       PetscCheck(ok && nc >= 2, fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_poisson_pc_mg_levels %d: the fluid grid (-da_grid_%c %d) has %d cells along the %s %c axis after %d coarsenings and cannot be coarsened again (a periodic axis needs an even count, a bounded one an odd count, and the coarsest level >= 2 cells); lower the levels or change -da_grid_%c", (int)L, ax[d], (int)fl->g.N[d], (int)n, per ? "periodic" : "bounded", ax[d], (int)(l - 1), ax[d]);
       n = nc;
     }
+  }
+  if (L > 1) { /* the coarse operators can only be Galerkin products: PETSc's own message asks for DMKSPSetComputeOperators */
+    PCMGGalerkinType g;
+    PetscCall(PCMGGetGalerkin(pc, &g));
+    PetscCheck(g == PC_MG_GALERKIN_PMAT || g == PC_MG_GALERKIN_BOTH, fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_poisson_pc_type mg with %d levels needs -fluid_poisson_pc_mg_galerkin pmat (or both): Sable assembles the Poisson operator on the fluid grid only", (int)L);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
