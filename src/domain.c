@@ -26,8 +26,8 @@ static PetscErrorCode DomainReadBox(Domain *dom, PetscReal *cell)
 static PetscErrorCode DomainCheckProcessGrid(MPI_Comm comm, const PetscInt m[3])
 {
   const char *opt[3] = {"-da_processors_x", "-da_processors_y", "-da_processors_z"}, *grid[3] = {"-da_grid_x", "-da_grid_y", "-da_grid_z"};
-  PetscInt    p[3] = {0, 0, 0}, prod = 1, cells, pc[3] = {0, 0, 0};
-  PetscBool   set[3], gset, all = PETSC_TRUE;
+  PetscInt    p[3] = {0, 0, 0}, prod = 1, cells, pc[3] = {0, 0, 0}, c[3];
+  PetscBool   set[3], gset, all = PETSC_TRUE, fits = PETSC_FALSE;
   PetscMPIInt size;
 
   PetscFunctionBeginUser;
@@ -36,6 +36,8 @@ static PetscErrorCode DomainCheckProcessGrid(MPI_Comm comm, const PetscInt m[3])
     PetscCall(PetscOptionsGetInt(NULL, NULL, opt[k], &p[k], &set[k]));
     cells = m[k];
     PetscCall(PetscOptionsGetInt(NULL, NULL, grid[k], &cells, &gset));
+    c[k] = cells;
+    PetscCheck(cells >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT " must be >= 1", grid[k], cells);
     if (!set[k]) {
       all = PETSC_FALSE;
       continue;
@@ -46,6 +48,16 @@ static PetscErrorCode DomainCheckProcessGrid(MPI_Comm comm, const PetscInt m[3])
   PetscCheck(all ? prod == size : size % prod == 0, comm, PETSC_ERR_ARG_INCOMP, "the process grid -da_processors_x/y/z (%" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", 0 = free) does not fit the %d MPI ranks: the product must %s %d", p[0], p[1], p[2], (int)size, all ? "equal" : "divide", (int)size);
   for (int k = 0; k < 3; k++)
     PetscCheck(!set[k] || (p[k] >= 1 && p[k] <= pc[k]), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT " must be in [1, %" PetscInt_FMT "], the cells along that axis (-domain_cell or -da_grid_%c)", opt[k], p[k], pc[k], "xyz"[k]);
+  /* PETSc's message when no process grid fits the cells is "Partition in z direction is too
+     fine! 1 2": look for one first (every rank needs a cell along each axis) */
+  for (PetscInt a = 1; a <= size && !fits; a++)
+    for (PetscInt b = 1; a * b <= size && !fits; b++) {
+      const PetscInt q[3] = {a, b, size / (a * b)};
+      if (size % (a * b)) continue;
+      fits = PETSC_TRUE;
+      for (int k = 0; k < 3; k++) fits = (PetscBool)(fits && q[k] <= c[k] && (!set[k] || !p[k] || p[k] == q[k]));
+    }
+  PetscCheck(fits, comm, PETSC_ERR_ARG_INCOMP, "the grid of %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells cannot be split over %d ranks (each needs a cell along every axis): a smaller -domain_cell (by default 4 particle diameters) or -da_grid_x/y/z, or fewer ranks", c[0], c[1], c[2], (int)size);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -82,8 +94,10 @@ PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt sten
     PetscCall(PetscOptionsHasName(NULL, NULL, "-da_grid_z", &g[2]));
     PetscCheck(!cset || !(g[0] && g[1] && g[2]), comm, PETSC_ERR_ARG_INCOMP, "-domain_cell %g and -da_grid_x, -da_grid_y, -da_grid_z are all given; the grid counts override -domain_cell, which would be ignored: give one of them", (double)default_cell);
   }
-  for (int k = 0; k < 3; k++) {
-    m[k]  = PetscMax(1, (PetscInt)PetscFloorReal(dom->len[k] / default_cell));
+  for (int k = 0; k < 3; k++) { /* a count beyond PetscInt would wrap (to 1 cell, or a negative one) */
+    const PetscReal n = PetscFloorReal(dom->len[k] / default_cell);
+    PetscCheck(n <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE, "-domain_cell %g m (by default 4 particle diameters) gives %g cells along %c, more than %" PetscInt_FMT ": give a larger cell", (double)default_cell, (double)n, "xyz"[k], (PetscInt)PETSC_MAX_INT);
+    m[k]  = PetscMax(1, (PetscInt)n);
     bt[k] = dom->periodic[k] ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_GHOSTED;
   }
   PetscCall(DomainCheckProcessGrid(comm, m));

@@ -158,6 +158,17 @@ static int SableCheckLineBytes(const char *path, int n, const char *line, size_t
   return 0;
 }
 
+/* PETSc's test of a key (PetscOptionsValidKey), which its options-file reader applies to a
+ * line's second token: as SableIsKey, but "-inf" and "-nan" are numbers. */
+static int SablePetscKey(const char *t)
+{
+  char *end;
+  if (!SableIsKey(t)) return 0;
+  if (t[1] == '-') t++;
+  (void)strtod(t, &end);
+  return end == t || *end == '_' || isalnum((unsigned char)*end);
+}
+
 /* PETSc's own messages for a bad options file are tracebacks: check each -options_file first
  * and say what is wrong in one line (file, line, text). A line is "-name [value]", "alias -a -b"
  * or blank; # starts a comment; a key may start with -- as PETSc allows. */
@@ -194,6 +205,9 @@ static int SableCheckOptionsFile(const char *path)
       bad = 1;
     } else if (nt > 2) {
       SableEarlyError("-options_file %s, line %d: %s has more than one value (lists are comma-separated; quote a value with blanks)", path, n, tok[0]);
+      bad = 1;
+    } else if (nt == 2 && SablePetscKey(tok[1])) { /* PETSc's reader stops with a traceback */
+      SableEarlyError("-options_file %s, line %d: %s is followed by another option, %s (one option per line)", path, n, tok[0], tok[1]);
       bad = 1;
     }
   }

@@ -19,6 +19,8 @@ expect "missing options file" "-options_file cases/none.opts: cannot open" -opti
 expect "unknown option" "option -dem_resitution 0.5 was given but nothing reads it" $OK -dem_resitution 0.5
 expect "restitution above 1" "-dem_restitution 1.5 must be in (0,1]" $OK -dem_restitution 1.5
 expect "restitution zero" "-dem_restitution 0. must be in (0,1]" $OK -dem_restitution 0
+expect "cell count beyond PetscInt" "-domain_cell 1e-30 m (by default 4 particle diameters) gives 1e+29 cells along x, more than 2147483647" $OK -domain_cell 1e-30
+expect "zero cells along y" "-da_grid_y 0 must be >= 1" $OK -da_grid_y 0
 expect "time step above Tc/10" "-dem_dt 0.0001 s exceeds -dem_dt_max_fraction 0.1 x the contact time" $OK -dem_dt 1e-4
 expect "lattice outside the domain" "lie outside the domain box" $OK -dem_lattice 20,2,2
 expect "hertz without modulus" "-dem_contact_law hertz needs -dem_youngs_modulus" $(printf '%s\n' "$OK" | sed 's/ -dem_kn 1e4//') -dem_contact_law hertz

@@ -39,3 +39,6 @@ if [ "$rc" -eq 0 ] && grep -q 'DEM on (frozen: no particle integration)' "$out";
   echo "PASS cpl_frozen_log: the frozen bed says it integrates no particles"
 else echo "FAIL cpl_frozen_log: exit $rc"; head -n 4 "$out" | sed 's/^/    /'; fi
 CASE=; check dry_end_time_in_coupled_run '-dem_t_end applies to dry runs; this run is coupled .*use -cpl_t_end' -dem_t_end 5
+# multigrid without Galerkin coarse operators (PETSc's own message asked for DMKSPSetComputeOperators)
+CASE=cases/fluidized_bed/bed.opts; check mg_without_galerkin '-fluid_poisson_pc_type mg with 2 levels needs -fluid_poisson_pc_mg_galerkin pmat' -cpl_t_end 0.05 -fluid_poisson_pc_mg_galerkin none
+CASE=

@@ -42,9 +42,10 @@ if [ "$rc" -eq 0 ] && [ -f "$T/inf/inf.xmf" ]; then echo "PASS options negative 
 printf -- '-io_prefix "my run"\n-dem_t_end 0.001\n-io_dir %s/q\n-io_interval 0.001\n' "$T" > "$T/q.opts"
 out=$($Q -options_file "$T/q.opts" 2>&1); rc=$?
 if [ "$rc" -eq 0 ] && [ -f "$T/q/my run.xmf" ]; then echo "PASS options file with a quoted value holding a blank: exit 0"; else echo "FAIL options file with a quoted value holding a blank: exit $rc: $(printf '%s\n' "$out" | tail -n 1)"; fi
-# options files: a line that is not an option, a second value, a directory, no file name
+# options files: a line that is not an option, a second value, a second option, a directory, no file name
 printf -- '-dem_t_end 0.001\nthis is not an option\n' > "$T/a.opts"; printf -- '-dem_t_end 0.001 0.002\n' > "$T/b.opts"
-for c in "a.opts:line 2: 'this' is not an option" "b.opts:line 1: -dem_t_end has more than one value" ":is a directory"; do
+printf -- '-dem_contact_law -linear\n' > "$T/c.opts" # PETSc's reader: "two options per line", a traceback
+for c in "a.opts:line 2: 'this' is not an option" "b.opts:line 1: -dem_t_end has more than one value" "c.opts:line 1: -dem_contact_law is followed by another option, -linear" ":is a directory"; do
   f="$T/${c%%:*}"; pat=${c#*:}
   out=$(${BIN:-bin}/sable -options_file "$f" 2>&1); rc=$?
   if [ "$rc" -eq 1 ] && [ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] && printf '%s' "$out" | grep -q -- "$pat"; then echo "PASS options file ${c%%:*}: exit 1, one line: $out"

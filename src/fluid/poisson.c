@@ -17,9 +17,31 @@
  * plus one, or when dt changes. The solution is the same to the solver tolerance either way; a
  * solve that fails with a kept preconditioner is repeated with a new one (a warning line, counted
  * in FluidStats). Geometric multigrid (-fluid_poisson_pc_type mg) coarsens the pressure DMDA:
- * its levels are checked against the grid at set-up. */
+ * its levels are checked against the grid at set-up, and its coarse operators must be Galerkin
+ * products (-fluid_poisson_pc_mg_galerkin pmat): only the fine one is assembled. */
 #include "fluid/fluid_impl.h"
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: rebuild the matrix only when eps, beta or dt changed */
+
+/* Defensive check of a PETSc option: PETSc 3.18's PCSetFromOptions_MG dereferences a level
+ * array that it never allocates when -<prefix>pc_mg_levels is 0 or negative (a segfault), so the
+ * raw value is checked before KSPSetFromOptions reads it. Collective (every rank reads the same
+ * options). */
+PetscErrorCode FluidCheckMGLevelsOption(Fluid fl, const char *prefix)
+{
+  char        name[64];
+  const char *v;
+  char       *end;
+  long        L;
+  PetscBool   set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(name, sizeof name, "-%spc_mg_levels", prefix));
+  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &v, &set));
+  if (!set) PetscFunctionReturn(PETSC_SUCCESS);
+  L = v ? strtol(v, &end, 10) : 0;
+  PetscCheck(v && end != v && !*end && L >= 1 && L <= 30, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s: the number of multigrid levels must be an integer in [1,30]", name, v ? v : "(no value)");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* Collective. The KSP and its options (-fluid_poisson_), read with the other -fluid_ options so
  * that the unused-option check sees them. */
@@ -35,6 +57,7 @@ PetscErrorCode FluidPoissonCreateKSP(Fluid fl)
   PetscCall(PCSetType(pc, PCHYPRE));
   PetscCall(PCHYPRESetType(pc, "boomeramg"));
   PetscCall(KSPSetTolerances(fl->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 500));
+  PetscCall(FluidCheckMGLevelsOption(fl, "fluid_poisson_"));
   PetscCall(KSPSetFromOptions(fl->ksp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -61,6 +84,11 @@ static PetscErrorCode FluidPoissonCheckMG(Fluid fl)
       PetscCheck(ok && nc >= 2, fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_poisson_pc_mg_levels %d: the fluid grid (-da_grid_%c %d) has %d cells along the %s %c axis after %d coarsenings and cannot be coarsened again (a periodic axis needs an even count, a bounded one an odd count, and the coarsest level >= 2 cells); lower the levels or change -da_grid_%c", (int)L, ax[d], (int)fl->g.N[d], (int)n, per ? "periodic" : "bounded", ax[d], (int)(l - 1), ax[d]);
       n = nc;
     }
+  }
+  if (L > 1) { /* the coarse operators can only be Galerkin products: PETSc's own message asks for DMKSPSetComputeOperators */
+    PCMGGalerkinType g;
+    PetscCall(PCMGGetGalerkin(pc, &g));
+    PetscCheck(g == PC_MG_GALERKIN_PMAT || g == PC_MG_GALERKIN_BOTH, fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_poisson_pc_type mg with %d levels needs -fluid_poisson_pc_mg_galerkin pmat (or both): Sable assembles the Poisson operator on the fluid grid only", (int)L);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
