@@ -38,6 +38,31 @@ static void SablePrintError(int rank)
   sable_err.printed = 1;
 }
 
+/* PETSc's messages for a value it cannot parse ("Input string 1,2 has no numeric value",
+ * "Unknown logical value: 4") name no option: find the option given that value and name it.
+ * Returns 1 when buf holds the completed message. */
+static int SableNameParsedOption(const char *mess, char *buf, size_t len)
+{
+  const char *pre[] = {"Input string ", "Unknown logical value: "};
+  char        val[256], *all = NULL, *tok, *save = NULL, *prev = NULL;
+  int         found = 0;
+
+  if (!mess) return 0;
+  for (int k = 0; k < 2 && !found; k++) {
+    size_t n = strlen(pre[k]), m;
+    if (strncmp(mess, pre[k], n)) continue;
+    snprintf(val, sizeof val, "%s", mess + n);
+    m = k ? strlen(val) : (size_t)(strstr(val, " has no") ? strstr(val, " has no") - val : 0);
+    val[m] = 0;
+    while (m && isspace((unsigned char)val[m - 1])) val[--m] = 0;
+    if (!m || PetscOptionsGetAll(NULL, &all)) return 0;
+    for (tok = strtok_r(all, " ", &save); tok && !found; prev = tok, tok = strtok_r(NULL, " ", &save))
+      if (prev && prev[0] == '-' && !strcmp(tok, val)) found = snprintf(buf, len, "option %s %s: %s", prev, tok, mess) > 0;
+    PetscFree(all);
+  }
+  return found;
+}
+
 static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *func, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   PetscMPIInt rank = 0, size = 1, wsize = 1;
@@ -51,7 +76,7 @@ static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *fun
   sable_err.code = n;
   if (n == PETSC_ERR_MEM || (func && (strstr(func, "MallocAlign") || strstr(func, "ReallocAlign")))) /* PETSc's message names only the caller */
     snprintf(sable_err.msg, sizeof sable_err.msg, "out of memory in %s: the scene needs more memory than this machine gives one rank (fewer particles or fluid cells, or more ranks)", mess && mess[0] ? mess : (func ? func : "?"));
-  else snprintf(sable_err.msg, sizeof sable_err.msg, "%s", mess && mess[0] ? mess : "unknown error");
+  else if (!SableNameParsedOption(mess, sable_err.msg, sizeof sable_err.msg)) snprintf(sable_err.msg, sizeof sable_err.msg, "%s", mess && mess[0] ? mess : "unknown error");
   sable_err.partial = size < wsize;
   if (wsize == 1 || (!sable_err.partial && !rank)) SablePrintError(-1);
   else if (!sable_err.partial) sable_err.printed = 1; /* rank 0 says it */
