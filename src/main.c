@@ -78,8 +78,7 @@ static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *fun
     snprintf(sable_err.msg, sizeof sable_err.msg, "out of memory in %s: the scene needs more memory than this machine gives one rank (fewer particles or fluid cells, or more ranks)", mess && mess[0] ? mess : (func ? func : "?"));
   else if (!SableNameParsedOption(mess, sable_err.msg, sizeof sable_err.msg)) snprintf(sable_err.msg, sizeof sable_err.msg, "%s", mess && mess[0] ? mess : "unknown error");
   sable_err.partial = size < wsize;
-  if (wsize == 1 || (!sable_err.partial && !rank)) SablePrintError(-1);
-  else if (!sable_err.partial) sable_err.printed = 1; /* rank 0 says it */
+  if (wsize == 1 || (!sable_err.partial && !rank)) SablePrintError(-1); /* the other ranks print only if rank 0 turns out not to share it */
   return n;
 }
 

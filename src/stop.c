@@ -14,11 +14,16 @@
  * async-signal-safe calls (unlink, write, _exit, alarm) are made inside the handlers. */
 #include "sable.h"
 #include <signal.h>
+#include <stdatomic.h>
 #include <unistd.h>
 
-#define SABLE_STOP_GRACE 10 /* s between a signal and a forced exit when no step boundary comes */
+/* s between a signal and a forced exit when no step boundary comes: longer than a step or a frame
+ * of any run this machine class holds, shorter than the minute a batch system usually leaves
+ * between SIGTERM and SIGKILL */
+#define SABLE_STOP_GRACE 30
 
 static volatile sig_atomic_t stop_sig, temp_valid;
+static int                   stop_agreed; /* the signal the ranks agreed on at a poll */
 static char                  temp_path[PETSC_MAX_PATH_LEN];
 static MPI_Request           stop_req = MPI_REQUEST_NULL;
 static int                   stop_send, stop_recv;
@@ -58,6 +63,7 @@ static void SableStopNow(int sig)
 
 static void SableSignalHandler(int sig)
 {
+  if (sig == SIGALRM && !stop_sig) return; /* not ours: no stop is pending */
   if (sig == SIGALRM || stop_sig) SableStopNow(sig);
   stop_sig = sig;
   alarm(SABLE_STOP_GRACE);
@@ -79,7 +85,7 @@ PetscErrorCode SableSignalsInstall(void)
 
 int SableSignalCaught(void)
 {
-  return (int)stop_sig;
+  return stop_sig ? (int)stop_sig : stop_agreed;
 }
 
 void SableTempSet(const char *path)
@@ -88,6 +94,7 @@ void SableTempSet(const char *path)
   if (!path) return;
   strncpy(temp_path, path, sizeof temp_path - 1);
   temp_path[sizeof temp_path - 1] = 0;
+  atomic_signal_fence(memory_order_seq_cst); /* the path is whole before the handler may read it */
   temp_valid = 1;
 }
 
@@ -112,7 +119,10 @@ PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig)
     PetscCallMPI(MPI_Wait(&stop_req, MPI_STATUS_IGNORE));
     *sig = stop_recv;
   }
-  if (*sig) PetscFunctionReturn(PETSC_SUCCESS);
+  if (*sig) {
+    stop_agreed = *sig;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   stop_send = (int)stop_sig;
   PetscCallMPI(MPI_Iallreduce(&stop_send, &stop_recv, 1, MPI_INT, MPI_MAX, comm, &stop_req));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -121,6 +131,7 @@ PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig)
 PetscErrorCode SableStopFinish(void)
 {
   PetscFunctionBeginUser;
+  if (stop_sig || stop_agreed) alarm(0); /* the stop is being acted on: no forced exit */
   if (stop_req != MPI_REQUEST_NULL) PetscCallMPI(MPI_Wait(&stop_req, MPI_STATUS_IGNORE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -310,7 +310,8 @@ static PetscErrorCode IoFrameCreate(Io io)
   PetscCallMPI(MPI_Comm_size(io->comm, &size));
   if (first == size) PetscFunctionReturn(PETSC_SUCCESS);
   /* a rank that did create the file cannot close it alone (closing is collective): when ranks
-     disagree, main's MPI_Abort ends them */
+     disagree (not seen: creation fails on all or none), the file stays open until the process
+     ends with this error */
   PetscCallMPI(MPI_Bcast(&st, sizeof st, MPI_BYTE, first, io->comm));
   PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
   if (!rank) {
