@@ -35,6 +35,9 @@ const char *SableSignalName(int sig);
  * none), the same on every rank at the same step. SableStopFinish completes the last poll (call
  * it once the loop has ended, on every rank). */
 PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig);
+/* Not collective. Records the signal the ranks agreed on by another reduction (the DEM step's),
+ * for the exit status of ranks that did not catch it themselves. */
+void SableStopAgreed(int sig);
 PetscErrorCode SableStopFinish(void);
 /* Not collective. The temporary file this process is writing (NULL: none): removed by
  * SableTempRemove and by a forced stop, so that no partial file outlives the run. */

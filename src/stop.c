@@ -1,9 +1,10 @@
 /* Stopping a run early without leaving a mess: signals and temporary files.
  *
  * SIGTERM, SIGINT and SIGUSR1 (a batch system's preemption, Ctrl-C, a user's request) are caught:
- * the handler only records the signal. The run loops poll SableStopPoll once a step; every rank
- * gets the same answer at the same step (a non-blocking MAX reduction started at one step and
- * completed at the next, so polling costs no wait), and the loop ends the run there with an error
+ * the handler only records the signal. Every rank must learn of it at the same step: the dry loop
+ * reads it from the DEM step's own reduction (no extra message), the coupled loop polls
+ * SableStopPoll once a fluid step (a non-blocking MAX reduction started at one step and completed
+ * at the next, so polling costs no wait); the loop then ends the run with an error
  * of code PETSC_ERR_SIG, after the output being written, if any, is complete. A second signal, or
  * a first one not acted on within SABLE_STOP_GRACE seconds (a rank stuck in a collective whose
  * partner died), ends the process at once: the handler removes the temporary file this process
@@ -104,6 +105,11 @@ void SableTempRemove(void)
   temp_valid = 0;
 }
 
+void SableStopAgreed(int sig)
+{
+  if (!stop_agreed) stop_agreed = sig;
+}
+
 PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig)
 {
   PetscMPIInt size;
@@ -120,7 +126,7 @@ PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig)
     *sig = stop_recv;
   }
   if (*sig) {
-    stop_agreed = *sig;
+    SableStopAgreed(*sig);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   stop_send = (int)stop_sig;

@@ -280,9 +280,12 @@ PetscErrorCode DemStep(Dem dem)
     wmax = PetscMax(wmax, wl->moved);
   }
   /* every rank rebuilds when one needs to: the ghosts must be re-created everywhere */
-  int need = dem->need_build || 4 * d2 > dem->skin * dem->skin || 2 * wmax > dem->skin, any = need;
-  if (dem->ex.active) PetscCallMPI(MPI_Allreduce(&need, &any, 1, MPI_INT, MPI_LOR, dem->comm));
-  if (any) PetscCall(DemNeighBuild(dem));
+  /* the same reduction tells every rank whether any caught a signal (the run loop stops at the
+     next step, on every rank alike) */
+  int need[2] = {dem->need_build || 4 * d2 > dem->skin * dem->skin || 2 * wmax > dem->skin, SableSignalCaught()}, any[2] = {need[0], need[1]};
+  if (dem->ex.active) PetscCallMPI(MPI_Allreduce(need, any, 2, MPI_INT, MPI_MAX, dem->comm));
+  dem->stop_sig = any[1];
+  if (any[0]) PetscCall(DemNeighBuild(dem));
   else PetscCall(DemGhostsUpdate(dem));
   PetscLogDouble c0, c1;
   PetscCall(PetscTime(&c0));

@@ -213,6 +213,7 @@ struct _p_Dem {
   DemStats  initial; /* count and checksum at set-up, for -dem_check_every */
   PetscInt  sort_interval;
   PetscBool need_build;
+  int       stop_sig; /* a signal any rank had caught at the last step's reduction (0: none) */
   PetscBool remap; /* the decomposition changed: the next build migrates to any rank */
   PetscErrorCode (*monitor)(Dem, void *); /* called by DemRun after every step (DemSetStepMonitor) */
   void          *monitor_ctx;

@@ -216,6 +216,7 @@ static PetscErrorCode DemStopped(Dem dem, Io io, int sig)
   const char *index = NULL;
 
   PetscFunctionBeginUser;
+  SableStopAgreed(sig);
   PetscCall(SableStopFinish());
   if (io) PetscCall(IoGetIndexPath(io, &index));
   SETERRQ(dem->comm, PETSC_ERR_SIG, "%s received at t = %g s, step %" PetscInt_FMT "; %s%s", SableSignalName(sig), (double)dem->t, dem->step, index ? "the frames written are complete: " : "no output was written", index ? index : "");
@@ -257,9 +258,7 @@ PetscErrorCode DemRun(Dem dem, Io io)
     if (due) PetscCall(DemOutput(dem, io));
   }
   while (dem->t < dem->t_end - 0.5 * dem->dt) {
-    int sig;
-    PetscCall(SableStopPoll(dem->comm, &sig));
-    if (sig) PetscCall(DemStopped(dem, io, sig));
+    if (dem->stop_sig) PetscCall(DemStopped(dem, io, dem->stop_sig)); /* agreed in the last step's reduction */
     PetscCall(DemStep(dem));
     if (dem->monitor) PetscCall(dem->monitor(dem, dem->monitor_ctx));
     if (io) {
@@ -276,7 +275,6 @@ PetscErrorCode DemRun(Dem dem, Io io)
       next += dem->progress_dt;
     }
   }
-  PetscCall(SableStopFinish());
   if (io) {
     PetscCall(IoDueFinal(io, dem->t, &due));
     if (due) PetscCall(DemOutput(dem, io));
