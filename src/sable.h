@@ -38,6 +38,9 @@ PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig);
 /* Not collective. Records the signal the ranks agreed on by another reduction (the DEM step's),
  * for the exit status of ranks that did not catch it themselves. */
 void SableStopAgreed(int sig);
+/* Not collective, cheap (a clock read): marks progress (a step, a dataset written). A signal that
+ * finds no progress for a while takes the process as blocked for good and ends it at once. */
+void SableProgress(void);
 PetscErrorCode SableStopFinish(void);
 /* Not collective. The temporary file this process is writing (NULL: none): removed by
  * SableTempRemove and by a forced stop, so that no partial file outlives the run. */

@@ -10,20 +10,30 @@
  * partner died), ends the process at once: the handler removes the temporary file this process
  * is writing and exits with status 128 + signal.
  *
+ * A signal that finds the process blocked without progress for SABLE_STUCK_MS (a rank waiting in
+ * a collective for one that has failed, which the launcher is ending) ends it at once instead:
+ * the run loops, the DEM step and the frame writer mark progress (SableProgress).
+ *
  * Every writer registers the temporary file it is writing (SableTempSet) and clears it once the
  * file is renamed into place, so that whatever ends the process early can remove it. Only
  * async-signal-safe calls (unlink, write, _exit, alarm) are made inside the handlers. */
 #include "sable.h"
 #include <signal.h>
 #include <stdatomic.h>
+#include <time.h>
 #include <unistd.h>
 
 /* s between a signal and a forced exit when no step boundary comes: longer than a step or a frame
  * of any run this machine class holds, shorter than the minute a batch system usually leaves
  * between SIGTERM and SIGKILL */
 #define SABLE_STOP_GRACE 30
+/* ms without progress after which a signalled process is taken to be blocked for good: a rank
+ * waiting in a collective for a rank that has failed (main.c lets a failed rank wait 0.5 s for
+ * the others before it exits, so its partners have waited longer when the launcher's SIGTERM
+ * comes); far longer than a DEM step, a frame dataset or a coupled run's poll */
+#define SABLE_STUCK_MS 400
 
-static volatile sig_atomic_t stop_sig, temp_valid;
+static volatile sig_atomic_t stop_sig, temp_valid, progress_ms; /* progress_ms: 0 before the first mark */
 static int                   stop_agreed; /* the signal the ranks agreed on at a poll */
 static char                  temp_path[PETSC_MAX_PATH_LEN];
 static MPI_Request           stop_req = MPI_REQUEST_NULL;
@@ -62,10 +72,29 @@ static void SableStopNow(int sig)
   _exit(128 + (sig == SIGALRM ? (int)stop_sig : sig));
 }
 
+/* Milliseconds of the monotonic clock, modulo 2^30 (never 0); clock_gettime is async-signal-safe. */
+static int SableNowMs(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (int)(((long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000) & 0x3fffffff) | 1;
+}
+
+void SableProgress(void)
+{
+  progress_ms = SableNowMs();
+}
+
 static void SableSignalHandler(int sig)
 {
   if (sig == SIGALRM && !stop_sig) return; /* not ours: no stop is pending */
   if (sig == SIGALRM || stop_sig) SableStopNow(sig);
+  if (progress_ms && ((SableNowMs() - progress_ms) & 0x3fffffff) > SABLE_STUCK_MS) {
+    /* blocked for good (the launcher ending a run after another rank failed, which printed the
+       run's one line): go at once, quietly, leaving no temporary */
+    if (temp_valid) unlink(temp_path);
+    _exit(128 + sig);
+  }
   stop_sig = sig;
   alarm(SABLE_STOP_GRACE);
 }
@@ -117,10 +146,12 @@ PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig)
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   if (size == 1) {
+    SableProgress();
     *sig = (int)stop_sig;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   *sig = 0;
+  SableProgress();
   if (stop_req != MPI_REQUEST_NULL) {
     PetscCallMPI(MPI_Wait(&stop_req, MPI_STATUS_IGNORE));
     *sig = stop_recv;

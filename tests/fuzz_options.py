@@ -17,7 +17,9 @@ ranks, each under a timeout, and sorts the outcome:
   bad       any other failure: no error line, several, other lines on stderr (Open MPI's
             MPI_ABORT banner and ORTE_ERROR_LOG lines included), an exit status other than 1,
             an error line with exit 0. On 2 ranks, mpiexec's own notice of a non-zero exit
-            (which it prints for any program, and leaves out under mpiexec -q) is counted apart.
+            (which it prints for any program, and leaves out under mpiexec -q) is counted apart,
+            and so is MPI_ABORT's notice after one rank's own error (which aborts to end the
+            others at once).
   An error line is "sable: error: ..." or, for an error of one rank, "sable: error (rank N): ...".
 and checks what each run left in -io_dir: a NaN or inf in any dataset or attribute of any .h5,
 an .h5 that HDF5 cannot read, a *.tmp file (runs stopped at the timeout excepted).
@@ -55,6 +57,7 @@ OMPI_LINES = [("MPI_ABORT banner", re.compile(r"MPI_ABORT was invoked|with error
                                                           r"^\s*(Process name|Exit code):")),
               ("", re.compile(r"^-{20,}$"))]
 LAUNCHER = OMPI_LINES[2][1]
+ABORT = OMPI_LINES[0][1]
 SEPARATOR = re.compile(r"^-{20,}$")
 # an error every rank sees, or one rank's own error naming it
 ONE_LINE = re.compile(r"^sable: error( \(rank \d+\))?: ")
@@ -475,8 +478,12 @@ def judge(run):
     # mpiexec's own notice that a rank exited non-zero: the launcher reports any program's
     # non-zero exit so (mpiexec -n 2 false prints it too; mpiexec -q leaves it out); it is
     # counted apart, while MPI_ABORT's banner and ORTE_ERROR_LOG lines stay failures
-    launcher = [l for l in other if run.get("ranks", 1) == 2 and (LAUNCHER.search(l) or SEPARATOR.match(l))]
-    run["launcher"] = bool(launcher) and any(LAUNCHER.search(l) for l in launcher)
+    # one rank's own error ends the run through MPI_Abort (the launcher then ends the others at
+    # once), so MPI_ABORT's notice follows it; after any other error it is a failure
+    own = len(errors) == 1 and errors[0].startswith("sable: error (rank ")
+    notices = (LAUNCHER, ABORT) if own else (LAUNCHER,)
+    launcher = [l for l in other if run.get("ranks", 1) == 2 and (any(p.search(l) for p in notices) or SEPARATOR.match(l))]
+    run["launcher"] = bool(launcher) and any(p.search(l) for l in launcher for p in notices)
     other = [l for l in other if l not in launcher]
     rc, text = run["rc"], run["out"] + "\n" + run["err"]
     crash = CRASH.search(text)
@@ -608,7 +615,7 @@ def report(runs, problems, seed, elapsed, show_max=8):
     print("NOTE fuzz: %d distinct error messages name no option (the first 5 below)" % len(vague))
     for r, msg in list(vague.values())[:5]:
         print("NOTE fuzz vague #%d: %s [%s] %s: %s" % (r["k"], r["case"], r["kind"], r["desc"][:100], msg[:120]))
-    print("NOTE fuzz: %d of %d runs on 2 ranks that failed also got mpiexec's own notice of the non-zero exit (not ours: mpiexec -q leaves it out)"
+    print("NOTE fuzz: %d of %d runs on 2 ranks that failed also got Open MPI's own notice of the exit (mpiexec's of a non-zero exit, or MPI_ABORT's after one rank's error)"
           % (sum(r.get("launcher", False) for r in runs), sum(r["ranks"] == 2 and r["class"] != "exit" for r in runs)))
     print("NOTE fuzz by mutation: " + "; ".join("%s %s" % (k, " ".join("%s %d" % kv for kv in sorted(v.items())))
                                                for k, v in sorted(kinds.items())))
@@ -627,7 +634,8 @@ def self_check(work, slots):
             ("bad", "", 1, sable_err + banner, None), ("bad", "", 1, sable_err * 2, None), ("bad", "", 2, "", None),
             ("bad", "", 0, sable_err, None), ("nonfinite", "", 0, "", "nan"), ("tmp", "", 0, "", "tmp"),
             ("error", 2, 1, sable_err + notice, None), ("error", 2, 1, "sable: error (rank 1): t = 1 s: x\n", None),
-            ("bad", 2, 1, sable_err + notice + banner, None), ("bad", 1, 1, sable_err + notice, None)]
+            ("bad", 2, 1, sable_err + notice + banner, None), ("bad", 1, 1, sable_err + notice, None),
+            ("error", 2, 1, "sable: error (rank 1): t = 1 s: x\n" + banner, None)]
     wrong = []
     for i, (want, ranks, rc, err, frame) in enumerate(made):
         d = os.path.join(work, "judge%d" % i)
@@ -688,7 +696,7 @@ def main():
         if a.case is None:
             print("%s fuzz judge: %d of %d made-up runs misjudged%s (0 allowed: a crash, a hang, a NaN in a frame, "
                   "a .tmp, an MPI_ABORT banner, two error lines, no error line, an error with exit 0 are each caught; "
-                  "one rank's error line and, on 2 ranks, mpiexec's notice of the non-zero exit pass)"
+                  "one rank's error line (with MPI_ABORT's notice) and, on 2 ranks, mpiexec's notice of the non-zero exit pass)"
                   % ("FAIL" if wrong else "PASS", len(wrong), nmade, ": " + "; ".join(wrong) if wrong else ""))
         with ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
             runs = list(pool.map(lambda r: execute(r, a.timeout, slots), runs))

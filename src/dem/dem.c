@@ -285,6 +285,7 @@ PetscErrorCode DemStep(Dem dem)
   int need[2] = {dem->need_build || 4 * d2 > dem->skin * dem->skin || 2 * wmax > dem->skin, SableSignalCaught()}, any[2] = {need[0], need[1]};
   if (dem->ex.active) PetscCallMPI(MPI_Allreduce(need, any, 2, MPI_INT, MPI_MAX, dem->comm));
   dem->stop_sig = any[1];
+  SableProgress();
   if (any[0]) PetscCall(DemNeighBuild(dem));
   else PetscCall(DemGhostsUpdate(dem));
   PetscLogDouble c0, c1;

@@ -383,6 +383,7 @@ static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t t
   char        path[PETSC_MAX_PATH_LEN] = "";
 
   PetscFunctionBeginUser;
+  SableProgress(); /* a frame being written is progress: a signal waits for it */
   PetscCall(PetscMemzero(&st, sizeof st));
   for (int k = 0; k < sh->rank; k++) n *= sh->count[k], total *= sh->dims[k];
   if (H5Iget_name(group, path, sizeof path) < 0) path[0] = 0;
