@@ -1,5 +1,5 @@
 #!/bin/sh
-# Bad input for shapes and walls of issue 6: one clear line naming the option, the value and the
+# Bad input for convex shapes and shaped walls: one clear line naming the option, the value and the
 # valid range, a non-zero exit status, nothing run.
 cd "$(dirname "$0")/.." || exit 1
 S=${BIN:-bin}/sable

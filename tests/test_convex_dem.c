@@ -1,4 +1,4 @@
-/* Convex particles in the DEM (issue 6): rest, conservation, rotation.
+/* Convex particles in the DEM: rest, conservation, rotation.
  * 1. A cube (a = 1 cm) dropped flat, on an edge and on a corner onto a plane, with friction and
  *    damping, comes to rest on a face: its centre at a/2 above the plane within twice the static
  *    overlap m g / kn (plus 1e-6 a), and one body axis vertical to 1e-3 rad.

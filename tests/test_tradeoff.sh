@@ -1,5 +1,5 @@
 #!/bin/sh
-# The trade-off tool (issue 8) and the stability limits it maps.
+# The trade-off tool (tools/tradeoff) and the stability limits it maps.
 #  1. tools/tradeoff --quick on the normal impact (linear law, e = 0.75): 2 points, dt/Tc = 1/10
 #     and 1/40; the restitution and contact-time errors must shrink at least as fast as dt
 #     (order p = ln(err1/err2) / ln(dt1/dt2) >= 1: first order or better).

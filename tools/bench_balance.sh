@@ -1,5 +1,5 @@
 #!/bin/sh
-# Load-balancing benchmark (issue 7; Golshan & Blais 2022, Figure 10): the silo of cases/silo
+# Load-balancing benchmark (Golshan & Blais 2022, Figure 10): the silo of cases/silo
 # discharging on 2 ranks split along z (the DMDA's uniform cut sits at z = 0.2 m, just above the
 # hopper, so at the start the upper rank owns nearly every bead and the lower one the empty bin),
 # run with -lb_scheme none, once, frequent and dynamic from the same filled state, for

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Cost of convex particles against spheres (issue 6): the settle scene with 10,000 spheres
+# Cost of convex particles against spheres: the settle scene with 10,000 spheres
 # (cases/settle/settle.opts), cubes and icosahedra (settle_cubes.opts, settle_icosahedra.opts:
 # same count, same volume per particle, random orientations), one rank. For each: microseconds
 # per particle-step of the falling phase (the first 2,000 steps from the lattice) and of the

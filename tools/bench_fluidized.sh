@@ -1,10 +1,10 @@
 #!/bin/sh
-# Coupled benchmark (issue 5): the fluidized bed of cases/fluidized_bed/bed.opts (4,800
+# Coupled benchmark: the fluidized bed of cases/fluidized_bed/bed.opts (4,800
 # spheres, 3,000 cells, 2 DEM steps per fluid step) from t = 0 to 12 (1,008 fluid steps), on 1
 # and 2 ranks, 3 runs each. From -log_view (max over ranks): DEM = CplDemSubsteps (all DEM work
 # with its exchange), fluid = FluidPredict + FluidPoisson + FluidCorrect, coupling = CplProject +
 # CplDrag + CplExchange, in ns per particle per fluid step; the medians of the 3 runs, the wall
-# time and the ratio (fluid + coupling) / DEM (issue 5's target: <= 1).
+# time and the ratio (fluid + coupling) / DEM (at most 1: the fluid and coupling no dearer than the DEM).
 #   tools/bench_fluidized.sh            1 and 2 ranks
 #   RANKS=1 EXTRA="-fluid_poisson_pc_lag 0" tools/bench_fluidized.sh
 set -eu

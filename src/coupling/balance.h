@@ -1,4 +1,4 @@
-/* Load balancing of the one tensor-product decomposition (DESIGN §1, issue 7): per-axis cuts
+/* Load balancing of the one tensor-product decomposition (DESIGN §1; Lethe-DEM load balancing): per-axis cuts
  * (DMDA ownership ranges lx, ly, lz) that minimise the largest rank load, where a rank's load is
  * the sum of the cell weights W = alpha n_p + beta (linear) or alpha n_p^2 + beta (quadratic) over
  * its box (Golshan & Blais 2022, eqs. 1-2). Everything here is pure, serial and deterministic (no

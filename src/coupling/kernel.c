@@ -72,7 +72,7 @@ PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplSt
 }
 
 /* Ghost box of a DMDA and the check that a stencil fits in it (a particle far outside its
- * rank's box would need migration, issue 3). */
+ * rank's box would need migration first). */
 typedef struct {
   PetscInt gs[3], gm[3], dof;
 } CplBox;
