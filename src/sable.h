@@ -21,6 +21,22 @@ PetscErrorCode SableWarnOptionsUnused(MPI_Comm comm);
 /* Collective. Errors when one of Sable's options (-dem_, -fluid_, -cpl_, -domain_, -io_, -lb_)
  * that takes a value has none, or has an item that reads as NaN or inf. Call once at start-up. */
 PetscErrorCode SableCheckOptionValues(MPI_Comm comm);
+/* A run loop's length and cadences, as its driver's options give them. */
+typedef struct {
+  const char *prefix;    /* "dem" or "cpl": -<prefix>_t_end, -<prefix>_progress_interval */
+  const char *step;      /* what one step is called: "time step", "coupling step" */
+  const char *dt_text;   /* how the step is set: "-dem_dt", "-cpl_substeps 5 x -dem_dt 1e-05 s" */
+  const char *raise;     /* the option that lengthens the step */
+  const char *counted;   /* what the step counter counts: "steps", "DEM steps" */
+  PetscBool   end_set;   /* -<prefix>_t_end was given */
+  PetscReal   t, t_end, dt, progress_dt, io_dt; /* s */
+  PetscInt    per_step;  /* counter increments per step (DEM substeps) */
+  PetscInt    counter;   /* the counter now */
+} SableRunLength;
+/* Collective. A run must have an end; its steps must fit the step counter (PetscInt: beyond it
+ * the count wraps and the run never ends); a progress or output interval must not be shorter
+ * than a step (0 turns it off). An end equal to the start runs 0 steps, and says so. */
+PetscErrorCode SableCheckRunLength(MPI_Comm comm, const SableRunLength *r);
 /* Not collective. The number of comma-separated items given to option opt (0 if not given). */
 PetscErrorCode SableOptionCount(const char *opt, PetscInt *count);
 
@@ -31,17 +47,20 @@ PetscErrorCode SableSignalsInstall(void);
 /* The signal caught by this process (0 if none) and its name. */
 int         SableSignalCaught(void);
 const char *SableSignalName(int sig);
-/* Collective on comm, once a step of a run loop: sig is the signal caught by any rank (0 if
- * none), the same on every rank at the same step. SableStopFinish completes the last poll (call
- * it once the loop has ended, on every rank). */
+/* Collective on comm, once a step of a run loop that has no reduction of its own to carry it
+ * (the dry loop reads the DEM step's): sig is the signal caught by any rank (0 if none), the
+ * same on every rank. */
 PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig);
 /* Not collective. Records the signal the ranks agreed on by another reduction (the DEM step's),
  * for the exit status of ranks that did not catch it themselves. */
 void SableStopAgreed(int sig);
+/* Collective. Ends a run loop on the agreed signal sig at time t, step step: the error of code
+ * PETSC_ERR_SIG that main reports as "sable: stopped: ...", naming the index of the frames
+ * written (NULL: none). */
+PetscErrorCode SableStopError(MPI_Comm comm, int sig, PetscReal t, PetscInt step, const char *index);
 /* Not collective, cheap (a clock read): marks progress (a step, a dataset written). A signal that
  * finds no progress for a while takes the process as blocked for good and ends it at once. */
 void SableProgress(void);
-PetscErrorCode SableStopFinish(void);
 /* Not collective. The temporary file this process is writing (NULL: none): removed by
  * SableTempRemove and by a forced stop, so that no partial file outlives the run. */
 void SableTempSet(const char *path);

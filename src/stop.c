@@ -3,8 +3,8 @@
  * SIGTERM, SIGINT and SIGUSR1 (a batch system's preemption, Ctrl-C, a user's request) are caught:
  * the handler only records the signal. Every rank must learn of it at the same step: the dry loop
  * reads it from the DEM step's own reduction (no extra message), the coupled loop polls
- * SableStopPoll once a fluid step (a non-blocking MAX reduction started at one step and completed
- * at the next, so polling costs no wait); the loop then ends the run with an error
+ * SableStopPoll once a fluid step (one small reduction beside a Poisson solve's dozens); the loop
+ * then ends the run (SableStopError) with an error
  * of code PETSC_ERR_SIG, after the output being written, if any, is complete. A second signal, or
  * a first one not acted on within SABLE_STOP_GRACE seconds (a rank stuck in a collective whose
  * partner died), ends the process at once: the handler removes the temporary file this process
@@ -36,8 +36,6 @@
 static volatile sig_atomic_t stop_sig, temp_valid, progress_ms; /* progress_ms: 0 before the first mark */
 static int                   stop_agreed; /* the signal the ranks agreed on at a poll */
 static char                  temp_path[PETSC_MAX_PATH_LEN];
-static MPI_Request           stop_req = MPI_REQUEST_NULL;
-static int                   stop_send, stop_recv;
 
 const char *SableSignalName(int sig)
 {
@@ -141,34 +139,19 @@ void SableStopAgreed(int sig)
 
 PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig)
 {
-  PetscMPIInt size;
+  int local = (int)stop_sig;
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  if (size == 1) {
-    SableProgress();
-    *sig = (int)stop_sig;
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  *sig = 0;
   SableProgress();
-  if (stop_req != MPI_REQUEST_NULL) {
-    PetscCallMPI(MPI_Wait(&stop_req, MPI_STATUS_IGNORE));
-    *sig = stop_recv;
-  }
-  if (*sig) {
-    SableStopAgreed(*sig);
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  stop_send = (int)stop_sig;
-  PetscCallMPI(MPI_Iallreduce(&stop_send, &stop_recv, 1, MPI_INT, MPI_MAX, comm, &stop_req));
+  PetscCallMPI(MPI_Allreduce(&local, sig, 1, MPI_INT, MPI_MAX, comm));
+  if (*sig) SableStopAgreed(*sig);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SableStopFinish(void)
+PetscErrorCode SableStopError(MPI_Comm comm, int sig, PetscReal t, PetscInt step, const char *index)
 {
   PetscFunctionBeginUser;
-  if (stop_sig || stop_agreed) alarm(0); /* the stop is being acted on: no forced exit */
-  if (stop_req != MPI_REQUEST_NULL) PetscCallMPI(MPI_Wait(&stop_req, MPI_STATUS_IGNORE));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  SableStopAgreed(sig);
+  alarm(0); /* the stop is being acted on: no forced exit */
+  SETERRQ(comm, PETSC_ERR_SIG, "%s received at t = %g s, step %" PetscInt_FMT "; %s%s", SableSignalName(sig), (double)t, step, index ? "the frames written are complete: " : "no output was written", index ? index : "");
 }

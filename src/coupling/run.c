@@ -72,41 +72,23 @@ static PetscErrorCode CplOutput(Cpl cpl, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective. Ends the run on a signal (between two steps: no frame is being written). */
-static PetscErrorCode CplStopped(Cpl cpl, Io io, int sig)
-{
-  const char *index;
-
-  PetscFunctionBeginUser;
-  PetscCall(SableStopFinish());
-  PetscCall(IoGetIndexPath(io, &index));
-  SETERRQ(cpl->comm, PETSC_ERR_SIG, "%s received at t = %g s, fluid step %" PetscInt_FMT "; %s%s", SableSignalName(sig), (double)cpl->t, cpl->step, index ? "the frames written are complete: " : "no output was written", index ? index : "");
-}
-
-/* The length and cadences of a coupled run, as DemRun checks a dry one: an end must be given;
- * the DEM steps (substeps per coupling step) must fit the step counter (PetscInt); a progress
- * or output interval shorter than one coupling step would print or write at every step. An end
- * equal to the start runs 0 steps, and says so. */
+/* Collective. The run's length and cadences: its steps are coupling steps, and the counter
+ * that must hold them the DEM's (substeps per coupling step) or, frozen, the fluid's. */
 static PetscErrorCode CplCheckRunLength(Cpl cpl, Io io)
 {
-  const PetscInt sub   = cpl->frozen ? 1 : cpl->substeps;
-  const double   steps = (cpl->t_end - cpl->t) / cpl->dt;
   char           dtopt[64];
-  PetscReal      dtd, iodt;
+  PetscReal      dtd;
   PetscInt       s0;
+  SableRunLength r = {"cpl", "coupling step", dtopt, cpl->frozen ? "-fluid_dt" : "-dem_dt", cpl->frozen ? "fluid steps" : "DEM steps", cpl->t_end_set, cpl->t, cpl->t_end, cpl->dt, cpl->progress_dt, 0, cpl->frozen ? 1 : cpl->substeps, cpl->step};
 
   PetscFunctionBeginUser;
-  PetscCheck(cpl->t_end_set, cpl->comm, PETSC_ERR_ARG_WRONG, "the run has no end: give -cpl_t_end, the simulated time to reach (s)");
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
   PetscCall(DemGetTime(cpl->dem, NULL, &s0));
+  r.counter = PetscMax(s0, cpl->step);
   if (cpl->frozen) PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-fluid_dt"));
   else PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-cpl_substeps %d x -dem_dt %g s", (int)cpl->substeps, (double)dtd));
-  PetscCheck(steps * sub <= (double)(PETSC_MAX_INT - PetscMax(s0, cpl->step)), cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_t_end %g s at a coupling step of %g s (%s) takes %.4g %s steps, more than the step counter holds (%" PetscInt_FMT "): lower -cpl_t_end or raise %s", (double)cpl->t_end, (double)cpl->dt, dtopt, steps * sub, cpl->frozen ? "fluid" : "DEM", (PetscInt)PETSC_MAX_INT, cpl->frozen ? "-fluid_dt" : "-dem_dt");
-  PetscCheck(cpl->progress_dt == 0 || cpl->progress_dt >= cpl->dt, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_progress_interval %g s is shorter than the coupling step %g s (%s): give 0 (no progress lines) or at least one step", (double)cpl->progress_dt, (double)cpl->dt, dtopt);
-  PetscCall(IoGetInterval(io, &iodt));
-  PetscCheck(iodt == 0 || iodt >= cpl->dt, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_interval %g s is shorter than the coupling step %g s (%s): give 0 (no output) or at least one step", (double)iodt, (double)cpl->dt, dtopt);
-  if (cpl->t < cpl->t_end - 0.5 * cpl->dt) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscPrintf(cpl->comm, "run: -cpl_t_end %g s is not after the start time %g s: 0 steps, the initial state only\n", (double)cpl->t_end, (double)cpl->t));
+  PetscCall(IoGetInterval(io, &r.io_dt));
+  PetscCall(SableCheckRunLength(cpl->comm, &r));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -125,9 +107,13 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
   PetscCall(IoDue(io, cpl->t, &due));
   if (due) PetscCall(CplOutput(cpl, io));
   while (cpl->t < cpl->t_end - 0.5 * cpl->dt) {
-    int sig;
+    int         sig;
+    const char *index;
     PetscCall(SableStopPoll(cpl->comm, &sig));
-    if (sig) PetscCall(CplStopped(cpl, io, sig));
+    if (sig) {
+      PetscCall(IoGetIndexPath(io, &index));
+      PetscCall(SableStopError(cpl->comm, sig, cpl->t, cpl->step, index));
+    }
     PetscCall(CplStep(cpl, &st));
     PetscCall(BalanceCheck(lb, PETSC_FALSE, NULL));
     PetscCall(IoDue(io, cpl->t, &due));
@@ -148,7 +134,6 @@ static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
       next += cpl->progress_dt;
     }
   }
-  PetscCall(SableStopFinish());
   PetscCall(IoDueFinal(io, cpl->t, &due));
   if (due) PetscCall(CplOutput(cpl, io));
   PetscCall(PetscPrintf(cpl->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * cpl->dom->len[0] * cpl->dom->len[1])) : 0.0, (double)w, cpl->clipped_total));

@@ -210,36 +210,27 @@ static PetscErrorCode DemOutput(Dem dem, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective. Ends the run on a signal (between two steps: no frame is being written). */
-static PetscErrorCode DemStopped(Dem dem, Io io, int sig)
+/* Collective. The run's length and cadences, against the final time step (after -dem_dt_tc). */
+static PetscErrorCode DemCheckRunLength(Dem dem, Io io)
+{
+  const char    *dtopt = dem->dt_tc > 0 ? "-dem_dt_tc" : "-dem_dt";
+  SableRunLength r     = {"dem", "time step", dtopt, dtopt, "steps", dem->t_end_set, dem->t, dem->t_end, dem->dt, dem->progress_dt, 0, 1, dem->step};
+
+  PetscFunctionBeginUser;
+  if (io) PetscCall(IoGetInterval(io, &r.io_dt));
+  PetscCall(SableCheckRunLength(dem->comm, &r));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Ends the run on the signal the last step's reduction agreed on (between two
+ * steps: no frame is being written). */
+static PetscErrorCode DemStopped(Dem dem, Io io)
 {
   const char *index = NULL;
 
   PetscFunctionBeginUser;
-  SableStopAgreed(sig);
-  PetscCall(SableStopFinish());
   if (io) PetscCall(IoGetIndexPath(io, &index));
-  SETERRQ(dem->comm, PETSC_ERR_SIG, "%s received at t = %g s, step %" PetscInt_FMT "; %s%s", SableSignalName(sig), (double)dem->t, dem->step, index ? "the frames written are complete: " : "no output was written", index ? index : "");
-}
-
-/* The length and cadences of a dry run, against the final time step (after -dem_dt_tc): an end
- * must be given; the step count must fit the step counter (PetscInt: beyond it the count wraps
- * and the run never ends); a progress or output interval shorter than one step would print or
- * write at every step. An end equal to the start runs 0 steps, and says so. */
-static PetscErrorCode DemCheckRunLength(Dem dem, Io io)
-{
-  const char  *dtopt = dem->dt_tc > 0 ? "-dem_dt_tc" : "-dem_dt";
-  const double steps = (dem->t_end - dem->t) / dem->dt;
-  PetscReal    iodt  = 0;
-
-  PetscFunctionBeginUser;
-  PetscCheck(dem->t_end_set, dem->comm, PETSC_ERR_ARG_WRONG, "the run has no end: give -dem_t_end, the simulated time to reach (s)");
-  PetscCheck(steps <= (double)(PETSC_MAX_INT - dem->step), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_t_end %g s at a time step of %g s (%s) takes %.4g steps, more than the step counter holds (%" PetscInt_FMT "): lower -dem_t_end or raise %s", (double)dem->t_end, (double)dem->dt, dtopt, steps, (PetscInt)PETSC_MAX_INT, dtopt);
-  PetscCheck(dem->progress_dt == 0 || dem->progress_dt >= dem->dt, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_progress_interval %g s is shorter than the time step %g s (%s): give 0 (no progress lines) or at least one step", (double)dem->progress_dt, (double)dem->dt, dtopt);
-  if (io) PetscCall(IoGetInterval(io, &iodt));
-  PetscCheck(iodt == 0 || iodt >= dem->dt, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_interval %g s is shorter than the time step %g s (%s): give 0 (no output) or at least one step", (double)iodt, (double)dem->dt, dtopt);
-  if (dem->t < dem->t_end - 0.5 * dem->dt) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscPrintf(dem->comm, "run: -dem_t_end %g s is not after the start time %g s: 0 steps, the initial state only\n", (double)dem->t_end, (double)dem->t));
+  PetscCall(SableStopError(dem->comm, dem->stop_sig, dem->t, dem->step, index));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -258,7 +249,7 @@ PetscErrorCode DemRun(Dem dem, Io io)
     if (due) PetscCall(DemOutput(dem, io));
   }
   while (dem->t < dem->t_end - 0.5 * dem->dt) {
-    if (dem->stop_sig) PetscCall(DemStopped(dem, io, dem->stop_sig)); /* agreed in the last step's reduction */
+    if (dem->stop_sig) PetscCall(DemStopped(dem, io)); /* agreed in the last step's reduction */
     PetscCall(DemStep(dem));
     if (dem->monitor) PetscCall(dem->monitor(dem, dem->monitor_ctx));
     if (io) {
