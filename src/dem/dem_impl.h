@@ -230,9 +230,9 @@ struct _p_Dem {
   PetscBool lat_origin_set;
   PetscInt  seed;
   char      init_file[PETSC_MAX_PATH_LEN];
-  /* where the inserted particles came from, by id (placement.c): the lattice's ids are
-     [lat_base, lat_base + lat_count), the file's are below file_end (0: no file) */
-  PetscInt  lat_base, file_end;
+  /* where the inserted particles came from, by id (placement.c): the file's are below file_end
+     (0: no file), the lattice's follow, [file_end, file_end + lat_count) */
+  PetscInt  file_end;
   PetscReal init_overlap_max; /* -dem_init_file_overlap_max (radii); 0: from the contact design */
   /* external forces from a coupling (external.c); NULL unless DemSetExternal was called */
   double   *fext, *kdrag, *udrag, *jdrag;

@@ -254,8 +254,7 @@ PetscErrorCode DemInsert(Dem dem)
   }
   if (dem->lat_count > 0) {
     n0            = dem->n;
-    dem->lat_base = dem->file_end;
-    PetscCall(DemInsertLattice(dem, dem->lat_base));
+    PetscCall(DemInsertLattice(dem, dem->file_end));
     added = dem->n - n0;
     PetscCallMPI(MPI_Allreduce(&added, &got, 1, MPIU_INT, MPI_SUM, dem->comm));
     PetscCheck(got == dem->lat_count, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " of %" PetscInt_FMT " lattice particles lie outside the domain box (-domain_lo/-domain_hi); enlarge it or move the lattice (-dem_lattice_origin)", dem->lat_count - got, dem->lat_count);

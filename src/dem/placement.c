@@ -20,7 +20,7 @@
  * When: right after the first list build (DemSetUp), so that pairs across ranks and periodic
  * sides are seen: every overlapping pair is in the list, in the local particle's row (a
  * local-ghost pair on both ranks). Cost: one pass over the list, one over the particles per wall.
- * Origin by id (insert.c): the lattice's ids are [lat_base, lat_base + lat_count), the file's
+ * Origin by id (insert.c): the lattice's ids are [file_end, file_end + lat_count) (it follows the file's), the file's
  * below file_end; particles a program added itself (DemAddParticle) are not checked.
  * All ranks agree on the worst finding (by kind in the order above, then depth, then id) and
  * stop with one message from the rank that found it: what overlaps what, where, by how much,
@@ -42,7 +42,7 @@ typedef struct {
 
 static DemPlaceOrigin dem_origin(const Dem dem, PetscInt id)
 {
-  if (dem->lat_count > 0 && id >= dem->lat_base && id < dem->lat_base + dem->lat_count) return PLACE_LATTICE;
+  if (dem->lat_count > 0 && id >= dem->file_end && id < dem->file_end + dem->lat_count) return PLACE_LATTICE;
   return id < dem->file_end ? PLACE_FILE : PLACE_OTHER;
 }
 
