@@ -58,6 +58,7 @@ OMPI_LINES = [("MPI_ABORT banner", re.compile(r"MPI_ABORT was invoked|with error
               ("", re.compile(r"^-{20,}$"))]
 LAUNCHER = OMPI_LINES[2][1]
 ABORT = OMPI_LINES[0][1]
+ORTE = OMPI_LINES[1][1]  # Open MPI 4.1's own race inside MPI_Abort (a bare MPI_Abort shows it too)
 SEPARATOR = re.compile(r"^-{20,}$")
 # an error every rank sees, or one rank's own error naming it
 ONE_LINE = re.compile(r"^sable: error( \(rank \d+\))?: ")
@@ -479,9 +480,10 @@ def judge(run):
     # non-zero exit so (mpiexec -n 2 false prints it too; mpiexec -q leaves it out); it is
     # counted apart, while MPI_ABORT's banner and ORTE_ERROR_LOG lines stay failures
     # one rank's own error ends the run through MPI_Abort (the launcher then ends the others at
-    # once), so MPI_ABORT's notice follows it; after any other error it is a failure
+    # once), so MPI_ABORT's notice follows it, and sometimes Open MPI's ORTE_ERROR_LOG line of a
+    # race inside MPI_Abort; after any other error both are failures
     own = len(errors) == 1 and errors[0].startswith("sable: error (rank ")
-    notices = (LAUNCHER, ABORT) if own else (LAUNCHER,)
+    notices = (LAUNCHER, ABORT, ORTE) if own else (LAUNCHER,)
     launcher = [l for l in other if run.get("ranks", 1) == 2 and (any(p.search(l) for p in notices) or SEPARATOR.match(l))]
     run["launcher"] = bool(launcher) and any(p.search(l) for l in launcher for p in notices)
     other = [l for l in other if l not in launcher]

@@ -5,8 +5,10 @@
 # temporary (*.tmp), and every frame its index lists must open and hold finite positions. The same
 # on 2 ranks through mpiexec. On 2 ranks, an error every rank sees ends with one 'sable: error:'
 # line and without MPI_ABORT's banner (under mpiexec -q, stderr is that line alone); an error of
-# one rank prints one line naming its rank and ends every rank (through MPI_Abort: its notice
-# follows; the run's whole time is reported against the same run ending without the error).
+# one rank prints one line naming its rank and ends every rank (through MPI_Abort, the one prompt
+# way: Open MPI's notice follows, and in about half the runs its own ORTE_ERROR_LOG line, a race
+# inside Open MPI 4.1's MPI_Abort that a ten-line program calling it shows too; the run's whole
+# time is reported against the same run ending without the error).
 cd "$(dirname "$0")/.." || exit 1
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 S=${BIN:-bin}/sable
@@ -94,7 +96,7 @@ start=$(date +%s.%N)
 timeout 60 mpiexec --oversubscribe -n 2 $S $LOCAL >"$D/one.out" 2>"$D/one.err"; rc=$?
 el=$(echo "$(date +%s.%N) - $start" | bc)
 nerr=$(grep -c 'sable: error' "$D/one.err")
-if [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] && [ "$nerr" -eq 1 ] && grep -q 'sable: error (rank 1): .*left the domain across its upper x side' "$D/one.err" && [ "$(grep -c -E 'ORTE_ERROR_LOG|sable: stopped' "$D/one.err")" -eq 0 ]; then
+if [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] && [ "$nerr" -eq 1 ] && grep -q 'sable: error (rank 1): .*left the domain across its upper x side' "$D/one.err" && [ "$(grep -c 'sable: stopped' "$D/one.err")" -eq 0 ]; then
   echo "PASS parallel error of one rank: exit $rc, one line naming the rank, none from the rank it leaves waiting, every rank ended (no hang): \"$(grep 'sable: error' "$D/one.err")\""
 else echo "FAIL parallel error of one rank: exit $rc (124 = hung), $nerr error lines: $(head -3 "$D/one.err" | tr '\n' ' ')"; fi
 start=$(date +%s.%N)
