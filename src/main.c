@@ -19,13 +19,13 @@
 
 static PetscBool sable_traceback = PETSC_FALSE;
 
-/* The first error of this process: its message, whether it was printed, and whether it was
- * raised on a communicator smaller than the world's (one rank's error, which the others may not
- * share): such an error is printed at the end, once it is known whether every rank failed. */
+/* The first error of this process: its message and whether it was printed. One raised on a
+ * communicator smaller than the world's (one rank's error, which the others may not share) is
+ * printed at the end, once it is known whether every rank failed. */
 static struct {
   char           msg[600];
   PetscErrorCode code;
-  int            printed, partial;
+  int            printed;
 } sable_err;
 static MPI_Comm sable_end_comm = MPI_COMM_NULL; /* the end-of-run agreement's own communicator */
 
@@ -77,8 +77,7 @@ static PetscErrorCode SableErrorHandler(MPI_Comm comm, int line, const char *fun
   if (n == PETSC_ERR_MEM || (func && (strstr(func, "MallocAlign") || strstr(func, "ReallocAlign")))) /* PETSc's message names only the caller */
     snprintf(sable_err.msg, sizeof sable_err.msg, "out of memory in %s: the scene needs more memory than this machine gives one rank (fewer particles or fluid cells, or more ranks)", mess && mess[0] ? mess : (func ? func : "?"));
   else if (!SableNameParsedOption(mess, sable_err.msg, sizeof sable_err.msg)) snprintf(sable_err.msg, sizeof sable_err.msg, "%s", mess && mess[0] ? mess : "unknown error");
-  sable_err.partial = size < wsize;
-  if (wsize == 1 || (!sable_err.partial && !rank)) SablePrintError(-1); /* the other ranks print only if rank 0 turns out not to share it */
+  if (wsize == 1 || (size == wsize && !rank)) SablePrintError(-1); /* the other ranks print only if rank 0 turns out not to share it */
   return n;
 }
 
