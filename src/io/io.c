@@ -4,8 +4,7 @@
  *   attribute "time" on the root group.
  *   /surface/points [P, 3], /surface/tag [P], /surface/triangles [T, 3] (global point indices)
  *   /particles/vertex [N]: 0..N-1, the Polyvertex connectivity (for the Xdmf3 readers).
- * The XDMF index holds one temporal collection per kind: a Polyvertex grid per frame for the
- * particles, a Triangle grid for the surface (when written), a 3DCoRectMesh for the fluid.
+ * The XDMF index that lists the frames is written by xdmf.c.
  * Failures (a full disk, an I/O error): a frame is written in steps (open, one per dataset,
  * close); the ranks agree after each step whether any of them failed (a collective write can fail
  * on one rank only), and if so all of them close every handle of the frame, rank 0 removes the
@@ -19,7 +18,6 @@
 #include <sys/stat.h>
 #include <sys/statvfs.h>
 
-#define IO_MAX_SETS 32
 /* A failed write on a file system with less free space than the write needed plus this margin
    (bytes, for HDF5's metadata) is reported as a full disk. */
 #define IO_FULL_MARGIN (1LL << 20)
@@ -30,34 +28,6 @@
    fluid fields and surfaces of larger frames. */
 #define IO_RESERVE (64 * 1024)
 
-typedef struct {
-  char    name[64];
-  PetscInt ncomp;
-  PetscBool isint;
-} IoSet;
-
-typedef struct {
-  PetscReal t;
-  char      file[PETSC_MAX_PATH_LEN];
-  long long np;                         /* global particle count */
-  IoSet     part[IO_MAX_SETS], fluid[IO_MAX_SETS];
-  PetscInt  npart, nfluid;
-  long long nsurfp, nsurft;             /* surface points and triangles (0: none) */
-} IoFrame;
-
-struct _p_Io {
-  MPI_Comm  comm;
-  char      dir[PETSC_MAX_PATH_LEN], prefix[64], index[PETSC_MAX_PATH_LEN];
-  PetscReal interval, next;
-  PetscBool fluidmesh;
-  PetscReal flo[3], fh[3];
-  PetscInt  fcells[3];
-  IoFrame  *frames;
-  PetscInt  nframes, capframes;
-  hid_t     file, gpart, gfluid;
-  char      tmpname[PETSC_MAX_PATH_LEN];
-  int       reserve; /* rank 0: the descriptor of the reserve (an unlinked file), or -1 */
-};
 
 PetscErrorCode IoCreate(MPI_Comm comm, Io *io)
 {
@@ -519,103 +489,6 @@ PetscErrorCode IoWriteField(Io io, const char *name, PetscInt ncomp, const Petsc
   PetscCall(PetscStrncpy(fr->fluid[fr->nfluid].name, name, sizeof fr->fluid[0].name));
   fr->fluid[fr->nfluid].ncomp = ncomp;
   fr->nfluid++;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* The XDMF index is written through this: the first failed write keeps its errno, and later
- * writes are skipped. */
-typedef struct {
-  FILE *fp;
-  int   err;
-} IoText;
-
-static void io_printf(IoText *w, const char *fmt, ...)
-{
-  va_list ap;
-
-  if (w->err) return;
-  va_start(ap, fmt);
-  if (vfprintf(w->fp, fmt, ap) < 0) w->err = errno ? errno : EIO;
-  va_end(ap);
-}
-
-static void IoXdmfAttribute(IoText *w, const char *file, const char *group, const IoSet *s, const char *center, const char *dims)
-{
-  const char *type = s->ncomp == 3 ? "Vector" : (s->ncomp == 1 ? "Scalar" : "Matrix");
-  io_printf(w, "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", s->name, type, center);
-  if (s->ncomp > 1) io_printf(w, "          <DataItem Dimensions=\"%s %" PetscInt_FMT "\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->ncomp, s->isint ? "Int" : "Float", file, group, s->name);
-  else io_printf(w, "          <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->isint ? "Int" : "Float", file, group, s->name);
-  io_printf(w, "        </Attribute>\n");
-}
-
-/* One frame's grid of one kind (0 particles, 1 surface, 2 fluid), with its time. Counts are
- * printed in 64 bits. */
-static void IoXdmfGrid(Io io, IoText *w, const IoFrame *fr, int kind)
-{
-  char d[96];
-
-  if (kind == 0) {
-    snprintf(d, sizeof d, "%lld", fr->np);
-    io_printf(w, "      <Grid Name=\"particles\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
-    io_printf(w, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n          <DataItem Dimensions=\"%lld\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/particles/vertex</DataItem>\n        </Topology>\n", fr->np, fr->np, fr->file);
-    io_printf(w, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/position</DataItem>\n        </Geometry>\n", fr->np, fr->file);
-    for (PetscInt i = 0; i < fr->npart; i++)
-      if (strcmp(fr->part[i].name, "position")) IoXdmfAttribute(w, fr->file, "particles", &fr->part[i], "Node", d);
-  } else if (kind == 1) {
-    io_printf(w, "      <Grid Name=\"surface\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
-    io_printf(w, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%lld\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/triangles</DataItem>\n        </Topology>\n", fr->nsurft, fr->nsurft, fr->file);
-    io_printf(w, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/surface/points</DataItem>\n        </Geometry>\n", fr->nsurfp, fr->file);
-    io_printf(w, "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\"%lld\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/tag</DataItem>\n        </Attribute>\n", fr->nsurfp, fr->file);
-  } else {
-    snprintf(d, sizeof d, "%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT, io->fcells[2], io->fcells[1], io->fcells[0]);
-    io_printf(w, "      <Grid Name=\"fluid\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)fr->t);
-    io_printf(w, "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"%lld %lld %lld\"/>\n", (long long)io->fcells[2] + 1, (long long)io->fcells[1] + 1, (long long)io->fcells[0] + 1);
-    io_printf(w, "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n");
-    io_printf(w, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n", (double)io->flo[2], (double)io->flo[1], (double)io->flo[0]);
-    io_printf(w, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n        </Geometry>\n", (double)io->fh[2], (double)io->fh[1], (double)io->fh[0]);
-    for (PetscInt i = 0; i < fr->nfluid; i++) IoXdmfAttribute(w, fr->file, "fluid", &fr->fluid[i], "Cell", d);
-  }
-  io_printf(w, "      </Grid>\n");
-}
-
-/* Rank 0. The index: one temporal collection per kind (particles, surface, fluid) directly in the
- * domain, so that ParaView's XDMF reader keeps one block of a fixed name ("particles", ...)
- * through time (a spatial collection per frame gave particles[1], particles[2], ... and broke
- * Extract Block after the first frame). Written to <index>.tmp, renamed into place; *err is the
- * errno of the first failure (0: none), after which the temporary is removed. */
-static PetscErrorCode IoWriteIndex(Io io, int *err)
-{
-  const char *kinds[3] = {"particles", "surface", "fluid"};
-  char        tmp[PETSC_MAX_PATH_LEN];
-  IoText      w = {NULL, 0};
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(tmp, sizeof tmp, "%s.tmp", io->index));
-  *err = 0;
-  SableTempSet(tmp);
-  w.fp = fopen(tmp, "w");
-  if (!w.fp) {
-    *err = errno;
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  io_printf(&w, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n");
-  for (int k = 0; k < 3; k++) {
-    PetscInt n = 0;
-    for (PetscInt i = 0; i < io->nframes; i++) n += k == 0 ? io->frames[i].npart > 0 : (k == 1 ? io->frames[i].nsurft > 0 : io->frames[i].nfluid > 0);
-    if (!n) continue;
-    io_printf(&w, "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", kinds[k]);
-    for (PetscInt i = 0; i < io->nframes; i++) {
-      const IoFrame *fr = &io->frames[i];
-      if (k == 0 ? fr->npart > 0 : (k == 1 ? fr->nsurft > 0 : fr->nfluid > 0)) IoXdmfGrid(io, &w, fr, k);
-    }
-    io_printf(&w, "    </Grid>\n");
-  }
-  io_printf(&w, "  </Domain>\n</Xdmf>\n");
-  if (fflush(w.fp) != 0 && !w.err) w.err = errno; /* the buffered tail: where a full disk shows */
-  if (fclose(w.fp) != 0 && !w.err) w.err = errno;
-  if (!w.err && rename(tmp, io->index) != 0) w.err = errno;
-  if (w.err) unlink(tmp);
-  *err = w.err;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,6 +1,7 @@
-/* Private to src/io: what the writer (io.c) and the reader (read.c) share. HDF5's own error stack
- * is silenced (a dozen lines per failure); each failure becomes one message of ours naming the
- * file, the dataset and, from the innermost entry of the stack, what HDF5 says went wrong. */
+/* Private to src/io: what the frame writer (io.c), the index writer (xdmf.c) and the reader (read.c)
+ * share. HDF5's own error stack is silenced (a dozen lines per failure); each failure becomes one
+ * message of ours naming the file, the dataset and, from the innermost entry of the stack, what
+ * HDF5 says went wrong. */
 #pragma once
 #include "io/io.h"
 #include <hdf5.h>
@@ -14,3 +15,39 @@ static inline void io_quiet(void)
 /* The innermost entry of HDF5's error stack, "function: description", in buf ("" when the stack
  * is empty). Call right after the failed call: any later HDF5 call clears the stack. */
 void io_h5_last_error(char *buf, size_t len);
+
+/* The writer's state, shared by io.c (frames) and xdmf.c (the index). */
+#define IO_MAX_SETS 32
+typedef struct {
+  char    name[64];
+  PetscInt ncomp;
+  PetscBool isint;
+} IoSet;
+
+typedef struct {
+  PetscReal t;
+  char      file[PETSC_MAX_PATH_LEN];
+  long long np;                         /* global particle count */
+  IoSet     part[IO_MAX_SETS], fluid[IO_MAX_SETS];
+  PetscInt  npart, nfluid;
+  long long nsurfp, nsurft;             /* surface points and triangles (0: none) */
+} IoFrame;
+
+struct _p_Io {
+  MPI_Comm  comm;
+  char      dir[PETSC_MAX_PATH_LEN], prefix[64], index[PETSC_MAX_PATH_LEN];
+  PetscReal interval, next;
+  PetscBool fluidmesh;
+  PetscReal flo[3], fh[3];
+  PetscInt  fcells[3];
+  IoFrame  *frames;
+  PetscInt  nframes, capframes;
+  hid_t     file, gpart, gfluid;
+  char      tmpname[PETSC_MAX_PATH_LEN];
+  int       reserve; /* rank 0: the descriptor of the reserve (an unlinked file), or -1 */
+};
+
+/* Rank 0. Rewrites the XDMF index listing io's frames (xdmf.c): written to <index>.tmp and
+ * renamed into place; *err is the errno of the first failure (0: none), after which the
+ * temporary is removed. */
+PetscErrorCode IoWriteIndex(Io io, int *err);
