@@ -7,7 +7,7 @@
 #include "domain.h"
 #include "dem/dem.h"
 #include "io/io.h"
-#include "coupling/coupling.h"
+#include "drivers/drivers.h"
 #include <ctype.h>
 #include <stdarg.h>
 #include <errno.h>

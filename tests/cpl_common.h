@@ -2,7 +2,7 @@
  * string, and its tear-down. */
 #pragma once
 #include "check.h"
-#include "coupling/coupling.h"
+#include "balance/balancer.h"
 
 typedef struct {
   Domain dom;

@@ -10,7 +10,7 @@
  */
 /* ranks: 1 4 */
 #include "check.h"
-#include "coupling/balance.h"
+#include "balance/balance.h"
 
 static unsigned long long rng_state = 88172645463325252ULL;
 

@@ -26,8 +26,8 @@
  * normal converges slowly on the rims, so A-B and B-A stop on different portals (a limitation,
  * CONVEX.md); their figures print on NOTE lines.
  */
-#include "dem/convex.h"
-#include "dem/convex_quat.h"
+#include "geom/convex.h"
+#include "geom/quat.h"
 
 static int nfail = 0;
 

@@ -19,7 +19,7 @@
  * 4. A finite rectangle wall (-dem_rect_0, 3a x 3a): a cube (and a sphere) dropped on it rests
  *    at a/2 (r) above it; one dropped beside it falls past it. */
 #include "check.h"
-#include "dem/convex_quat.h"
+#include "geom/quat.h"
 
 static const double A = 0.01, RHO = 2500;
 

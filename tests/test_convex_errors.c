@@ -6,7 +6,7 @@
  * printed: 0 when both hold, 1 otherwise (bound 0).
  */
 #include <unistd.h>
-#include "dem/convex.h"
+#include "geom/convex.h"
 
 static int  nfail = 0;
 static char last_msg[1024];

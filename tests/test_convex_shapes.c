@@ -12,8 +12,8 @@
  * A reader should conclude that the mass properties handed to the DEM are exact and that a
  * vertex list in any orientation is brought to its principal frame.
  */
-#include "dem/convex.h"
-#include "dem/convex_quat.h"
+#include "geom/convex.h"
+#include "geom/quat.h"
 
 static int nfail = 0;
 

@@ -15,7 +15,7 @@
  * -lb_weight linear|quadratic, -lb_alpha (default 1), -lb_beta (default 0.02: alpha/beta = 50,
  * the best linear ratio of the paper). */
 #include "io/io.h"
-#include "coupling/balance.h"
+#include "balance/balance.h"
 
 #define BSIM_MAX 32
 

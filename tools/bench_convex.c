@@ -10,8 +10,8 @@
  * Usage: make build/tools/bench_convex && build/tools/bench_convex [-n 20000]
  */
 #include <time.h>
-#include "dem/convex.h"
-#include "dem/convex_quat.h"
+#include "geom/convex.h"
+#include "geom/quat.h"
 
 static double urand(void) { return (double)rand() / RAND_MAX; }
 

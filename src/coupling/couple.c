@@ -193,6 +193,13 @@ PetscErrorCode CplGetTime(Cpl cpl, PetscReal *t, PetscInt *step)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CplGetFluidTime(Cpl cpl, PetscLogDouble *t)
+{
+  PetscFunctionBeginUser;
+  *t = cpl->t_fluid;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CplGetTimeStep(Cpl cpl, PetscReal *dt)
 {
   PetscFunctionBeginUser;

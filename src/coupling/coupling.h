@@ -49,6 +49,8 @@ PetscErrorCode CplDestroy(Cpl *cpl);
 PetscErrorCode CplStep(Cpl cpl, CplStats *st);
 PetscErrorCode CplGetTime(Cpl cpl, PetscReal *t, PetscInt *step);
 PetscErrorCode CplGetTimeStep(Cpl cpl, PetscReal *dt);
+/* Wall time spent in the fluid solver so far (s), for the measured load-balance weights. */
+PetscErrorCode CplGetFluidTime(Cpl cpl, PetscLogDouble *t);
 
 /* Diagnostics (collective). Momentum (N s) of the particles, of the fluid (sum over faces of
  * rho eps_f u V_cell) and the exchange still owed to the fluid. */
@@ -72,29 +74,4 @@ PetscReal CplDragFactor(CplDragLaw law, PetscReal eps, PetscReal re);
  * at porosity eps and superficial velocity U: n K U / eps, n = (1 - eps) / (pi d^3 / 6). */
 PetscReal CplPackedBedGradient(CplDragLaw law, PetscReal eps, PetscReal usup, PetscReal d, PetscReal rho, PetscReal mu);
 
-/* The coupled driver (run.c): builds Fluid and Cpl beside the given Dem (options read, not set
- * up), runs to -cpl_t_end with progress lines and output through io. With help set it only reads
- * the options (so -help lists them). Collective. */
-PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help);
-/* Whether the options ask for a coupled run (any -cpl_ or -fluid_ option given). */
-PetscErrorCode CplRequested(PetscBool *on);
 
-/* Load balancing (balancer.c; Golshan & Blais 2022): cell weights from the particle counts, new
- * per-axis cuts of the shared DMDA, fluid and particles moved onto them. cpl NULL: a dry run.
- * Life cycle: BalanceCreate -> BalanceSetFromOptions (-lb_scheme none|once|frequent|dynamic,
- * -lb_weight linear|quadratic|measured, -lb_alpha, -lb_beta, -lb_threshold, -lb_interval,
- * -lb_interval_time, -lb_step, -lb_time, -lb_max_sweeps, -lb_verbose) -> BalanceSetUp (after
- * DemSetUp and CplSetUp) -> BalanceCheck after every step (or BalanceAttach: DemRun calls it)
- * -> BalanceView -> BalanceDestroy. All collective. */
-typedef struct _p_Balance *Balance;
-PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb);
-PetscErrorCode BalanceSetFromOptions(Balance lb);
-PetscErrorCode BalanceSetUp(Balance lb);
-/* Checks when the scheme says so (force: now, and rebalance whatever the threshold); moved
- * tells whether the cuts changed. Prints one line per check unless -lb_verbose 0. */
-PetscErrorCode BalanceCheck(Balance lb, PetscBool force, PetscBool *moved);
-/* The current rank loads under the weight model: smallest, largest, mean. */
-PetscErrorCode BalanceGetLoads(Balance lb, PetscReal *lmin, PetscReal *lmax, PetscReal *lavg);
-PetscErrorCode BalanceAttach(Balance lb);
-PetscErrorCode BalanceView(Balance lb, PetscViewer viewer);
-PetscErrorCode BalanceDestroy(Balance *lb);

@@ -8,7 +8,7 @@
 #pragma once
 #include "dem/dem.h"
 #include "dem/contact.h"
-#include "dem/convex.h"
+#include "geom/convex.h"
 
 #define DEM_MAX_SHAPES 32
 #define DEM_MAX_WALLS  24

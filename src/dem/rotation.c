@@ -17,7 +17,7 @@
  * Isotropic bodies (J1 = J2 = J3: cube, regular polyhedra) have w constant in free flight; their
  * free rotor is the single exact rotation by |w| dt about w, q <- (c, s w/|w|) q (Cayley angle). */
 #include "dem/dem_impl.h"
-#include "dem/convex_quat.h"
+#include "geom/quat.h"
 
 /* q (c, s e_k): the quaternion product with a rotation about body axis k (sparse form) */
 static inline void dem_quat_mul_axis(double *q, int k, double c, double s)

@@ -10,7 +10,7 @@
  * general. The portal tolerance is 1e-10 of the sum of the bounding radii (libccd's default,
  * 1e-4, is absolute). libccd's direction points from A to B. Its position (a barycentric mix
  * of support points that is biased towards the centres by O(depth)) is replaced by the
- * centroid of the contact features (convex_feature.c) and kept only if that fails.
+ * centroid of the contact features (feature.c) and kept only if that fails.
  *
  * Shape-plane, plane through p0 with unit normal n (wall below, domain above): the depth of
  * a body point y is (p0 - y).n. A polyhedron's depth is the maximum over its vertices; its
@@ -20,8 +20,8 @@
  * two rim circles in closed form (see cylinder_rim_weight).
  */
 #include <ccd/ccd.h>
-#include "dem/convex_impl.h"
-#include "dem/convex_quat.h"
+#include "geom/convex_impl.h"
+#include "geom/quat.h"
 
 const char *const ConvexPointModels[] = {"patch", "support", "ConvexPointModel", "CONVEX_POINT_", NULL};
 

@@ -16,8 +16,8 @@
  * Stack-only (no allocation); a shape with more than CONVEX_FEATURE_MAX vertices -> PETSC_FALSE
  * (the caller keeps MPR's point).
  */
-#include "dem/convex_impl.h"
-#include "dem/convex_quat.h"
+#include "geom/convex_impl.h"
+#include "geom/quat.h"
 
 #define CONVEX_FEATURE_MAX 256
 #define CONVEX_CYL_SAMPLES 32

@@ -20,13 +20,13 @@
  *      from 6 starts (marginal and DMDA-uniform cuts, axis orders xyz, zyx, yzx), keeps the best
  *      (ties: the marginal start), then "kicks": shrink the heaviest rank by one cell on one of
  *      its faces, re-descend the other axes first, keep the move if L_max drops (at most 20).
- * Never worse than the marginal cuts (start 1 is them). Measured (tests/test_balance_cuts.c):
+ * Never worse than the marginal cuts (start 1 is them). Measured (tests/test_cuts.c):
  * the brute-force optimum in 356 of 360 small random cases (the misses up to 7.3% above it, all
  * on sparse hot spots); a column with its weight in the bottom third on 1x1x4 ranks: the 1D
  * optimum. Box loads come from a summed-volume table built once (O(N)), so a sweep costs
  * O((n + 1) q) look-ups plus ~40 probes of O(n q + p n): 4.6 million cells on 512 ranks take
  * 0.25 s, on 4,800 ranks 0.9 s (tools/balance-sim). */
-#include "coupling/balance.h"
+#include "balance/balance.h"
 
 const char *const BalanceWeightModels[] = {"linear", "quadratic", "BalanceWeightModel", "BALANCE_WEIGHT_", NULL};
 

@@ -2,7 +2,7 @@
  * scheme says so it weighs every cell of the Domain's grid, W = alpha n_p + beta (linear) or
  * alpha n_p^2 + beta (quadratic), n_p the particles whose centre lies in the cell, sums the
  * weights over each rank's box into the loads L, and, if it rebalances, computes new per-axis
- * cuts (balance_cuts.c), rebuilds the DMDA with them and moves the fluid fields and the
+ * cuts (cuts.c), rebuilds the DMDA with them and moves the fluid fields and the
  * particles onto it, so each rank still owns matching fluid and particle subdomains.
  * Schemes (-lb_scheme): none; once (at -lb_step or -lb_time); frequent (after the first step,
  * then every -lb_interval steps or -lb_interval_time seconds of simulated time); dynamic (checked
@@ -16,8 +16,7 @@
  * The per-cell particle counts are reduced onto every rank (one integer per cell), which bounds the
  * method to grids of a few million cells; the cut search itself is serial and identical on all
  * ranks. */
-#include "coupling/coupling_impl.h"
-#include "coupling/balance.h"
+#include "balance/balancer.h"
 
 typedef enum { LB_NONE, LB_ONCE, LB_FREQUENT, LB_DYNAMIC } LbScheme;
 static const char *const LbSchemeNames[] = {"none", "once", "frequent", "dynamic", "LbScheme", "LB_", NULL};
@@ -180,24 +179,25 @@ PetscErrorCode BalanceDestroy(Balance *lb)
 static PetscErrorCode BalanceMeasuredWeights(Balance b, PetscReal *alpha, PetscReal *beta)
 {
   PetscLogDouble td, tf = 0;
-  PetscInt       step, n;
+  PetscInt       step, n, cstep = 0;
   PetscReal      loc[4], glob[4];
 
   PetscFunctionBeginUser;
   PetscCall(DemGetComputeTime(b->dem, &td));
   PetscCall(DemGetTime(b->dem, NULL, &step));
   PetscCall(DemGetLocalCount(b->dem, &n));
-  if (b->cpl) tf = b->cpl->t_fluid;
+  if (b->cpl) PetscCall(CplGetFluidTime(b->cpl, &tf));
+  if (b->cpl) PetscCall(CplGetTime(b->cpl, NULL, &cstep));
   loc[0] = td - b->t_dem0;
   loc[1] = tf - b->t_fluid0;
   loc[2] = (PetscReal)n * (step - b->last_step);
-  loc[3] = b->cpl ? (PetscReal)b->dom->ccount[0] * b->dom->ccount[1] * b->dom->ccount[2] * (b->cpl->step - b->cstep0) : 0;
+  loc[3] = b->cpl ? (PetscReal)b->dom->ccount[0] * b->dom->ccount[1] * b->dom->ccount[2] * (cstep - b->cstep0) : 0;
   PetscCallMPI(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPI_SUM, b->comm));
   if (glob[0] > 0 && glob[2] > 0) { /* else nothing measured yet: the -lb_alpha, -lb_beta values */
     *alpha = glob[0] / glob[2];
     *beta  = glob[3] > 0 ? glob[1] / glob[3] : 0;
   }
-  if (b->cpl) b->cstep0 = b->cpl->step;
+  if (b->cpl) b->cstep0 = cstep;
   b->t_dem0   = td;
   b->t_fluid0 = tf;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -3,7 +3,7 @@
  * the sum of the cell weights W = alpha n_p + beta (linear) or alpha n_p^2 + beta (quadratic) over
  * its box (Golshan & Blais 2022, eqs. 1-2). Everything here is pure, serial and deterministic (no
  * MPI, no options): every rank given the same weights computes the same cuts. The algorithm and
- * its measured quality are described in balance_cuts.c.
+ * its measured quality are described in cuts.c.
  * Conventions: cells w[i + n0 (j + n1 k)] (x fastest); l[d][r] = cells of the r-th rank along
  * axis d, sum_r l[d][r] = n[d], every l[d][r] >= minw[d]; rank loads in rank order, x fastest
  * (rank = rx + p0 (ry + p1 rz), as PETSc's DMDA numbers them). */
@@ -31,7 +31,7 @@ typedef struct {
  * alpha count[c]^2 + beta. Errors when alpha or beta is negative or not finite. */
 PetscErrorCode BalanceCellWeights(const BalanceWeight *wm, PetscInt ncells, const PetscInt *count, PetscReal *w);
 
-/* The optimised cuts (see balance_cuts.c): fills l[0][0..p0-1], l[1][..], l[2][..] (arrays owned
+/* The optimised cuts (see cuts.c): fills l[0][0..p0-1], l[1][..], l[2][..] (arrays owned
  * by the caller) and returns the largest rank load lmax and the mean lavg = total / (p0 p1 p2).
  * Errors (PETSC_ERR_ARG_OUTOFRANGE) when n[d] < p[d] minw[d] or a weight is negative or NaN. */
 PetscErrorCode BalanceCuts(const BalanceGrid *g, const PetscReal *w, PetscInt *const l[3], PetscReal *lmax, PetscReal *lavg);

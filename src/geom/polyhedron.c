@@ -14,8 +14,8 @@
  * are Q^T (x - c). Cylinder (radius r, height h, axis z): V = pi r^2 h,
  * I_xx = I_yy = V (3 r^2 + h^2)/12, I_zz = V r^2/2.
  */
-#include "dem/convex_impl.h"
-#include "dem/convex_quat.h"
+#include "geom/convex_impl.h"
+#include "geom/quat.h"
 
 /* Volume, first moment and covariance of the hull about ref (see header comment). */
 static void poly_moments(const PetscReal x[], PetscInt nf, const PetscInt f[], const PetscReal ref[3], PetscReal *vol, PetscReal m1[3], PetscReal C[9])

@@ -13,7 +13,7 @@
  * Vertex file: one vertex per line, "x y z" (whitespace separated); blank lines and text after
  * '#' are ignored; any other content is an error naming the file and the line.
  */
-#include "dem/convex_impl.h"
+#include "geom/convex_impl.h"
 
 static PetscErrorCode CheckSize(const char *what, const char *name, PetscReal size)
 {

@@ -11,8 +11,8 @@
  * the current hull are treated as inside (so coplanar face points and duplicates are dropped).
  * Coplanar faces of the result are left triangulated. Cost O(n F) with F <= 2n - 4 faces.
  */
-#include "dem/convex_impl.h"
-#include "dem/convex_quat.h"
+#include "geom/convex_impl.h"
+#include "geom/quat.h"
 
 typedef struct {
   PetscInt  v[3];

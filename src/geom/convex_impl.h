@@ -1,7 +1,7 @@
-/* Private header of the convex-shape module (polyhedron.c, convex_hull.c, narrowphase.c). */
+/* Private header of the convex-shape module (polyhedron.c, hull.c, narrowphase.c). */
 #pragma once
 #include "sable.h" /* PETSC_SUCCESS on PETSc 3.18 */
-#include "dem/convex.h"
+#include "geom/convex.h"
 
 /* Outcome of the hull construction; a degenerate input is reported, not raised, so that the
  * caller can name its source (a file and its line count, or an options value). */
@@ -24,7 +24,7 @@ PetscErrorCode ConvexHullBuild(PetscInt n, const PetscReal x[], ConvexHull *hull
 const char *ConvexHullStatusText(ConvexHullStatus s);
 
 /* Contact point of two overlapping bodies given the contact normal n (unit, A to B) and the
- * depth: the centroid of the intersection of their contact features (convex_feature.c).
+ * depth: the centroid of the intersection of their contact features (feature.c).
  * Returns PETSC_FALSE, leaving point untouched, when n is not a supporting normal of A - B
  * (the support heights along n differ from depth) or the features do not intersect. support:
  * the features are the vertices on the support planes only (CONVEX_POINT_SUPPORT). */

@@ -71,7 +71,7 @@ PetscErrorCode ConvexShapeDestroy(ConvexShape *shape);
 PetscErrorCode ConvexShapeView(const ConvexShape *shape, PetscViewer viewer);
 
 /* Narrow phase between two shapes (libccd MPR for depth and normal; contact point from the
- * contact features, see convex_feature.c). Not collective; no allocation; re-entrant. Bodies
+ * contact features, see feature.c). Not collective; no allocation; re-entrant. Bodies
  * whose bounding spheres do not overlap are rejected before libccd is called. */
 PetscErrorCode ConvexCollide(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, ConvexContact *c);
 

@@ -6,6 +6,7 @@
  * -cpl_probe_z the packed-bed figures (dp/L between two heights, the porosity there and the drag
  * law's own prediction). Gravity is along z. */
 #include "coupling/coupling_impl.h"
+#include "drivers/drivers.h"
 
 PetscErrorCode CplRequested(PetscBool *on)
 {

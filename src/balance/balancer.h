@@ -1,0 +1,25 @@
+/* The load balancer as an object: measures, decides when, computes cuts (balance.h) and moves
+ * the DEM, and the fluid through the coupling, onto them. */
+#pragma once
+#include "coupling/coupling.h"
+#include "balance/balance.h"
+
+/* Load balancing (balancer.c; Golshan & Blais 2022): cell weights from the particle counts, new
+ * per-axis cuts of the shared DMDA, fluid and particles moved onto them. cpl NULL: a dry run.
+ * Life cycle: BalanceCreate -> BalanceSetFromOptions (-lb_scheme none|once|frequent|dynamic,
+ * -lb_weight linear|quadratic|measured, -lb_alpha, -lb_beta, -lb_threshold, -lb_interval,
+ * -lb_interval_time, -lb_step, -lb_time, -lb_max_sweeps, -lb_verbose) -> BalanceSetUp (after
+ * DemSetUp and CplSetUp) -> BalanceCheck after every step (or BalanceAttach: DemRun calls it)
+ * -> BalanceView -> BalanceDestroy. All collective. */
+typedef struct _p_Balance *Balance;
+PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb);
+PetscErrorCode BalanceSetFromOptions(Balance lb);
+PetscErrorCode BalanceSetUp(Balance lb);
+/* Checks when the scheme says so (force: now, and rebalance whatever the threshold); moved
+ * tells whether the cuts changed. Prints one line per check unless -lb_verbose 0. */
+PetscErrorCode BalanceCheck(Balance lb, PetscBool force, PetscBool *moved);
+/* The current rank loads under the weight model: smallest, largest, mean. */
+PetscErrorCode BalanceGetLoads(Balance lb, PetscReal *lmin, PetscReal *lmax, PetscReal *lavg);
+PetscErrorCode BalanceAttach(Balance lb);
+PetscErrorCode BalanceView(Balance lb, PetscViewer viewer);
+PetscErrorCode BalanceDestroy(Balance *lb);
