@@ -2,18 +2,21 @@
  * is the union of its owned cells, so particle and fluid ownership coincide by construction. */
 #include "domain.h"
 
-static PetscErrorCode DomainReadBox(Domain *dom, PetscReal *cell)
+PetscErrorCode DomainSetFromOptions(MPI_Comm comm, Domain *dom)
 {
   PetscBool set;
 
   PetscFunctionBeginUser;
-  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Domain (shared by DEM and fluid)", NULL);
+  PetscCall(PetscMemzero(dom, sizeof *dom)); /* defaults: unit box, not periodic */
+  for (int k = 0; k < 3; k++) dom->hi[k] = 1;
+  dom->comm = comm;
+  PetscOptionsBegin(comm, NULL, "Domain (shared by DEM and fluid)", NULL);
   SableOptionsRealN("-domain_lo", "Lower corner of the domain box (m)", NULL, dom->lo, 3, &set);
   SableOptionsRealN("-domain_hi", "Upper corner of the domain box (m)", NULL, dom->hi, 3, &set);
   PetscCall(PetscOptionsBool("-domain_periodic_x", "Periodic along x", NULL, dom->periodic[0], &dom->periodic[0], NULL));
   PetscCall(PetscOptionsBool("-domain_periodic_y", "Periodic along y", NULL, dom->periodic[1], &dom->periodic[1], NULL));
   PetscCall(PetscOptionsBool("-domain_periodic_z", "Periodic along z", NULL, dom->periodic[2], &dom->periodic[2], NULL));
-  PetscCall(PetscOptionsReal("-domain_cell", "Default cell size of the grid (m); -da_grid_x/y/z override it", NULL, *cell, cell, NULL));
+  PetscCall(PetscOptionsReal("-domain_cell", "Cell size of the grid (m); default: a dry run's rule (4 largest particle diameters, 1.25 with load balancing); -da_grid_x/y/z override it", NULL, dom->cell, &dom->cell, &dom->cell_set));
   PetscOptionsEnd();
   for (int k = 0; k < 3; k++) {
     dom->len[k] = dom->hi[k] - dom->lo[k];
@@ -76,15 +79,14 @@ static PetscErrorCode DomainSetBoxes(Domain *dom)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt stencil_width, Domain *dom)
+PetscErrorCode DomainSetUp(Domain *dom, PetscReal default_cell, PetscInt stencil_width)
 {
-  DMBoundaryType   bt[3];
-  PetscInt         m[3];
+  DMBoundaryType bt[3];
+  PetscInt       m[3];
+  MPI_Comm       comm = dom->comm;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(dom, sizeof *dom)); /* defaults: unit box, not periodic */
-  for (int k = 0; k < 3; k++) dom->hi[k] = 1;
-  PetscCall(DomainReadBox(dom, &default_cell));
+  if (dom->cell_set) default_cell = dom->cell;
   PetscCheck(default_cell > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-domain_cell %g must be > 0 (m)", (double)default_cell);
   { /* -da_grid_x/y/z override -domain_cell axis by axis: with all three it would be ignored */
     PetscBool cset, g[3];
@@ -166,5 +168,13 @@ PetscErrorCode DomainMoveVec(DM from, DM to, Vec *v)
   PetscCall(VecDestroy(&nto));
   PetscCall(VecDestroy(v));
   *v = out;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt stencil_width, Domain *dom)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DomainSetFromOptions(comm, dom));
+  PetscCall(DomainSetUp(dom, default_cell, stencil_width));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

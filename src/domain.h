@@ -7,6 +7,9 @@
 #include "sable.h"
 
 typedef struct {
+  MPI_Comm  comm;
+  PetscReal cell;                 /* -domain_cell (m), when cell_set */
+  PetscBool cell_set;
   PetscReal lo[3], hi[3], len[3]; /* global box (m) */
   PetscBool periodic[3];
   DM        da;                   /* cell-centred DMDA, one dof */
@@ -17,8 +20,13 @@ typedef struct {
   PetscInt  nranks[3];            /* process grid */
 } Domain;
 
-/* Collective. Reads the -domain_ options; the default cell count per axis is len/cell (at least
- * 1), cell = -domain_cell or else default_cell. stencil_width is the DMDA ghost width the caller needs. */
+/* Collective. Reads the -domain_ options (the box is known, the grid is not yet built), so that
+ * the objects whose options decide the default cell can be read before DomainSetUp. */
+PetscErrorCode DomainSetFromOptions(MPI_Comm comm, Domain *dom);
+/* Collective. Builds the DMDA: the default cell count per axis is len/cell (at least 1), cell =
+ * -domain_cell or else default_cell. stencil_width is the DMDA ghost width the caller needs. */
+PetscErrorCode DomainSetUp(Domain *dom, PetscReal default_cell, PetscInt stencil_width);
+/* Collective. DomainSetFromOptions then DomainSetUp. */
 PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt stencil_width, Domain *dom);
 PetscErrorCode DomainDestroy(Domain *dom);
 /* Collective. Replaces the DMDA by one with the same grid and process grid but the per-axis

@@ -1,6 +1,6 @@
 /* sable: the driver. Reads the options, builds the one decomposition (Domain), decides which
- * modules the scene needs, runs, reports. A case with any -cpl_ or -fluid_ option is a coupled
- * CFD-DEM run (src/coupling/run.c); otherwise the dry DEM path below. User mistakes end with one line
+ * modules the scene needs and hands them to a driver (src/drivers): a case with any -cpl_ or
+ * -fluid_ option is a coupled CFD-DEM run, otherwise a dry DEM run. User mistakes end with one line
  *   sable: error: <what, which option, which value, which range>
  * and exit status 1 (PETSc's traceback is kept for internal errors, with -sable_traceback). */
 #include "sable.h"
@@ -12,7 +12,6 @@
 #include <stdarg.h>
 #include <errno.h>
 #include <sys/stat.h>
-#include <sys/resource.h>
 #include <signal.h>
 #include <unistd.h>
 #include <time.h>
@@ -271,17 +270,20 @@ static int SableCheckOptionsFiles(int argc, char **argv)
   return 0;
 }
 
+/* The background grid of a dry run only decomposes space: its cell is 4 largest diameters by
+ * default, so a rank box is never thinner than the halo (2 r_max + skin); with load balancing it
+ * is the granularity of the cuts, 1.25 diameters (the balancer keeps boxes >= the halo). A
+ * coupled run's grid is the fluid's (-da_grid_x/y/z or -domain_cell). */
 static PetscErrorCode SableRun(void)
 {
-  Domain    dom;
-  Dem       dem;
-  Io        io;
-  PetscBool help, coupled, convex;
-  PetscReal phi, coord, t;
-  PetscInt  step;
-  PetscLogDouble t0, t1;
-  const char *index;
-  Balance     lb;
+  Domain     dom;
+  Dem        dem;
+  Io         io;
+  Balance    lb;
+  DryRun     dry;
+  CoupledRun wet;
+  PetscBool  help, coupled, balanced;
+  PetscReal  rmax;
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help));
@@ -289,64 +291,31 @@ static PetscErrorCode SableRun(void)
   PetscCall(PetscOptionsBool("-sable_traceback", "Print PETSc's full traceback on errors", NULL, sable_traceback, &sable_traceback, NULL));
   PetscOptionsEnd();
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "Sable %s — CFD-DEM for fluidized beds and granular flows\n", SABLE_VERSION));
-  /* dry case: the background grid only decomposes space; its cell is 4 largest diameters by
-     default, so a rank box is never thinner than the halo (2 r_max + skin); with load balancing
-     it is the granularity of the cuts, 1.25 diameters (the balancer keeps boxes >= the halo) */
-  {
-    PetscReal r[32], rmax = 0.0069;
-    PetscInt  nr = 32;
-    PetscBool set, no_lb;
-    char      scheme[64] = "none";
-    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-dem_radius", r, &nr, &set));
-    if (set)
-      for (PetscInt i = 0; i < nr; i++) rmax = i ? PetscMax(rmax, r[i]) : r[i];
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-lb_scheme", scheme, sizeof scheme, NULL));
-    PetscCall(PetscStrcasecmp(scheme, "none", &no_lb));
-    PetscCall(DomainCreate(PETSC_COMM_WORLD, (no_lb ? 8 : 2.5) * PetscAbsReal(rmax) + 1e-300, 1, &dom));
-  }
+  PetscCall(DomainSetFromOptions(PETSC_COMM_WORLD, &dom));
   PetscCall(DemCreate(&dom, &dem));
   PetscCall(DemSetFromOptions(dem));
   PetscCall(DemExternalSetFromOptions(dem));
-  PetscCall(IoCreate(PETSC_COMM_WORLD, &io));
-  PetscCall(IoSetFromOptions(io));
-  PetscCall(CplRequested(&coupled));
-  if (coupled || help) { /* any -cpl_ or -fluid_ option: the coupled path (src/coupling/run.c); -help lists all */
-    PetscCall(CplRunCase(&dom, dem, io, help));
-    PetscCall(DemDestroy(&dem));
-    PetscCall(IoDestroy(&io));
-    PetscCall(DomainDestroy(&dom));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  if (help) { /* every object has printed its options */
-    PetscCall(DemDestroy(&dem));
-    PetscCall(IoDestroy(&io));
-    PetscCall(DomainDestroy(&dom));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
   PetscCall(BalanceCreate(&dom, dem, NULL, &lb));
   PetscCall(BalanceSetFromOptions(lb));
-  PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
-  PetscCall(DemHasConvexShapes(dem, &convex));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom.nranks[0], dom.nranks[1], dom.nranks[2]));
-  PetscCall(DemSetUp(dem));
-  PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
-  PetscCall(BalanceSetUp(lb));
-  PetscCall(BalanceAttach(lb));
-  PetscCall(PetscTime(&t0));
-  PetscCall(DemRun(dem, io));
-  PetscCall(PetscTime(&t1));
-  PetscCall(BalanceView(lb, PETSC_VIEWER_STDOUT_WORLD));
-  PetscCall(BalanceDestroy(&lb));
-  PetscCall(DemGetTime(dem, &t, &step));
-  PetscCall(DemGetBedFigures(dem, &phi, &coord));
-  {
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "done: t = %g s, %" PetscInt_FMT " steps in %.3f s (rank 0 peak memory %.1f MB)\n", (double)t, step, t1 - t0, ru.ru_maxrss / 1024.0));
+  PetscCall(DemGetLargestRadius(dem, &rmax));
+  PetscCall(BalanceIsActive(lb, &balanced));
+  PetscCall(DomainSetUp(&dom, (balanced ? 2.5 : 8) * rmax + 1e-300, 1));
+  PetscCall(IoCreate(PETSC_COMM_WORLD, &io));
+  PetscCall(IoSetFromOptions(io));
+  PetscCall(DriverIsCoupled(&coupled));
+  if (coupled || help) { /* -help lists every driver's options */
+    PetscCall(CoupledRunCreate(&dom, &wet));
+    PetscCall(CoupledRunSetFromOptions(wet));
+    PetscCall(CoupledRunCase(wet, dem, lb, io, help));
+    PetscCall(CoupledRunDestroy(&wet));
   }
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "bed: packing fraction %.4f, mean coordination number %.3f\n", (double)phi, (double)coord));
-  PetscCall(IoGetIndexPath(io, &index));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
+  if (!coupled || help) {
+    PetscCall(DryRunCreate(PETSC_COMM_WORLD, &dry));
+    PetscCall(DryRunSetFromOptions(dry));
+    if (!help) PetscCall(DryRunCase(dry, &dom, dem, lb, io));
+    PetscCall(DryRunDestroy(&dry));
+  }
+  PetscCall(BalanceDestroy(&lb));
   PetscCall(DemDestroy(&dem));
   PetscCall(IoDestroy(&io));
   PetscCall(DomainDestroy(&dom));

@@ -50,7 +50,7 @@ PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb)
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&b));
-  b->comm          = PetscObjectComm((PetscObject)dom->da);
+  b->comm          = dom->comm;
   b->dom           = dom;
   b->dem           = dem;
   b->cpl           = cpl;
@@ -305,18 +305,16 @@ PetscErrorCode BalanceView(Balance b, PetscViewer viewer)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* DemRun's step monitor of a dry run. */
-static PetscErrorCode BalanceMonitor(Dem dem, void *ctx)
+PetscErrorCode BalanceSetCoupling(Balance b, Cpl cpl)
 {
   PetscFunctionBeginUser;
-  (void)dem;
-  PetscCall(BalanceCheck((Balance)ctx, PETSC_FALSE, NULL));
+  b->cpl = cpl;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode BalanceAttach(Balance b)
+PetscErrorCode BalanceIsActive(Balance b, PetscBool *on)
 {
   PetscFunctionBeginUser;
-  if (b->scheme != LB_NONE) PetscCall(DemSetStepMonitor(b->dem, BalanceMonitor, b));
+  *on = (PetscBool)(b->scheme != LB_NONE);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

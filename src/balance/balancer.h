@@ -9,7 +9,7 @@
  * Life cycle: BalanceCreate -> BalanceSetFromOptions (-lb_scheme none|once|frequent|dynamic,
  * -lb_weight linear|quadratic|measured, -lb_alpha, -lb_beta, -lb_threshold, -lb_interval,
  * -lb_interval_time, -lb_step, -lb_time, -lb_max_sweeps, -lb_verbose) -> BalanceSetUp (after
- * DemSetUp and CplSetUp) -> BalanceCheck after every step (or BalanceAttach: DemRun calls it)
+ * DemSetUp and CplSetUp) -> BalanceCheck after every step
  * -> BalanceView -> BalanceDestroy. All collective. */
 typedef struct _p_Balance *Balance;
 PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb);
@@ -20,6 +20,9 @@ PetscErrorCode BalanceSetUp(Balance lb);
 PetscErrorCode BalanceCheck(Balance lb, PetscBool force, PetscBool *moved);
 /* The current rank loads under the weight model: smallest, largest, mean. */
 PetscErrorCode BalanceGetLoads(Balance lb, PetscReal *lmin, PetscReal *lmax, PetscReal *lavg);
-PetscErrorCode BalanceAttach(Balance lb);
+/* The coupling whose fluid moves with the cuts (set before BalanceSetUp; NULL: a dry run). */
+PetscErrorCode BalanceSetCoupling(Balance lb, Cpl cpl);
+/* Whether -lb_scheme is other than none (known after BalanceSetFromOptions). */
+PetscErrorCode BalanceIsActive(Balance lb, PetscBool *on);
 PetscErrorCode BalanceView(Balance lb, PetscViewer viewer);
 PetscErrorCode BalanceDestroy(Balance *lb);

@@ -31,7 +31,7 @@ typedef struct {
 /* Collective. dom, dem and fluid must outlive the coupling. */
 PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fluid, Cpl *cpl);
 /* Collective. Reads -cpl_drag, -cpl_substeps, -cpl_kernel_scale, -cpl_porosity_floor,
- * -cpl_relaxation_ratio_max, -cpl_t_end, -cpl_progress_interval, -cpl_probe_z. */
+ * -cpl_relaxation_ratio_max (the run's length and probes belong to the coupled driver). */
 PetscErrorCode CplSetFromOptions(Cpl cpl);
 /* Collective. After DemSetUp and FluidSetUp: attaches the drag arrays to the DEM, projects
  * the initial porosity, runs the pre-flight checks (a hard violation is an error). */
@@ -49,6 +49,15 @@ PetscErrorCode CplDestroy(Cpl *cpl);
 PetscErrorCode CplStep(Cpl cpl, CplStats *st);
 PetscErrorCode CplGetTime(Cpl cpl, PetscReal *t, PetscInt *step);
 PetscErrorCode CplGetTimeStep(Cpl cpl, PetscReal *dt);
+/* DEM steps per coupling step (-cpl_substeps). */
+PetscErrorCode CplGetSubsteps(Cpl cpl, PetscInt *substeps);
+/* Cell-steps whose porosity was raised to -cpl_porosity_floor since set-up (same on every rank). */
+PetscErrorCode CplGetClippedCount(Cpl cpl, PetscInt *count);
+/* Collective. The particles' weight less their buoyancy, sum of (m - rho_f V) g (N). */
+PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3]);
+/* The run's drag law's packed-bed pressure gradient (Pa/m) at porosity eps and superficial
+ * velocity usup (m/s) for the first shape's diameter and the fluid's properties. */
+PetscErrorCode CplGetPackedBedGradient(Cpl cpl, PetscReal eps, PetscReal usup, PetscReal *dpdl);
 /* Wall time spent in the fluid solver so far (s), for the measured load-balance weights. */
 PetscErrorCode CplGetFluidTime(Cpl cpl, PetscLogDouble *t);
 

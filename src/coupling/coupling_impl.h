@@ -21,8 +21,8 @@ struct _p_Cpl {
   /* options */
   CplDragLaw law;
   PetscInt   substeps;
-  PetscReal  kscale, eps_floor, relax_max, t_end, progress_dt, probe[2];
-  PetscBool  probe_set, t_end_set, substeps_set;
+  PetscReal  kscale, eps_floor, relax_max;
+  PetscBool  substeps_set;
   PetscReal *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
   PetscInt   nshape;
   /* fluid properties (the fluid's options) */

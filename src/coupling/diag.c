@@ -139,3 +139,23 @@ PetscErrorCode CplMeanPorosity(Cpl cpl, int d, PetscReal z0, PetscReal z1, Petsc
   *eps = loc[0] / PetscMax(loc[1], 1);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3])
+{
+  DemArrays pa;
+  PetscReal loc[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  for (PetscInt p = 0; p < pa.nlocal; p++)
+    for (int k = 0; k < 3; k++) loc[k] += (cpl->mass[pa.shape[p]] - cpl->rho * cpl->vol[pa.shape[p]]) * cpl->g[k];
+  PetscCall(MPIU_Allreduce(loc, w, 3, MPIU_REAL, MPIU_SUM, cpl->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetPackedBedGradient(Cpl cpl, PetscReal eps, PetscReal usup, PetscReal *dpdl)
+{
+  PetscFunctionBeginUser;
+  *dpdl = CplPackedBedGradient(cpl->law, eps, usup, cpl->diam[0], cpl->rho, cpl->mu);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -30,7 +30,7 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
     dem_registered = PETSC_TRUE;
   }
   PetscCall(PetscNew(&d));
-  d->comm   = PetscObjectComm((PetscObject)dom->da);
+  d->comm   = dom->comm;
   d->dom    = dom;
   d->law    = DEM_LAW_LINEAR;
   d->nshape = 1;
@@ -134,8 +134,6 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsReal("-dem_dt_tc", "Time step as this fraction of the shortest contact time (every pair type, at -dem_impact_velocity); replaces -dem_dt when > 0 (the presets in cases/presets use it)", NULL, dem->dt_tc, &dem->dt_tc, NULL));
   PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->dt_frac, &dem->dt_frac, NULL));
   PetscCall(PetscOptionsReal("-dem_overlap_max", "Largest overlap / radius allowed at a progress line or output frame; above it the run is diverging and stops, > 0", NULL, dem->overlap_max, &dem->overlap_max, NULL));
-  PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run to (s); a dry run needs it", NULL, dem->t_end, &dem->t_end, &dem->t_end_set));
-  PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, dem->progress_dt, &dem->progress_dt, NULL));
   SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
   PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, &sset));
   PetscCall(PetscOptionsBool("-dem_convex_sat", "Polyhedron pairs with at most -dem_convex_sat_axes candidate axes by the exact separating-axis test instead of libccd's MPR (default true)", NULL, dem->convex_sat, &dem->convex_sat, NULL));
@@ -148,7 +146,6 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   dem->dt_given = dem->dt;
   PetscCall(DemCheckMaterialConflicts(dem));
   PetscCheck(!sset || dem->skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->skin);
-  PetscCheck(dem->progress_dt >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_progress_interval %g must be >= 0 (s; 0 = no progress lines)", (double)dem->progress_dt);
   PetscCheck(dem->check_every >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_check_every %d must be >= 0 (0 = never)", (int)dem->check_every);
   for (int k = 0; k < 2; k++) { /* PETSc stops reading an array at its capacity without a word */
     const char *opt = k ? "-dem_radius_fraction" : "-dem_radius";
@@ -180,7 +177,6 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCheck(dem->dt_frac > 0 && dem->dt_frac <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_max_fraction %g must be in (0,1]", (double)dem->dt_frac);
   PetscCheck(dem->dt_tc >= 0 && dem->dt_tc <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_tc %g must be in [0,1] (0: use -dem_dt)", (double)dem->dt_tc);
   PetscCheck(dem->overlap_max > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_overlap_max %g must be > 0", (double)dem->overlap_max);
-  PetscCheck(dem->t_end >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_t_end %g must be >= 0 (s)", (double)dem->t_end);
   PetscCheck(dem->vimpact > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_impact_velocity %g must be > 0 (m/s)", (double)dem->vimpact);
   PetscCheck(dem->tdamp_ratio >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_tangential_damping %g must be >= 0", (double)dem->tdamp_ratio);
   PetscCheck(dem->sort_interval >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_sort_interval %" PetscInt_FMT " must be >= 0", dem->sort_interval);
@@ -316,6 +312,13 @@ PetscErrorCode DemGetTimeStep(Dem dem, PetscReal *dt)
 {
   PetscFunctionBeginUser;
   *dt = dem->dt;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetTimeStepOption(Dem dem, const char **opt)
+{
+  PetscFunctionBeginUser;
+  *opt = dem->dt_tc > 0 ? "-dem_dt_tc" : "-dem_dt";
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -38,10 +38,15 @@ PetscErrorCode DemView(Dem dem, PetscViewer viewer);
 
 /* One time step. Collective. */
 PetscErrorCode DemStep(Dem dem);
-/* Runs to -dem_t_end with progress lines and output through io (NULL: no output). */
-PetscErrorCode DemRun(Dem dem, Io io);
+/* The signal the ranks agreed on at the last step's reduction (0: none), for the run loop. */
+PetscErrorCode DemGetStopSignal(Dem dem, int *sig);
+/* The largest particle radius (a convex shape's bounding radius, m), known after
+ * DemSetFromOptions: the driver sizes the background grid with it. */
+PetscErrorCode DemGetLargestRadius(Dem dem, PetscReal *r);
 PetscErrorCode DemGetTime(Dem dem, PetscReal *t, PetscInt *step);
 PetscErrorCode DemGetTimeStep(Dem dem, PetscReal *dt);
+/* The option that set the time step: "-dem_dt", or "-dem_dt_tc" when that replaced it. */
+PetscErrorCode DemGetTimeStepOption(Dem dem, const char **opt);
 PetscErrorCode DemGetStats(Dem dem, DemStats *s);
 /* Collective. Stops a diverging run with a message: kinetic energy not finite, or the largest
  * overlap above -dem_overlap_max radii (a time step too large for the stiffness lets particles
@@ -121,12 +126,10 @@ PetscErrorCode DemGetFrozen(Dem dem, PetscBool *frozen);
  * with its full state, its tangential springs and its coupling state; ghosts and lists are
  * rebuilt. Call between steps. DemGetHaloWidth: the ghost halo 2 r_max + skin (m), the
  * thinnest a rank box may be along a split or periodic axis (valid after DemSetUp).
- * DemSetStepMonitor: fn(dem, ctx) runs after every step of DemRun (NULL: none).
  * DemGetCellCounts: adds the number of local particles whose centre lies in each owned cell of
  * the Domain's grid to count[], indexed over the global grid, x fastest (not collective). */
 PetscErrorCode DemRedistribute(Dem dem);
 PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach);
-PetscErrorCode DemSetStepMonitor(Dem dem, PetscErrorCode (*fn)(Dem, void *), void *ctx);
 PetscErrorCode DemGetCellCounts(Dem dem, PetscInt *count);
 /* Wall time this rank spent computing forces and integrating since DemSetUp (s; no waiting for
  * other ranks): the particle cost that -lb_weight measured divides by particle-steps. */

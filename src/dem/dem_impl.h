@@ -215,13 +215,11 @@ struct _p_Dem {
   PetscBool need_build;
   int       stop_sig; /* a signal any rank had caught at the last step's reduction (0: none) */
   PetscBool remap; /* the decomposition changed: the next build migrates to any rank */
-  PetscErrorCode (*monitor)(Dem, void *); /* called by DemRun after every step (DemSetStepMonitor) */
-  void          *monitor_ctx;
   PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
   /* time */
-  PetscReal g[3], dt, t, t_end, dt_frac, dt_tc, progress_dt, overlap_max;
+  PetscReal g[3], dt, t, dt_frac, dt_tc, overlap_max;
   PetscReal dt_given;          /* -dem_dt as given, for the log when -dem_dt_tc replaces it */
-  PetscBool t_end_set, dt_set; /* -dem_t_end, -dem_dt given */
+  PetscBool dt_set; /* -dem_dt given */
   PetscInt  step;
   PetscInt  state; /* changes whenever positions or the local order may have (DemGetState) */
   /* insertion */

@@ -95,11 +95,18 @@ PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemSetStepMonitor(Dem dem, PetscErrorCode (*fn)(Dem, void *), void *ctx)
+PetscErrorCode DemGetStopSignal(Dem dem, int *sig)
 {
   PetscFunctionBeginUser;
-  dem->monitor     = fn;
-  dem->monitor_ctx = ctx;
+  *sig = dem->stop_sig;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetLargestRadius(Dem dem, PetscReal *r)
+{
+  PetscFunctionBeginUser;
+  *r = 0;
+  for (PetscInt s = 0; s < dem->nshape; s++) *r = PetscMax(*r, dem->shp[s].r);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,14 +1,21 @@
-/* The coupled driver: a run is coupled when any -cpl_ or -fluid_ option is given (main.c keeps
- * the dry path otherwise). It builds the Fluid and the coupling beside the driver's Dem, prints
- * the modules and the pre-flight figures, runs to -cpl_t_end, writes particles and fluid in the
- * same output frames, and reports the pressure drop across the column against the bed's buoyant
- * weight per area (the fluidization check), averaged over the second half of the run, and with
- * -cpl_probe_z the packed-bed figures (dp/L between two heights, the porosity there and the drag
- * law's own prediction). Gravity is along z. */
-#include "coupling/coupling_impl.h"
+/* The coupled driver: builds the Fluid and the coupling beside the given Dem, prints the modules
+ * and the pre-flight figures, runs to -cpl_t_end (simulated seconds) with a progress line every
+ * -cpl_progress_interval, writes particles and fluid in the same output frames, and reports the
+ * column figures: the pressure drop across the domain along gravity against the bed's buoyant
+ * weight per cross-section area (the fluidization check) and the drag on the particles against
+ * the same weight, averaged over the second half of the run; with -cpl_probe_z, the packed-bed
+ * figures (dp/L between two heights, the porosity there and the drag law's own prediction).
+ * A run is coupled when any -cpl_ or -fluid_ option is given (DriverIsCoupled). */
 #include "drivers/drivers.h"
 
-PetscErrorCode CplRequested(PetscBool *on)
+struct _p_CoupledRun {
+  MPI_Comm  comm;
+  Domain   *dom;
+  PetscReal t_end, progress_dt, probe[2]; /* s, s, m */
+  PetscBool t_end_set, probe_set;
+};
+
+PetscErrorCode DriverIsCoupled(PetscBool *on)
 {
   char *all;
 
@@ -19,173 +26,272 @@ PetscErrorCode CplRequested(PetscBool *on)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Buoyant weight of the bed per cross-section area (Pa), gravity along z. */
-static PetscErrorCode CplBedWeight(Cpl cpl, PetscReal *w)
+PetscErrorCode CoupledRunCreate(Domain *dom, CoupledRun *run)
 {
-  DemArrays pa;
-  PetscReal loc = 0;
-
   PetscFunctionBeginUser;
-  PetscCall(DemGetArrays(cpl->dem, &pa));
-  for (PetscInt p = 0; p < pa.nlocal; p++) loc += (cpl->mass[pa.shape[p]] - cpl->rho * cpl->vol[pa.shape[p]]) * PetscAbsReal(cpl->g[2]);
-  PetscCall(MPIU_Allreduce(&loc, w, 1, MPIU_REAL, MPIU_SUM, cpl->comm));
-  *w /= cpl->dom->len[0] * cpl->dom->len[1];
+  PetscCall(PetscNew(run));
+  (*run)->comm = dom->comm;
+  (*run)->dom  = dom;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode CplColumnDrop(Cpl cpl, PetscReal *dp)
+PetscErrorCode CoupledRunSetFromOptions(CoupledRun r)
+{
+  const Domain *dom = r->dom;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(r->comm, NULL, "Coupled run (CFD-DEM)", NULL);
+  PetscCall(PetscOptionsReal("-cpl_t_end", "Simulated time of a coupled run (s); a coupled run needs it", NULL, r->t_end, &r->t_end, &r->t_end_set));
+  PetscCall(PetscOptionsReal("-cpl_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, r->progress_dt, &r->progress_dt, NULL));
+  SableOptionsRealN("-cpl_probe_z", "Two heights z1,z2 (m) between which the run reports dp/L, porosity and the drag law's prediction", NULL, r->probe, 2, &r->probe_set);
+  PetscOptionsEnd();
+  PetscCheck(!r->probe_set || (r->probe[0] >= dom->lo[2] && r->probe[0] < r->probe[1] && r->probe[1] <= dom->hi[2]), r->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_probe_z %g,%g: need lo <= z1 < z2 <= hi with the domain's z range [%g, %g] (m)", (double)r->probe[0], (double)r->probe[1], (double)dom->lo[2], (double)dom->hi[2]);
+  PetscCheck(r->progress_dt >= 0, r->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_progress_interval %g must be >= 0 (s; 0 = no progress lines)", (double)r->progress_dt);
+  PetscCheck(r->t_end >= 0, r->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_t_end %g must be >= 0 (s)", (double)r->t_end);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoupledRunDestroy(CoupledRun *r)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(*r));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The column along gravity: its axis (the largest component of g; z when there is none), the
+ * sign of g along it, and the cross-section area normal to it (m^2). */
+typedef struct {
+  int       d;
+  PetscReal down, area;
+} Column;
+
+static Column ColumnFromGravity(const Domain *dom, const PetscReal g[3])
+{
+  Column c = {2, -1, 0};
+
+  for (int k = 1; k >= 0; k--)
+    if (PetscAbsReal(g[k]) > PetscAbsReal(g[c.d])) c.d = k;
+  c.down = g[c.d] > 0 ? 1 : -1;
+  c.area = dom->len[(c.d + 1) % 3] * dom->len[(c.d + 2) % 3];
+  return c;
+}
+
+/* Buoyant weight of the bed per cross-section area (Pa), along gravity. */
+static PetscErrorCode CoupledBedWeight(Cpl cpl, const Column *c, PetscReal *w)
+{
+  PetscReal wv[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetBuoyantWeight(cpl, wv));
+  *w = PetscAbsReal(wv[c->d]) / c->area;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Pressure at the bottom of the column (upstream of gravity) less that at its top (Pa). */
+static PetscErrorCode CoupledColumnDrop(Cpl cpl, const Domain *dom, const Column *c, PetscReal *dp)
 {
   PetscReal p0, p1, e, u;
 
   PetscFunctionBeginUser;
-  PetscCall(CplGetLayer(cpl, 2, cpl->dom->lo[2], NULL, &p0, &e, &u));
-  PetscCall(CplGetLayer(cpl, 2, cpl->dom->hi[2], NULL, &p1, &e, &u));
-  *dp = p0 - p1;
+  PetscCall(CplGetLayer(cpl, c->d, dom->lo[c->d], NULL, &p0, &e, &u));
+  PetscCall(CplGetLayer(cpl, c->d, dom->hi[c->d], NULL, &p1, &e, &u));
+  *dp = c->down < 0 ? p0 - p1 : p1 - p0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode CplProbeReport(Cpl cpl)
+static PetscErrorCode CoupledProbeReport(CoupledRun r, Cpl cpl)
 {
   PetscReal p0, p1, e0, e1, u0, u1, eps, pred, dpdl, z0, z1;
 
   PetscFunctionBeginUser;
-  PetscCall(CplGetLayer(cpl, 2, cpl->probe[0], &z0, &p0, &e0, &u0));
-  PetscCall(CplGetLayer(cpl, 2, cpl->probe[1], &z1, &p1, &e1, &u1));
+  PetscCall(CplGetLayer(cpl, 2, r->probe[0], &z0, &p0, &e0, &u0));
+  PetscCall(CplGetLayer(cpl, 2, r->probe[1], &z1, &p1, &e1, &u1));
   PetscCall(CplMeanPorosity(cpl, 2, z0, z1, &eps));
   dpdl = (p0 - p1) / (z1 - z0);
-  pred = CplPackedBedGradient(cpl->law, eps, u0, cpl->diam[0], cpl->rho, cpl->mu);
-  PetscCall(PetscPrintf(cpl->comm, "packed bed: dp/L %.15g Pa/m, porosity %.15f, superficial velocity %.6g m/s, drag law predicts %.6g Pa/m (ratio %.5f)\n", (double)dpdl, (double)eps, (double)u0, (double)pred, (double)(dpdl / pred)));
+  PetscCall(CplGetPackedBedGradient(cpl, eps, u0, &pred));
+  PetscCall(PetscPrintf(r->comm, "packed bed: dp/L %.15g Pa/m, porosity %.15f, superficial velocity %.6g m/s, drag law predicts %.6g Pa/m (ratio %.5f)\n", (double)dpdl, (double)eps, (double)u0, (double)pred, (double)(dpdl / pred)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+/* The objects of one coupled run. */
+typedef struct {
+  CoupledRun r;
+  Dem        dem;
+  Fluid      fl;
+  Cpl        cpl;
+  Balance    lb;
+  Io         io;
+  PetscBool  frozen; /* -dem_frozen: no DEM steps, the step is the fluid's */
+  Column     col;
+} Coupled;
 
-static PetscErrorCode CplOutput(Cpl cpl, Io io)
+static PetscErrorCode CoupledOutput(const Coupled *c)
 {
+  PetscReal t;
+  PetscInt  step;
+
   PetscFunctionBeginUser;
-  if (!cpl->frozen) { /* never write a diverged state */
+  if (!c->frozen) { /* never write a diverged state */
     DemStats ds;
-    PetscCall(DemGetStats(cpl->dem, &ds));
-    PetscCall(DemCheckHealth(cpl->dem, &ds));
+    PetscCall(DemGetStats(c->dem, &ds));
+    PetscCall(DemCheckHealth(c->dem, &ds));
   }
-  PetscCall(IoFrameBegin(io, cpl->t, cpl->step));
-  PetscCall(DemWriteOutput(cpl->dem, io));
-  PetscCall(FluidWriteOutput(cpl->fl, io));
-  PetscCall(IoFrameEnd(io));
+  PetscCall(CplGetTime(c->cpl, &t, &step));
+  PetscCall(IoFrameBegin(c->io, t, step));
+  PetscCall(DemWriteOutput(c->dem, c->io));
+  PetscCall(FluidWriteOutput(c->fl, c->io));
+  PetscCall(IoFrameEnd(c->io));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Collective. The run's length and cadences: its steps are coupling steps, and the counter
  * that must hold them the DEM's (substeps per coupling step) or, frozen, the fluid's. */
-static PetscErrorCode CplCheckRunLength(Cpl cpl, Io io)
+static PetscErrorCode CoupledCheckRunLength(const Coupled *c)
 {
   char           dtopt[64];
-  PetscReal      dtd;
-  PetscInt       s0;
-  SableRunLength r = {"cpl", "coupling step", dtopt, cpl->frozen ? "-fluid_dt" : "-dem_dt", cpl->frozen ? "fluid steps" : "DEM steps", cpl->t_end_set, cpl->t, cpl->t_end, cpl->dt, cpl->progress_dt, 0, cpl->frozen ? 1 : cpl->substeps, cpl->step};
+  PetscReal      dtd, t, dt;
+  PetscInt       s0, step, substeps;
+  SableRunLength len;
 
   PetscFunctionBeginUser;
-  PetscCall(DemGetTimeStep(cpl->dem, &dtd));
-  PetscCall(DemGetTime(cpl->dem, NULL, &s0));
-  r.counter = PetscMax(s0, cpl->step);
-  if (cpl->frozen) PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-fluid_dt"));
-  else PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-cpl_substeps %d x -dem_dt %g s", (int)cpl->substeps, (double)dtd));
-  PetscCall(IoGetInterval(io, &r.io_dt));
-  PetscCall(SableCheckRunLength(cpl->comm, &r));
+  PetscCall(DemGetTimeStep(c->dem, &dtd));
+  PetscCall(DemGetTime(c->dem, NULL, &s0));
+  PetscCall(CplGetTime(c->cpl, &t, &step));
+  PetscCall(CplGetTimeStep(c->cpl, &dt));
+  PetscCall(CplGetSubsteps(c->cpl, &substeps));
+  len = (SableRunLength){"cpl", "coupling step", dtopt, c->frozen ? "-fluid_dt" : "-dem_dt", c->frozen ? "fluid steps" : "DEM steps", c->r->t_end_set, t, c->r->t_end, dt, c->r->progress_dt, 0, c->frozen ? 1 : substeps, step};
+  len.counter = PetscMax(s0, step);
+  if (c->frozen) PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-fluid_dt"));
+  else PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-cpl_substeps %d x -dem_dt %g s", (int)substeps, (double)dtd));
+  PetscCall(IoGetInterval(c->io, &len.io_dt));
+  PetscCall(SableCheckRunLength(c->r->comm, &len));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode CplRunLoop(Cpl cpl, Balance lb, Io io)
+static PetscErrorCode CoupledProgress(const Coupled *c, const CplStats *st, PetscLogDouble t0, PetscReal dp, PetscReal w)
 {
-  PetscLogDouble t0, now;
-  PetscReal      next = cpl->progress_dt, w, dp = 0, avg = 0, davg = 0;
-  PetscInt       navg = 0;
-  PetscBool      due;
-  CplStats       st;
+  DemStats       ds;
+  PetscLogDouble now;
+  PetscReal      t, dt;
+  PetscInt       step, clipped;
 
   PetscFunctionBeginUser;
-  PetscCall(CplCheckRunLength(cpl, io));
-  PetscCall(CplBedWeight(cpl, &w));
+  PetscCall(DemGetStats(c->dem, &ds));
+  PetscCall(CplGetTime(c->cpl, &t, &step));
+  PetscCall(CplGetTimeStep(c->cpl, &dt));
+  PetscCall(CplGetClippedCount(c->cpl, &clipped));
+  PetscCall(PetscTime(&now));
+  const double rate = step / PetscMax(now - t0, 1e-9);
+  PetscCall(PetscPrintf(c->r->comm, "t %.5g  step %" PetscInt_FMT "  %.1f steps/s  ETA %.0f s  KE %.4g  contacts %" PetscInt_FMT "  eps_min %.3f  clipped %" PetscInt_FMT "  Poisson its %" PetscInt_FMT "  dp/W %.4f  drag/W %.4f  |owed| %.3g\n", (double)t, step, rate, PetscMax(0.0, (c->r->t_end - t) / dt / rate), (double)ds.ke, ds.contacts + ds.wall_contacts, (double)st->eps_min, clipped, st->fluid.poisson_its, (double)(dp / w), (double)(-c->col.down * st->drag[c->col.d] / (w * c->col.area)), (double)st->owed_norm));
+  if (!c->frozen) PetscCall(DemCheckHealth(c->dem, &ds));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CoupledRunLoop(const Coupled *c)
+{
+  const CoupledRun r = c->r;
+  PetscLogDouble   t0;
+  PetscReal        next = r->progress_dt, w = 0, dp = 0, avg = 0, davg = 0, t, dt;
+  PetscInt         navg = 0, step, clipped;
+  PetscBool        due;
+  CplStats         st;
+
+  PetscFunctionBeginUser;
+  PetscCall(CoupledCheckRunLength(c));
+  PetscCall(CoupledBedWeight(c->cpl, &c->col, &w));
+  PetscCall(CplGetTime(c->cpl, &t, &step));
+  PetscCall(CplGetTimeStep(c->cpl, &dt));
   PetscCall(PetscTime(&t0));
-  PetscCall(IoDue(io, cpl->t, &due));
-  if (due) PetscCall(CplOutput(cpl, io));
-  while (cpl->t < cpl->t_end - 0.5 * cpl->dt) {
-    int         sig;
-    const char *index;
-    PetscCall(SableStopPoll(cpl->comm, &sig));
+  PetscCall(IoDue(c->io, t, &due));
+  if (due) PetscCall(CoupledOutput(c));
+  while (t < r->t_end - 0.5 * dt) {
+    int sig;
+    PetscCall(SableStopPoll(r->comm, &sig));
     if (sig) {
-      PetscCall(IoGetIndexPath(io, &index));
-      PetscCall(SableStopError(cpl->comm, sig, cpl->t, cpl->step, index));
+      const char *index;
+      PetscCall(IoGetIndexPath(c->io, &index));
+      PetscCall(SableStopError(r->comm, sig, t, step, index));
     }
-    PetscCall(CplStep(cpl, &st));
-    PetscCall(BalanceCheck(lb, PETSC_FALSE, NULL));
-    PetscCall(IoDue(io, cpl->t, &due));
-    if (due) PetscCall(CplOutput(cpl, io));
-    PetscCall(CplColumnDrop(cpl, &dp));
-    if (cpl->t > 0.5 * cpl->t_end) {
+    PetscCall(CplStep(c->cpl, &st));
+    PetscCall(CplGetTime(c->cpl, &t, &step));
+    PetscCall(BalanceCheck(c->lb, PETSC_FALSE, NULL));
+    PetscCall(IoDue(c->io, t, &due));
+    if (due) PetscCall(CoupledOutput(c));
+    PetscCall(CoupledColumnDrop(c->cpl, r->dom, &c->col, &dp));
+    if (t > 0.5 * r->t_end) {
       avg += dp;
-      davg += st.drag[2];
+      davg += -c->col.down * st.drag[c->col.d];
       navg++;
     }
-    if (cpl->progress_dt > 0 && cpl->t >= next - 0.5 * cpl->dt) {
-      DemStats ds;
-      PetscCall(DemGetStats(cpl->dem, &ds));
-      PetscCall(PetscTime(&now));
-      const double rate = cpl->step / PetscMax(now - t0, 1e-9);
-      PetscCall(PetscPrintf(cpl->comm, "t %.5g  step %" PetscInt_FMT "  %.1f steps/s  ETA %.0f s  KE %.4g  contacts %" PetscInt_FMT "  eps_min %.3f  clipped %" PetscInt_FMT "  Poisson its %" PetscInt_FMT "  dp/W %.4f  drag/W %.4f  |owed| %.3g\n", (double)cpl->t, cpl->step, rate, PetscMax(0.0, (cpl->t_end - cpl->t) / cpl->dt / rate), (double)ds.ke, ds.contacts + ds.wall_contacts, (double)st.eps_min, cpl->clipped_total, st.fluid.poisson_its, (double)(dp / w), (double)(st.drag[2] / (w * cpl->dom->len[0] * cpl->dom->len[1])), (double)st.owed_norm));
-      if (!cpl->frozen) PetscCall(DemCheckHealth(cpl->dem, &ds));
-      next += cpl->progress_dt;
+    if (r->progress_dt > 0 && t >= next - 0.5 * dt) {
+      PetscCall(CoupledProgress(c, &st, t0, dp, w));
+      next += r->progress_dt;
     }
   }
-  PetscCall(IoDueFinal(io, cpl->t, &due));
-  if (due) PetscCall(CplOutput(cpl, io));
-  PetscCall(PetscPrintf(cpl->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * cpl->dom->len[0] * cpl->dom->len[1])) : 0.0, (double)w, cpl->clipped_total));
-  if (cpl->probe_set) PetscCall(CplProbeReport(cpl));
+  PetscCall(IoDueFinal(c->io, t, &due));
+  if (due) PetscCall(CoupledOutput(c));
+  PetscCall(CplGetClippedCount(c->cpl, &clipped));
+  PetscCall(PetscPrintf(r->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * c->col.area)) : 0.0, (double)w, clipped));
+  if (r->probe_set) PetscCall(CoupledProbeReport(r, c->cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help)
+/* Collective. The dry loop's options have no effect here: given, they are an error that names
+ * the coupled run's own. */
+static PetscErrorCode CoupledCheckDryOptions(MPI_Comm comm)
 {
-  Fluid          fl;
-  Cpl            cpl;
-  Balance        lb;
-  PetscBool      frozen, convex;
+  const char *dry[2] = {"-dem_t_end", "-dem_progress_interval"}, *wet[2] = {"-cpl_t_end", "-cpl_progress_interval"};
+
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 2; k++) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, dry[k], &set));
+    PetscCheck(!set, comm, PETSC_ERR_ARG_INCOMP, "%s applies to dry runs; this run is coupled (it has -fluid_ or -cpl_ options): use %s", dry[k], wet[k]);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBool help)
+{
+  Domain        *dom = r->dom;
+  Coupled        c   = {r, dem, NULL, NULL, lb, io, PETSC_FALSE, {2, -1, 0}};
+  PetscBool      convex;
+  PetscReal      g[3], t;
+  PetscInt       step;
   PetscLogDouble t0, t1;
   const char    *index;
 
   PetscFunctionBeginUser;
-  PetscCall(FluidCreate(dom, &fl));
-  PetscCall(FluidSetFromOptions(fl));
-  PetscCall(CplCreate(dom, dem, fl, &cpl));
-  PetscCall(CplSetFromOptions(cpl));
-  PetscCall(BalanceCreate(dom, dem, cpl, &lb));
-  PetscCall(BalanceSetFromOptions(lb));
+  PetscCall(FluidCreate(dom, &c.fl));
+  PetscCall(FluidSetFromOptions(c.fl));
+  PetscCall(CplCreate(dom, dem, c.fl, &c.cpl));
+  PetscCall(CplSetFromOptions(c.cpl));
+  PetscCall(BalanceSetCoupling(lb, c.cpl));
   if (!help) {
-    const char *dry[2] = {"-dem_t_end", "-dem_progress_interval"}, *wet[2] = {"-cpl_t_end", "-cpl_progress_interval"};
-    for (int k = 0; k < 2; k++) { /* the DEM reads them, but the coupled loop runs on its own clock */
-      PetscBool set;
-      PetscCall(PetscOptionsHasName(NULL, NULL, dry[k], &set));
-      PetscCheck(!set, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "%s applies to dry runs; this run is coupled (it has -fluid_ or -cpl_ options): use %s", dry[k], wet[k]);
-    }
-    PetscCall(SableCheckOptionsUsed(PETSC_COMM_WORLD));
-    PetscCall(DemGetFrozen(dem, &frozen));
+    PetscCall(CoupledCheckDryOptions(r->comm));
+    PetscCall(SableCheckOptionsUsed(r->comm));
+    PetscCall(DemGetFrozen(dem, &c.frozen));
     PetscCall(DemHasConvexShapes(dem, &convex));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modules: DEM on%s; fluid on; coupling on; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", fluid grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", frozen ? " (frozen: no particle integration)" : "", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2], dom->cells[0], dom->cells[1], dom->cells[2]));
+    PetscCall(PetscPrintf(r->comm, "modules: DEM on%s; fluid on; coupling on; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", fluid grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", c.frozen ? " (frozen: no particle integration)" : "", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2], dom->cells[0], dom->cells[1], dom->cells[2]));
     PetscCall(DemSetUp(dem));
-    PetscCall(FluidSetUp(fl));
-    PetscCall(CplSetUp(cpl));
+    PetscCall(FluidSetUp(c.fl));
+    PetscCall(CplSetUp(c.cpl));
+    PetscCall(DemGetGravity(dem, g));
+    c.col = ColumnFromGravity(dom, g);
     PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
-    PetscCall(CplView(cpl, PETSC_VIEWER_STDOUT_WORLD));
+    PetscCall(CplView(c.cpl, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(BalanceSetUp(lb));
     PetscCall(PetscTime(&t0));
-    PetscCall(CplRunLoop(cpl, lb, io));
+    PetscCall(CoupledRunLoop(&c));
     PetscCall(PetscTime(&t1));
     PetscCall(BalanceView(lb, PETSC_VIEWER_STDOUT_WORLD));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s\n", (double)cpl->t, cpl->step, t1 - t0));
+    PetscCall(CplGetTime(c.cpl, &t, &step));
+    PetscCall(PetscPrintf(r->comm, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s\n", (double)t, step, t1 - t0));
     PetscCall(IoGetIndexPath(io, &index));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
-    PetscCall(SableWarnOptionsUnused(PETSC_COMM_WORLD));
+    PetscCall(PetscPrintf(r->comm, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
+    PetscCall(SableWarnOptionsUnused(r->comm));
   }
-  PetscCall(BalanceDestroy(&lb));
-  PetscCall(CplDestroy(&cpl));
-  PetscCall(FluidDestroy(&fl));
+  PetscCall(BalanceSetCoupling(lb, NULL));
+  PetscCall(CplDestroy(&c.cpl));
+  PetscCall(FluidDestroy(&c.fl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,11 +1,30 @@
-/* The run drivers: the dry and the coupled loops, their progress lines and summaries. main picks
- * one; each builds the objects its run needs beside the given Domain, Dem and Io. */
+/* The run drivers: the dry loop (dry.c) and the coupled loop (coupled.c), their options (the
+ * run's length and progress cadence), progress lines and summaries. main builds the Domain, the
+ * Dem, the Balance and the Io, picks a driver and hands them over. Life cycle of each driver:
+ * XRunCreate -> XRunSetFromOptions -> XRunCase (sets up, runs, reports) -> XRunDestroy.
+ * All collective. */
 #pragma once
 #include "balance/balancer.h"
 
-/* The coupled driver (coupled.c): builds Fluid and Cpl beside the given Dem (options read, not set
- * up), runs to -cpl_t_end with progress lines and output through io. With help set it only reads
- * the options (so -help lists them). Collective. */
-PetscErrorCode CplRunCase(Domain *dom, Dem dem, Io io, PetscBool help);
-/* Whether the options ask for a coupled run (any -cpl_ or -fluid_ option given). */
-PetscErrorCode CplRequested(PetscBool *on);
+/* Whether the options ask for a coupled run: any -cpl_ or -fluid_ option given (the fluid has
+ * defaults for all its properties, so one fluid option is enough to ask for it). */
+PetscErrorCode DriverIsCoupled(PetscBool *on);
+
+/* The dry run: -dem_t_end (s, required), -dem_progress_interval (s, 0 = none). */
+typedef struct _p_DryRun *DryRun;
+PetscErrorCode DryRunCreate(MPI_Comm comm, DryRun *run);
+PetscErrorCode DryRunSetFromOptions(DryRun run);
+/* Sets up the Dem (options read) and the Balance, runs, prints the summary lines. */
+PetscErrorCode DryRunCase(DryRun run, Domain *dom, Dem dem, Balance lb, Io io);
+/* The loop alone (the Dem set up): from the DEM's time to -dem_t_end; lb and io may be NULL. */
+PetscErrorCode DryRunLoop(DryRun run, Dem dem, Balance lb, Io io);
+PetscErrorCode DryRunDestroy(DryRun *run);
+
+/* The coupled run: -cpl_t_end (s, required), -cpl_progress_interval (s), -cpl_probe_z z1,z2 (m). */
+typedef struct _p_CoupledRun *CoupledRun;
+PetscErrorCode CoupledRunCreate(Domain *dom, CoupledRun *run);
+PetscErrorCode CoupledRunSetFromOptions(CoupledRun run);
+/* Builds the Fluid and the coupling beside dem (options read, not set up), sets everything up,
+ * runs and prints the summary. With help set it only reads the options (-help lists them). */
+PetscErrorCode CoupledRunCase(CoupledRun run, Dem dem, Balance lb, Io io, PetscBool help);
+PetscErrorCode CoupledRunDestroy(CoupledRun *run);

@@ -1,0 +1,172 @@
+/* The dry driver: a DEM run without fluid. It owns the run's length and cadence (-dem_t_end,
+ * -dem_progress_interval: simulated seconds), sets the DEM and the balancer up, steps to the end
+ * with a progress line (time, step, steps/s, ETA, kinetic energy, contacts, largest overlap over
+ * the radius), writes the frames io asks for, stops cleanly on SIGTERM, SIGINT or SIGUSR1
+ * (agreed in the DEM step's own reduction), and ends with the summary lines "done:" (simulated
+ * time, steps, wall time, peak memory), "bed:" (packing fraction, coordination number) and
+ * "output:". Never writes a frame of a diverged state (DemCheckHealth first). */
+#include "drivers/drivers.h"
+#include <sys/resource.h>
+
+struct _p_DryRun {
+  MPI_Comm  comm;
+  PetscReal t_end, progress_dt; /* s */
+  PetscBool t_end_set;
+};
+
+PetscErrorCode DryRunCreate(MPI_Comm comm, DryRun *run)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(run));
+  (*run)->comm = comm;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DryRunSetFromOptions(DryRun r)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(r->comm, NULL, "Dry run (DEM without fluid)", NULL);
+  PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run to (s); a dry run needs it", NULL, r->t_end, &r->t_end, &r->t_end_set));
+  PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, r->progress_dt, &r->progress_dt, NULL));
+  PetscOptionsEnd();
+  PetscCheck(r->progress_dt >= 0, r->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_progress_interval %g must be >= 0 (s; 0 = no progress lines)", (double)r->progress_dt);
+  PetscCheck(r->t_end >= 0, r->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_t_end %g must be >= 0 (s)", (double)r->t_end);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DryRunDestroy(DryRun *r)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(*r));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DryOutput(Dem dem, Io io)
+{
+  DemStats  st;
+  PetscReal t;
+  PetscInt  step;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetStats(dem, &st)); /* never write a diverged state */
+  PetscCall(DemCheckHealth(dem, &st));
+  PetscCall(DemGetTime(dem, &t, &step));
+  PetscCall(IoFrameBegin(io, t, step));
+  PetscCall(DemWriteOutput(dem, io));
+  PetscCall(IoFrameEnd(io));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The run's length and cadences, against the final time step (after -dem_dt_tc). */
+static PetscErrorCode DryCheckRunLength(DryRun r, Dem dem, Io io)
+{
+  const char    *dtopt;
+  PetscReal      t, dt;
+  PetscInt       step;
+  SableRunLength len;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetTimeStepOption(dem, &dtopt));
+  PetscCall(DemGetTime(dem, &t, &step));
+  PetscCall(DemGetTimeStep(dem, &dt));
+  len = (SableRunLength){"dem", "time step", dtopt, dtopt, "steps", r->t_end_set, t, r->t_end, dt, r->progress_dt, 0, 1, step};
+  if (io) PetscCall(IoGetInterval(io, &len.io_dt));
+  PetscCall(SableCheckRunLength(r->comm, &len));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DryProgress(DryRun r, Dem dem, PetscLogDouble t0, PetscInt s0)
+{
+  DemStats       st;
+  PetscLogDouble now;
+  PetscReal      t, dt;
+  PetscInt       step;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetStats(dem, &st));
+  PetscCall(DemGetTime(dem, &t, &step));
+  PetscCall(DemGetTimeStep(dem, &dt));
+  PetscCall(PetscTime(&now));
+  const double rate = (step - s0) / PetscMax(now - t0, 1e-9);
+  PetscCall(PetscPrintf(r->comm, "t %.4f s  step %" PetscInt_FMT "  %.0f steps/s  ETA %.0f s  KE %.4g J  contacts %" PetscInt_FMT "  max overlap/r %.3g\n", (double)t, step, rate, PetscMax(0.0, (r->t_end - t) / dt / rate), (double)(st.ke + st.ke_rot), st.contacts + st.wall_contacts, (double)st.max_overlap));
+  PetscCall(DemCheckHealth(dem, &st));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Steps from the DEM's time to -dem_t_end; lb may be NULL, io may be NULL (no
+ * output). */
+PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
+{
+  PetscLogDouble t0;
+  PetscReal      t, dt, next;
+  PetscInt       s0;
+  PetscBool      due;
+  int            sig;
+
+  PetscFunctionBeginUser;
+  PetscCall(DryCheckRunLength(r, dem, io));
+  PetscCall(DemGetTime(dem, &t, &s0));
+  PetscCall(DemGetTimeStep(dem, &dt));
+  next = t + r->progress_dt;
+  PetscCall(PetscTime(&t0));
+  if (io) {
+    PetscCall(IoDue(io, t, &due));
+    if (due) PetscCall(DryOutput(dem, io));
+  }
+  while (t < r->t_end - 0.5 * dt) {
+    PetscCall(DemGetStopSignal(dem, &sig)); /* agreed in the last step's reduction */
+    if (sig) {
+      const char *index = NULL;
+      PetscInt    step;
+      if (io) PetscCall(IoGetIndexPath(io, &index));
+      PetscCall(DemGetTime(dem, NULL, &step));
+      PetscCall(SableStopError(r->comm, sig, t, step, index));
+    }
+    PetscCall(DemStep(dem));
+    if (lb) PetscCall(BalanceCheck(lb, PETSC_FALSE, NULL));
+    PetscCall(DemGetTime(dem, &t, NULL));
+    if (io) {
+      PetscCall(IoDue(io, t, &due));
+      if (due) PetscCall(DryOutput(dem, io));
+    }
+    if (r->progress_dt > 0 && t >= next - 0.5 * dt) {
+      PetscCall(DryProgress(r, dem, t0, s0));
+      next += r->progress_dt;
+    }
+  }
+  if (io) {
+    PetscCall(IoDueFinal(io, t, &due));
+    if (due) PetscCall(DryOutput(dem, io));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
+{
+  PetscBool      convex;
+  PetscReal      phi, coord, t;
+  PetscInt       step;
+  PetscLogDouble t0, t1;
+  const char    *index;
+  struct rusage  ru;
+
+  PetscFunctionBeginUser;
+  PetscCall(SableCheckOptionsUsed(r->comm));
+  PetscCall(DemHasConvexShapes(dem, &convex));
+  PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
+  PetscCall(DemSetUp(dem));
+  PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(BalanceSetUp(lb));
+  PetscCall(PetscTime(&t0));
+  PetscCall(DryRunLoop(r, dem, lb, io));
+  PetscCall(PetscTime(&t1));
+  PetscCall(BalanceView(lb, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(DemGetTime(dem, &t, &step));
+  PetscCall(DemGetBedFigures(dem, &phi, &coord));
+  getrusage(RUSAGE_SELF, &ru);
+  PetscCall(PetscPrintf(r->comm, "done: t = %g s, %" PetscInt_FMT " steps in %.3f s (rank 0 peak memory %.1f MB)\n", (double)t, step, t1 - t0, ru.ru_maxrss / 1024.0));
+  PetscCall(PetscPrintf(r->comm, "bed: packing fraction %.4f, mean coordination number %.3f\n", (double)phi, (double)coord));
+  PetscCall(IoGetIndexPath(io, &index));
+  PetscCall(PetscPrintf(r->comm, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
