@@ -8,12 +8,12 @@ static PetscErrorCode DomainReadBox(Domain *dom, PetscReal *cell)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Domain (shared by DEM and fluid)", NULL);
-  SableOptionsRealN("-domain_lo", "Lower corner of the domain box (m)", NULL, dom->lo, 3, &set);
-  SableOptionsRealN("-domain_hi", "Upper corner of the domain box (m)", NULL, dom->hi, 3, &set);
+  PetscCall(SableOptionsRealN("-domain_lo", "Lower corner of the domain box", "m", dom->lo, 3, 3, &set));
+  PetscCall(SableOptionsRealN("-domain_hi", "Upper corner of the domain box", "m", dom->hi, 3, 3, &set));
   PetscCall(PetscOptionsBool("-domain_periodic_x", "Periodic along x", NULL, dom->periodic[0], &dom->periodic[0], NULL));
   PetscCall(PetscOptionsBool("-domain_periodic_y", "Periodic along y", NULL, dom->periodic[1], &dom->periodic[1], NULL));
   PetscCall(PetscOptionsBool("-domain_periodic_z", "Periodic along z", NULL, dom->periodic[2], &dom->periodic[2], NULL));
-  PetscCall(PetscOptionsReal("-domain_cell", "Default cell size of the grid (m); -da_grid_x/y/z override it", NULL, *cell, cell, NULL));
+  PetscCall(SableOptionsReal("-domain_cell", "Cell size of the grid; -da_grid_x/y/z override it; default 4 particle diameters (dry runs, 1.25 with load balancing)", "m", "(0,inf)", *cell, cell, NULL));
   PetscOptionsEnd();
   for (int k = 0; k < 3; k++) {
     dom->len[k] = dom->hi[k] - dom->lo[k];
@@ -85,7 +85,6 @@ PetscErrorCode DomainCreate(MPI_Comm comm, PetscReal default_cell, PetscInt sten
   PetscCall(PetscMemzero(dom, sizeof *dom)); /* defaults: unit box, not periodic */
   for (int k = 0; k < 3; k++) dom->hi[k] = 1;
   PetscCall(DomainReadBox(dom, &default_cell));
-  PetscCheck(default_cell > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-domain_cell %g must be > 0 (m)", (double)default_cell);
   { /* -da_grid_x/y/z override -domain_cell axis by axis: with all three it would be ignored */
     PetscBool cset, g[3];
     PetscCall(PetscOptionsHasName(NULL, NULL, "-domain_cell", &cset));

@@ -5,8 +5,8 @@
 #     a prefix such as "-cpl_"): the names the unused-option check compares a typo with ("did
 #     you mean ...?"); an indexed name keeps its printf field ("dem_plane_%d_velocity").
 #   SableIntOptions: the options read as integers (PetscOptionsInt, PetscOptionsIntArray,
-#     PetscOptionsGetInt, PetscOptionsGetIntArray with a literal name); their values are
-#     checked to be integers that fit in PetscInt before PETSc reads them.
+#     PetscOptionsGetInt, PetscOptionsGetIntArray, SableOptionsInt with a literal name); their
+#     values are checked to be integers that fit in PetscInt before PETSc reads them.
 # A name written in the code is a name in these lists: nothing to keep by hand.
 # Usage: tools/gen-options.sh SRCDIR > header
 set -e
@@ -18,5 +18,5 @@ echo "static const char *const SableKnownOptions[] = {"
 grep -ohE '"-[a-z][a-z0-9_]*(%d[a-z0-9_]*)?"' $files | sed 's/^"-//; s/"$//' | grep -v '_$' | sort -u | list
 echo "  NULL};"
 echo "static const char *const SableIntOptions[] = {"
-grep -ohE '(PetscOptions(Int|IntArray|BoundedInt|RangeInt)\(|PetscOptionsGetInt(Array)?\(NULL, NULL, )"-[a-z][a-z0-9_]*"' $files | sed 's/.*"-//; s/"$//' | sort -u | list
+grep -ohE '((PetscOptions(Int|IntArray|BoundedInt|RangeInt)|SableOptionsInt)\(|PetscOptionsGetInt(Array)?\(NULL, NULL, )"-[a-z][a-z0-9_]*"' $files | sed 's/.*"-//; s/"$//' | sort -u | list
 echo "  NULL};"

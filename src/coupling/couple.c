@@ -60,21 +60,15 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
   PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu)", NULL, CplDragNames, (PetscEnum)cpl->law, (PetscEnum *)&cpl->law, NULL));
-  PetscCall(PetscOptionsInt("-cpl_substeps", "DEM steps per fluid step (>= 1); the fluid step is this times -dem_dt", NULL, cpl->substeps, &cpl->substeps, &cpl->substeps_set));
-  PetscCall(PetscOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d, > 0", NULL, cpl->kscale, &cpl->kscale, NULL));
-  PetscCall(PetscOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log), in (0,1)", NULL, cpl->eps_floor, &cpl->eps_floor, NULL));
-  PetscCall(PetscOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit), > 0", NULL, cpl->relax_max, &cpl->relax_max, NULL));
-  PetscCall(PetscOptionsReal("-cpl_t_end", "Simulated time of a coupled run (s); a coupled run needs it", NULL, cpl->t_end, &cpl->t_end, &cpl->t_end_set));
-  PetscCall(PetscOptionsReal("-cpl_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, cpl->progress_dt, &cpl->progress_dt, NULL));
-  SableOptionsRealN("-cpl_probe_z", "Two heights z1,z2 (m) between which the run reports dp/L, porosity and the drag law's prediction", NULL, cpl->probe, 2, &cpl->probe_set);
+  PetscCall(SableOptionsInt("-cpl_substeps", "DEM steps per fluid step; the fluid step is this times -dem_dt", NULL, "[1,inf)", cpl->substeps, &cpl->substeps, &cpl->substeps_set));
+  PetscCall(SableOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d", NULL, "(0,inf)", cpl->kscale, &cpl->kscale, NULL));
+  PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->eps_floor, &cpl->eps_floor, NULL));
+  PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->relax_max, &cpl->relax_max, NULL));
+  PetscCall(SableOptionsReal("-cpl_t_end", "Simulated time of a coupled run; a coupled run needs it", "s", "[0,inf)", cpl->t_end, &cpl->t_end, &cpl->t_end_set));
+  PetscCall(SableOptionsReal("-cpl_progress_interval", "Simulated time between progress lines; 0 = none", "s", "[0,inf)", cpl->progress_dt, &cpl->progress_dt, NULL));
+  PetscCall(SableOptionsRealN("-cpl_probe_z", "Two heights z1,z2 between which the run reports dp/L, porosity and the drag law's prediction; default no report", "m", cpl->probe, 0, 2, &cpl->probe_set));
   PetscOptionsEnd();
   PetscCheck(!cpl->probe_set || (cpl->probe[0] >= cpl->dom->lo[2] && cpl->probe[0] < cpl->probe[1] && cpl->probe[1] <= cpl->dom->hi[2]), cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_probe_z %g,%g: need lo <= z1 < z2 <= hi with the domain's z range [%g, %g] (m)", (double)cpl->probe[0], (double)cpl->probe[1], (double)cpl->dom->lo[2], (double)cpl->dom->hi[2]);
-  PetscCheck(cpl->progress_dt >= 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_progress_interval %g must be >= 0 (s; 0 = no progress lines)", (double)cpl->progress_dt);
-  PetscCheck(cpl->substeps >= 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_substeps %d must be >= 1", (int)cpl->substeps);
-  PetscCheck(cpl->kscale > 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_kernel_scale %g must be > 0", (double)cpl->kscale);
-  PetscCheck(cpl->eps_floor > 0 && cpl->eps_floor < 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_floor %g must be in (0,1)", (double)cpl->eps_floor);
-  PetscCheck(cpl->relax_max > 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_relaxation_ratio_max %g must be > 0", (double)cpl->relax_max);
-  PetscCheck(cpl->t_end >= 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_t_end %g must be >= 0 (s)", (double)cpl->t_end);
   /* the fluid's own options, read again for the drag law (same defaults as the fluid) */
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_density", &cpl->rho, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_viscosity", &cpl->mu, NULL));

@@ -26,7 +26,7 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid boundary conditions", NULL);
-  PetscCall(PetscOptionsReal("-fluid_outlet_pressure", "Pressure on outlet faces (Pa)", NULL, fl->p_out, &fl->p_out, NULL));
+  PetscCall(SableOptionsReal("-fluid_outlet_pressure", "Pressure on outlet faces", "Pa", NULL, fl->p_out, &fl->p_out, NULL));
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
       FluidBCType t = fl->bc[d][s].type;
@@ -34,7 +34,7 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
       PetscCall(PetscOptionsEnum(opt, "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", NULL, FluidBCNames, (PetscEnum)t, (PetscEnum *)&t, &set));
       PetscCheck(!set || fl->dom->periodic[d] == (t == FLUID_BC_PERIODIC), fl->comm, PETSC_ERR_ARG_WRONG, "%s %s: the %c axis is %speriodic (-domain_periodic_%c); valid values here: %s", opt, FluidBCNames[t], ax[d], fl->dom->periodic[d] ? "" : "not ", ax[d], fl->dom->periodic[d] ? "periodic" : "wall, slip, inlet, outlet");
       fl->bc[d][s].type = t;
-      SableOptionsRealN(optv, "Inlet velocity on this face (m/s; default 0,0,0)", NULL, fl->bc[d][s].vel, 3, &set);
+      PetscCall(SableOptionsRealN(optv, "Inlet velocity on this face", "m/s", fl->bc[d][s].vel, 3, 3, &set));
       PetscCheck(!set || t == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but %s is %s, not inlet", optv, opt, FluidBCNames[t]);
       if (t == FLUID_BC_OUTLET) any_outlet = PETSC_TRUE;
     }
