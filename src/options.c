@@ -1,11 +1,20 @@
-/* How Sable's options are read: the readers of numeric options (SableOptionsReal,
- * SableOptionsInt, SableOptionsRealArray, SableOptionsRealN), called inside the PetscOptionsBegin
- * block of the object that owns the option, with the option's literal name. Each prints its own
- * -help line, with the true default ("<none>" when the option has none: a default outside the
- * valid range, or no default values), the value given, the unit and the valid range, and
- * refuses a value out of range with one line naming the option, the value and the range. A
- * range is written as in mathematics: "(0,1]", "[0,inf)", NULL for none. */
+/* How Sable's options are read and shown. Two parts:
+ *  - the readers of numeric options (SableOptionsReal, SableOptionsInt, SableOptionsRealArray,
+ *    SableOptionsRealN), called inside the PetscOptionsBegin block of the object that owns the
+ *    option, with the option's literal name. Each prints its own -help line, with the true
+ *    default ("<none>" when the option has none: a default outside the valid range, or no
+ *    default values), the value given, the unit and the valid range, and refuses a value out
+ *    of range with one line naming the option, the value and the range. A range is written as
+ *    in mathematics: "(0,1]", "[0,inf)", NULL for none.
+ *  - the -help printer: installed before PetscInitialize (SableHelpBegin), it keeps the help
+ *    text that PETSc and Sable print through PetscHelpPrintf, and prints it at the end of the
+ *    help pass (SableHelpFlush, also registered to run in PetscFinalize): the lines before the
+ *    first section, then Sable's sections grouped by prefix (-domain_, -dem_, -fluid_, -cpl_,
+ *    -lb_, -io_, -sable_), then PETSc's sections in the order PETSc printed them. PETSc's
+ *    "(None)" (no manual page) at the end of a line is left out. Without -help the printer
+ *    passes everything through at once. */
 #include "sable.h"
+#include <stdarg.h>
 #include <stdlib.h>
 
 /* A range "(a,b]": bounds and whether each is open; the bound texts as written. */
@@ -168,4 +177,207 @@ PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *PetscOptionsObjec
   if (exact) PetscCheck(count == cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes %d comma-separated values, got %d", opt, (int)cap, (int)count);
   else PetscCheck(count <= cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes at most %d comma-separated values, got %d", opt, (int)cap, (int)count);
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ------------------------------------------------------------------------------------------
+ * The -help printer. The text is kept in one growing buffer (plain malloc: it is filled while
+ * PETSc starts, before its allocator is set up, and printed after PETSc may be gone). */
+static struct {
+  char     *text;
+  size_t    len, cap;
+  PetscBool help, decided, registered;
+  PetscErrorCode (*vfprintf)(FILE *, const char[], va_list); /* PETSc's own, for the rest */
+} SableHelp;
+
+static PetscErrorCode SableHelpAppend(const char *s, size_t n)
+{
+  PetscFunctionBeginUser;
+  if (SableHelp.len + n + 1 > SableHelp.cap) {
+    size_t cap = PetscMax(2 * SableHelp.cap, SableHelp.len + n + 65536);
+    char  *t   = (char *)realloc(SableHelp.text, cap);
+    PetscCheck(t, PETSC_COMM_SELF, PETSC_ERR_MEM, "out of memory keeping the -help text (%zu bytes)", cap);
+    SableHelp.text = t;
+    SableHelp.cap  = cap;
+  }
+  memcpy(SableHelp.text + SableHelp.len, s, n);
+  SableHelp.len += n;
+  SableHelp.text[SableHelp.len] = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode SableHelpFinalize(void)
+{
+  return SableHelpFlush();
+}
+
+/* PetscHelpPrintf's signature. Printed by the first rank of comm only, as PETSc's own. */
+static PetscErrorCode SableHelpPrintf(MPI_Comm comm, const char fmt[], ...)
+{
+  char        small[4096], *buf = small;
+  size_t      full = 0;
+  va_list     ap;
+  PetscMPIInt rank = 0;
+
+  PetscFunctionBeginUser;
+  if (!SableHelp.decided) { /* the first call comes after PETSc has read the options */
+    PetscCall(PetscOptionsHasHelp(NULL, &SableHelp.help));
+    SableHelp.decided = PETSC_TRUE;
+  }
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank) PetscFunctionReturn(PETSC_SUCCESS);
+  va_start(ap, fmt);
+  PetscCall(PetscVSNPrintf(small, sizeof small, fmt, &full, ap));
+  va_end(ap);
+  if (full >= sizeof small) { /* a long line (a solver's list of types): format it again in full */
+    buf = (char *)malloc(full + 1);
+    PetscCheck(buf, PETSC_COMM_SELF, PETSC_ERR_MEM, "out of memory formatting a -help line");
+    va_start(ap, fmt);
+    PetscCall(PetscVSNPrintf(buf, full + 1, fmt, &full, ap));
+    va_end(ap);
+  }
+  if (!SableHelp.help) PetscCall(PetscHelpPrintfDefault(comm, "%s", buf));
+  else {
+    PetscCall(SableHelpAppend(buf, strlen(buf)));
+    if (!SableHelp.registered) PetscCall(PetscRegisterFinalize(SableHelpFinalize));
+    SableHelp.registered = PETSC_TRUE;
+  }
+  if (buf != small) free(buf);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* PetscVFPrintf's signature. PETSc prints a few help lines (the types of a solver, -ksp_type
+ * <now cg : formerly cg> ...; its separators) straight to stdout: with -help, text to stdout
+ * that starts an option line or a separator, or continues a kept line, is kept too. */
+static PetscErrorCode SableHelpVFPrintf(FILE *fd, const char fmt[], va_list ap)
+{
+  char    small[4096], *buf = small;
+  size_t  full = 0;
+  va_list aq;
+
+  if ((SableHelp.decided && !SableHelp.help) || (fd != stdout && fd != PETSC_STDOUT)) return SableHelp.vfprintf(fd, fmt, ap);
+  va_copy(aq, ap);
+  PetscCall(PetscVSNPrintf(small, sizeof small, fmt, &full, aq));
+  va_end(aq);
+  if (!SableHelp.decided && !strcmp(small, "----------------------------------------\n")) { /* PETSc's first help line */
+    PetscCall(PetscOptionsHasHelp(NULL, &SableHelp.help));
+    SableHelp.decided = PETSC_TRUE;
+  }
+  if (!SableHelp.help || (!(SableHelp.len && SableHelp.text[SableHelp.len - 1] != '\n') && strncmp(small, "  -", 3) && strcmp(small, "----------------------------------------\n"))) return SableHelp.vfprintf(fd, fmt, ap);
+  if (full >= sizeof small) {
+    buf = (char *)malloc(full + 1);
+    PetscCheck(buf, PETSC_COMM_SELF, PETSC_ERR_MEM, "out of memory formatting a -help line");
+    va_copy(aq, ap);
+    PetscCall(PetscVSNPrintf(buf, full + 1, fmt, &full, aq));
+    va_end(aq);
+  }
+  PetscCall(SableHelpAppend(buf, strlen(buf)));
+  if (buf != small) free(buf);
+  return PETSC_SUCCESS;
+}
+
+void SableHelpBegin(void)
+{
+  PetscHelpPrintf    = SableHelpPrintf;
+  SableHelp.vfprintf = PetscVFPrintf;
+  PetscVFPrintf      = SableHelpVFPrintf;
+}
+
+/* The group of a section by the name of its first option (no dash): the rank of its prefix
+ * among Sable's, or -1 for PETSc's. */
+static int SableHelpGroup(const char *name)
+{
+  const char *pre[] = {"domain_", "dem_", "fluid_", "cpl_", "lb_", "io_", "sable_"};
+
+  if (!SableOptionIsOwn(name) && strncmp(name, "sable_", 6)) return -1;
+  for (int k = 0; k < (int)(sizeof pre / sizeof pre[0]); k++)
+    if (!strncmp(name, pre[k], strlen(pre[k]))) return k;
+  return -1;
+}
+
+/* A section of the kept text: its lines, split at PETSc's separator lines. */
+typedef struct {
+  char    **line;
+  int       n, group;
+  PetscBool named; /* group set from the section's first option */
+} SableHelpSection;
+
+static void SableHelpPrintSection(const SableHelpSection *s)
+{
+  for (int i = 0; i < s->n; i++) {
+    const char  *l   = s->line[i];
+    const size_t len = strlen(l);
+    if (len >= 7 && !strcmp(l + len - 7, " (None)")) printf("%.*s\n", (int)(len - 7), l);
+    else printf("%s\n", l);
+  }
+}
+
+/* The name of the option a help line shows (no dash), or an empty string. */
+static void SableHelpLineOption(const char *l, char *name, size_t size)
+{
+  const char *c = l;
+  size_t      k = 0;
+
+  while (*c == ' ') c++;
+  if (c != l && c[0] == '-' && c[1] != '-')
+    for (c++; *c && *c != ' ' && *c != ':' && *c != '<' && k + 1 < size; c++) name[k++] = *c;
+  name[k] = 0;
+}
+
+/* Splits the kept text (modified: lines end at NUL) into sections, each starting at PETSc's
+ * separator line (the first one at the start of the text), and sets each one's group from its
+ * first option (-1: PETSc's, or none). Returns the count. */
+static int SableHelpSections(char *text, SableHelpSection *sec, int max, char **lines)
+{
+  int ns = 0, nl = 0;
+
+  for (char *l = text, *next; l && *l; l = next) {
+    char name[128];
+    next = strchr(l, '\n');
+    if (next) *next++ = 0;
+    if (ns == 0 || !strcmp(l, "----------------------------------------")) {
+      if (ns == max) break;
+      sec[ns] = (SableHelpSection){lines + nl, 0, -1, PETSC_FALSE};
+      ns++;
+    }
+    lines[nl++] = l;
+    sec[ns - 1].n++;
+    SableHelpLineOption(l, name, sizeof name);
+    if (name[0] && !sec[ns - 1].named) {
+      sec[ns - 1].group = SableHelpGroup(name);
+      sec[ns - 1].named = PETSC_TRUE;
+    }
+  }
+  return ns;
+}
+
+PetscErrorCode SableHelpFlush(void)
+{
+  SableHelpSection *sec;
+  char            **lines;
+  int               ns, max = 1, nlines = 1;
+
+  if (!SableHelp.len) return PETSC_SUCCESS;
+  for (size_t i = 0; i < SableHelp.len; i++) nlines += SableHelp.text[i] == '\n';
+  max   = nlines + 1;
+  sec   = (SableHelpSection *)malloc(sizeof *sec * (size_t)max);
+  lines = (char **)malloc(sizeof *lines * (size_t)(nlines + 1));
+  if (!sec || !lines) { /* no room to sort: print it as it came */
+    fputs(SableHelp.text, stdout);
+  } else {
+    ns = SableHelpSections(SableHelp.text, sec, max, lines);
+    printf("Sable's options, by prefix (-domain_, -dem_, -fluid_, -cpl_, -lb_, -io_, -sable_); PETSc's follow\n");
+    for (int g = 0; g < 7; g++)
+      for (int s = 0; s < ns; s++)
+        if (sec[s].group == g) SableHelpPrintSection(&sec[s]);
+    printf("========================================\nPETSc's options:\n");
+    for (int s = 0; s < ns; s++)
+      if (sec[s].group < 0) SableHelpPrintSection(&sec[s]);
+  }
+  fflush(stdout);
+  free(sec);
+  free(lines);
+  free(SableHelp.text);
+  SableHelp.text = NULL;
+  SableHelp.len = SableHelp.cap = 0;
+  return PETSC_SUCCESS;
 }

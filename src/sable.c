@@ -3,8 +3,8 @@
  * integer that fits in PetscInt). The names of the options Sable reads come from the sources
  * themselves: the Makefile writes sable_options.h (tools/gen-options.sh) with every option name
  * written in src/, those read as integers, as flags (no value needed) and as words (no number
- * check); a typo is compared with the names ("did you mean"). Reading options (the readers
- * with units and ranges) is options.c. */
+ * check); a typo is compared with the names ("did you mean"). Reading and showing options (the
+ * readers with units and ranges, the -help printer) is options.c. */
 #include "sable.h"
 #include "sable_options.h"
 #include <ctype.h>
@@ -16,7 +16,7 @@
 /* Sable's own option prefixes; fluid_poisson_ and fluid_viscous_ are PETSc solvers' prefixes
  * (their flags, such as -fluid_poisson_ksp_monitor, are PETSc's business) except for the three
  * options of Sable's that share them. */
-static PetscBool SableOwnOption(const char *name)
+PetscBool SableOptionIsOwn(const char *name)
 {
   const char *own[] = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
   const char *shared[] = {"fluid_poisson_pc_lag", "fluid_poisson_pc_lag_growth", "fluid_viscous_number_max"};
@@ -95,7 +95,7 @@ static PetscErrorCode SableCheckOptionValue(MPI_Comm comm, const char *name, con
 
   PetscFunctionBeginUser;
   if (SableIntOption(name, &petsc)) PetscCall(SableCheckIntValue(comm, name, value, petsc));
-  if (!SableOwnOption(name)) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!SableOptionIsOwn(name)) PetscFunctionReturn(PETSC_SUCCESS);
   if (SableInList(name, SableFlagOptions, sizeof SableFlagOptions / sizeof SableFlagOptions[0])) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(value && value[0], comm, PETSC_ERR_ARG_WRONG, "option -%s needs a value (-help lists it with its default)", name);
   if (SableInList(name, SableWordOptions, sizeof SableWordOptions / sizeof SableWordOptions[0])) PetscFunctionReturn(PETSC_SUCCESS); /* a file named "inf" is a file */

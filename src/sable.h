@@ -71,6 +71,11 @@ void SableTempRemove(void);
   #define PETSC_SUCCESS 0
 #endif
 
+/* Not collective. Whether option name (no dash) is one of Sable's own: under -dem_, -fluid_,
+ * -cpl_, -domain_, -io_, -lb_, except the PETSc solvers' options under -fluid_poisson_ and
+ * -fluid_viscous_ (sable.c). */
+PetscBool SableOptionIsOwn(const char *name);
+
 /* Readers of numeric options (options.c), inside the PetscOptionsBegin block of the object that
  * owns the option, called with its literal name ("-dem_kn": grep finds it). Each prints its own
  * -help line "-name <default>: text (unit; range)" with the true default, and the value given
@@ -94,3 +99,11 @@ void SableTempRemove(void);
 PetscErrorCode SableOptionsReal_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscReal, PetscReal *, PetscBool *);
 PetscErrorCode SableOptionsInt_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscInt, PetscInt *, PetscBool *);
 PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *, const char[], const char[], const char[], PetscReal[], PetscInt, PetscInt *, PetscBool, PetscBool *);
+
+/* The -help printer (options.c). SableHelpBegin: not collective; call it before PetscInitialize
+ * (it installs Sable's PetscHelpPrintf, which keeps the help text when -help is given and
+ * passes it through otherwise). SableHelpFlush: not collective; prints the kept text, Sable's
+ * options first, grouped by prefix, then PETSc's; call it after every object has read its
+ * options (PetscFinalize calls it too; a second call prints nothing). */
+void           SableHelpBegin(void);
+PetscErrorCode SableHelpFlush(void);
