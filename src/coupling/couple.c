@@ -45,8 +45,6 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   c->kscale      = 1;
   c->eps_floor   = 0.2;
   c->relax_max   = 1;
-  c->rho         = 1000; /* the fluid's defaults of -fluid_density, -fluid_viscosity */
-  c->mu          = 1e-3;
   c->ev_project  = ev[0];
   c->ev_drag     = ev[1];
   c->ev_exchange = ev[2];
@@ -55,8 +53,11 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The fluid's properties come from the Fluid (FluidSetFromOptions has read them). */
 PetscErrorCode CplSetFromOptions(Cpl cpl)
 {
+  PetscReal fg[3];
+
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
   PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu)", NULL, CplDragNames, (PetscEnum)cpl->law, (PetscEnum *)&cpl->law, NULL));
@@ -69,15 +70,10 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(SableOptionsRealN("-cpl_probe_z", "Two heights z1,z2 between which the run reports dp/L, porosity and the drag law's prediction; default no report", "m", cpl->probe, 0, 2, &cpl->probe_set));
   PetscOptionsEnd();
   PetscCheck(!cpl->probe_set || (cpl->probe[0] >= cpl->dom->lo[2] && cpl->probe[0] < cpl->probe[1] && cpl->probe[1] <= cpl->dom->hi[2]), cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_probe_z %g,%g: need lo <= z1 < z2 <= hi with the domain's z range [%g, %g] (m)", (double)cpl->probe[0], (double)cpl->probe[1], (double)cpl->dom->lo[2], (double)cpl->dom->hi[2]);
-  /* the fluid's own options, read again for the drag law (same defaults as the fluid) */
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_density", &cpl->rho, NULL));
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_viscosity", &cpl->mu, NULL));
-  {
-    PetscReal fg[3] = {0, 0, 0};
-    PetscInt  nfg   = 3;
-    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-fluid_gravity", fg, &nfg, NULL));
-    PetscCheck(fg[0] == 0 && fg[1] == 0 && fg[2] == 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_gravity %g,%g,%g must be 0,0,0 in a coupled run: the fluid pressure is hydrodynamic and the buoyancy acts on the particles (eq. 11); set gravity with -dem_gravity", (double)fg[0], (double)fg[1], (double)fg[2]);
-  }
+  PetscCall(FluidGetDensity(cpl->fl, &cpl->rho));
+  PetscCall(FluidGetViscosity(cpl->fl, &cpl->mu));
+  PetscCall(FluidGetGravity(cpl->fl, fg));
+  PetscCheck(fg[0] == 0 && fg[1] == 0 && fg[2] == 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_gravity %g,%g,%g must be 0,0,0 in a coupled run: the fluid pressure is hydrodynamic and the buoyancy acts on the particles (eq. 11); set gravity with -dem_gravity", (double)fg[0], (double)fg[1], (double)fg[2]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -213,6 +213,27 @@ PetscErrorCode FluidGetTimeStep(Fluid fl, PetscReal *dt)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode FluidGetDensity(Fluid fl, PetscReal *rho)
+{
+  PetscFunctionBeginUser;
+  *rho = fl->rho;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidGetViscosity(Fluid fl, PetscReal *mu)
+{
+  PetscFunctionBeginUser;
+  *mu = fl->mu;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidGetGravity(Fluid fl, PetscReal g[3])
+{
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++) g[d] = fl->gravity[d];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FluidGetDMs(Fluid fl, DM *cda, DM *fda)
 {
   PetscFunctionBeginUser;
