@@ -8,8 +8,8 @@
  *    in mathematics: "(0,1]", "[0,inf)", NULL for none.
  *  - the -help printer: installed before PetscInitialize (SableHelpBegin), it keeps the help
  *    text that PETSc and Sable print through PetscHelpPrintf, and prints it at the end of the
- *    help pass (SableHelpFlush, also registered to run in PetscFinalize): the lines before the
- *    first section, then Sable's sections grouped by prefix (-domain_, -dem_, -fluid_, -cpl_,
+ *    help pass (SableHelpFlush, also registered to run in PetscFinalize and at exit): Sable's
+ *    sections grouped by prefix (-domain_, -dem_, -fluid_, -cpl_,
  *    -lb_, -io_, -sable_), then PETSc's sections in the order PETSc printed them. PETSc's
  *    "(None)" (no manual page) at the end of a line is left out. Without -help the printer
  *    passes everything through at once. */
@@ -189,9 +189,18 @@ static struct {
   PetscErrorCode (*vfprintf)(FILE *, const char[], va_list); /* PETSc's own, for the rest */
 } SableHelp;
 
+static PetscErrorCode SableHelpFinalize(void);
+static void           SableHelpAtExit(void);
+
+/* Keeps n bytes of help text; the first ones register the printing at PetscFinalize. */
 static PetscErrorCode SableHelpAppend(const char *s, size_t n)
 {
   PetscFunctionBeginUser;
+  if (!SableHelp.registered) { /* -help intro ends the process in PetscInitialize, without PetscFinalize */
+    PetscCall(PetscRegisterFinalize(SableHelpFinalize));
+    PetscCheck(!atexit(SableHelpAtExit), PETSC_COMM_SELF, PETSC_ERR_SYS, "atexit() failed");
+  }
+  SableHelp.registered = PETSC_TRUE;
   if (SableHelp.len + n + 1 > SableHelp.cap) {
     size_t cap = PetscMax(2 * SableHelp.cap, SableHelp.len + n + 65536);
     char  *t   = (char *)realloc(SableHelp.text, cap);
@@ -208,6 +217,11 @@ static PetscErrorCode SableHelpAppend(const char *s, size_t n)
 static PetscErrorCode SableHelpFinalize(void)
 {
   return SableHelpFlush();
+}
+
+static void SableHelpAtExit(void)
+{
+  (void)SableHelpFlush();
 }
 
 /* PetscHelpPrintf's signature. Printed by the first rank of comm only, as PETSc's own. */
@@ -238,8 +252,6 @@ static PetscErrorCode SableHelpPrintf(MPI_Comm comm, const char fmt[], ...)
   if (!SableHelp.help) PetscCall(PetscHelpPrintfDefault(comm, "%s", buf));
   else {
     PetscCall(SableHelpAppend(buf, strlen(buf)));
-    if (!SableHelp.registered) PetscCall(PetscRegisterFinalize(SableHelpFinalize));
-    SableHelp.registered = PETSC_TRUE;
   }
   if (buf != small) free(buf);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -354,24 +366,24 @@ PetscErrorCode SableHelpFlush(void)
 {
   SableHelpSection *sec;
   char            **lines;
-  int               ns, max = 1, nlines = 1;
+  int               nlines = 1;
 
   if (!SableHelp.len) return PETSC_SUCCESS;
   for (size_t i = 0; i < SableHelp.len; i++) nlines += SableHelp.text[i] == '\n';
-  max   = nlines + 1;
-  sec   = (SableHelpSection *)malloc(sizeof *sec * (size_t)max);
+  sec   = (SableHelpSection *)malloc(sizeof *sec * (size_t)(nlines + 1));
   lines = (char **)malloc(sizeof *lines * (size_t)(nlines + 1));
-  if (!sec || !lines) { /* no room to sort: print it as it came */
-    fputs(SableHelp.text, stdout);
-  } else {
-    ns = SableHelpSections(SableHelp.text, sec, max, lines);
-    printf("Sable's options, by prefix (-domain_, -dem_, -fluid_, -cpl_, -lb_, -io_, -sable_); PETSc's follow\n");
-    for (int g = 0; g < 7; g++)
-      for (int s = 0; s < ns; s++)
-        if (sec[s].group == g) SableHelpPrintSection(&sec[s]);
-    printf("========================================\nPETSc's options:\n");
-    for (int s = 0; s < ns; s++)
-      if (sec[s].group < 0) SableHelpPrintSection(&sec[s]);
+  if (!sec || !lines) fputs(SableHelp.text, stdout); /* no room to sort: as it came */
+  else {
+    const int ns  = SableHelpSections(SableHelp.text, sec, nlines + 1, lines);
+    int       own = 0;
+    for (int k = 0; k < ns; k++) own += sec[k].group >= 0;
+    if (own) printf("Sable's options, by prefix (-domain_, -dem_, -fluid_, -cpl_, -lb_, -io_, -sable_); PETSc's follow\n");
+    for (int g = 0; g < 7; g++) /* Sable's, by prefix */
+      for (int k = 0; k < ns; k++)
+        if (sec[k].group == g) SableHelpPrintSection(&sec[k]);
+    if (own) printf("========================================\nPETSc's options:\n");
+    for (int k = 0; k < ns; k++) /* PETSc's, in the order PETSc printed them (all of it with -help intro) */
+      if (sec[k].group < 0) SableHelpPrintSection(&sec[k]);
   }
   fflush(stdout);
   free(sec);
