@@ -13,7 +13,7 @@ static PetscErrorCode DomainReadBox(Domain *dom, PetscReal *cell)
   PetscCall(PetscOptionsBool("-domain_periodic_x", "Periodic along x", NULL, dom->periodic[0], &dom->periodic[0], NULL));
   PetscCall(PetscOptionsBool("-domain_periodic_y", "Periodic along y", NULL, dom->periodic[1], &dom->periodic[1], NULL));
   PetscCall(PetscOptionsBool("-domain_periodic_z", "Periodic along z", NULL, dom->periodic[2], &dom->periodic[2], NULL));
-  PetscCall(SableOptionsReal("-domain_cell", "Cell size of the grid; -da_grid_x/y/z override it; default 4 particle diameters (dry runs, 1.25 with load balancing)", "m", "(0,inf)", *cell, cell, NULL));
+  PetscCall(SableOptionsReal("-domain_cell", "Cell size of the grid; -da_grid_x/y/z override it; default 4 largest particle diameters (1.25 with -lb_scheme)", "m", "(0,inf)", *cell, cell, NULL));
   PetscOptionsEnd();
   for (int k = 0; k < 3; k++) {
     dom->len[k] = dom->hi[k] - dom->lo[k];
