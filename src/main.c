@@ -329,6 +329,7 @@ int main(int argc, char **argv)
   int            status;
 
   if (SableCheckOptionsFiles(argc, argv)) return 1;
+  SableHelpBegin(); /* -help: Sable's options first, grouped by prefix, then PETSc's (options.c) */
   PetscCall(PetscInitialize(&argc, &argv, NULL, "sable: parallel CFD-DEM. Options: see -help.\n"));
   PetscCall(PetscPushErrorHandler(SableErrorHandler, NULL));
   PetscCallMPI(MPI_Comm_dup(MPI_COMM_WORLD, &sable_end_comm));

@@ -2,7 +2,9 @@
  * Sable's own options (finite numbers, a value where one is needed, the count of a list, an
  * integer that fits in PetscInt). The names of the options Sable reads come from the sources
  * themselves: the Makefile writes sable_options.h (tools/gen-options.sh) with every option name
- * written in src/ and those read as integers; a typo is compared with them ("did you mean"). */
+ * written in src/, those read as integers, as flags (no value needed) and as words (no number
+ * check); a typo is compared with the names ("did you mean"). Reading and showing options (the
+ * readers with units and ranges, the -help printer) is options.c. */
 #include "sable.h"
 #include "sable_options.h"
 #include <ctype.h>
@@ -11,19 +13,10 @@
 #include <stdlib.h>
 #include <strings.h>
 
-/* Sable's options that are flags: given alone they mean true. Every other option of Sable's
- * prefixes takes a value (tests/test_options_values.sh keeps this list complete). */
-static const char *const SableFlags[] = {"dem_convex_sat", "dem_deterministic", "dem_frozen", "dem_lattice_random_orientation", "domain_periodic_x", "domain_periodic_y", "domain_periodic_z", "fluid_adaptive_dt", "lb_verbose"};
-
-/* Sable's options whose values are words (file, directory, shape and model names): no number
- * check; every other value-taking option of Sable's takes numbers (tests/test_options_values.sh
- * keeps this list complete). */
-static const char *const SableWords[] = {"io_dir", "io_prefix", "dem_init_file", "dem_shape_file", "dem_shape", "dem_contact_law", "dem_convex_contact_point", "cpl_drag", "fluid_advection", "fluid_inlet_interpolation", "fluid_viscous", "fluid_bc_xlo", "fluid_bc_xhi", "fluid_bc_ylo", "fluid_bc_yhi", "fluid_bc_zlo", "fluid_bc_zhi", "lb_scheme", "lb_weight"};
-
 /* Sable's own option prefixes; fluid_poisson_ and fluid_viscous_ are PETSc solvers' prefixes
  * (their flags, such as -fluid_poisson_ksp_monitor, are PETSc's business) except for the three
  * options of Sable's that share them. */
-static PetscBool SableOwnOption(const char *name)
+PetscBool SableOptionIsOwn(const char *name)
 {
   const char *own[] = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
   const char *shared[] = {"fluid_poisson_pc_lag", "fluid_poisson_pc_lag_growth", "fluid_viscous_number_max"};
@@ -98,17 +91,14 @@ static PetscErrorCode SableCheckIntValue(MPI_Comm comm, const char *name, const 
 static PetscErrorCode SableCheckOptionValue(MPI_Comm comm, const char *name, const char *value)
 {
   char      buf[4096], *tok, *save = NULL;
-  size_t    k;
   PetscBool petsc;
 
   PetscFunctionBeginUser;
   if (SableIntOption(name, &petsc)) PetscCall(SableCheckIntValue(comm, name, value, petsc));
-  if (!SableOwnOption(name)) PetscFunctionReturn(PETSC_SUCCESS);
-  for (k = 0; k < sizeof SableFlags / sizeof SableFlags[0]; k++)
-    if (!strcmp(name, SableFlags[k])) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!SableOptionIsOwn(name)) PetscFunctionReturn(PETSC_SUCCESS);
+  if (SableInList(name, SableFlagOptions, sizeof SableFlagOptions / sizeof SableFlagOptions[0])) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(value && value[0], comm, PETSC_ERR_ARG_WRONG, "option -%s needs a value (-help lists it with its default)", name);
-  for (k = 0; k < sizeof SableWords / sizeof SableWords[0]; k++) /* a file named "inf" is a file */
-    if (!strcmp(name, SableWords[k])) PetscFunctionReturn(PETSC_SUCCESS);
+  if (SableInList(name, SableWordOptions, sizeof SableWordOptions / sizeof SableWordOptions[0])) PetscFunctionReturn(PETSC_SUCCESS); /* a file named "inf" is a file */
   PetscCall(PetscStrncpy(buf, value, sizeof buf));
   for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
     char        *end;

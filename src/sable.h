@@ -71,12 +71,39 @@ void SableTempRemove(void);
   #define PETSC_SUCCESS 0
 #endif
 
-/* Inside a PetscOptionsBegin block: a real array option of exactly n values ("a,b,c"); a wrong
- * count, fewer or more (PETSc drops the surplus silently), is an error naming the option. */
-#define SableOptionsRealN(opt, text, man, v, n, set) \
-  do { \
-    PetscInt got_ = (n); \
-    PetscCall(PetscOptionsRealArray(opt, text, man, v, &got_, set)); \
-    if (*(set)) PetscCall(SableOptionCount(opt, &got_)); \
-    PetscCheck(!*(set) || got_ == (n), PETSC_COMM_WORLD, PETSC_ERR_ARG_SIZ, "%s takes %d comma-separated values, got %d", opt, (int)(n), (int)got_); \
-  } while (0)
+/* Not collective. Whether option name (no dash) is one of Sable's own: under -dem_, -fluid_,
+ * -cpl_, -domain_, -io_, -lb_, except the PETSc solvers' options under -fluid_poisson_ and
+ * -fluid_viscous_ (sable.c). */
+PetscBool SableOptionIsOwn(const char *name);
+
+/* Readers of numeric options (options.c), inside the PetscOptionsBegin block of the object that
+ * owns the option, called with its literal name ("-dem_kn": grep finds it). Each prints its own
+ * -help line "-name <default>: text (unit; range)" with the true default, and the value given
+ * ("<0.9 (default 0.75)>"); an option without a default shows "<none>". unit: SI unit ("m",
+ * "kg/m^3") or NULL for a pure number; range as in mathematics, "(0,1]", "[0,inf)", or NULL.
+ * A value given out of range is an error of one line naming the option, the value and the
+ * range. */
+/* A real: *v is def unless given. A def outside the range is a "not given" marker, shown
+ * <none> (say in text what happens then). */
+#define SableOptionsReal(opt, text, unit, range, def, v, set) SableOptionsReal_Private(PetscOptionsObject, opt, text, unit, range, def, v, set)
+/* An integer, as SableOptionsReal. */
+#define SableOptionsInt(opt, text, unit, range, def, v, set) SableOptionsInt_Private(PetscOptionsObject, opt, text, unit, range, def, v, set)
+/* A list of at most *n reals ("a,b,c"; more is an error naming the option, where PETSc would
+ * drop the surplus silently): on entry v holds the ndef default values (0: no default), on exit
+ * the values given (v is left as it was when the option is not given), *n their count (0: not
+ * given). */
+#define SableOptionsRealArray(opt, text, unit, v, ndef, n, set) SableOptionsRealArray_Private(PetscOptionsObject, opt, text, unit, v, ndef, n, PETSC_FALSE, set)
+/* A list of exactly n reals (a wrong count, fewer or more, is an error naming the option); v
+ * holds the ndef default values (n or 0). */
+#define SableOptionsRealN(opt, text, unit, v, ndef, n, set) SableOptionsRealArray_Private(PetscOptionsObject, opt, text, unit, v, ndef, &(PetscInt){(n)}, PETSC_TRUE, set)
+PetscErrorCode SableOptionsReal_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscReal, PetscReal *, PetscBool *);
+PetscErrorCode SableOptionsInt_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscInt, PetscInt *, PetscBool *);
+PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *, const char[], const char[], const char[], PetscReal[], PetscInt, PetscInt *, PetscBool, PetscBool *);
+
+/* The -help printer (options.c). SableHelpBegin: not collective; call it before PetscInitialize
+ * (it installs Sable's PetscHelpPrintf, which keeps the help text when -help is given and
+ * passes it through otherwise). SableHelpFlush: not collective; prints the kept text, Sable's
+ * options first, grouped by prefix, then PETSc's; call it after every object has read its
+ * options (PetscFinalize calls it too; a second call prints nothing). */
+void           SableHelpBegin(void);
+PetscErrorCode SableHelpFlush(void);

@@ -6,8 +6,8 @@
 #   - a run without an end time (-dem_t_end, -cpl_t_end); an end equal to the start runs 0 steps
 #     and the log says so in one line;
 #   - an integer option whose item is not an integer or does not fit in PetscInt, for every
-#     option that src/ reads with PetscOptions*Int* under a literal name and every PETSc -da_
-#     option that the cases and tests give;
+#     option that src/ reads with PetscOptions*Int* or SableOptionsInt under a literal name and
+#     every PETSc -da_ option that the cases and tests give;
 #   - an options file holding a NUL byte, a control byte or a byte-order mark;
 #   - two options of which one would silently override the other;
 #   - an unknown option near a known one gets "did you mean -<known>?".
@@ -47,7 +47,7 @@ R="(an integer in [-2147483648, 2147483647])"
 expect "grid count beyond PetscInt" "option -da_grid_x 2147483648: '2147483648' does not fit in PetscInt $R" $DRY -da_grid_x 2147483648
 expect "lattice count beyond PetscInt" "option -dem_lattice 2147483648,1,1: '2147483648' does not fit in PetscInt $R" $DRY -dem_lattice 2147483648,1,1
 expect "fraction for an integer" "option -dem_seed 1.5: '1.5' is not an integer $R" $DRY -dem_seed 1.5
-ints=$( (grep -rhE 'PetscOptions[A-Za-z]*Int[A-Za-z]*\(' src | grep -oE '"-[a-z][a-z0-9_]*"' | tr -d '"'; grep -rhoE -- '-da_[a-z_]+' cases tests) | sort -u)
+ints=$( (grep -rhE '(PetscOptions|SableOptions)[A-Za-z]*Int[A-Za-z]*\(' src | grep -oE '"-[a-z][a-z0-9_]*"' | tr -d '"'; grep -rhoE -- '-da_[a-z_]+' cases tests) | sort -u)
 bad=""; n=0
 for o in $ints; do
   n=$((n + 1))

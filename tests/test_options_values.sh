@@ -4,10 +4,9 @@
 # a surplus item are each an error naming the option and the value (exit 1), never a run with a
 # default or a dropped item; a negative first item is a value, not an option; the unused-option
 # check lets through PETSc's run-time options by whole name only (-log_vieww is a typo); a bad
-# options file is one line naming the file and line, not PETSc's traceback. Also: every flag that
-# the code reads with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving
-# it alone would be refused), and every option read as a word (enum, string) is in SableWords
-# (else its value would be refused as not a number).
+# options file is one line naming the file and line, not PETSc's traceback. Also: the lists of
+# flags (given alone, they mean true) and of options that take words (no number check), which the
+# build derives from the sources, agree with what -help shows.
 cd "$(dirname "$0")/.." || exit 1
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
@@ -53,14 +52,36 @@ for c in "a.opts:line 2: 'this' is not an option" "b.opts:line 1: -dem_t_end has
 done
 out=$(${BIN:-bin}/sable -options_file 2>&1); rc=$?
 if [ "$rc" -eq 1 ] && [ "$out" = "sable: error: -options_file needs a file name" ]; then echo "PASS options file missing name: exit 1, $out"; else echo "FAIL options file missing name: exit $rc, $out"; fi
-missing=""
-for f in $(grep -rhoE 'PetscOptionsBool\("-(dem|fluid|cpl|domain|io|lb)_[a-z0-9_]*"' src | sed 's/.*("-//; s/"$//' | sort -u); do
-  grep -q "\"$f\"" src/sable.c || missing="$missing $f"
+# The flag and word lists of the value check are generated from the sources at build time
+# (tools/gen-options.sh -> $BUILD/gen/sable_options.h). They are checked here against -help, which
+# shows each option as the call that reads it at run time prints it: every option of Sable's
+# shown as a flag ("-name: <TRUE : TRUE>") must be in SableFlagOptions, every one whose value is a
+# word (an enum's "choose one of", a string, a list of names) in SableWordOptions, and every name
+# in those lists must be shown by -help as such. A flag or word option that the generator cannot
+# see (read under a name it does not find) fails here.
+genlist() { sed -n "/$1\[\] = {/,/NULL};/p" "${BUILD:-build}/gen/sable_options.h" | grep -o '"[a-z0-9_%]*"' | tr -d '"'; }
+${BIN:-bin}/sable -help > "$T/help" 2>&1
+awk '/^  -(dem|fluid|cpl|domain|io|lb)_[a-z0-9_]*[ :]/ {
+    name = substr($1, 2); sub(/:$/, "", name)
+    if (name ~ /^fluid_(poisson|viscous)_/ && name !~ /^fluid_(poisson_pc_lag|poisson_pc_lag_growth|viscous_number_max)$/) next # PETSc solvers
+    if ($0 ~ "^  -" name ": <(TRUE|FALSE) : ") { print "flag", name; next }
+    v = $0; sub(/^[^<]*</, "", v); now = (v ~ /^now /); sub(/^now /, "", v); split(v, t, /[ ,>]/); x = t[1]
+    num = (x ~ /^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$/)
+    if ($0 ~ /\(choose (one of|from)\)/ || (now && !num) || (!now && !num && x != "none")) print "word", name
+    else print "number", name
+  }' "$T/help" > "$T/kinds"
+flags=$(genlist SableFlagOptions); words=$(genlist SableWordOptions)
+bad=""
+for kind in flag word; do
+  list=$flags; [ $kind = word ] && list=$words
+  for f in $(awk -v k=$kind '$1 == k {print $2}' "$T/kinds"); do
+    printf '%s\n' $list | grep -qx "$f" || bad="$bad $f(-help: $kind, not in the generated list)"
+  done
+  for f in $list; do
+    case $f in dem_*|fluid_*|cpl_*|domain_*|io_*|lb_*) ;; *) continue ;; esac
+    grep -qx "$kind $f" "$T/kinds" || bad="$bad $f(listed as a $kind, -help: $(awk -v n="$f" '$2 == n {print $1}' "$T/kinds" | head -n 1))"
+  done
 done
-[ -z "$missing" ] && echo "PASS options: every PetscOptionsBool flag under Sable's prefixes is in SableFlags" || echo "FAIL options: flags missing from SableFlags (src/sable.c):$missing"
-missing=""
-words=$(grep -rhoE '(PetscOptionsEnum|PetscOptionsEList|PetscOptionsString|PetscOptionsStringArray|PetscOptionsEnumArray|PetscOptionsGetString|BalanceOptionName)\((PetscOptionsObject, [^,]*, |NULL, NULL, )?"-(dem|fluid|cpl|domain|io|lb)_[a-z0-9_]*"' src | sed 's/.*"-//; s/"$//' | sort -u)
-for f in $words fluid_bc_xlo fluid_bc_xhi fluid_bc_ylo fluid_bc_yhi fluid_bc_zlo fluid_bc_zhi; do
-  grep -q "\"$f\"" src/sable.c || missing="$missing $f"
-done
-[ -z "$missing" ] && echo "PASS options: every word-valued option under Sable's prefixes ($(echo $words | wc -w) read by name, 6 boundary faces) is in SableWords" || echo "FAIL options: word-valued options missing from SableWords (src/sable.c):$missing"
+nf=$(grep -c '^flag ' "$T/kinds"); nw=$(grep -c '^word ' "$T/kinds"); nn=$(grep -c '^number ' "$T/kinds")
+if [ -z "$bad" ] && [ "$nf" -gt 0 ] && [ "$nw" -gt 0 ]; then echo "PASS options: the generated flag and word lists match -help ($nf flags, $nw word options, $nn numeric options of Sable's)"
+else echo "FAIL options: the generated flag and word lists do not match -help ($nf flags, $nw words):$bad"; fi

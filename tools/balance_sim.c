@@ -36,8 +36,8 @@ static PetscErrorCode SimSetFromOptions(Sim *s, PetscBool *boxset)
   s->minw = 1, s->cell = 0, s->nranks = BSIM_MAX, s->ngrids = 3 * BSIM_MAX;
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "balance-sim: balanced cuts on a snapshot", NULL);
   PetscCall(PetscOptionsString("-bsim_frame", "Sable HDF5 frame with /particles/position", NULL, s->frame, s->frame, sizeof s->frame, NULL));
-  SableOptionsRealN("-domain_lo", "Lower corner of the box (m); default: the particles' extent", NULL, s->lo, 3, &lset);
-  SableOptionsRealN("-domain_hi", "Upper corner of the box (m); default: the particles' extent", NULL, s->hi, 3, &hset);
+  PetscCall(SableOptionsRealN("-domain_lo", "Lower corner of the box; default: the particles' extent", "m", s->lo, 0, 3, &lset));
+  PetscCall(SableOptionsRealN("-domain_hi", "Upper corner of the box; default: the particles' extent", "m", s->hi, 0, 3, &hset));
   PetscCall(PetscOptionsReal("-bsim_cell", "Cell size of the weight grid (m); default 8 r_max", NULL, s->cell, &s->cell, NULL));
   PetscCall(PetscOptionsIntArray("-bsim_ranks", "Rank counts, factored into a process grid as PETSc's DMDA does", NULL, s->ranks, &s->nranks, &set));
   if (!set) s->nranks = 0;

@@ -87,22 +87,18 @@ static PetscErrorCode BalanceOptionName(PetscOptionItems *PetscOptionsObject, MP
 
 PetscErrorCode BalanceSetFromOptions(Balance b)
 {
-  PetscBool set;
-
   PetscFunctionBeginUser;
   PetscOptionsBegin(b->comm, NULL, "Load balancing (moves the shared DMDA cuts)", NULL);
   PetscCall(BalanceOptionName(PetscOptionsObject, b->comm, "-lb_scheme", "When to rebalance: none, once, frequent, dynamic", LbSchemeNames, 4, (PetscInt *)&b->scheme));
   PetscCall(BalanceOptionName(PetscOptionsObject, b->comm, "-lb_weight", "Cell weight: linear alpha n + beta, quadratic alpha n^2 + beta, measured (linear, alpha and beta from measured costs)", LbWeightNames, 3, &b->weight));
-  PetscCall(PetscOptionsReal("-lb_alpha", "Weight of a particle in a cell (-, >= 0)", NULL, b->alpha, &b->alpha, NULL));
-  PetscCall(PetscOptionsReal("-lb_beta", "Weight of a cell (-, >= 0)", NULL, b->beta, &b->beta, NULL));
-  PetscCall(PetscOptionsReal("-lb_threshold", "dynamic: rebalance when (L_max - L_min) / L_avg exceeds it (-, > 0)", NULL, b->threshold, &b->threshold, NULL));
-  PetscCall(PetscOptionsInt("-lb_interval", "frequent/dynamic: steps between checks (>= 1)", NULL, b->interval, &b->interval, NULL));
-  PetscCall(PetscOptionsReal("-lb_interval_time", "frequent/dynamic: simulated time between checks (s, > 0; replaces -lb_interval)", NULL, b->interval_time, &b->interval_time, &set));
-  PetscCheck(!set || b->interval_time > 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_interval_time %g must be > 0 (s)", (double)b->interval_time);
-  PetscCall(PetscOptionsInt("-lb_step", "once: the step after which to rebalance (>= 0)", NULL, b->once_step, &b->once_step, NULL));
-  PetscCall(PetscOptionsReal("-lb_time", "once: the simulated time after which to rebalance (s, >= 0; replaces -lb_step)", NULL, b->once_time, &b->once_time, &set));
-  PetscCheck(!set || b->once_time >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_time %g must be >= 0 (s)", (double)b->once_time);
-  PetscCall(PetscOptionsInt("-lb_max_sweeps", "Coordinate-descent rounds of the cut search (>= 0; 0: the marginal cuts only get refined by the default 20)", NULL, b->max_sweeps, &b->max_sweeps, NULL));
+  PetscCall(SableOptionsReal("-lb_alpha", "Weight of a particle in a cell", NULL, "[0,inf)", b->alpha, &b->alpha, NULL));
+  PetscCall(SableOptionsReal("-lb_beta", "Weight of a cell", NULL, "[0,inf)", b->beta, &b->beta, NULL));
+  PetscCall(SableOptionsReal("-lb_threshold", "dynamic: rebalance when (L_max - L_min) / L_avg exceeds it", NULL, "(0,inf)", b->threshold, &b->threshold, NULL));
+  PetscCall(SableOptionsInt("-lb_interval", "frequent/dynamic: steps between checks", NULL, "[1,inf)", b->interval, &b->interval, NULL));
+  PetscCall(SableOptionsReal("-lb_interval_time", "frequent/dynamic: simulated time between checks (replaces -lb_interval); default none: -lb_interval counts", "s", "(0,inf)", b->interval_time, &b->interval_time, NULL));
+  PetscCall(SableOptionsInt("-lb_step", "once: the step after which to rebalance", NULL, "[0,inf)", b->once_step, &b->once_step, NULL));
+  PetscCall(SableOptionsReal("-lb_time", "once: the simulated time after which to rebalance (replaces -lb_step); default none: -lb_step counts", "s", "[0,inf)", b->once_time, &b->once_time, NULL));
+  PetscCall(SableOptionsInt("-lb_max_sweeps", "Coordinate-descent rounds of the cut search (0: the marginal cuts only get refined by the default 20)", NULL, "[0,inf)", b->max_sweeps, &b->max_sweeps, NULL));
   PetscCall(PetscOptionsBool("-lb_verbose", "Print one line per check", NULL, b->verbose, &b->verbose, NULL));
   PetscOptionsEnd();
   { /* the time-based option replaces the step-based one: both given, one would be ignored */
@@ -114,13 +110,7 @@ PetscErrorCode BalanceSetFromOptions(Balance b)
       PetscCheck(!hs || !ht, b->comm, PETSC_ERR_ARG_INCOMP, "%s and %s are both given; %s replaces %s, which would be ignored: give one of them", steps[k], times[k], times[k], steps[k]);
     }
   }
-  PetscCheck((PetscIsNormalReal(b->alpha) || b->alpha == 0) && b->alpha >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_alpha %g must be finite and >= 0 (a particle's weight)", (double)b->alpha);
-  PetscCheck((PetscIsNormalReal(b->beta) || b->beta == 0) && b->beta >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_beta %g must be finite and >= 0 (a cell's weight)", (double)b->beta);
   PetscCheck(b->alpha > 0 || b->beta > 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_alpha and -lb_beta are both 0: every cell would weigh nothing");
-  PetscCheck(PetscIsNormalReal(b->threshold) && b->threshold > 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_threshold %g must be in (0, inf)", (double)b->threshold);
-  PetscCheck(b->interval >= 1, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_interval %" PetscInt_FMT " must be >= 1 (steps)", b->interval);
-  PetscCheck(b->once_step >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_step %" PetscInt_FMT " must be >= 0", b->once_step);
-  PetscCheck(b->max_sweeps >= 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_max_sweeps %" PetscInt_FMT " must be >= 0", b->max_sweeps);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

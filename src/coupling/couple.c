@@ -45,8 +45,6 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   c->kscale      = 1;
   c->eps_floor   = 0.2;
   c->relax_max   = 1;
-  c->rho         = 1000; /* the fluid's defaults of -fluid_density, -fluid_viscosity */
-  c->mu          = 1e-3;
   c->ev_project  = ev[0];
   c->ev_drag     = ev[1];
   c->ev_exchange = ev[2];
@@ -55,29 +53,23 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The fluid's properties come from the Fluid (FluidSetFromOptions has read them). */
 PetscErrorCode CplSetFromOptions(Cpl cpl)
 {
+  PetscReal fg[3];
+
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
   PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu)", NULL, CplDragNames, (PetscEnum)cpl->law, (PetscEnum *)&cpl->law, NULL));
-  PetscCall(PetscOptionsInt("-cpl_substeps", "DEM steps per fluid step (>= 1); the fluid step is this times -dem_dt", NULL, cpl->substeps, &cpl->substeps, &cpl->substeps_set));
-  PetscCall(PetscOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d, > 0", NULL, cpl->kscale, &cpl->kscale, NULL));
-  PetscCall(PetscOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log), in (0,1)", NULL, cpl->eps_floor, &cpl->eps_floor, NULL));
-  PetscCall(PetscOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit), > 0", NULL, cpl->relax_max, &cpl->relax_max, NULL));
+  PetscCall(SableOptionsInt("-cpl_substeps", "DEM steps per fluid step; the fluid step is this times -dem_dt", NULL, "[1,inf)", cpl->substeps, &cpl->substeps, &cpl->substeps_set));
+  PetscCall(SableOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d", NULL, "(0,inf)", cpl->kscale, &cpl->kscale, NULL));
+  PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->eps_floor, &cpl->eps_floor, NULL));
+  PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->relax_max, &cpl->relax_max, NULL));
   PetscOptionsEnd();
-  PetscCheck(cpl->substeps >= 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_substeps %d must be >= 1", (int)cpl->substeps);
-  PetscCheck(cpl->kscale > 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_kernel_scale %g must be > 0", (double)cpl->kscale);
-  PetscCheck(cpl->eps_floor > 0 && cpl->eps_floor < 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_floor %g must be in (0,1)", (double)cpl->eps_floor);
-  PetscCheck(cpl->relax_max > 0, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_relaxation_ratio_max %g must be > 0", (double)cpl->relax_max);
-  /* the fluid's own options, read again for the drag law (same defaults as the fluid) */
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_density", &cpl->rho, NULL));
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-fluid_viscosity", &cpl->mu, NULL));
-  {
-    PetscReal fg[3] = {0, 0, 0};
-    PetscInt  nfg   = 3;
-    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-fluid_gravity", fg, &nfg, NULL));
-    PetscCheck(fg[0] == 0 && fg[1] == 0 && fg[2] == 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_gravity %g,%g,%g must be 0,0,0 in a coupled run: the fluid pressure is hydrodynamic and the buoyancy acts on the particles (eq. 11); set gravity with -dem_gravity", (double)fg[0], (double)fg[1], (double)fg[2]);
-  }
+  PetscCall(FluidGetDensity(cpl->fl, &cpl->rho));
+  PetscCall(FluidGetViscosity(cpl->fl, &cpl->mu));
+  PetscCall(FluidGetGravity(cpl->fl, fg));
+  PetscCheck(fg[0] == 0 && fg[1] == 0 && fg[2] == 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_gravity %g,%g,%g must be 0,0,0 in a coupled run: the fluid pressure is hydrodynamic and the buoyancy acts on the particles (eq. 11); set gravity with -dem_gravity", (double)fg[0], (double)fg[1], (double)fg[2]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

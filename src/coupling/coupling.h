@@ -31,7 +31,9 @@ typedef struct {
 /* Collective. dom, dem and fluid must outlive the coupling. */
 PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fluid, Cpl *cpl);
 /* Collective. Reads -cpl_drag, -cpl_substeps, -cpl_kernel_scale, -cpl_porosity_floor,
- * -cpl_relaxation_ratio_max (the run's length and probes belong to the coupled driver). */
+ * -cpl_relaxation_ratio_max (the run's length and probes belong to the coupled driver); takes
+ * the fluid's density and viscosity from the Fluid (call after FluidSetFromOptions), whose
+ * -fluid_gravity must be 0,0,0 (gravity acts on the particles). */
 PetscErrorCode CplSetFromOptions(Cpl cpl);
 /* Collective. After DemSetUp and FluidSetUp: attaches the drag arrays to the DEM, projects
  * the initial porosity, runs the pre-flight checks (a hard violation is an error). */

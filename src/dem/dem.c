@@ -115,11 +115,13 @@ static PetscErrorCode DemCheckMaterialConflicts(Dem dem)
 
 PetscErrorCode DemSetFromOptions(Dem dem)
 {
-  PetscReal r[DEM_MAX_SHAPES], fr[DEM_MAX_SHAPES], sum = 0;
+  PetscReal r[DEM_MAX_SHAPES] = {0}, fr[DEM_MAX_SHAPES] = {0}, sum = 0;
   PetscInt  nr = DEM_MAX_SHAPES, nf = DEM_MAX_SHAPES, law = dem->law;
   PetscBool rset, fset, gset, sset;
 
   PetscFunctionBeginUser;
+  r[0]  = dem->shp[0].r; /* the defaults -help shows: one shape of the default radius */
+  fr[0] = 1;
   PetscOptionsBegin(dem->comm, NULL, "DEM: particles, contacts, time stepping", NULL);
   PetscCall(PetscOptionsRealArray("-dem_radius", "Sphere radii r1,r2,... (m), one shape each", NULL, r, &nr, &rset));
   PetscCall(PetscOptionsRealArray("-dem_radius_fraction", "Number fraction of each radius (default equal)", NULL, fr, &nf, &fset));
@@ -134,7 +136,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(PetscOptionsReal("-dem_dt_tc", "Time step as this fraction of the shortest contact time (every pair type, at -dem_impact_velocity); replaces -dem_dt when > 0 (the presets in cases/presets use it)", NULL, dem->dt_tc, &dem->dt_tc, NULL));
   PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->dt_frac, &dem->dt_frac, NULL));
   PetscCall(PetscOptionsReal("-dem_overlap_max", "Largest overlap / radius allowed at a progress line or output frame; above it the run is diverging and stops, > 0", NULL, dem->overlap_max, &dem->overlap_max, NULL));
-  SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz (m/s^2)", NULL, dem->g, 3, &gset);
+  PetscCall(SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz", "m/s^2", dem->g, 3, 3, &gset));
   PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, &sset));
   PetscCall(PetscOptionsBool("-dem_convex_sat", "Polyhedron pairs with at most -dem_convex_sat_axes candidate axes by the exact separating-axis test instead of libccd's MPR (default true)", NULL, dem->convex_sat, &dem->convex_sat, NULL));
   PetscCall(PetscOptionsInt("-dem_convex_sat_axes", "Most candidate axes (distinct face normals of both + edge-direction pairs) of a pair that takes the separating-axis test: 16 = box-box; 58 box-icosahedron, 245 icosahedron pairs (exact, ~9x MPR's cost in a dense bed)", NULL, dem->convex_sat_axes, &dem->convex_sat_axes, NULL));

@@ -51,12 +51,12 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscCall(PetscOptionsInt("-dem_lattice_count", "Fill only the first this many lattice sites, x fastest then y then z (default all nx*ny*nz)", NULL, dem->lat_count, &dem->lat_count, NULL));
   PetscCall(PetscOptionsReal("-dem_lattice_spacing", "Lattice spacing (m); default 1.05 x the largest diameter", NULL, dem->lat_a, &dem->lat_a, &set));
   PetscCheck(!set || dem->lat_a > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_spacing %g must be > 0 (m)", (double)dem->lat_a);
-  SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region (m); default the domain's lower corner", NULL, dem->lat_origin, 3, &dem->lat_origin_set);
+  PetscCall(SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region; default the domain's lower corner", "m", dem->lat_origin, 0, 3, &dem->lat_origin_set));
   PetscCall(PetscOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2, in [0,1]", NULL, dem->lat_jitter, &dem->lat_jitter, NULL));
   PetscCall(PetscOptionsReal("-dem_lattice_speed", "Amplitude of the deterministic random initial velocity (m/s)", NULL, dem->lat_speed, &dem->lat_speed, NULL));
   PetscCall(PetscOptionsBool("-dem_lattice_random_orientation", "Uniformly random initial orientations (convex shapes)", NULL, dem->random_orient, &dem->random_orient, NULL));
   PetscCall(PetscOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, dem->seed, &dem->seed, NULL));
-  PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles)", NULL, dem->init_file, dem->init_file, sizeof dem->init_file, NULL));
+  PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles); default none (the particles come from -dem_lattice)", NULL, dem->init_file, dem->init_file, sizeof dem->init_file, NULL));
   PetscCall(PetscOptionsReal("-dem_init_file_overlap_max", "Largest overlap / radius a -dem_init_file particle may start with, with another or with a wall; default twice the contact design's overlap at -dem_impact_velocity, at least 0.05", NULL, dem->init_overlap_max, &dem->init_overlap_max, &set));
   PetscOptionsEnd();
   PetscCheck(!set || (dem->init_overlap_max > 0 && dem->init_overlap_max < 2), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file_overlap_max %g must be in (0,2) (radii)", (double)dem->init_overlap_max);

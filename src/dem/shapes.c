@@ -112,8 +112,8 @@ static PetscErrorCode DemShapeSpecsRead(Dem dem, PetscInt *ns, DemShapeSpec sp[]
   PetscCall(DemShapeKindsCheck(dem));
   PetscOptionsBegin(dem->comm, NULL, "DEM shapes", NULL);
   PetscCall(PetscOptionsEnumArray("-dem_shape", "Shape of each particle type: sphere, cube, tetrahedron, octahedron, icosahedron, cylinder, polyhedron", NULL, DemShapeKinds, kind, &nk, &kset));
-  PetscCall(PetscOptionsRealArray("-dem_shape_size", "Edge (polyhedra), diameter (sphere, cylinder) or scale of the vertex file, per shape (m)", NULL, size, &nsz, &sset));
-  PetscCall(PetscOptionsRealArray("-dem_shape_deq", "Volume-equivalent diameter per shape, instead of -dem_shape_size (m)", NULL, deq, &nd, &dset));
+  PetscCall(SableOptionsRealArray("-dem_shape_size", "Edge (polyhedra), diameter (sphere, cylinder) or scale of the vertex file, per shape", "m", size, 0, &nsz, &sset));
+  PetscCall(SableOptionsRealArray("-dem_shape_deq", "Volume-equivalent diameter per shape, instead of -dem_shape_size", "m", deq, 0, &nd, &dset));
   PetscCall(PetscOptionsStringArray("-dem_shape_file", "Vertex file of each polyhedron shape (x y z per line, m)", NULL, files, &nfile, &fset));
   PetscCall(PetscOptionsReal("-dem_cylinder_aspect", "Height / diameter of the cylinder shapes", NULL, aspect, &aspect, NULL));
   PetscOptionsEnd();

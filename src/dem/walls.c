@@ -75,6 +75,7 @@ PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem d
   PetscBool set;
 
   PetscFunctionBeginUser;
+  for (int k = 0; k < 7; k++) mu[k] = dem->wmat.mu; /* the default -help shows */
   PetscCall(PetscOptionsRealArray(opt, "Friction coefficient of this wall, overriding -dem_wall_friction (box: xlo,ylo,zlo,xhi,yhi,zhi)", NULL, mu, &got, &set));
   if (!set) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(got == n, dem->comm, PETSC_ERR_ARG_SIZ, "%s takes %" PetscInt_FMT " values, got %" PetscInt_FMT, opt, n, got);
@@ -94,7 +95,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
-  SableOptionsRealN("-dem_box", "Closed box of six inward-facing walls: xlo,ylo,zlo,xhi,yhi,zhi (m)", NULL, box, 6, &set);
+  PetscCall(SableOptionsRealN("-dem_box", "Closed box of six inward-facing walls: xlo,ylo,zlo,xhi,yhi,zhi", "m", box, 0, 6, &set));
   if (set) {
     for (int k = 0; k < 3; k++) {
       double p[3] = {0, 0, 0}, n[3] = {0, 0, 0}, z[3] = {0, 0, 0};
@@ -114,9 +115,9 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
   for (int k = 0; k < 10; k++) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_plane_%d", k));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_velocity", k));
-    SableOptionsRealN(opt, "Infinite plane wall: point px,py,pz and normal nx,ny,nz into the granular side (m, -)", NULL, pl, 6, &set);
+    PetscCall(SableOptionsRealN(opt, "Infinite plane wall: point px,py,pz and normal nx,ny,nz into the granular side", "m, -", pl, 0, 6, &set));
     vel[0] = vel[1] = vel[2] = 0;
-    SableOptionsRealN(optv, "Translation velocity of the plane wall (m/s)", NULL, vel, 3, &vset);
+    PetscCall(SableOptionsRealN(optv, "Translation velocity of the plane wall", "m/s", vel, 3, 3, &vset));
     PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
     PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
     if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
@@ -126,7 +127,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
   for (int k = 0; k < 10; k++) {
     PetscReal r[9];
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_rect_%d", k));
-    SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2 (m); faces the side (p1-p0)x(p2-p0) points to", NULL, r, 9, &set);
+    PetscCall(SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2; faces the side (p1-p0)x(p2-p0) points to", "m", r, 0, 9, &set));
     if (set) PetscCall(DemWallAddRect(dem, opt, r));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
     if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));

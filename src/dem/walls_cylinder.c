@@ -25,9 +25,9 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
   DemWall  *w;
 
   PetscFunctionBeginUser;
-  SableOptionsRealN("-dem_cylinder", "Cylinder wall, particles inside: axis point ax,ay,az (m), axis direction ux,uy,uz (-), radius R (m)", NULL, cyl, 7, &set);
+  PetscCall(SableOptionsRealN("-dem_cylinder", "Cylinder wall, particles inside: axis point ax,ay,az (m), axis direction ux,uy,uz (-), radius R (m)", NULL, cyl, 0, 7, &set));
   PetscCall(PetscOptionsReal("-dem_cylinder_omega", "Angular velocity of the cylinder (and its caps) about its axis, right-handed (rad/s)", NULL, omega, &omega, &oset));
-  SableOptionsRealN("-dem_cylinder_caps", "End caps: axial positions s0,s1 (m, from the axis point along the axis) of two planes perpendicular to the axis, co-rotating", NULL, caps, 2, &cset);
+  PetscCall(SableOptionsRealN("-dem_cylinder_caps", "End caps: axial positions s0,s1 (from the axis point along the axis) of two planes perpendicular to the axis, co-rotating; default no caps", "m", caps, 0, 2, &cset));
   PetscCheck(set || (!oset && !cset), dem->comm, PETSC_ERR_ARG_WRONG, "%s given without -dem_cylinder", oset ? "-dem_cylinder_omega" : "-dem_cylinder_caps");
   if (!set) PetscFunctionReturn(PETSC_SUCCESS);
   const double u[3] = {cyl[3], cyl[4], cyl[5]}, lu = sqrt(dem_dot(u, u));

@@ -116,7 +116,7 @@ PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem d
   PetscFunctionBeginUser;
   for (int k = 0; k < 10; k++) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_quad_%d", k));
-    SableOptionsRealN(opt, "Convex planar quadrilateral wall: x0,y0,z0,...,x3,y3,z3 in order around it, counter-clockwise seen from the granular side (m)", NULL, v, 12, &set);
+    PetscCall(SableOptionsRealN(opt, "Convex planar quadrilateral wall: x0,y0,z0,...,x3,y3,z3 in order around it, counter-clockwise seen from the granular side", "m", v, 0, 12, &set));
     if (set) {
       double dv[12];
       for (int c = 0; c < 12; c++) dv[c] = v[c];
@@ -125,7 +125,7 @@ PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem d
     PetscCall(PetscSNPrintf(optf, sizeof optf, "-dem_quad_%d_friction", k));
     if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optf, 1, dem->nwall - 1));
   }
-  SableOptionsRealN("-dem_hopper", "Square truncated-pyramid hopper, four plates facing inward: centre x,y, top z, top half-width, bottom z, bottom half-width (m); wall angle from the horizontal atan((ztop-zbot)/(htop-hbot))", NULL, h, 6, &set);
+  PetscCall(SableOptionsRealN("-dem_hopper", "Square truncated-pyramid hopper, four plates facing inward: centre x,y, top z, top half-width, bottom z, bottom half-width; wall angle from the horizontal atan((ztop-zbot)/(htop-hbot))", "m", h, 0, 6, &set));
   if (set) {
     PetscCall(DemWallAddHopper(dem, h));
     PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_hopper_friction", 1, dem->nwall - 4));

@@ -26,11 +26,9 @@ PetscErrorCode DryRunSetFromOptions(DryRun r)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(r->comm, NULL, "Dry run (DEM without fluid)", NULL);
-  PetscCall(PetscOptionsReal("-dem_t_end", "Simulated time to run to (s); a dry run needs it", NULL, r->t_end, &r->t_end, &r->t_end_set));
-  PetscCall(PetscOptionsReal("-dem_progress_interval", "Simulated time between progress lines (s); 0 = none", NULL, r->progress_dt, &r->progress_dt, NULL));
+  PetscCall(SableOptionsReal("-dem_t_end", "Simulated time to run to; a dry run needs it", "s", "[0,inf)", r->t_end, &r->t_end, &r->t_end_set));
+  PetscCall(SableOptionsReal("-dem_progress_interval", "Simulated time between progress lines; 0 = none", "s", "[0,inf)", r->progress_dt, &r->progress_dt, NULL));
   PetscOptionsEnd();
-  PetscCheck(r->progress_dt >= 0, r->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_progress_interval %g must be >= 0 (s; 0 = no progress lines)", (double)r->progress_dt);
-  PetscCheck(r->t_end >= 0, r->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_t_end %g must be >= 0 (s)", (double)r->t_end);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

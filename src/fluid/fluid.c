@@ -59,35 +59,21 @@ PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid)
 
 PetscErrorCode FluidSetFromOptions(Fluid fl)
 {
-  PetscBool set;
-  PetscInt  n;
-
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid (porosity-averaged Navier-Stokes)", NULL);
-  PetscCall(PetscOptionsReal("-fluid_density", "Fluid density rho_f (kg/m^3)", NULL, fl->rho, &fl->rho, NULL));
-  PetscCall(PetscOptionsReal("-fluid_viscosity", "Dynamic viscosity mu (Pa s)", NULL, fl->mu, &fl->mu, NULL));
-  PetscCall(PetscOptionsReal("-fluid_dt", "Fluid time step (s)", NULL, fl->dt, &fl->dt, NULL));
-  n = 3;
-  PetscCall(PetscOptionsRealArray("-fluid_gravity", "Gravity g, acts as rho eps g (m/s^2; default 0,0,0)", NULL, fl->gravity, &n, &set));
-  PetscCheck(!set || n == 3, fl->comm, PETSC_ERR_ARG_SIZ, "-fluid_gravity takes 3 comma-separated values, got %d", (int)n);
-  n = 3;
-  PetscCall(PetscOptionsRealArray("-fluid_pressure_gradient", "Imposed mean pressure gradient G, acts as the force -G per unit volume (Pa/m; default 0,0,0)", NULL, fl->dpdx, &n, &set));
-  PetscCheck(!set || n == 3, fl->comm, PETSC_ERR_ARG_SIZ, "-fluid_pressure_gradient takes 3 comma-separated values, got %d", (int)n);
+  PetscCall(SableOptionsReal("-fluid_density", "Fluid density rho_f", "kg/m^3", "(0,inf)", fl->rho, &fl->rho, NULL));
+  PetscCall(SableOptionsReal("-fluid_viscosity", "Dynamic viscosity mu", "Pa s", "(0,inf)", fl->mu, &fl->mu, NULL));
+  PetscCall(SableOptionsReal("-fluid_dt", "Fluid time step", "s", "(0,inf)", fl->dt, &fl->dt, NULL));
+  PetscCall(SableOptionsRealN("-fluid_gravity", "Gravity g, acts as rho eps g", "m/s^2", fl->gravity, 3, 3, NULL));
+  PetscCall(SableOptionsRealN("-fluid_pressure_gradient", "Imposed mean pressure gradient G, acts as the force -G per unit volume", "Pa/m", fl->dpdx, 3, 3, NULL));
   PetscCall(PetscOptionsEnum("-fluid_advection", "Advection scheme: central (2nd order), tvd (van Leer limited upwind), none (Stokes)", NULL, FluidAdvectionNames, (PetscEnum)fl->adv, (PetscEnum *)&fl->adv, NULL));
   PetscCall(PetscOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", NULL, FluidViscousNames, (PetscEnum)fl->visc, (PetscEnum *)&fl->visc, NULL));
-  PetscCall(PetscOptionsReal("-fluid_cfl_max", "Largest advective CFL number dt*sum|u_d|/h_d allowed (default 0.5)", NULL, fl->cfl_max, &fl->cfl_max, NULL));
-  PetscCall(PetscOptionsReal("-fluid_viscous_number_max", "Largest explicit viscous number 2 dt nu sum 1/h_d^2 allowed (default 0.5; stability needs <= 1)", NULL, fl->visc_max, &fl->visc_max, NULL));
-  PetscCall(PetscOptionsInt("-fluid_poisson_pc_lag", "Keep the Poisson preconditioner for up to this many matrix changes (0: rebuild at every change; default 20)", NULL, fl->pc_lag, &fl->pc_lag, NULL));
-  PetscCall(PetscOptionsReal("-fluid_poisson_pc_lag_growth", "Rebuild a lagged preconditioner earlier when the iterations exceed growth x those after its build + 1 (default 1.5)", NULL, fl->pc_growth, &fl->pc_growth, NULL));
+  PetscCall(SableOptionsReal("-fluid_cfl_max", "Largest advective CFL number dt*sum|u_d|/h_d allowed", NULL, "(0,1]", fl->cfl_max, &fl->cfl_max, NULL));
+  PetscCall(SableOptionsReal("-fluid_viscous_number_max", "Largest explicit viscous number 2 dt nu sum 1/h_d^2 allowed (stability needs <= 1)", NULL, "(0,1]", fl->visc_max, &fl->visc_max, NULL));
+  PetscCall(SableOptionsInt("-fluid_poisson_pc_lag", "Keep the Poisson preconditioner for up to this many matrix changes (0: rebuild at every change)", NULL, "[0,inf)", fl->pc_lag, &fl->pc_lag, NULL));
+  PetscCall(SableOptionsReal("-fluid_poisson_pc_lag_growth", "Rebuild a lagged preconditioner earlier when the iterations exceed growth x those after its build + 1", NULL, "[1,inf)", fl->pc_growth, &fl->pc_growth, NULL));
   PetscCall(PetscOptionsBool("-fluid_adaptive_dt", "Lower dt to the stability limit instead of stopping", NULL, fl->adaptive, &fl->adaptive, NULL));
   PetscOptionsEnd();
-  PetscCheck(fl->rho > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_density %g must be > 0 (kg/m^3)", (double)fl->rho);
-  PetscCheck(fl->mu > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_viscosity %g must be > 0 (Pa s)", (double)fl->mu);
-  PetscCheck(fl->dt > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_dt %g must be > 0 (s)", (double)fl->dt);
-  PetscCheck(fl->cfl_max > 0 && fl->cfl_max <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_cfl_max %g must be in (0,1]", (double)fl->cfl_max);
-  PetscCheck(fl->pc_lag >= 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_poisson_pc_lag %d must be >= 0 (0 rebuilds the preconditioner at every matrix change)", (int)fl->pc_lag);
-  PetscCheck(fl->pc_growth >= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_poisson_pc_lag_growth %g must be >= 1", (double)fl->pc_growth);
-  PetscCheck(fl->visc_max > 0 && fl->visc_max <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_viscous_number_max %g must be in (0,1]", (double)fl->visc_max);
   PetscCall(FluidSetFromOptionsBC(fl));
   PetscCall(FluidSetFromOptionsInlet(fl));
   PetscCall(KSPDestroy(&fl->ksp));
@@ -224,6 +210,27 @@ PetscErrorCode FluidGetTimeStep(Fluid fl, PetscReal *dt)
 {
   PetscFunctionBeginUser;
   *dt = fl->dt;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidGetDensity(Fluid fl, PetscReal *rho)
+{
+  PetscFunctionBeginUser;
+  *rho = fl->rho;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidGetViscosity(Fluid fl, PetscReal *mu)
+{
+  PetscFunctionBeginUser;
+  *mu = fl->mu;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidGetGravity(Fluid fl, PetscReal g[3])
+{
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++) g[d] = fl->gravity[d];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -54,6 +54,11 @@ PetscErrorCode FluidGetDMs(Fluid fluid, DM *cda, DM *fda);
 PetscErrorCode FluidRedistribute(Fluid fluid);
 /* The time step given by -fluid_dt (s), for drivers and tests. */
 PetscErrorCode FluidGetTimeStep(Fluid fluid, PetscReal *dt);
+/* Not collective. The fluid's properties as its options set them (FluidSetFromOptions):
+ * -fluid_density rho (kg/m^3), -fluid_viscosity mu (Pa s), -fluid_gravity g (m/s^2). */
+PetscErrorCode FluidGetDensity(Fluid fluid, PetscReal *rho);
+PetscErrorCode FluidGetViscosity(Fluid fluid, PetscReal *mu);
+PetscErrorCode FluidGetGravity(Fluid fluid, PetscReal g[3]);
 /* Boundary condition of the face side (0: lower, 1: upper) of axis d (-fluid_bc_{x,y,z}{lo,hi};
  * periodic from -domain_periodic_*); FluidBCNames gives its option value (bc.c). Not collective. */
 typedef enum { FLUID_BC_PERIODIC, FLUID_BC_WALL, FLUID_BC_SLIP, FLUID_BC_INLET, FLUID_BC_OUTLET } FluidBCType;

@@ -143,7 +143,7 @@ PetscErrorCode FluidViscousCreateKSP(Fluid fl);
 PetscErrorCode FluidViscousSetUp(Fluid fl);
 PetscErrorCode FluidViscousSolve(Fluid fl, PetscReal dt, Vec rhs, Vec uhat);
 /* poisson.c */
-PetscErrorCode FluidCheckMGLevelsOption(Fluid fl, const char *prefix);
+PetscErrorCode FluidCheckMGLevelsOption(Fluid fl, const char *name);
 PetscErrorCode FluidPoissonCreateKSP(Fluid fl);
 PetscErrorCode FluidPoissonSetUp(Fluid fl);
 PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st);

@@ -33,7 +33,7 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
       const char *opt = table[d][s];
 
       for (int k = 0; k < 3; k++) bc->vel0[k] = bc->vel[k];
-      PetscCall(PetscOptionsRealArray(opt, "Inlet velocity from each time on: t1,u1,v1,w1,t2,... (s, m/s; default none)", NULL, buf, &n, &set));
+      PetscCall(SableOptionsRealArray(opt, "Inlet velocity from each time on: t1,u1,v1,w1,t2,...", "s, m/s", buf, 0, &n, &set));
       if (!set) continue;
       PetscCheck(bc->type == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but -fluid_bc_%c%s is %s, not inlet", opt, ax[d], side[s], FluidBCNames[bc->type]);
       PetscCheck(n > 0 && n % 4 == 0 && n <= 4 * FLUID_INLET_TABLE_MAX, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes rows of 4 values t,u,v,w, 1 to %d rows; got %s%d values", opt, FLUID_INLET_TABLE_MAX, n > 4 * FLUID_INLET_TABLE_MAX ? "more than " : "", (int)(n > 4 * FLUID_INLET_TABLE_MAX ? 4 * FLUID_INLET_TABLE_MAX : n));

@@ -24,18 +24,16 @@
 
 /* Defensive check of a PETSc option: PETSc 3.18's PCSetFromOptions_MG dereferences a level
  * array that it never allocates when -<prefix>pc_mg_levels is 0 or negative (a segfault), so the
- * raw value is checked before KSPSetFromOptions reads it. Collective (every rank reads the same
- * options). */
-PetscErrorCode FluidCheckMGLevelsOption(Fluid fl, const char *prefix)
+ * raw value of name (-fluid_poisson_pc_mg_levels, -fluid_viscous_pc_mg_levels) is checked before
+ * KSPSetFromOptions reads it. Collective (every rank reads the same options). */
+PetscErrorCode FluidCheckMGLevelsOption(Fluid fl, const char *name)
 {
-  char        name[64];
   const char *v;
   char       *end;
   long        L;
   PetscBool   set;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(name, sizeof name, "-%spc_mg_levels", prefix));
   PetscCall(PetscOptionsFindPair(NULL, NULL, name, &v, &set));
   if (!set) PetscFunctionReturn(PETSC_SUCCESS);
   L = v ? strtol(v, &end, 10) : 0;
@@ -57,7 +55,7 @@ PetscErrorCode FluidPoissonCreateKSP(Fluid fl)
   PetscCall(PCSetType(pc, PCHYPRE));
   PetscCall(PCHYPRESetType(pc, "boomeramg"));
   PetscCall(KSPSetTolerances(fl->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 500));
-  PetscCall(FluidCheckMGLevelsOption(fl, "fluid_poisson_"));
+  PetscCall(FluidCheckMGLevelsOption(fl, "-fluid_poisson_pc_mg_levels"));
   PetscCall(KSPSetFromOptions(fl->ksp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -24,7 +24,7 @@ PetscErrorCode FluidViscousCreateKSP(Fluid fl)
   PetscCall(PCSetType(pc, PCJACOBI));
   PetscCall(KSPSetTolerances(fl->vksp, 1e-10, 1e-50, PETSC_DEFAULT, 1000));
   PetscCall(KSPSetInitialGuessNonzero(fl->vksp, PETSC_TRUE));
-  PetscCall(FluidCheckMGLevelsOption(fl, "fluid_viscous_"));
+  PetscCall(FluidCheckMGLevelsOption(fl, "-fluid_viscous_pc_mg_levels"));
   PetscCall(KSPSetFromOptions(fl->vksp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

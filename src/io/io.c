@@ -50,9 +50,8 @@ PetscErrorCode IoSetFromOptions(Io io)
   PetscOptionsBegin(io->comm, NULL, "Output (HDF5 + XDMF)", NULL);
   PetscCall(PetscOptionsString("-io_dir", "Output directory", NULL, io->dir, io->dir, sizeof io->dir, NULL));
   PetscCall(PetscOptionsString("-io_prefix", "Output file name prefix", NULL, io->prefix, io->prefix, sizeof io->prefix, NULL));
-  PetscCall(PetscOptionsReal("-io_interval", "Simulated time between outputs (s); 0 = no output", NULL, io->interval, &io->interval, NULL));
+  PetscCall(SableOptionsReal("-io_interval", "Simulated time between outputs; 0 = no output", "s", "[0,inf)", io->interval, &io->interval, NULL));
   PetscOptionsEnd();
-  PetscCheck(io->interval >= 0, io->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_interval %g must be >= 0", (double)io->interval);
   { /* the raw values: PETSc cuts a string at the buffer's size without a word */
     const char *v;
     PetscBool   set;

@@ -1,0 +1,395 @@
+/* How Sable's options are read and shown. Two parts:
+ *  - the readers of numeric options (SableOptionsReal, SableOptionsInt, SableOptionsRealArray,
+ *    SableOptionsRealN), called inside the PetscOptionsBegin block of the object that owns the
+ *    option, with the option's literal name. Each prints its own -help line, with the true
+ *    default ("<none>" when the option has none: a default outside the valid range, or no
+ *    default values), the value given, the unit and the valid range, and refuses a value out
+ *    of range with one line naming the option, the value and the range. A range is written as
+ *    in mathematics: "(0,1]", "[0,inf)", NULL for none.
+ *  - the -help printer: installed before PetscInitialize (SableHelpBegin), it keeps the help
+ *    text that PETSc and Sable print through PetscHelpPrintf, and prints it at the end of the
+ *    help pass (SableHelpFlush, also registered to run in PetscFinalize and at exit): Sable's
+ *    sections grouped by prefix (-domain_, -dem_, -fluid_, -cpl_,
+ *    -lb_, -io_, -sable_), then PETSc's sections in the order PETSc printed them. PETSc's
+ *    "(None)" (no manual page) at the end of a line is left out. Without -help the printer
+ *    passes everything through at once. */
+#include "sable.h"
+#include <stdarg.h>
+#include <stdlib.h>
+
+/* A range "(a,b]": bounds and whether each is open; the bound texts as written. */
+typedef struct {
+  PetscReal lo, hi;
+  PetscBool lo_open, hi_open;
+  char      lo_text[32], hi_text[32];
+} SableRange;
+
+static PetscErrorCode SableRangeParse(const char *range, SableRange *r)
+{
+  const char *comma = range ? strchr(range, ',') : NULL;
+  size_t      len   = range ? strlen(range) : 0;
+  char       *end;
+
+  PetscFunctionBeginUser;
+  PetscCheck(comma && len >= 5 && (range[0] == '(' || range[0] == '[') && (range[len - 1] == ')' || range[len - 1] == ']'), PETSC_COMM_SELF, PETSC_ERR_PLIB, "range '%s' is not written as (a,b], [a,b), ...", range ? range : "(null)");
+  r->lo_open = (PetscBool)(range[0] == '(');
+  r->hi_open = (PetscBool)(range[len - 1] == ')');
+  PetscCall(PetscSNPrintf(r->lo_text, sizeof r->lo_text, "%.*s", (int)(comma - range - 1), range + 1));
+  PetscCall(PetscSNPrintf(r->hi_text, sizeof r->hi_text, "%.*s", (int)(range + len - 1 - comma - 1), comma + 1));
+  r->lo = strtod(r->lo_text, &end);
+  PetscCheck(end != r->lo_text && !*end, PETSC_COMM_SELF, PETSC_ERR_PLIB, "range '%s': lower bound is not a number", range);
+  r->hi = strtod(r->hi_text, &end);
+  PetscCheck(end != r->hi_text && !*end, PETSC_COMM_SELF, PETSC_ERR_PLIB, "range '%s': upper bound is not a number", range);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscBool SableRangeHolds(const SableRange *r, PetscReal v)
+{
+  return (PetscBool)((r->lo_open ? v > r->lo : v >= r->lo) && (r->hi_open ? v < r->hi : v <= r->hi));
+}
+
+/* The range as the messages say it: "> 0", ">= 1", "< 0.5", "in (0,1]". */
+static void SableRangeText(const char *range, const SableRange *r, char *buf, size_t size)
+{
+  if (PetscIsInfReal(r->hi) && r->hi > 0 && !(PetscIsInfReal(r->lo) && r->lo < 0)) snprintf(buf, size, "%s %s", r->lo_open ? ">" : ">=", r->lo_text);
+  else if (PetscIsInfReal(r->lo) && r->lo < 0 && !(PetscIsInfReal(r->hi) && r->hi > 0)) snprintf(buf, size, "%s %s", r->hi_open ? "<" : "<=", r->hi_text);
+  else snprintf(buf, size, "in %s", range);
+}
+
+/* Whether the help lines of this block are printed now (PETSc's own test). */
+static PetscBool SableHelpDue(PetscOptionItems *PetscOptionsObject)
+{
+  return (PetscBool)(PetscOptionsObject->printhelp && PetscOptionsObject->count == 1 && !PetscOptionsObject->alreadyprinted);
+}
+
+/* One help line: "  -name <value>: text (unit; range)". */
+static PetscErrorCode SableHelpLine(PetscOptionItems *PetscOptionsObject, const char *opt, const char *value, const char *text, const char *unit, const char *range)
+{
+  char rt[96] = "", paren[160] = "";
+
+  PetscFunctionBeginUser;
+  if (range) {
+    SableRange r;
+    PetscCall(SableRangeParse(range, &r));
+    SableRangeText(range, &r, rt, sizeof rt);
+  }
+  if ((unit && unit[0]) || rt[0]) PetscCall(PetscSNPrintf(paren, sizeof paren, " (%s%s%s)", unit && unit[0] ? unit : "", unit && unit[0] && rt[0] ? "; " : "", rt));
+  PetscCall((*PetscHelpPrintf)(PetscOptionsObject->comm, "  -%s%s <%s>: %s%s\n", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", opt + 1, value, text, paren));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The value part of a help line: the default ("none" when has_def is false), and the value
+ * given when the option is set: "<0.9 (default 0.75)>". */
+static void SableHelpValue(const char *def, PetscBool has_def, const char *given, char *buf, size_t size)
+{
+  if (given) snprintf(buf, size, "%s (default %s)", given, has_def ? def : "none");
+  else snprintf(buf, size, "%s", has_def ? def : "none");
+}
+
+/* A value out of range: "<opt> <value> must be <range> (<unit>)". */
+static PetscErrorCode SableRangeError(MPI_Comm comm, const char *opt, const char *value, const char *unit, const char *range, const SableRange *r)
+{
+  char rt[96];
+
+  PetscFunctionBeginUser;
+  SableRangeText(range, r, rt, sizeof rt);
+  SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s must be %s%s%s%s", opt, value, rt, unit && unit[0] ? " (" : "", unit && unit[0] ? unit : "", unit && unit[0] ? ")" : "");
+}
+
+PetscErrorCode SableOptionsReal_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char unit[], const char range[], PetscReal def, PetscReal *v, PetscBool *set)
+{
+  SableRange r   = {PETSC_NINFINITY, PETSC_INFINITY, PETSC_FALSE, PETSC_FALSE, "-inf", "inf"};
+  PetscBool  flg = PETSC_FALSE;
+  char       dtext[64], gtext[64], line[160];
+
+  PetscFunctionBeginUser;
+  if (range) PetscCall(SableRangeParse(range, &r));
+  *v = def;
+  PetscCall(PetscOptionsGetReal(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, &flg));
+  if (set) *set = flg;
+  if (SableHelpDue(PetscOptionsObject)) {
+    PetscCall(PetscSNPrintf(dtext, sizeof dtext, "%g", (double)def));
+    PetscCall(PetscSNPrintf(gtext, sizeof gtext, "%g", (double)*v));
+    SableHelpValue(dtext, SableRangeHolds(&r, def), flg ? gtext : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, text, unit, range));
+  }
+  if (flg && !SableRangeHolds(&r, *v)) {
+    PetscCall(PetscSNPrintf(gtext, sizeof gtext, "%g", (double)*v));
+    PetscCall(SableRangeError(PetscOptionsObject->comm, opt, gtext, unit, range, &r));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionsInt_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char unit[], const char range[], PetscInt def, PetscInt *v, PetscBool *set)
+{
+  SableRange r   = {PETSC_NINFINITY, PETSC_INFINITY, PETSC_FALSE, PETSC_FALSE, "-inf", "inf"};
+  PetscBool  flg = PETSC_FALSE;
+  char       dtext[64], gtext[64], line[160];
+
+  PetscFunctionBeginUser;
+  if (range) PetscCall(SableRangeParse(range, &r));
+  *v = def;
+  PetscCall(PetscOptionsGetInt(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, &flg));
+  if (set) *set = flg;
+  PetscCall(PetscSNPrintf(gtext, sizeof gtext, "%" PetscInt_FMT, *v));
+  if (SableHelpDue(PetscOptionsObject)) {
+    PetscCall(PetscSNPrintf(dtext, sizeof dtext, "%" PetscInt_FMT, def));
+    SableHelpValue(dtext, SableRangeHolds(&r, (PetscReal)def), flg ? gtext : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, text, unit, range));
+  }
+  if (flg && !SableRangeHolds(&r, (PetscReal)*v)) PetscCall(SableRangeError(PetscOptionsObject->comm, opt, gtext, unit, range, &r));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* "a,b,c" of n reals. */
+static PetscErrorCode SableRealList(const PetscReal *v, PetscInt n, char *buf, size_t size)
+{
+  size_t len = 0;
+
+  PetscFunctionBeginUser;
+  buf[0] = 0;
+  for (PetscInt i = 0; i < n && len + 1 < size; i++) {
+    PetscCall(PetscSNPrintf(buf + len, size - len, "%s%g", i ? "," : "", (double)v[i]));
+    PetscCall(PetscStrlen(buf, &len));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char unit[], PetscReal v[], PetscInt ndef, PetscInt *n, PetscBool exact, PetscBool *set)
+{
+  const PetscInt cap = *n;
+  PetscInt       got = cap, count = 0;
+  PetscBool      flg = PETSC_FALSE;
+  char           dtext[512] = "", gtext[512] = "", line[1040];
+
+  PetscFunctionBeginUser;
+  PetscCall(SableRealList(v, PetscMin(ndef, cap), dtext, sizeof dtext));
+  PetscCall(PetscOptionsGetRealArray(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, &got, &flg));
+  if (set) *set = flg;
+  *n = flg ? got : 0;
+  if (SableHelpDue(PetscOptionsObject)) {
+    PetscCall(SableRealList(v, *n, gtext, sizeof gtext));
+    SableHelpValue(dtext, (PetscBool)(ndef > 0), flg ? gtext : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, text, unit, NULL));
+  }
+  if (!flg) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(SableOptionCount(opt, &count)); /* PETSc stops at the array's size without a word */
+  if (exact) PetscCheck(count == cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes %d comma-separated values, got %d", opt, (int)cap, (int)count);
+  else PetscCheck(count <= cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes at most %d comma-separated values, got %d", opt, (int)cap, (int)count);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ------------------------------------------------------------------------------------------
+ * The -help printer. The text is kept in one growing buffer (plain malloc: it is filled while
+ * PETSc starts, before its allocator is set up, and printed after PETSc may be gone). */
+static struct {
+  char     *text;
+  size_t    len, cap;
+  PetscBool help, decided, registered;
+  PetscErrorCode (*vfprintf)(FILE *, const char[], va_list); /* PETSc's own, for the rest */
+} SableHelp;
+
+static PetscErrorCode SableHelpFinalize(void);
+static void           SableHelpAtExit(void);
+
+/* Keeps n bytes of help text; the first ones register the printing at PetscFinalize. */
+static PetscErrorCode SableHelpAppend(const char *s, size_t n)
+{
+  PetscFunctionBeginUser;
+  if (!SableHelp.registered) { /* -help intro ends the process in PetscInitialize, without PetscFinalize */
+    PetscCall(PetscRegisterFinalize(SableHelpFinalize));
+    PetscCheck(!atexit(SableHelpAtExit), PETSC_COMM_SELF, PETSC_ERR_SYS, "atexit() failed");
+  }
+  SableHelp.registered = PETSC_TRUE;
+  if (SableHelp.len + n + 1 > SableHelp.cap) {
+    size_t cap = PetscMax(2 * SableHelp.cap, SableHelp.len + n + 65536);
+    char  *t   = (char *)realloc(SableHelp.text, cap);
+    PetscCheck(t, PETSC_COMM_SELF, PETSC_ERR_MEM, "out of memory keeping the -help text (%zu bytes)", cap);
+    SableHelp.text = t;
+    SableHelp.cap  = cap;
+  }
+  memcpy(SableHelp.text + SableHelp.len, s, n);
+  SableHelp.len += n;
+  SableHelp.text[SableHelp.len] = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode SableHelpFinalize(void)
+{
+  return SableHelpFlush();
+}
+
+static void SableHelpAtExit(void)
+{
+  (void)SableHelpFlush();
+}
+
+/* PetscHelpPrintf's signature. Printed by the first rank of comm only, as PETSc's own. */
+static PetscErrorCode SableHelpPrintf(MPI_Comm comm, const char fmt[], ...)
+{
+  char        small[4096], *buf = small;
+  size_t      full = 0;
+  va_list     ap;
+  PetscMPIInt rank = 0;
+
+  PetscFunctionBeginUser;
+  if (!SableHelp.decided) { /* the first call comes after PETSc has read the options */
+    PetscCall(PetscOptionsHasHelp(NULL, &SableHelp.help));
+    SableHelp.decided = PETSC_TRUE;
+  }
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank) PetscFunctionReturn(PETSC_SUCCESS);
+  va_start(ap, fmt);
+  PetscCall(PetscVSNPrintf(small, sizeof small, fmt, &full, ap));
+  va_end(ap);
+  if (full >= sizeof small) { /* a long line (a solver's list of types): format it again in full */
+    buf = (char *)malloc(full + 1);
+    PetscCheck(buf, PETSC_COMM_SELF, PETSC_ERR_MEM, "out of memory formatting a -help line");
+    va_start(ap, fmt);
+    PetscCall(PetscVSNPrintf(buf, full + 1, fmt, &full, ap));
+    va_end(ap);
+  }
+  if (!SableHelp.help) PetscCall(PetscHelpPrintfDefault(comm, "%s", buf));
+  else {
+    PetscCall(SableHelpAppend(buf, strlen(buf)));
+  }
+  if (buf != small) free(buf);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* PetscVFPrintf's signature. PETSc prints a few help lines (the types of a solver, -ksp_type
+ * <now cg : formerly cg> ...; its separators) straight to stdout: with -help, text to stdout
+ * that starts an option line or a separator, or continues a kept line, is kept too. */
+static PetscErrorCode SableHelpVFPrintf(FILE *fd, const char fmt[], va_list ap)
+{
+  char    small[4096], *buf = small;
+  size_t  full = 0;
+  va_list aq;
+
+  if ((SableHelp.decided && !SableHelp.help) || (fd != stdout && fd != PETSC_STDOUT)) return SableHelp.vfprintf(fd, fmt, ap);
+  va_copy(aq, ap);
+  PetscCall(PetscVSNPrintf(small, sizeof small, fmt, &full, aq));
+  va_end(aq);
+  if (!SableHelp.decided && !strcmp(small, "----------------------------------------\n")) { /* PETSc's first help line */
+    PetscCall(PetscOptionsHasHelp(NULL, &SableHelp.help));
+    SableHelp.decided = PETSC_TRUE;
+  }
+  if (!SableHelp.help || (!(SableHelp.len && SableHelp.text[SableHelp.len - 1] != '\n') && strncmp(small, "  -", 3) && strcmp(small, "----------------------------------------\n"))) return SableHelp.vfprintf(fd, fmt, ap);
+  if (full >= sizeof small) {
+    buf = (char *)malloc(full + 1);
+    PetscCheck(buf, PETSC_COMM_SELF, PETSC_ERR_MEM, "out of memory formatting a -help line");
+    va_copy(aq, ap);
+    PetscCall(PetscVSNPrintf(buf, full + 1, fmt, &full, aq));
+    va_end(aq);
+  }
+  PetscCall(SableHelpAppend(buf, strlen(buf)));
+  if (buf != small) free(buf);
+  return PETSC_SUCCESS;
+}
+
+void SableHelpBegin(void)
+{
+  PetscHelpPrintf    = SableHelpPrintf;
+  SableHelp.vfprintf = PetscVFPrintf;
+  PetscVFPrintf      = SableHelpVFPrintf;
+}
+
+/* The group of a section by the name of its first option (no dash): the rank of its prefix
+ * among Sable's, or -1 for PETSc's. */
+static int SableHelpGroup(const char *name)
+{
+  const char *pre[] = {"domain_", "dem_", "fluid_", "cpl_", "lb_", "io_", "sable_"};
+
+  if (!SableOptionIsOwn(name) && strncmp(name, "sable_", 6)) return -1;
+  for (int k = 0; k < (int)(sizeof pre / sizeof pre[0]); k++)
+    if (!strncmp(name, pre[k], strlen(pre[k]))) return k;
+  return -1;
+}
+
+/* A section of the kept text: its lines, split at PETSc's separator lines. */
+typedef struct {
+  char    **line;
+  int       n, group;
+  PetscBool named; /* group set from the section's first option */
+} SableHelpSection;
+
+static void SableHelpPrintSection(const SableHelpSection *s)
+{
+  for (int i = 0; i < s->n; i++) {
+    const char  *l   = s->line[i];
+    const size_t len = strlen(l);
+    if (len >= 7 && !strcmp(l + len - 7, " (None)")) printf("%.*s\n", (int)(len - 7), l);
+    else printf("%s\n", l);
+  }
+}
+
+/* The name of the option a help line shows (no dash), or an empty string. */
+static void SableHelpLineOption(const char *l, char *name, size_t size)
+{
+  const char *c = l;
+  size_t      k = 0;
+
+  while (*c == ' ') c++;
+  if (c != l && c[0] == '-' && c[1] != '-')
+    for (c++; *c && *c != ' ' && *c != ':' && *c != '<' && k + 1 < size; c++) name[k++] = *c;
+  name[k] = 0;
+}
+
+/* Splits the kept text (modified: lines end at NUL) into sections, each starting at PETSc's
+ * separator line (the first one at the start of the text), and sets each one's group from its
+ * first option (-1: PETSc's, or none). Returns the count. */
+static int SableHelpSections(char *text, SableHelpSection *sec, int max, char **lines)
+{
+  int ns = 0, nl = 0;
+
+  for (char *l = text, *next; l && *l; l = next) {
+    char name[128];
+    next = strchr(l, '\n');
+    if (next) *next++ = 0;
+    if (ns == 0 || !strcmp(l, "----------------------------------------")) {
+      if (ns == max) break;
+      sec[ns] = (SableHelpSection){lines + nl, 0, -1, PETSC_FALSE};
+      ns++;
+    }
+    lines[nl++] = l;
+    sec[ns - 1].n++;
+    SableHelpLineOption(l, name, sizeof name);
+    if (name[0] && !sec[ns - 1].named) {
+      sec[ns - 1].group = SableHelpGroup(name);
+      sec[ns - 1].named = PETSC_TRUE;
+    }
+  }
+  return ns;
+}
+
+PetscErrorCode SableHelpFlush(void)
+{
+  SableHelpSection *sec;
+  char            **lines;
+  int               nlines = 1;
+
+  if (!SableHelp.len) return PETSC_SUCCESS;
+  for (size_t i = 0; i < SableHelp.len; i++) nlines += SableHelp.text[i] == '\n';
+  sec   = (SableHelpSection *)malloc(sizeof *sec * (size_t)(nlines + 1));
+  lines = (char **)malloc(sizeof *lines * (size_t)(nlines + 1));
+  if (!sec || !lines) fputs(SableHelp.text, stdout); /* no room to sort: as it came */
+  else {
+    const int ns  = SableHelpSections(SableHelp.text, sec, nlines + 1, lines);
+    int       own = 0;
+    for (int k = 0; k < ns; k++) own += sec[k].group >= 0;
+    if (own) printf("Sable's options, by prefix (-domain_, -dem_, -fluid_, -cpl_, -lb_, -io_, -sable_); PETSc's follow\n");
+    for (int g = 0; g < 7; g++) /* Sable's, by prefix */
+      for (int k = 0; k < ns; k++)
+        if (sec[k].group == g) SableHelpPrintSection(&sec[k]);
+    if (own) printf("========================================\nPETSc's options:\n");
+    for (int k = 0; k < ns; k++) /* PETSc's, in the order PETSc printed them (all of it with -help intro) */
+      if (sec[k].group < 0) SableHelpPrintSection(&sec[k]);
+  }
+  fflush(stdout);
+  free(sec);
+  free(lines);
+  free(SableHelp.text);
+  SableHelp.text = NULL;
+  SableHelp.len = SableHelp.cap = 0;
+  return PETSC_SUCCESS;
+}
