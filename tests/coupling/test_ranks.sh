@@ -10,7 +10,7 @@
 # at z = 12, inside the bed: particles migrate, contacts cross through ghost particles, kernels
 # spread into the neighbour's cells) must give the same mean pressure drop and particle drag to
 # 1e-7 relative (the Poisson tolerance is 1e-8; longer runs drift apart as any chaotic flow).
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 out=$(mktemp)

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Parallel bad input: a process grid that does not match the rank count, a grid with fewer cells
 # than ranks, a rank box thinner than the halo. Each stops with one line naming the option, and a non-zero exit.
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 Q="-options_file cases/settle/quick.opts -dem_t_end 0.001 -dem_progress_interval 0 -io_interval 0"
 expect() { # name, ranks, pattern, arguments...

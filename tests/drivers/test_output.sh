@@ -5,7 +5,7 @@
 # edited frame with a repeated id or a zero quaternion is refused, and a lattice added to a
 # file continues after its ids; a run whose end is off the output grid still writes its final
 # state.
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
 OPTS="-domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_lattice 5,5,4 -dem_lattice_spacing 0.0145 -dem_lattice_speed 0.05 -dem_t_end 0.02 -io_interval 0.005 -io_dir $D/a"
 ${BIN:-bin}/sable $OPTS > "$D/log" 2>&1 || { echo "FAIL output run: exit $?"; exit 1; }

@@ -1,5 +1,5 @@
 #!/bin/sh
-# A fresh Debian 12 has what the suite and the tools call: every external program that tests/*.sh,
+# A fresh Debian 12 has what the suite and the tools call: every external program that tests/**/*.sh,
 # tools/* (shell and Python), the Makefile's recipes, .ci/run and cases/**/*.sh call, every Python
 # module their Python code imports and every shebang interpreter comes from a package that
 # tools/install-deps.sh installs (its PKGS, or their Depends and Pre-Depends, recursively, the
@@ -13,7 +13,7 @@
 # stand-in apt-get, dpkg-query and id commands: nothing is installed).
 # Words in command position are found by a small shell lexer (quotes, $( ), heredocs, case
 # patterns, functions); dash's builtins are recognised by `command -v` printing no path.
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 DPATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin # Debian's default PATH
 PY=/usr/bin/python3
@@ -22,7 +22,7 @@ PY=/usr/bin/python3
 OPTIONAL="srun"
 
 # ---- the scripts
-SH_FILES=$(ls tests/*.sh .ci/run 2>/dev/null; find cases -name '*.sh' 2>/dev/null | sort)
+SH_FILES=$(ls tests/*.sh tests/*/*.sh .ci/run 2>/dev/null; find cases -name '*.sh' 2>/dev/null | sort)
 PY_FILES=""
 for f in tools/*; do
   [ -f "$f" ] || continue

@@ -9,7 +9,7 @@
 #  3. a DEM run past its stability limit (settle at dt/Tc 0.65 with the guard -dem_dt_max_fraction
 #     raised to 1) stays finite but diverges: it must stop with the overlap message or the
 #     particle-through-a-wall one (both say the run is diverging), not finish.
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 BUILD=${BUILD:-build}
 export BUILD
 OUT=$(mktemp -d)

@@ -2,7 +2,7 @@
  * diverging force would leave it) makes the next DemStep fail with PETSC_ERR_FP and a message
  * naming -dem_dt, in a bed of 27 particles where every other displacement is finite (the
  * largest-displacement reduction must not drop the NaN). The inputs themselves cannot be NaN:
- * tests/test_options_values.sh. */
+ * tests/drivers/test_options_values.sh. */
 #include "check.h"
 
 static char last_msg[1024];

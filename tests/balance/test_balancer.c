@@ -9,7 +9,7 @@
  *     (the issue's bound) measured on the particles after the move;
  *   - runs with a rebalance every 50 steps give the trajectories of a run without: bitwise in
  *     -dem_deterministic mode (bound 0, as the parallel equivalence tests), within 1e-10 of the
- *     box in the default mode (the default-mode bound of test_parallel).
+ *     box in the default mode (the default-mode bound of tests/dem/test_parallel.c).
  * Coupled bed (the fluidized-bed case, small): after a few coupled steps one forced rebalance
  * leaves velocity, pressure and porosity equal cell by cell, bit for bit (gathered in natural
  * order; bound 0), and the particles too; then the run continues and matches the run without

@@ -8,7 +8,7 @@
 # file. Hostile init files (-dem_init_file) each end with one line naming the file and the
 # dataset, promptly, on 1 and 2 ranks: datasets declared with 800,000,000 rows and no data
 # (rows x columns overflows 32-bit counts), a string-typed position, position with 2 columns.
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 S=${BIN:-bin}/sable
 D=$(mktemp -d)
 M="$D/m"

@@ -9,7 +9,7 @@
 # way: Open MPI's notice follows, and in about half the runs its own ORTE_ERROR_LOG line, a race
 # inside Open MPI 4.1's MPI_Abort that a ten-line program calling it shows too; the run's whole
 # time is reported against the same run ending without the error).
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 S=${BIN:-bin}/sable
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT

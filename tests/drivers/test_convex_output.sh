@@ -6,7 +6,7 @@
 # distance a sqrt(3)/2 from its particle's centre and equals x + R(q) v for a corner v of the
 # cube (to 1e-12 a); triangle corners belong to one particle. Restart from the last frame
 # (-dem_init_file) gives the same positions and quaternions.
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
 A=0.01
 GEO="-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_box 0,0,0,0.1,0.1,0.1 -dem_shape cube -dem_shape_size $A -dem_kn 1e4"

@@ -1,12 +1,12 @@
 #!/bin/sh
 # Bad fluid input must stop the run with a clear message and a non-zero exit status. Drives
-# tests/test_fluid_cli.c (a fluid-only driver) with one bad setting at a time and checks that
+# tests/fluid/test_cli.c (a fluid-only driver) with one bad setting at a time and checks that
 # the exit status is non-zero and that the message names the option or the limit.
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 BUILD=${BUILD:-build}
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
-exe="$BUILD/tests/test_fluid_cli"
+exe="$BUILD/tests/fluid/test_cli"
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
 

@@ -8,7 +8,7 @@
  *    shift, the box moments V(b^2+c^2)/12... as principal moments, and axis-aligned vertices.
  * 3. The hull of 300 random points (on and inside a sphere) contains every input point and is
  *    a closed triangulation (Euler: F = 2V - 4).
- * (Bad vertex lists and files are checked in test_convex_errors.c.)
+ * (Bad vertex lists and files are checked in test_errors.c.)
  * A reader should conclude that the mass properties handed to the DEM are exact and that a
  * vertex list in any orientation is brought to its principal frame.
  */

@@ -8,7 +8,7 @@
 # the code reads with PetscOptionsBool under Sable's prefixes is listed in SableFlags (else giving
 # it alone would be refused), and every option read as a word (enum, string) is in SableWords
 # (else its value would be refused as not a number).
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
 expect() { # name, pattern, options...

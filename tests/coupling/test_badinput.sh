@@ -3,7 +3,7 @@
 # non-zero exit status. Drives ${BIN:-bin}/sable on the small fluidized bed (cases/fluidized_bed/small.opts)
 # with one bad setting at a time; also checks that the start-up log lists the modules and the
 # pre-flight ratios, and that a frozen bed says it integrates nothing.
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 case=cases/fluidized_bed/small.opts
 out=$(mktemp)

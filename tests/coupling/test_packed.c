@@ -7,7 +7,7 @@
  *  1. Simple cubic lattice of touching spheres, one per cell: the porosity between the planes is
  *     1 - pi/6 (each sphere's kernel cube fills its own cell's solid share: 1e-12); Re_p = 1, 10,
  *     100: dp/L between two planes inside the bed within 2% of Beetstra (measured: 3e-12; the
- *     drag law itself is checked against its published formula in test_cpl_drag_laws).
+ *     drag law itself is checked against its published formula in tests/coupling/test_drag_laws.c).
  *  2. The same against Ergun: within 25%; the Gidaspow and Di Felice options against their own
  *     prediction at Re_p = 10.
  *  3. A disordered bed (lattice of spacing 1.2 d, each sphere moved randomly by up to the gap,

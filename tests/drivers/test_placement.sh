@@ -7,7 +7,7 @@
 # limit) run; a frame's sphere past a periodic side is wrapped back. A coupled run warns once per fluid wall or inlet face that has no DEM wall, names
 # both options, and the shipped coupled cases print no such warning; a periodic axis is one
 # option for both, and the ways to make it differ are errors.
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 S=${BIN:-bin}/sable
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT

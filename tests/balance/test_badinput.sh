@@ -3,7 +3,7 @@
 # weight model, a zero interval. Each stops with one line naming the option and the valid range,
 # and a non-zero exit; good input with every scheme runs (2 ranks split along z, so the loads
 # differ) and its log shows the checks.
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 Q="-options_file cases/settle/quick.opts -dem_t_end 0.02 -dem_progress_interval 0 -io_interval 0 -domain_cell 0.02 -da_processors_x 1 -da_processors_y 1"
 expect() { # name, pattern, arguments...

@@ -5,7 +5,7 @@
  * 1.4e-7 of u_max, far below the discretisation error. Checks: the max error relative to u_max
  * is below 0.5% at 32 cells across, and the error falls at second order over 16, 32, 64 cells
  * (wall ghost values carry an O(h^2) error; interior differences of a parabola are exact).
- * The decomposition check (1, 2, 4 ranks) is test_fluid_ranks.c. */
+ * The decomposition check (1, 2, 4 ranks) is tests/fluid/test_ranks.c. */
 #include "fluid_common.h"
 
 static void Exact(const PetscReal x[3], PetscReal v[3], void *ctx)

@@ -46,7 +46,7 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # tests/drivers/ -> the root
 WORDS = ["abc", "yes", "none", "0x1p3", "1e5x", "--", "1,,2", "\u00e9t\u00e9", "inf", "-inf", "1e999"]
 # Open MPI's own lines on stderr, by what printed them (they are counted as noise, not tolerated)
 OMPI_LINES = [("MPI_ABORT banner", re.compile(r"MPI_ABORT was invoked|with errorcode|NOTE: invoking MPI_ABORT|You may or may not"
@@ -548,7 +548,7 @@ def reproducer(run, extra=""):
     cmd = cmd.replace(run["dir"], "$D").replace(ROOT + "/", "")
     tag = "NOTE fuzz repro #%d:" % run["k"]
     lines = ["%s %s [%s] %s" % (tag, run["case"], run["kind"], run["desc"]),
-             "%s   command: %s  (D: tests/fuzz_options.py --case %d --keep rebuilds it)" % (tag, cmd, run["k"]),
+             "%s   command: %s  (D: tests/drivers/fuzz_options.py --case %d --keep rebuilds it)" % (tag, cmd, run["k"]),
              "%s   %s, exit %s%s" % (tag, run["class"] + (": " + run["why"] if run["why"] else ""), run["rc"], extra)]
     err = [l for l in run["err"].split("\n") if l.strip()]
     err = [l for l in err if l.startswith("sable: error")] + [l for l in err if not l.startswith("sable: error")]

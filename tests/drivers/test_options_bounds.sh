@@ -11,7 +11,7 @@
 #   - an options file holding a NUL byte, a control byte or a byte-order mark;
 #   - two options of which one would silently override the other;
 #   - an unknown option near a known one gets "did you mean -<known>?".
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 S=${BIN:-bin}/sable
 DRY="-options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"

@@ -3,7 +3,7 @@
 # 5 mm cells, minimum width 2 cells: every row of its table must be sane, 1 <= optimised
 # L_max/L_avg <= marginal's and uniform's, L_min/L_avg <= 1, S = P L_avg / L_max <= P; the 1x1x4
 # column grid is balanced to within 10% (about 29 loaded planes, each ~3.5% of the load).
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
 ${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.3 -dem_progress_interval 1 -io_interval 0.3 -io_dir "$D" > "$D/log" 2>&1 || { echo "FAIL balance-sim: settle run exit $?"; tail -3 "$D/log"; exit 1; }
 frame=$(ls "$D"/*.h5 | tail -n 1)

@@ -7,7 +7,7 @@
 # --force-offscreen-rendering it crashes): xvfb-run (package xvfb) provides one, and a picture of
 # the last frame's particles as sphere glyphs must show them (a fair share of pixels unlike the
 # background, more than one colour).
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 command -v pvpython >/dev/null || { echo "FAIL paraview: pvpython not found (tools/install-deps.sh installs paraview)"; exit 1; }
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
 ${BIN:-bin}/sable -options_file cases/fluidized_bed/small.opts -cpl_t_end 10 -io_interval 5 -io_dir "$D" > "$D/log" 2>&1 || { echo "FAIL paraview: the run failed: $(tail -3 "$D/log")"; exit 1; }

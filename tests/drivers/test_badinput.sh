@@ -1,7 +1,7 @@
 #!/bin/sh
 # Bad input stops with one clear line naming the option, the value and the valid range, and a
 # non-zero exit status; nothing is run.
-cd "$(dirname "$0")/.." || exit 1
+cd "$(dirname "$0")/../.." || exit 1
 S=${BIN:-bin}/sable
 OK="-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_box 0,0,0,0.1,0.1,0.1 -dem_kn 1e4 -dem_lattice 2,2,2 -dem_radius 0.005 -dem_t_end 0.001"
 expect() { # name, pattern the message must match, arguments...

@@ -2,10 +2,10 @@
  * bounded (fluid and particle velocity components below twice a speed scale, see Extreme;
  * particle kinetic energy finite, porosity in (0, 1]); the frozen beds must also reach their
  * designed porosity (none clipped to the floor); the cases that cross a hard limit stop with a
- * message (test_cpl_badinput.sh).
- *   density ratio 1.2 and 3000: the small fluidized bed of test_cpl_fluidization at U = 0.2;
+ * message (tests/coupling/test_badinput.sh).
+ *   density ratio 1.2 and 3000: the small fluidized bed of test_fluidization.c at U = 0.2;
  *   porosity 0.36: a frozen body-centred cubic bed (cube side 1.18 d, one cell per cube);
- *   Re_p 0.01 and 1000: the frozen lattice bed of test_cpl_packed with mu = 100 and 0.001. */
+ *   Re_p 0.01 and 1000: the frozen lattice bed of test_packed.c with mu = 100 and 0.001. */
 #include "cpl_common.h"
 
 static const char *Bed = "-domain_lo 0,0,0 -domain_hi 8,4,48 -domain_periodic_x -domain_periodic_y -da_grid_x 4 -da_grid_y 2 -da_grid_z 24 "

@@ -5,7 +5,7 @@
  *     rtol 1e-8 default), and
  *   - the output: eps read back from /fluid/eps of the written HDF5 file equals the field set
  *     (0.4 or 1 in each cell) exactly.
- * tests/test_fluid_badinput.sh drives it with bad options and checks the error messages. */
+ * tests/fluid/test_badinput.sh drives it with bad options and checks the error messages. */
 #include "fluid/fluid.h"
 #include <hdf5.h>
 
