@@ -2,8 +2,8 @@
 # The test suite. Tests live in tests/<folder>/, one folder per part of src/ (geom, dem, fluid,
 # coupling, balance, io) and drivers/ for the program as a whole; tests/common/ holds the shared
 # harness (not tests). Every tests/<folder>/*.c is a self-checking executable, built as
-# $BUILD/tests/<folder>/<name>, that prints one line per check,
-#   PASS <check>: <measured> (<bound>)   or   FAIL <check>: ...
+# $BUILD/tests/<folder>/<name>, that prints one line per check (tests/common/check.h),
+#   PASS <check>: <measured> (reference <r>, bound <b>)   or   FAIL <check>: ...
 # and may print NOTE lines: a figure reported against a known limitation, not counted.
 # A line "/* ranks: 1 2 4 */" in its source runs it on each of those rank counts (default 1).
 # Every tests/<folder>/*.sh is a shell test printing the same kind of lines.

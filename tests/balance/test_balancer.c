@@ -14,7 +14,6 @@
  * leaves velocity, pressure and porosity equal cell by cell, bit for bit (gathered in natural
  * order; bound 0), and the particles too; then the run continues and matches the run without
  * balancing to the Poisson tolerance. */
-#include "check.h"
 #include "cpl_common.h"
 
 #define COLUMN "-domain_lo 0,0,0 -domain_hi 0.1035,0.1035,0.45 -domain_cell 0.01725 -da_processors_x 1 -da_processors_y 1 -dem_box 0,0,0,0.1035,0.1035,0.45 -dem_radius 0.0069 -dem_contact_law linear -dem_kn 7.2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_lattice 6,6,20 -dem_lattice_spacing 0.01449 -dem_lattice_origin 0.008,0.008,0.008 -dem_lattice_jitter 0.5 -dem_lattice_speed 0.05 -dem_check_every 1 -lb_verbose 0"
@@ -92,9 +91,16 @@ static PetscErrorCode TestColumnMove(void)
   PetscCall(BalanceGetLoads(lb, &lmin, &lmax, &lavg));
   const double dx = MaxDiff(x0, x1, 3 * NCOL), dv = MaxDiff(v0, v1, 3 * NCOL);
   const double de = PetscAbsReal(s1.pe_spring - s0.pe_spring) / PetscMax(s0.pe_spring, 1e-300);
-  check((PetscBool)(moved && c0 == NCOL && c1 == NCOL && s1.checksum == s0.checksum && dx == 0 && dv == 0), "column, %d ranks: a rebalance moves %" PetscInt_FMT " particles with max |dx| %.3g m, max |dv| %.3g m/s (bound 0), id checksum kept: %s", size, c1, dx, dv, s1.checksum == s0.checksum ? "yes" : "no");
-  check((PetscBool)(s0.pe_spring > 0 && de < 1e-12), "column, %d ranks: tangential/normal spring energy %.6g J before, rel. change %.2e after the move (bound 1e-12: same springs, other summation order)", size, (double)s0.pe_spring, de);
-  check((PetscBool)(lmax / lavg < 1.15), "column, %d ranks: L_max/L_avg %.3f before, %.3f after one rebalance (bound 1.15)", size, (double)(lmax0 / lavg), (double)(lmax / lavg));
+  PetscCall(CheckTrue(CheckName("column, %d ranks: a forced rebalance moves the cuts", size), moved, NULL));
+  PetscCall(CheckEqual(CheckName("column, %d ranks: particles before the move", size), c0, NCOL));
+  PetscCall(CheckEqual(CheckName("column, %d ranks: particles after the move", size), c1, NCOL));
+  PetscCall(CheckEqualReal(CheckName("column, %d ranks: id checksum after the move", size), s1.checksum, s0.checksum));
+  PetscCall(CheckEqualReal(CheckName("column, %d ranks: max |dx| of the particles moved [m]", size), dx, 0));
+  PetscCall(CheckEqualReal(CheckName("column, %d ranks: max |dv| of the particles moved [m/s]", size), dv, 0));
+  PetscCall(CheckAbove(CheckName("column, %d ranks: tangential/normal spring energy before the move [J]", size), s0.pe_spring, 0));
+  PetscCall(CheckBelow(CheckName("column, %d ranks: spring energy, relative change over the move (same springs, other summation order)", size), de, 1e-12));
+  CheckDetail("%.3f before", (double)(lmax0 / lavg));
+  PetscCall(CheckBelow(CheckName("column, %d ranks: L_max/L_avg after one rebalance", size), lmax / lavg, 1.15));
   PetscCall(PetscFree4(x0, v0, x1, v1));
   PetscCall(BalanceDestroy(&lb));
   PetscCall(TestDemDestroy(&dom, &dem));
@@ -114,7 +120,7 @@ static PetscErrorCode TestColumnTrajectories(void)
     PetscCall(RunColumn(mode[m], 1500, 0, a));
     PetscCall(RunColumn(mode[m], 1500, 50, b));
     const double d = MaxDiff(a, b, 3 * NCOL) / 0.45, bound = m ? 1e-10 : 0;
-    check((PetscBool)(d <= bound), "column, %d ranks, %s mode: 1500 steps rebalanced every 50 vs never: max |dx|/L = %.3g (bound %g)", size, m ? "default" : "deterministic", d, bound);
+    PetscCall(CheckAtMost(CheckName("column, %d ranks, %s mode: 1500 steps rebalanced every 50 vs never: max |dx|/L", size, m ? "default" : "deterministic"), d, bound));
   }
   PetscCall(PetscFree2(a, b));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -212,8 +218,12 @@ static PetscErrorCode TestCoupled(void)
   PetscCall(CoupledRun(PETSC_FALSE, 10, a, &na, diff, &moved));
   PetscCall(CoupledRun(PETSC_TRUE, 10, b, &nb, diff, &moved));
   const double dx = (na == nb ? MaxDiff(a, b, 3 * na) : 1e300) / 16.0; /* the bed case is 16 d tall */
-  check((PetscBool)(moved && diff[0] == 0 && diff[1] == 0 && diff[2] == 0), "coupled bed, %d ranks: a rebalance %s; max change of velocity %.3g, pressure %.3g, porosity and particle positions %.3g (bound 0)", size, moved ? "moved the cuts" : "did NOT move the cuts", (double)diff[0], (double)diff[1], (double)diff[2]);
-  check((PetscBool)(na == nb && dx < 1e-9), "coupled bed, %d ranks: 10 more fluid steps after the rebalance vs without: max |dx|/L = %.3g (bound 1e-9: the Poisson tolerance 1e-8 and another summation order)", size, dx);
+  PetscCall(CheckTrue(CheckName("coupled bed, %d ranks: a forced rebalance moves the cuts", size), moved, NULL));
+  PetscCall(CheckEqualReal(CheckName("coupled bed, %d ranks: max change of the velocity over the move", size), diff[0], 0));
+  PetscCall(CheckEqualReal(CheckName("coupled bed, %d ranks: max change of the pressure over the move", size), diff[1], 0));
+  PetscCall(CheckEqualReal(CheckName("coupled bed, %d ranks: max change of the porosity and the particle positions over the move", size), diff[2], 0));
+  PetscCall(CheckEqual(CheckName("coupled bed, %d ranks: particles after 10 more steps, with the rebalance vs without", size), nb, na));
+  PetscCall(CheckBelow(CheckName("coupled bed, %d ranks: 10 more fluid steps after the rebalance vs without: max |dx|/L (the Poisson tolerance 1e-8 and another summation order)", size), dx, 1e-9));
   PetscCall(PetscFree2(a, b));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -125,11 +125,14 @@ static PetscErrorCode TestBruteForce(const char *label, const BalanceGrid *g, Pe
       worse_than_marginal = PetscMax(worse_than_marginal, lmax / marg - 1);
       worst_initial       = PetscMax(worst_initial, marg / opt - 1);
     }
-    check((PetscBool)(gap <= 0.15 && mean <= 0.01), "%s, %s: optimum found in %" PetscInt_FMT " of %" PetscInt_FMT " trials, gap L_max/L_opt - 1 mean %.4f, largest %.4f (bounds 0.01, 0.15)", label, kinds[kind], exact[kind], trials, (double)mean, (double)gap);
+    CheckDetail("optimum found in %" PetscInt_FMT " of %" PetscInt_FMT " trials", exact[kind], trials);
+    PetscCall(CheckAtMost(CheckName("%s, %s: gap L_max/L_opt - 1, mean", label, kinds[kind]), mean, 0.01));
+    PetscCall(CheckAtMost(CheckName("%s, %s: gap L_max/L_opt - 1, largest", label, kinds[kind]), gap, 0.15));
     worst = PetscMax(worst, gap);
   }
-  check((PetscBool)(valid == 3 * trials), "%s: cuts sum to n and respect minw in %" PetscInt_FMT " of %" PetscInt_FMT " cases", label, valid, 3 * trials);
-  check((PetscBool)(worse_than_marginal <= 1e-12), "%s: never worse than the marginal cuts: max(L_max/L_marginal - 1) = %.2e (bound 1e-12); marginal cuts were up to %.3f above the optimum", label, (double)worse_than_marginal, (double)worst_initial);
+  PetscCall(CheckEqual(CheckName("%s: cases whose cuts sum to n and respect minw", label), valid, 3 * trials));
+  CheckDetail("marginal cuts were up to %.3f above the optimum", (double)worst_initial);
+  PetscCall(CheckAtMost(CheckName("%s: never worse than the marginal cuts: max(L_max/L_marginal - 1)", label), worse_than_marginal, 1e-12));
   PetscCall(PetscFree(w));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -146,7 +149,8 @@ static PetscErrorCode TestUniform(void)
   PetscCall(BalanceCuts(&g, w, l, &lmax, &lavg));
   for (int d = 0; d < 3; d++)
     for (PetscInt r = 0; r < g.p[d]; r++) eq = eq && l[d][r] == g.n[d] / g.p[d];
-  check((PetscBool)(eq && PetscAbsReal(lmax / lavg - 1) < 1e-14), "uniform weights, 12^3 cells on 2x3x4: equal cuts %s, L_max/L_avg - 1 = %.1e (bound 1e-14)", eq ? "yes" : "no", (double)(lmax / lavg - 1));
+  PetscCall(CheckTrue("uniform weights, 12^3 cells on 2x3x4: equal cuts", (PetscBool)eq, NULL));
+  PetscCall(CheckClose("uniform weights, 12^3 cells on 2x3x4: L_max/L_avg", lmax / lavg, 1.0, 1e-14));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -175,8 +179,10 @@ static PetscErrorCode TestColumn(void)
     opt = PetscMin(opt, mm);
   }
   PetscCall(PetscFree(list));
-  check((PetscBool)(lmax / lavg < 1.05), "column, weight in the bottom third, 1x1x4 ranks: L_max/L_avg = %.4f (bound 1.05); cuts %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT "; marginal cuts %.4f, uniform cuts 4.0", (double)(lmax / lavg), lz[0], lz[1], lz[2], lz[3], (double)(marg / lavg));
-  check((PetscBool)(lmax <= opt * (1 + 1e-12)), "column: equal to the brute-force optimum over %" PetscInt_FMT " cuts: L_max/L_opt - 1 = %.1e (bound 1e-12)", cnt, (double)(lmax / opt - 1));
+  CheckDetail("cuts %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT "; marginal cuts %.4f, uniform cuts 4.0", lz[0], lz[1], lz[2], lz[3], (double)(marg / lavg));
+  PetscCall(CheckBelow("column, weight in the bottom third, 1x1x4 ranks: L_max/L_avg", lmax / lavg, 1.05));
+  CheckDetail("bound L_opt (1 + 1e-12); L_max/L_opt - 1 = %.1e", (double)(lmax / opt - 1));
+  PetscCall(CheckAtMost(CheckName("column: L_max equal to the brute-force optimum over %" PetscInt_FMT " cuts", cnt), lmax, opt * (1 + 1e-12)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -201,8 +207,10 @@ static PetscErrorCode TestMinWidth(void)
     opt = PetscMin(opt, mm);
   }
   PetscCall(PetscFree(list));
-  check((PetscBool)(CutsValid(&g, l) && mn >= 3), "weight in 3 planes, 5 ranks, minw 3: narrowest part %" PetscInt_FMT " cells (bound >= 3), cuts sum to 30: %s", mn, CutsValid(&g, l) ? "yes" : "no");
-  check((PetscBool)(lmax <= opt * (1 + 1e-12)), "same: equal to the brute-force optimum over %" PetscInt_FMT " cuts with minw 3: L_max/L_opt - 1 = %.1e (bound 1e-12), L_max/L_avg = %.3f", cnt, (double)(lmax / opt - 1), (double)(lmax / lavg));
+  PetscCall(CheckTrue("weight in 3 planes, 5 ranks, minw 3: cuts valid (sum to 30, parts >= minw)", CutsValid(&g, l), NULL));
+  PetscCall(CheckAtLeast("weight in 3 planes, 5 ranks, minw 3: narrowest part [cells]", mn, 3));
+  CheckDetail("bound L_opt (1 + 1e-12); L_max/L_opt - 1 = %.1e, L_max/L_avg = %.3f", (double)(lmax / opt - 1), (double)(lmax / lavg));
+  PetscCall(CheckAtMost(CheckName("same: L_max equal to the brute-force optimum over %" PetscInt_FMT " cuts with minw 3", cnt), lmax, opt * (1 + 1e-12)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -222,7 +230,8 @@ static PetscErrorCode TestLoadSum(void)
   PetscCall(BalanceCuts(&g, w, l, &lmax, &lavg));
   PetscCall(BalanceLoads(&g, w, l, load));
   for (PetscInt r = 0; r < 12; r++) sum += load[r];
-  check((PetscBool)(sum == total && lavg * 12 == total), "rank loads (quadratic weights 2 n^2 + 1) sum to the total: |sum - total| = %g (bound 0, exact), total %g", (double)PetscAbsReal(sum - total), (double)total);
+  PetscCall(CheckEqualReal("rank loads (quadratic weights 2 n^2 + 1) sum to the total", sum, total));
+  PetscCall(CheckEqualReal("rank loads: 12 L_avg is the total", lavg * 12, total));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -245,7 +254,9 @@ static PetscErrorCode TestEdges(void)
   ok1 = (PetscBool)(CutsValid(&g1, l) && a[0] == 2 && a[2] == 2 && c[0] == 3 && c[2] == 3);
   PetscCall(BalanceCuts(&g2, w, l, &l2max, &l2avg));
   ok2 = (PetscBool)(a[0] == 6 && b[0] == 5 && c[0] == 7 && PetscAbsReal(l2max - total) <= 1e-13 * total && l2max == l2avg);
-  check((PetscBool)(ok0 && ok1 && ok2), "edge cases: zero weights (valid cuts, L_max = L_avg = 0) %s; n = p minw exactly (all parts minw) %s; one rank (whole grid, L_max = total) %s", ok0 ? "yes" : "no", ok1 ? "yes" : "no", ok2 ? "yes" : "no");
+  PetscCall(CheckTrue("edge case zero weights: valid cuts, L_max = L_avg = 0", ok0, NULL));
+  PetscCall(CheckTrue("edge case n = p minw exactly: all parts minw", ok1, NULL));
+  PetscCall(CheckTrue("edge case one rank: whole grid, L_max = total", ok2, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -265,21 +276,20 @@ static PetscErrorCode TestErrors(void)
   PetscInt          a[4], b[4], c[4];
   PetscInt *const   l[3] = {a, b, c};
   PetscErrorCode    ierr;
-  PetscBool         ok;
 
   PetscFunctionBeginUser;
   PetscCall(PetscPushErrorHandler(RecordError, NULL));
   ierr = BalanceCuts(&thin, w, l, &lmax, &lavg);
-  ok   = (PetscBool)(ierr == PETSC_ERR_ARG_OUTOFRANGE && strstr(last_msg, "axis z: 10 cells") && strstr(last_msg, "4 ranks of at least 3"));
-  check(ok, "10 cells, 4 ranks, minw 3 along z rejected: %d (bound 0) [\"%s\"]", !ok, last_msg);
+  PetscCall(CheckEqual("10 cells, 4 ranks, minw 3 along z rejected: error code", ierr, PETSC_ERR_ARG_OUTOFRANGE));
+  PetscCall(CheckTrue("10 cells, 4 ranks, minw 3 along z rejected: the message names the axis and the ranks", (PetscBool)(strstr(last_msg, "axis z: 10 cells") && strstr(last_msg, "4 ranks of at least 3")), last_msg));
   w[5] = -1;
   ierr = BalanceCuts(&g, w, l, &lmax, &lavg);
-  ok   = (PetscBool)(ierr == PETSC_ERR_ARG_OUTOFRANGE && strstr(last_msg, "cell (1, 0, 1)"));
-  check(ok, "negative weight rejected, names the cell: %d (bound 0) [\"%s\"]", !ok, last_msg);
+  PetscCall(CheckEqual("negative weight rejected: error code", ierr, PETSC_ERR_ARG_OUTOFRANGE));
+  PetscCall(CheckTrue("negative weight rejected: the message names the cell", (PetscBool)!!strstr(last_msg, "cell (1, 0, 1)"), last_msg));
   w[5] = NAN;
   ierr = BalanceCuts(&g, w, l, &lmax, &lavg);
-  ok   = (PetscBool)(ierr == PETSC_ERR_ARG_OUTOFRANGE && strstr(last_msg, "nan"));
-  check(ok, "NaN weight rejected: %d (bound 0) [\"%s\"]", !ok, last_msg);
+  PetscCall(CheckEqual("NaN weight rejected: error code", ierr, PETSC_ERR_ARG_OUTOFRANGE));
+  PetscCall(CheckTrue("NaN weight rejected: the message says nan", (PetscBool)!!strstr(last_msg, "nan"), last_msg));
   PetscCall(PetscPopErrorHandler());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -313,7 +323,7 @@ static PetscErrorCode TestDMDA(void)
     }
     PetscCall(DMDestroy(&da));
   }
-  check((PetscBool)(bad == 0), "process grid and uniform cuts equal a real DMDA's on %d ranks (3 grids): %" PetscInt_FMT " differences (bound 0)", (int)size, bad);
+  PetscCall(CheckEqual(CheckName("process grid and uniform cuts equal a real DMDA's on %d ranks (3 grids): differences", (int)size), bad, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,110 +1,146 @@
-/* Shared by the test executables: one line per check, and a Dem built from an options string.
- * A check prints "PASS name: measured ... (bound ...)" or "FAIL ..." on rank 0 and counts. */
+/* The checks of the test executables. A check takes the measured value, its reference and its
+ * bound, makes the comparison itself and prints one line on rank 0 with the same numbers,
+ *   PASS <name>: <measured> (reference <r>, relative error <e>, bound < <b>)   or   FAIL ...
+ * so the bound printed is the bound compared against, and counts failures in check_failures
+ * (main returns check_failures ? 1 : 0; tests/run.sh counts the lines). The comparisons:
+ *   CheckClose     |m - r| / |r| <  b        CheckCloseAbs  |m - r| <  b
+ *   CheckBelow     m <  b                    CheckAtMost    m <= b
+ *   CheckAbove     m >  b                    CheckAtLeast   m >= b
+ *   CheckEqual     m == r (integers)         CheckEqualReal m == r (bitwise: roundoff-free results)
+ *   CheckTrue      a condition with a line saying what was seen (messages, found/not found)
+ * A NaN fails every comparison. Names are fixed text or CheckName("...%s...", ...); a figure that
+ * is reported but not compared goes after the bound through CheckDetail(), which the next check
+ * prints and clears. */
 #pragma once
-#include "dem/dem.h"
+#include "sable.h" /* PETSc, and PETSC_SUCCESS on 3.18 */
 
-static int check_failures = 0;
+static int  check_failures = 0;
+static char check_detail[512];
 
-static void check(PetscBool ok, const char *fmt, ...)
+/* printf-style name for one check call: a ring of buffers, so a few may be alive at once. */
+static inline const char *CheckName(const char *fmt, ...)
+{
+  static char buf[4][512];
+  static int  next = 0;
+  char       *s    = buf[next];
+  va_list     ap;
+
+  next = (next + 1) % 4;
+  va_start(ap, fmt);
+  vsnprintf(s, sizeof buf[0], fmt, ap);
+  va_end(ap);
+  return s;
+}
+
+/* A figure printed after the next check's bound, not compared. */
+static inline void CheckDetail(const char *fmt, ...)
 {
   va_list ap;
-  char    buf[1024];
 
   va_start(ap, fmt);
-  vsnprintf(buf, sizeof buf, fmt, ap);
+  vsnprintf(check_detail, sizeof check_detail, fmt, ap);
   va_end(ap);
+}
+
+/* The line of one check: "<PASS|FAIL> <name>: <what>[; <detail>]". */
+static inline PetscErrorCode CheckReport(PetscBool ok, const char *name, const char *what)
+{
+  PetscFunctionBeginUser;
   if (!ok) check_failures++;
-  PetscPrintf(PETSC_COMM_WORLD, "%s %s\n", ok ? "PASS" : "FAIL", buf);
-}
-
-/* Replaces the options database by opts and builds Domain + Dem on comm (not yet set up). */
-static inline PetscErrorCode TestDemCreateOn(MPI_Comm comm, const char *opts, Domain *dom, Dem *dem)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, opts));
-  PetscCall(DomainCreate(comm, 0.05, 1, dom));
-  PetscCall(DemCreate(dom, dem));
-  PetscCall(DemSetFromOptions(*dem));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s %s: %s%s%s\n", ok ? "PASS" : "FAIL", name, what, check_detail[0] ? "; " : "", check_detail));
+  check_detail[0] = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static inline PetscErrorCode TestDemCreate(const char *opts, Domain *dom, Dem *dem)
+static inline PetscErrorCode CheckTrue(const char *name, PetscBool ok, const char *seen)
 {
   PetscFunctionBeginUser;
-  PetscCall(TestDemCreateOn(PETSC_COMM_WORLD, opts, dom, dem));
+  PetscCall(CheckReport(ok, name, seen ? seen : (ok ? "yes" : "no")));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static inline PetscErrorCode TestDemDestroy(Domain *dom, Dem *dem)
+/* relation: "<", "<=", ">" or ">=" */
+static inline PetscErrorCode CheckCompare(const char *name, PetscReal m, const char *relation, PetscReal b)
 {
+  char      what[128];
+  PetscBool ok;
+
   PetscFunctionBeginUser;
-  PetscCall(DemDestroy(dem));
-  PetscCall(DomainDestroy(dom));
+  if (relation[0] == '<') ok = (PetscBool)(relation[1] ? m <= b : m < b);
+  else ok = (PetscBool)(relation[1] ? m >= b : m > b);
+  snprintf(what, sizeof what, "%.6g (bound %s %g)", (double)m, relation, (double)b);
+  PetscCall(CheckReport(ok, name, what));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Local index of the particle with this id (-1 if not here). */
-static inline PetscInt TestFind(Dem dem, PetscInt id)
+static inline PetscErrorCode CheckBelow(const char *name, PetscReal measured, PetscReal bound)
 {
-  PetscInt    n;
-  DemParticle p;
-
-  DemGetLocalCount(dem, &n);
-  for (PetscInt i = 0; i < n; i++) {
-    DemGetParticle(dem, i, &p);
-    if (p.id == id) return i;
-  }
-  return -1;
+  PetscFunctionBeginUser;
+  PetscCall(CheckCompare(name, measured, "<", bound));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static inline DemParticle TestGet(Dem dem, PetscInt id)
+static inline PetscErrorCode CheckAtMost(const char *name, PetscReal measured, PetscReal bound)
 {
-  DemParticle p;
-  memset(&p, 0, sizeof p);
-  PetscInt i = TestFind(dem, id);
-  if (i >= 0) DemGetParticle(dem, i, &p);
-  return p;
+  PetscFunctionBeginUser;
+  PetscCall(CheckCompare(name, measured, "<=", bound));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Positions (and velocities) of all particles by id, gathered on every rank of comm; ids must
- * be 0..N-1. Returns the global count. */
-static inline PetscErrorCode TestGatherById(Dem dem, MPI_Comm comm, PetscInt N, double *x, double *v, PetscInt *count)
+static inline PetscErrorCode CheckAbove(const char *name, PetscReal measured, PetscReal bound)
 {
-  PetscInt    n;
-  double     *loc, *all;
-  PetscMPIInt size, *cnt, *dsp;
-  int         nl;
+  PetscFunctionBeginUser;
+  PetscCall(CheckCompare(name, measured, ">", bound));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static inline PetscErrorCode CheckAtLeast(const char *name, PetscReal measured, PetscReal bound)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckCompare(name, measured, ">=", bound));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* |measured - reference| / |reference| < bound */
+static inline PetscErrorCode CheckClose(const char *name, PetscReal measured, PetscReal reference, PetscReal bound)
+{
+  const PetscReal e = PetscAbsReal(measured - reference) / PetscAbsReal(reference);
+  char            what[192];
 
   PetscFunctionBeginUser;
-  PetscCall(DemGetLocalCount(dem, &n));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(PetscMalloc1(7 * n + 1, &loc));
-  for (PetscInt i = 0; i < n; i++) {
-    DemParticle p;
-    PetscCall(DemGetParticle(dem, i, &p));
-    loc[7 * i] = (double)p.id;
-    for (int k = 0; k < 3; k++) {
-      loc[7 * i + 1 + k] = p.x[k];
-      loc[7 * i + 4 + k] = p.v[k];
-    }
-  }
-  PetscCall(PetscMalloc3(size, &cnt, size, &dsp, 7 * (N + 1), &all));
-  nl = (int)(7 * n);
-  PetscCallMPI(MPI_Allgather(&nl, 1, MPI_INT, cnt, 1, MPI_INT, comm));
-  dsp[0] = 0;
-  for (int r = 1; r < size; r++) dsp[r] = dsp[r - 1] + cnt[r - 1];
-  *count = (dsp[size - 1] + cnt[size - 1]) / 7;
-  PetscCheck(*count <= N, comm, PETSC_ERR_PLIB, "%" PetscInt_FMT " particles, expected at most %" PetscInt_FMT, *count, N);
-  PetscCallMPI(MPI_Allgatherv(loc, nl, MPI_DOUBLE, all, cnt, dsp, MPI_DOUBLE, comm));
-  for (PetscInt a = 0; a < *count; a++) {
-    const PetscInt id = (PetscInt)all[7 * a];
-    for (int k = 0; k < 3; k++) {
-      x[3 * id + k] = all[7 * a + 1 + k];
-      if (v) v[3 * id + k] = all[7 * a + 4 + k];
-    }
-  }
-  PetscCall(PetscFree(loc));
-  PetscCall(PetscFree3(cnt, dsp, all));
+  snprintf(what, sizeof what, "%.8g (reference %.8g, relative error %.2e, bound < %g)", (double)measured, (double)reference, (double)e, (double)bound);
+  PetscCall(CheckReport((PetscBool)(e < bound), name, what));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* |measured - reference| < bound */
+static inline PetscErrorCode CheckCloseAbs(const char *name, PetscReal measured, PetscReal reference, PetscReal bound)
+{
+  const PetscReal e = PetscAbsReal(measured - reference);
+  char            what[192];
+
+  PetscFunctionBeginUser;
+  snprintf(what, sizeof what, "%.10g (reference %.10g, error %.2e, bound < %g)", (double)measured, (double)reference, (double)e, (double)bound);
+  PetscCall(CheckReport((PetscBool)(e < bound), name, what));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static inline PetscErrorCode CheckEqual(const char *name, PetscInt measured, PetscInt reference)
+{
+  char what[96];
+
+  PetscFunctionBeginUser;
+  snprintf(what, sizeof what, "%" PetscInt_FMT " (reference %" PetscInt_FMT ", equal)", measured, reference);
+  PetscCall(CheckReport((PetscBool)(measured == reference), name, what));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static inline PetscErrorCode CheckEqualReal(const char *name, PetscReal measured, PetscReal reference)
+{
+  char what[96];
+
+  PetscFunctionBeginUser;
+  snprintf(what, sizeof what, "%.17g (reference %.17g, bitwise equal)", (double)measured, (double)reference);
+  PetscCall(CheckReport((PetscBool)(measured == reference), name, what));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,7 +1,7 @@
 /* Shared by the coupling tests: a coupled set-up (Domain, Dem, Fluid, Cpl) from an options
  * string, and its tear-down. */
 #pragma once
-#include "check.h"
+#include "dem_common.h"
 #include "balance/balancer.h"
 
 typedef struct {

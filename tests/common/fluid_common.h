@@ -1,6 +1,7 @@
 /* Shared by the fluid tests: Domain + Fluid from the options database, set up, and with the
  * initial porosity of fn (when given). */
 #pragma once
+#include "check.h"
 #include "fluid/fluid.h"
 
 static inline PetscErrorCode TestFluidCreate(PetscReal default_cell, FluidScalarFn fn, void *ctx, Domain *dom, Fluid *fl)

@@ -58,9 +58,9 @@ int main(int argc, char **argv)
     PetscCall(Bed("-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6", mu, 8.5, 15.5, &dpdl, &eps, &u));
     pred = CplPackedBedGradient(CPL_DRAG_BEETSTRA, eps, u, 1, 1, mu);
     erg  = Ergun(eps, u, mu);
-    if (k == 0) check((PetscBool)(PetscAbsReal(eps - (1 - PETSC_PI / 6)) < 1e-12), "lattice bed: porosity between the planes %.15f vs 1 - pi/6 = %.15f, difference %.1e (< 1e-12)", (double)eps, (double)(1 - PETSC_PI / 6), (double)PetscAbsReal(eps - (1 - PETSC_PI / 6)));
-    check((PetscBool)(PetscAbsReal(dpdl / pred - 1) < 0.02), "lattice bed Re_p %g: dp/L %.6g vs Beetstra %.6g at porosity %.4f, rel. error %.2e (< 2e-2)", (double)re[k], (double)dpdl, (double)pred, (double)eps, (double)PetscAbsReal(dpdl / pred - 1));
-    check((PetscBool)(PetscAbsReal(dpdl / erg - 1) < 0.25), "lattice bed Re_p %g: dp/L vs Ergun %.6g, rel. difference %.3f (< 0.25)", (double)re[k], (double)erg, (double)PetscAbsReal(dpdl / erg - 1));
+    if (k == 0) PetscCall(CheckCloseAbs("lattice bed: porosity between the planes vs 1 - pi/6", eps, 1 - PETSC_PI / 6, 1e-12));
+    PetscCall(CheckClose(CheckName("lattice bed Re_p %g: dp/L vs Beetstra at porosity %.4f", (double)re[k], (double)eps), dpdl, pred, 0.02));
+    PetscCall(CheckClose(CheckName("lattice bed Re_p %g: dp/L vs Ergun", (double)re[k]), dpdl, erg, 0.25));
   }
   {
     const char      *name[2] = {"gidaspow", "difelice"};
@@ -71,14 +71,14 @@ int main(int argc, char **argv)
       PetscCall(PetscSNPrintf(extra, sizeof extra, "-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6 -cpl_drag %s", name[k]));
       PetscCall(Bed(extra, mu, 8.5, 15.5, &dpdl, &eps, &u));
       pred = CplPackedBedGradient(law[k], eps, u, 1, 1, mu);
-      check((PetscBool)(PetscAbsReal(dpdl / pred - 1) < 0.02), "lattice bed Re_p 10, -cpl_drag %s: dp/L %.6g vs the law's %.6g, rel. error %.2e (< 2e-2)", name[k], (double)dpdl, (double)pred, (double)PetscAbsReal(dpdl / pred - 1));
+      PetscCall(CheckClose(CheckName("lattice bed Re_p 10, -cpl_drag %s: dp/L vs the law's", name[k]), dpdl, pred, 0.02));
     }
   }
   {
     PetscReal dpdl, eps, u, pred, mu = 0.1;
     PetscCall(Bed("-dem_lattice 3,3,15 -dem_lattice_spacing 1.2 -dem_lattice_origin 0,0,3 -dem_lattice_jitter 1 -dem_seed 7 -da_grid_x 3 -da_grid_y 3 -da_grid_z 20 -domain_hi 3.6,3.6,24", mu, 6, 18, &dpdl, &eps, &u));
     pred = CplPackedBedGradient(CPL_DRAG_BEETSTRA, eps, u, 1, 1, mu);
-    check((PetscBool)(PetscAbsReal(dpdl / pred - 1) < 0.05), "disordered bed Re_p 10: dp/L %.6g vs Beetstra %.6g at porosity %.4f, rel. error %.2e (< 5e-2)", (double)dpdl, (double)pred, (double)eps, (double)PetscAbsReal(dpdl / pred - 1));
+    PetscCall(CheckClose(CheckName("disordered bed Re_p 10: dp/L vs Beetstra at porosity %.4f", (double)eps), dpdl, pred, 0.05));
   }
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;

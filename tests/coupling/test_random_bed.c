@@ -63,8 +63,9 @@ int main(int argc, char **argv)
   PetscCall(CplMeanPorosity(t.cpl, 2, zc0, zc1, &eps));
   dpdl = (p0 - p1) / (zc1 - zc0);
   pred = CplPackedBedGradient(CPL_DRAG_BEETSTRA, eps, u0, 1, 1, 0.1);
-  check((PetscBool)(ds.ke < 1e-3 * Nbed), "settled: kinetic energy per sphere %.2e (< 1e-3), bed top at z = %.2f", (double)(ds.ke / Nbed), (double)ztop);
-  check((PetscBool)(PetscAbsReal(dpdl / pred - 1) < 0.05), "random bed Re_p 10: dp/L %.5g between z = %.0f and %.0f vs Beetstra %.5g at the mean porosity %.4f, rel. error %.2e (< 5e-2)", (double)dpdl, (double)zc0, (double)zc1, (double)pred, (double)eps, (double)PetscAbsReal(dpdl / pred - 1));
+  CheckDetail("bound 1e-3 per sphere; %.2e per sphere, bed top at z = %.2f", (double)(ds.ke / Nbed), (double)ztop);
+  PetscCall(CheckBelow(CheckName("settled: kinetic energy of the %" PetscInt_FMT " spheres", Nbed), ds.ke, 1e-3 * Nbed));
+  PetscCall(CheckClose(CheckName("random bed Re_p 10: dp/L between z = %.0f and %.0f vs Beetstra at the mean porosity %.4f", (double)zc0, (double)zc1, (double)eps), dpdl, pred, 0.05));
   PetscCall(TestCplDestroy(&t));
   PetscCall(PetscFree(Bed));
   PetscCall(PetscFinalize());

@@ -45,8 +45,10 @@ int main(int argc, char **argv)
     }
   }
   vavg /= navg;
-  check((PetscBool)(PetscAbsReal(vavg / vt - 1) < 0.02), "terminal velocity %.5f vs Beetstra at the porosity the sphere sees, %.4f: %.5f (Re_t %.3f), rel. error %.2e (< 2e-2)", (double)vavg, (double)eps, (double)vt, (double)(vt / mu), (double)PetscAbsReal(vavg / vt - 1));
-  check((PetscBool)(vmax <= 1.01 * vavg), "no overshoot: max speed / terminal %.5f (<= 1.01)", (double)(vmax / vavg));
+  CheckDetail("Re_t %.3f", (double)(vt / mu));
+  PetscCall(CheckClose(CheckName("terminal velocity vs Beetstra at the porosity the sphere sees, %.4f", (double)eps), vavg, vt, 0.02));
+  CheckDetail("bound 1.01 x the terminal velocity; max speed / terminal %.5f", (double)(vmax / vavg));
+  PetscCall(CheckAtMost("no overshoot: max speed", vmax, 1.01 * vavg));
   PetscCall(TestCplDestroy(&t));
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;

@@ -7,7 +7,7 @@
  * integrator against an accurate solution of the same law). dt = Tc/50 (>= 50 steps per contact).
  * Bounds from the issue: restitution within 1%, contact time within 2%. Contact start and end
  * are located by linear interpolation of the overlap between steps. */
-#include "check.h"
+#include "dem_common.h"
 
 typedef struct {
   const char *law;
@@ -80,14 +80,13 @@ int main(int argc, char **argv)
       const double r = 0.005, m = 2500 * 4.0 / 3.0 * PETSC_PI * r * r * r, ms = c->wall ? m : m / 2, le = log(c->e);
       tr = sqrt(ms * (PETSC_PI * PETSC_PI + le * le) / 1e4);
     }
-    const double ee = PetscAbsReal(em - c->e) / c->e, et = PetscAbsReal(tm - tr) / tr;
-    check((PetscBool)(ee < 0.01), "restitution %s %s e=%g: measured %.5f, error %.2e (bound 1e-2)", c->law, c->wall ? "sphere-wall" : "sphere-sphere", c->e, em, ee);
-    check((PetscBool)(et < 0.02), "contact time %s %s e=%g: measured %.4e s, reference %.4e s, error %.2e (bound 2e-2)", c->law, c->wall ? "sphere-wall" : "sphere-sphere", c->e, tm, tr, et);
+    PetscCall(CheckClose(CheckName("restitution %s %s e=%g", c->law, c->wall ? "sphere-wall" : "sphere-sphere", c->e), em, c->e, 0.01));
+    PetscCall(CheckClose(CheckName("contact time %s %s e=%g [s]", c->law, c->wall ? "sphere-wall" : "sphere-sphere", c->e), tm, tr, 0.02));
     if (!strcmp(c->law, "hertz") && c->e == 1.0) { /* the closed-form Hertz time, independent of our reduced solver */
       const double r = 0.005, m = 2500 * 4.0 / 3.0 * PETSC_PI * r * r * r, ms = m / 2, rs = r / 2;
       const double es = 1e7 / (2 * (1 - 0.09)), v = 1.0;
       const double th = 2.8683 * pow(ms * ms / (rs * es * es * v), 0.2);
-      check((PetscBool)(PetscAbsReal(tm - th) / th < 0.02), "contact time hertz e=1 vs closed form 2.8683 (m*^2/(R* E*^2 v))^(1/5): measured %.4e s, analytic %.4e s, error %.2e (bound 2e-2)", tm, th, PetscAbsReal(tm - th) / th);
+      PetscCall(CheckClose("contact time hertz e=1 vs closed form 2.8683 (m*^2/(R* E*^2 v))^(1/5) [s]", tm, th, 0.02));
     }
   }
   { /* strong damping: the dashpot sees the half-step velocity, so the restitution error is
@@ -97,7 +96,9 @@ int main(int argc, char **argv)
     PetscCall(RunImpact(&c, 1.0 / 50, &e1, &tm, &tr));
     PetscCall(RunImpact(&c, 1.0 / 200, &e2, &tm, &tr));
     const double r1 = PetscAbsReal(e1 - 0.3) / 0.3, r2 = PetscAbsReal(e2 - 0.3) / 0.3;
-    check((PetscBool)(r1 / r2 > 3.0 && r2 < 0.015), "restitution e=0.3 converges in dt: error %.2e at Tc/50, %.2e at Tc/200, ratio %.2f (bound > 3: first order or better)", r1, r2, r1 / r2);
+    CheckDetail("errors %.2e at Tc/50, %.2e at Tc/200", r1, r2);
+    PetscCall(CheckAbove("restitution e=0.3 converges in dt (first order or better): error ratio Tc/50 to Tc/200", r1 / r2, 3.0));
+    PetscCall(CheckClose("restitution e=0.3 at Tc/200", e2, 0.3, 0.015));
   }
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;

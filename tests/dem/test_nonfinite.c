@@ -3,7 +3,7 @@
  * naming -dem_dt, in a bed of 27 particles where every other displacement is finite (the
  * largest-displacement reduction must not drop the NaN). The inputs themselves cannot be NaN:
  * tests/drivers/test_options_values.sh. */
-#include "check.h"
+#include "dem_common.h"
 
 static char last_msg[1024];
 
@@ -34,7 +34,9 @@ int main(int argc, char **argv)
   PetscCall(PetscPushErrorHandler(Record, NULL));
   for (; steps < 100 && !ierr; steps++) ierr = DemStep(dem);
   PetscCall(PetscPopErrorHandler());
-  check((PetscBool)(ierr == PETSC_ERR_FP && steps == 1 && strstr(last_msg, "non-finite") && strstr(last_msg, "-dem_dt")), "a NaN velocity stops the next step: error %d after %d step(s) (expected %d after 1), \"%s\"", (int)ierr, (int)steps, PETSC_ERR_FP, last_msg);
+  PetscCall(CheckEqual("a NaN velocity stops the next step: error code (PETSC_ERR_FP)", ierr, PETSC_ERR_FP));
+  PetscCall(CheckEqual("a NaN velocity stops the next step: steps taken", steps, 1));
+  PetscCall(CheckTrue("a NaN velocity stops the next step: the message says non-finite and names -dem_dt", (PetscBool)(strstr(last_msg, "non-finite") && strstr(last_msg, "-dem_dt")), last_msg));
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;
 }

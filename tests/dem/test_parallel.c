@@ -15,7 +15,7 @@
  * total momentum of the periodic shear box conserved to roundoff over 10^4 steps, and a single
  * particle crossing periodic boundaries keeps its velocity bitwise. On 4 ranks the process grid
  * is 2 x 2 x 1. */
-#include "check.h"
+#include "dem_common.h"
 
 #define SETTLE "-domain_lo 0,0,0 -domain_hi 0.11592,0.11592,0.2 -dem_box 0,0,0,0.11592,0.11592,0.2 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_lattice 8,8,10 -dem_lattice_spacing 0.01449 -dem_lattice_jitter 0.5 -dem_lattice_speed 0.05"
 #define SHEAR  "-domain_cell 0.0207 -domain_lo 0,0,0 -domain_hi 0.0828,0.0828,0.0828 -domain_periodic_x -domain_periodic_y -domain_periodic_z -dem_radius 0.0069 -dem_kn 7.2e5 -dem_restitution 0.8 -dem_friction 0.5 -dem_gravity 0,0,0 -dem_lattice 6,6,6 -dem_lattice_spacing 0.0138 -dem_lattice_jitter 0 -dem_lattice_speed 0.3"
@@ -70,12 +70,14 @@ static PetscErrorCode Compare(const char *name, const char *scene, PetscInt N, d
   /* the serial half list against the serial full rows: the same forces summed in another order,
      apart only by roundoff amplified by the scene (chaotic ones reach ~1e-5 L over these steps);
      1e-4 L is far below what a missing or doubled pair does */
-  if (size == 1) check((PetscBool)(ds < 1e-4), "%s, 1 rank, half list vs -dem_deterministic full rows, %" PetscInt_FMT " steps: max |dx|/L = %.3g (bound 1e-4)", name, steps, ds);
+  if (size == 1) PetscCall(CheckBelow(CheckName("%s, 1 rank, half list vs -dem_deterministic full rows, %" PetscInt_FMT " steps: max |dx|/L", name, steps), ds, 1e-4));
   else {
-    check((PetscBool)(dq == 0 && c[3] == c[1]), "%s, %d ranks vs 1, -dem_deterministic, %" PetscInt_FMT " steps: max |dx|/L = %.3g (bound 0), contacts %" PetscInt_FMT " vs %" PetscInt_FMT, name, size, steps, dq, c[3], c[1]);
+    PetscCall(CheckEqualReal(CheckName("%s, %d ranks vs 1, -dem_deterministic, %" PetscInt_FMT " steps: max |dx|/L", name, size, steps), dq, 0));
+    PetscCall(CheckEqual(CheckName("%s, %d ranks vs 1, -dem_deterministic: contacts", name, size), c[3], c[1]));
     /* default mode: sums differ in order, so agreement is to roundoff as amplified by the scene,
        whose own amplification is measured by the serial half-list vs full-list difference */
-    check((PetscBool)(dp <= PetscMin(1e-4, PetscMax(1e-10, 10 * ds))), "%s, %d ranks vs 1, default mode, %" PetscInt_FMT " steps: max |dx|/L = %.3g (bound max(1e-10, 10 x the serial half/full-list difference %.3g), at most 1e-4)", name, size, steps, dp, ds);
+    CheckDetail("bound max(1e-10, 10 x the serial half/full-list difference %.3g), at most 1e-4", ds);
+    PetscCall(CheckAtMost(CheckName("%s, %d ranks vs 1, default mode, %" PetscInt_FMT " steps: max |dx|/L", name, size, steps), dp, PetscMin(1e-4, PetscMax(1e-10, 10 * ds))));
   }
   for (int k = 0; k < 4; k++) PetscCall(PetscFree(x[k]));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -114,7 +116,7 @@ static PetscErrorCode Momentum(void)
     for (int k = 0; k < 3; k++) worst = PetscMax(worst, PetscAbsReal(pg[k] - p0[k]) / scale);
     if (s < 10000) PetscCall(DemStep(dem));
   }
-  check((PetscBool)(worst < 1e-12), "periodic shear box, %d ranks, 10^4 steps: total momentum change / sum m|v| = %.2e (bound 1e-12)", size, worst);
+  PetscCall(CheckBelow(CheckName("periodic shear box, %d ranks, 10^4 steps: total momentum change / sum m|v|", size), worst, 1e-12));
   PetscCall(TestDemDestroy(&dom, &dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -125,7 +127,7 @@ static PetscErrorCode Crossing(void)
   char        opts[2048];
   Domain      dom;
   Dem         dem;
-  double      x[3], v[3];
+  double      x[3] = {NAN, NAN, NAN}, v[3] = {NAN, NAN, NAN}; /* NaN: fails the checks if not found */
   PetscInt    cnt;
   PetscMPIInt size;
   const double v0[3] = {3.0, -2.0, 1.0};
@@ -143,13 +145,14 @@ static PetscErrorCode Crossing(void)
   PetscCall(DemSetUp(dem));
   for (PetscInt s = 0; s < 2000; s++) PetscCall(DemStep(dem)); /* 0.02 s: 0.6 box lengths in x */
   PetscCall(TestGatherById(dem, PETSC_COMM_WORLD, 1, x, v, &cnt));
-  const PetscBool same = (PetscBool)(cnt == 1 && v[0] == v0[0] && v[1] == v0[1] && v[2] == v0[2]);
-  double          err  = 0;
+  double err = 0;
   for (int k = 0; k < 3; k++) {
     double e = PetscFmodReal(0.01 + v0[k] * 0.02 - x[k] + 10.0, 0.1); /* wrapped distance */
     err      = PetscMax(err, PetscMin(e, 0.1 - e));
   }
-  check((PetscBool)(same && err < 1e-12), "particle across periodic and rank boundaries, %d ranks: velocity unchanged bitwise: %s, position error %.2e m (bound 1e-12)", size, same ? "yes" : "no", err);
+  PetscCall(CheckEqual(CheckName("particle across periodic and rank boundaries, %d ranks: particles found", size), cnt, 1));
+  for (int k = 0; k < 3; k++) PetscCall(CheckEqualReal(CheckName("particle across periodic and rank boundaries, %d ranks: velocity component %d unchanged", size, k), v[k], v0[k]));
+  PetscCall(CheckBelow(CheckName("particle across periodic and rank boundaries, %d ranks: position error [m]", size), err, 1e-12));
   PetscCall(TestDemDestroy(&dom, &dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -88,7 +88,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsSetValue(NULL, "-fluid_viscosity", "0.01"));
   PetscCall(PetscOptionsSetValue(NULL, "-fluid_pressure_gradient", "-1,0,0"));
   PetscCall(RunSlip(&slip));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s slip_channel_plug_acceleration_rel_error: %.3e (< 1e-12)\n", slip < 1e-12 ? "PASS" : "FAIL", (double)slip));
+  PetscCall(CheckBelow("slip_channel_plug_acceleration_rel_error", slip, 1e-12));
   PetscCall(PetscOptionsClear(NULL));
   PetscCall(PetscOptionsSetValue(NULL, "-domain_lo", "0,0,0"));
   PetscCall(PetscOptionsSetValue(NULL, "-domain_hi", "1,1,1"));
@@ -99,8 +99,8 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_ksp_norm_type", "unpreconditioned"));
   PetscCall(PetscOptionsSetValue(NULL, "-fluid_gravity", "0,0,-9.81"));
   PetscCall(RunHydrostatic(&umax, &gerr));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s hydrostatic_box_max_velocity: %.3e (< 1e-10 m/s)\n", umax < 1e-10 ? "PASS" : "FAIL", (double)umax));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s hydrostatic_box_dpdz_rel_error: %.3e (< 1e-10)\n", gerr < 1e-10 ? "PASS" : "FAIL", (double)gerr));
+  PetscCall(CheckBelow("hydrostatic_box_max_velocity [m/s]", umax, 1e-10));
+  PetscCall(CheckBelow("hydrostatic_box_dpdz_rel_error", gerr, 1e-10));
   PetscCall(PetscFinalize());
-  return 0;
+  return check_failures ? 1 : 0;
 }

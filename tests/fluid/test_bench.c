@@ -9,6 +9,7 @@
  * As a test (no -test_cells) it runs 8^3 and 16^3 and checks that the Poisson iterations do
  * not grow with the grid (multigrid's mesh independence: at most 2 more on the finer grid) and
  * that every step leaves |div u| below 1e-6 of the velocity scale 1/h. */
+#include "check.h"
 #include "fluid/fluid.h"
 
 static void TaylorGreen3(const PetscReal x[3], PetscReal v[3], void *ctx)
@@ -102,9 +103,11 @@ int main(int argc, char **argv)
   } else {
     PetscCall(BenchRun(8, steps, &its[0], &worst[0]));
     PetscCall(BenchRun(16, steps, &its[1], &worst[1]));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s bench_poisson_iterations_mesh_independent: max %d at 16^3 vs %d at 8^3 (multigrid: at most 2 more on the finer grid)\n", its[1] <= its[0] + 2 ? "PASS" : "FAIL", (int)its[1], (int)its[0]));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s bench_divergence_rel: %.3e at 8^3, %.3e at 16^3 (< 1e-6)\n", PetscMax(worst[0], worst[1]) < 1e-6 ? "PASS" : "FAIL", (double)worst[0], (double)worst[1]));
+    CheckDetail("multigrid: at most 2 more than the %d at 8^3", (int)its[0]);
+    PetscCall(CheckAtMost("bench_poisson_iterations_mesh_independent: max at 16^3", its[1], its[0] + 2));
+    CheckDetail("%.3e at 8^3, %.3e at 16^3", (double)worst[0], (double)worst[1]);
+    PetscCall(CheckBelow("bench_divergence_rel", PetscMax(worst[0], worst[1]), 1e-6));
   }
   PetscCall(PetscFinalize());
-  return 0;
+  return check_failures ? 1 : 0;
 }

@@ -117,14 +117,21 @@ int main(int argc, char **argv)
   PetscCall(RelDiff(rm.u, r0.u, &du[2]));
   PetscCall(RelDiff(rm.p, r0.p, &dp[2]));
   dmax = PetscMax(PetscMax(r0.div, rm.div), PetscMax(rd.div, ri.div));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s pc_lag_default_vs_0_velocity_rel_diff: %.3e (< 1e-8)\n", du[0] < 1e-8 ? "PASS" : "FAIL", (double)du[0]));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s pc_lag_default_vs_0_pressure_rel_diff: %.3e (< 1e-8)\n", dp[0] < 1e-8 ? "PASS" : "FAIL", (double)dp[0]));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s pc_lag_unbounded_vs_0_velocity_rel_diff: %.3e (< 1e-8)\n", du[1] < 1e-8 ? "PASS" : "FAIL", (double)du[1]));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s pc_lag_unbounded_vs_0_pressure_rel_diff: %.3e (< 1e-8)\n", dp[1] < 1e-8 ? "PASS" : "FAIL", (double)dp[1]));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s poisson_mg_vs_amg_velocity_rel_diff: %.3e (< 1e-8; CG its %d vs %d)\n", du[2] < 1e-8 ? "PASS" : "FAIL", (double)du[2], (int)rm.its, (int)r0.its));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s poisson_mg_vs_amg_pressure_rel_diff: %.3e (< 1e-8)\n", dp[2] < 1e-8 ? "PASS" : "FAIL", (double)dp[2]));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s poisson_continuity_rel_residual: %.3e (< 1e-8, all four runs)\n", dmax < 1e-8 ? "PASS" : "FAIL", (double)dmax));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s pc_lag_builds: lag 0 %d, default %d, unbounded %d (60; 3 = builds at changes 1, 22, 43; 1); PCSetUp events that built: %d, %d, %d (the same); CG its %d, %d, %d\n", r0.builds == 60 && rd.builds == 3 && ri.builds == 1 && r0.setups == r0.builds && rd.setups == rd.builds && ri.setups == ri.builds ? "PASS" : "FAIL", (int)r0.builds, (int)rd.builds, (int)ri.builds, (int)r0.setups, (int)rd.setups, (int)ri.setups, (int)r0.its, (int)rd.its, (int)ri.its));
+  PetscCall(CheckBelow("pc_lag_default_vs_0_velocity_rel_diff", du[0], 1e-8));
+  PetscCall(CheckBelow("pc_lag_default_vs_0_pressure_rel_diff", dp[0], 1e-8));
+  PetscCall(CheckBelow("pc_lag_unbounded_vs_0_velocity_rel_diff", du[1], 1e-8));
+  PetscCall(CheckBelow("pc_lag_unbounded_vs_0_pressure_rel_diff", dp[1], 1e-8));
+  CheckDetail("CG its %d vs %d", (int)rm.its, (int)r0.its);
+  PetscCall(CheckBelow("poisson_mg_vs_amg_velocity_rel_diff", du[2], 1e-8));
+  PetscCall(CheckBelow("poisson_mg_vs_amg_pressure_rel_diff", dp[2], 1e-8));
+  PetscCall(CheckBelow("poisson_continuity_rel_residual (all four runs)", dmax, 1e-8));
+  PetscCall(CheckEqual("pc_lag_builds: lag 0", r0.builds, 60));
+  PetscCall(CheckEqual("pc_lag_builds: default lag (builds at changes 1, 22, 43)", rd.builds, 3));
+  PetscCall(CheckEqual("pc_lag_builds: unbounded lag", ri.builds, 1));
+  CheckDetail("CG its %d, %d, %d", (int)r0.its, (int)rd.its, (int)ri.its);
+  PetscCall(CheckEqual("pc_lag_builds: PCSetUp events that built, lag 0 (reference: our count)", r0.setups, r0.builds));
+  PetscCall(CheckEqual("pc_lag_builds: PCSetUp events that built, default lag", rd.setups, rd.builds));
+  PetscCall(CheckEqual("pc_lag_builds: PCSetUp events that built, unbounded lag", ri.setups, ri.builds));
   PetscCall(VecDestroy(&r0.u));
   PetscCall(VecDestroy(&r0.p));
   PetscCall(VecDestroy(&rd.u));
@@ -134,5 +141,5 @@ int main(int argc, char **argv)
   PetscCall(VecDestroy(&rm.u));
   PetscCall(VecDestroy(&rm.p));
   PetscCall(PetscFinalize());
-  return 0;
+  return check_failures ? 1 : 0;
 }

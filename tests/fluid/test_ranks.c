@@ -8,6 +8,7 @@
  * order, must equal the one-rank fields to the solver tolerance (Poisson rtol 1e-12): max
  * difference of the face velocity relative to max |u|, and of the pressure (mean removed)
  * relative to max |p|. */
+#include "check.h"
 #include "fluid/fluid.h"
 
 typedef struct {
@@ -114,8 +115,9 @@ static PetscErrorCode Report(const char *name, const Diff *d)
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s %s_velocity_vs_1_rank_rel_diff_np%d: %.3e (< 1e-9; process grid %dx%dx%d)\n", d->u < 1e-9 ? "PASS" : "FAIL", name, (int)size, (double)d->u, (int)d->grid[0], (int)d->grid[1], (int)d->grid[2]));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s %s_pressure_vs_1_rank_rel_diff_np%d: %.3e (< 1e-9)\n", d->p < 1e-9 ? "PASS" : "FAIL", name, (int)size, (double)d->p));
+  CheckDetail("process grid %dx%dx%d", (int)d->grid[0], (int)d->grid[1], (int)d->grid[2]);
+  PetscCall(CheckBelow(CheckName("%s_velocity_vs_1_rank_rel_diff_np%d", name, (int)size), d->u, 1e-9));
+  PetscCall(CheckBelow(CheckName("%s_pressure_vs_1_rank_rel_diff_np%d", name, (int)size), d->p, 1e-9));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -169,5 +171,5 @@ int main(int argc, char **argv)
   PetscCall(Compare(2, 30, &d));
   PetscCall(Report("periodic_box_tvd", &d));
   PetscCall(PetscFinalize());
-  return 0;
+  return check_failures ? 1 : 0;
 }

@@ -26,21 +26,17 @@
  * normal converges slowly on the rims, so A-B and B-A stop on different portals (a limitation,
  * CONVEX.md); their figures print on NOTE lines.
  */
+#include "check.h"
 #include "geom/convex.h"
 #include "geom/quat.h"
 
-static int nfail = 0;
-
-/* bound < 0: a known limitation, reported on a NOTE line and not counted */
-static void check(const char *name, double measured, double bound)
+/* measured <= bound; bound < 0: a known limitation, reported on a NOTE line and not counted */
+static PetscErrorCode CheckOrNote(const char *name, double measured, double bound)
 {
-  if (bound < 0) {
-    printf("NOTE %s: %.3e (known limitation, not checked: src/dem/CONVEX.md)\n", name, measured);
-    return;
-  }
-  const int ok = measured <= bound;
-  if (!ok) nfail++;
-  printf("%s %s: %.3e (bound %.1e)\n", ok ? "PASS" : "FAIL", name, measured, bound);
+  PetscFunctionBeginUser;
+  if (bound < 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "NOTE %s: %.3e (known limitation, not checked: src/dem/CONVEX.md)\n", name, measured));
+  else PetscCall(CheckAtMost(name, measured, bound));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static double dist3(const double a[3], const double b[3])
@@ -70,17 +66,14 @@ static void edge_down(double q[4])
   convex_quat_from_axis_angle(ex, PETSC_PI / 4, q);
 }
 
-static void report(const char *mode, const ConvexContact *c, const double n_exp[3], double point_err)
+static PetscErrorCode report(const char *mode, const ConvexContact *c, const double n_exp[3], double point_err)
 {
-  char buf[160];
-  snprintf(buf, sizeof buf, "%s: overlap found (1 - found)", mode);
-  check(buf, c->overlap ? 0 : 1, 0);
-  snprintf(buf, sizeof buf, "%s: |depth - delta| / a", mode);
-  check(buf, fabs(c->depth - delta) / a, tol_mpr / a);
-  snprintf(buf, sizeof buf, "%s: |normal - expected|", mode);
-  check(buf, dist3(c->normal, n_exp), tol_mpr / a);
-  snprintf(buf, sizeof buf, "%s: contact point error / a", mode);
-  check(buf, point_err / a, tol_mpr / a);
+  PetscFunctionBeginUser;
+  PetscCall(CheckTrue(CheckName("%s: overlap found", mode), (PetscBool)(c->overlap != 0), NULL));
+  PetscCall(CheckAtMost(CheckName("%s: |depth - delta| / a", mode), fabs(c->depth - delta) / a, tol_mpr / a));
+  PetscCall(CheckAtMost(CheckName("%s: |normal - expected|", mode), dist3(c->normal, n_exp), tol_mpr / a));
+  PetscCall(CheckAtMost(CheckName("%s: contact point error / a", mode), point_err / a, tol_mpr / a));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 
@@ -120,7 +113,6 @@ static double outside_distance(const ConvexShape *s, const ConvexPose *P, const 
 static PetscErrorCode TestRandomPairs(const char *name, const ConvexShape *s, PetscInt npair, const double bound[4])
 {
   double e_depth = 0, e_normal = 0, e_point = 0, e_out = -1e300, size = 2 * s->bounding_radius;
-  char   buf[160];
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < npair; i++) {
@@ -152,14 +144,10 @@ static PetscErrorCode TestRandomPairs(const char *name, const ConvexShape *s, Pe
     e_point  = PetscMax(e_point, dist3(c.point, c2.point) / size);
     e_out    = PetscMax(e_out, PetscMax(outside_distance(s, &A, c.point), outside_distance(s, &B, c.point)) / c.depth);
   }
-  snprintf(buf, sizeof buf, "%s random pairs (%d): A-B swap |depth difference| / size", name, (int)npair);
-  check(buf, e_depth, bound[0]);
-  snprintf(buf, sizeof buf, "%s random pairs: A-B swap |n_AB + n_BA|", name);
-  check(buf, e_normal, bound[1]);
-  snprintf(buf, sizeof buf, "%s random pairs: A-B swap |point difference| / size", name);
-  check(buf, e_point, bound[2]);
-  snprintf(buf, sizeof buf, "%s random pairs: max signed distance of the contact point outside A or B / depth", name);
-  check(buf, e_out, bound[3]);
+  PetscCall(CheckOrNote(CheckName("%s random pairs (%d): A-B swap |depth difference| / size", name, (int)npair), e_depth, bound[0]));
+  PetscCall(CheckOrNote(CheckName("%s random pairs: A-B swap |n_AB + n_BA|", name), e_normal, bound[1]));
+  PetscCall(CheckOrNote(CheckName("%s random pairs: A-B swap |point difference| / size", name), e_point, bound[2]));
+  PetscCall(CheckOrNote(CheckName("%s random pairs: max signed distance of the contact point outside A or B / depth", name), e_out, bound[3]));
   PetscFunctionReturn(0);
 }
 
@@ -173,7 +161,7 @@ static PetscErrorCode TestCubeCube(const ConvexShape *cube)
   PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
   { /* overlap patch [-0.2, 0.5] x [-0.3, 0.5] a: its centre */
     const double p[3] = {0.15 * a, 0.10 * a, a / 2 - delta / 2};
-    report("cube-cube face-to-face", &c, ez, dist3(c.point, p));
+    PetscCall(report("cube-cube face-to-face", &c, ez, dist3(c.point, p)));
   }
 
   B = (ConvexPose){{0.2 * a, 0.1 * a, a / 2 + a / sqrt(2.0) - delta}, {0}};
@@ -181,7 +169,7 @@ static PetscErrorCode TestCubeCube(const ConvexShape *cube)
   PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
   { /* edge over x in [-0.3, 0.7] a, clipped by A's face to [-0.3, 0.5] a */
     const double p[3] = {0.1 * a, B.x[1], a / 2 - delta / 2};
-    report("cube-cube edge-to-face", &c, ez, dist3(c.point, p));
+    PetscCall(report("cube-cube edge-to-face", &c, ez, dist3(c.point, p)));
   }
 
   { /* A turned 45 deg about y (top edge along y), B 45 deg about x (bottom edge along x) */
@@ -192,20 +180,20 @@ static PetscErrorCode TestCubeCube(const ConvexShape *cube)
     B = (ConvexPose){{0.1 * a, 0.2 * a, sqrt(2.0) * a - delta}, {0}};
     edge_down(B.q);
     PetscCall(ConvexCollide(cube, &A2, cube, &B, &c2));
-    report("cube-cube edge-to-edge (crossed)", &c2, ez, dist3(c2.point, p));
+    PetscCall(report("cube-cube edge-to-edge (crossed)", &c2, ez, dist3(c2.point, p)));
   }
   B = (ConvexPose){{0.1 * a, -0.15 * a, a / 2 + a * sqrt(3.0) / 2 - delta}, {0}};
   corner_down(B.q);
   PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
   {
     const double p[3] = {B.x[0], B.x[1], a / 2 - delta / 2};
-    report("cube-cube vertex-to-face", &c, ez, dist3(c.point, p));
+    PetscCall(report("cube-cube vertex-to-face", &c, ez, dist3(c.point, p)));
   }
   {
     ConvexContact c2;
     const double  mz[3] = {0, 0, -1}, p[3] = {B.x[0], B.x[1], a / 2 - delta / 2};
     PetscCall(ConvexCollide(cube, &B, cube, &A, &c2));
-    report("cube-cube vertex-to-face, A and B swapped", &c2, mz, dist3(c2.point, p));
+    PetscCall(report("cube-cube vertex-to-face, A and B swapped", &c2, mz, dist3(c2.point, p)));
   }
   { /* the same scene rotated by Q and shifted by T */
     const double  ax0[3] = {-0.4, 0.7, 0.2}, T[3] = {0.31, -0.12, 2.5};
@@ -229,7 +217,7 @@ static PetscErrorCode TestCubeCube(const ConvexShape *cube)
     p[0] = B.x[0], p[1] = B.x[1], p[2] = a / 2 - delta / 2;
     convex_mat_vec(M, p, pr);
     for (int k = 0; k < 3; k++) pr[k] += T[k];
-    report("cube-cube vertex-to-face, scene rotated", &c3, n_exp, dist3(c3.point, pr));
+    PetscCall(report("cube-cube vertex-to-face, scene rotated", &c3, n_exp, dist3(c3.point, pr)));
   }
   { /* B tilted by 0.004 rad about (1, -1, 0): its bottom corners differ in height by less than
        the overlap, so the patch point is inside the overlap patch, while the support point
@@ -251,15 +239,15 @@ static PetscErrorCode TestCubeCube(const ConvexShape *cube)
     PetscCall(ConvexContactPoint(cube, &A, cube, &B, ez, delta, CONVEX_POINT_SUPPORT, &cs, &ok_s));
     PetscCall(ConvexContactPoint(cube, &A, cube, &B, ez, delta, CONVEX_POINT_PATCH, &cp, &ok_p));
     p[0] = B.x[0] + low[0], p[1] = B.x[1] + low[1], p[2] = a / 2 - delta / 2;
-    check("cube-cube tilted face-to-face, support point: found (1 if not)", ok_s ? 0 : 1, 0);
-    check("cube-cube tilted face-to-face, support point = the lowest corner at depth/2: error / a", dist3(cs.point, p) / a, tol_mpr / a);
-    check("cube-cube tilted face-to-face, patch point: found (1 if not)", ok_p ? 0 : 1, 0);
-    check("cube-cube tilted face-to-face, patch point is inside the patch, not at the corner: 0.1 a minus its distance to the corner, / a (<= 0)", (0.1 * a - dist3(cp.point, p)) / a, 0);
+    PetscCall(CheckTrue("cube-cube tilted face-to-face, support point: found", ok_s, NULL));
+    PetscCall(CheckAtMost("cube-cube tilted face-to-face, support point = the lowest corner at depth/2: error / a", dist3(cs.point, p) / a, tol_mpr / a));
+    PetscCall(CheckTrue("cube-cube tilted face-to-face, patch point: found", ok_p, NULL));
+    PetscCall(CheckAtMost("cube-cube tilted face-to-face, patch point is inside the patch, not at the corner: 0.1 a minus its distance to the corner, / a", (0.1 * a - dist3(cp.point, p)) / a, 0));
   }
   B = (ConvexPose){{1.02 * a, 1.02 * a, 0}, {0}}; /* bounding spheres overlap, cubes do not */
   edge_down(B.q);
   PetscCall(ConvexCollide(cube, &A, cube, &B, &c));
-  check("cube-cube near miss (corner gap 0.02 a): no overlap (1 if found)", c.overlap ? 1 : 0, 0);
+  PetscCall(CheckTrue("cube-cube near miss (corner gap 0.02 a): no overlap", (PetscBool)!c.overlap, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -277,26 +265,22 @@ static PetscErrorCode TestCylinderCube(const ConvexShape *cube)
   {
     const double ez_[3] = {0, 0, 1};
     const double p[3]   = {B.x[0], B.x[1], a / 2 - delta / 2}; /* the disc lies inside the face */
-    report("cube-cylinder end-to-face", &c, ez_, dist3(c.point, p));
+    PetscCall(report("cube-cylinder end-to-face", &c, ez_, dist3(c.point, p)));
   }
   PetscCall(ConvexShapeDestroy(&cyl));
   PetscFunctionReturn(0);
 }
 
-static void plane_check(const char *mode, const ConvexContact *c, double depth, const double p[3])
+static PetscErrorCode plane_check(const char *mode, const ConvexContact *c, double depth, const double p[3])
 {
-  char         buf[160];
   const double mz[3] = {0, 0, -1};
-  snprintf(buf, sizeof buf, "%s: overlap found (1 - found)", mode);
-  check(buf, c->overlap ? 0 : 1, 0);
-  snprintf(buf, sizeof buf, "%s: |depth - expected| / a", mode);
-  check(buf, fabs(c->depth - depth) / a, tol_plane / a);
-  snprintf(buf, sizeof buf, "%s: |normal - (0,0,-1)|", mode);
-  check(buf, dist3(c->normal, mz), 1e-15);
-  if (p) {
-    snprintf(buf, sizeof buf, "%s: contact point error / a", mode);
-    check(buf, dist3(c->point, p) / a, tol_plane / a);
-  }
+
+  PetscFunctionBeginUser;
+  PetscCall(CheckTrue(CheckName("%s: overlap found", mode), (PetscBool)(c->overlap != 0), NULL));
+  PetscCall(CheckAtMost(CheckName("%s: |depth - expected| / a", mode), fabs(c->depth - depth) / a, tol_plane / a));
+  PetscCall(CheckAtMost(CheckName("%s: |normal - (0,0,-1)|", mode), dist3(c->normal, mz), 1e-15));
+  if (p) PetscCall(CheckAtMost(CheckName("%s: contact point error / a", mode), dist3(c->point, p) / a, tol_plane / a));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode TestPlane(const ConvexShape *cube)
@@ -310,23 +294,23 @@ static PetscErrorCode TestPlane(const ConvexShape *cube)
   PetscFunctionBeginUser;
   B = (ConvexPose){{x0, y0, a / 2 - delta}, {1, 0, 0, 0}};
   PetscCall(ConvexCollidePlane(cube, &B, p0, ez, &c));
-  plane_check("cube-plane flat", &c, delta, p);
+  PetscCall(plane_check("cube-plane flat", &c, delta, p));
   B.x[2] = a / sqrt(2.0) - delta;
   edge_down(B.q);
   PetscCall(ConvexCollidePlane(cube, &B, p0, ez, &c));
-  plane_check("cube-plane edge", &c, delta, p);
+  PetscCall(plane_check("cube-plane edge", &c, delta, p));
   B.x[2] = a * sqrt(3.0) / 2 - delta;
   corner_down(B.q);
   PetscCall(ConvexCollidePlane(cube, &B, p0, ez, &c));
-  plane_check("cube-plane corner", &c, delta, p);
+  PetscCall(plane_check("cube-plane corner", &c, delta, p));
   B.x[2] += 2 * delta;
   PetscCall(ConvexCollidePlane(cube, &B, p0, ez, &c));
-  check("cube-plane corner lifted by delta: no overlap (1 if found)", c.overlap ? 1 : 0, 0);
+  PetscCall(CheckTrue("cube-plane corner lifted by delta: no overlap", (PetscBool)!c.overlap, NULL));
 
   PetscCall(ConvexShapeCreateCylinder(r, h, &cyl));
   B = (ConvexPose){{x0, y0, h / 2 - delta}, {1, 0, 0, 0}};
   PetscCall(ConvexCollidePlane(&cyl, &B, p0, ez, &c));
-  plane_check("cylinder-plane on its end", &c, delta, p);
+  PetscCall(plane_check("cylinder-plane on its end", &c, delta, p));
   B.x[2] = r - delta;
   edge_down(B.q); /* 45 deg about x: the axis is not vertical; use 90 deg for the side */
   {
@@ -334,14 +318,14 @@ static PetscErrorCode TestPlane(const ConvexShape *cube)
     convex_quat_from_axis_angle(ex, PETSC_PI / 2, B.q);
   }
   PetscCall(ConvexCollidePlane(&cyl, &B, p0, ez, &c));
-  plane_check("cylinder-plane on its side", &c, delta, p);
+  PetscCall(plane_check("cylinder-plane on its side", &c, delta, p));
   {
     const double ex[3] = {1, 0, 0};
     convex_quat_from_axis_angle(ex, t, B.q);
   }
   B.x[2] = 0.5 * h * cos(t) + r * sin(t) - delta;
   PetscCall(ConvexCollidePlane(&cyl, &B, p0, ez, &c));
-  plane_check("cylinder-plane tilted 0.3 rad", &c, delta, NULL);
+  PetscCall(plane_check("cylinder-plane tilted 0.3 rad", &c, delta, NULL));
   PetscCall(ConvexShapeDestroy(&cyl));
   PetscFunctionReturn(0);
 }
@@ -370,5 +354,5 @@ int main(int argc, char **argv)
   PetscCall(TestRandomPairs("cylinder", &cube, 500, curved));
   PetscCall(ConvexShapeDestroy(&cube));
   PetscCall(PetscFinalize());
-  return nfail ? 1 : 0;
+  return check_failures ? 1 : 0;
 }

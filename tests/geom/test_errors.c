@@ -2,13 +2,13 @@
  *
  * Each case calls a constructor with an error handler that records the first (innermost)
  * message, then checks that the call failed with the expected PETSc error class and that the
- * message names the problem (and, for files, the file and the offending line). Measured value
- * printed: 0 when both hold, 1 otherwise (bound 0).
+ * message names the problem (and, for files, the file and the offending line): two checks per
+ * case, the error code and the message.
  */
 #include <unistd.h>
+#include "check.h"
 #include "geom/convex.h"
 
-static int  nfail = 0;
 static char last_msg[1024];
 
 static PetscErrorCode RecordError(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
@@ -19,12 +19,16 @@ static PetscErrorCode RecordError(MPI_Comm comm, int line, const char *fun, cons
 }
 
 /* ierr must be expect, and the message must contain each of the (up to two) fragments. */
-static void expect(const char *name, PetscErrorCode ierr, PetscErrorCode expect_code, const char *frag1, const char *frag2)
+static PetscErrorCode expect(const char *name, PetscErrorCode ierr, PetscErrorCode expect_code, const char *frag1, const char *frag2)
 {
-  const int ok = ierr == expect_code && strstr(last_msg, frag1) && (!frag2 || strstr(last_msg, frag2));
-  if (!ok) nfail++;
-  printf("%s %s: %d (bound 0)   [error %d, \"%s\"]\n", ok ? "PASS" : "FAIL", name, !ok, (int)ierr, last_msg);
+  char seen[1100];
+
+  PetscFunctionBeginUser;
+  PetscCall(CheckEqual(CheckName("%s: error code", name), ierr, expect_code));
+  snprintf(seen, sizeof seen, "\"%s\"", last_msg);
+  PetscCall(CheckTrue(CheckName("%s: the message names it", name), (PetscBool)(strstr(last_msg, frag1) && (!frag2 || strstr(last_msg, frag2))), seen));
   last_msg[0] = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode WriteFile(const char *path, const char *text)
@@ -57,31 +61,27 @@ int main(int argc, char **argv)
 
   PetscCall(PetscPushErrorHandler(RecordError, NULL));
   ierr = ConvexShapeCreateFromVertices(3, three, &s);
-  expect("3 vertices rejected", ierr, PETSC_ERR_ARG_SIZ, "3 vertices given, at least 4", NULL);
+  PetscCall(expect("3 vertices rejected", ierr, PETSC_ERR_ARG_SIZ, "3 vertices given, at least 4", NULL));
   ierr = ConvexShapeCreateFromVertices(5, coplanar, &s);
-  expect("coplanar vertices rejected", ierr, PETSC_ERR_ARG_WRONG, "coplanar", NULL);
+  PetscCall(expect("coplanar vertices rejected", ierr, PETSC_ERR_ARG_WRONG, "coplanar", NULL));
   ierr = ConvexShapeCreateFromVertices(4, collinear, &s);
-  expect("collinear vertices rejected", ierr, PETSC_ERR_ARG_WRONG, "collinear", NULL);
+  PetscCall(expect("collinear vertices rejected", ierr, PETSC_ERR_ARG_WRONG, "collinear", NULL));
   ierr = ConvexShapeCreateCube(-1.0, &s);
-  expect("negative cube edge rejected", ierr, PETSC_ERR_ARG_OUTOFRANGE, "cube edge -1", "> 0");
+  PetscCall(expect("negative cube edge rejected", ierr, PETSC_ERR_ARG_OUTOFRANGE, "cube edge -1", "> 0"));
   ierr = ConvexShapeCreateFromFile("/nonexistent/sable/shape.txt", &s);
-  expect("unreadable file rejected", ierr, PETSC_ERR_FILE_OPEN, "/nonexistent/sable/shape.txt", "cannot open");
+  PetscCall(expect("unreadable file rejected", ierr, PETSC_ERR_FILE_OPEN, "/nonexistent/sable/shape.txt", "cannot open"));
   ierr = ConvexShapeCreateFromFile(bad, &s);
-  expect("bad line rejected, names file and line", ierr, PETSC_ERR_FILE_UNEXPECTED, bad, "line 4");
+  PetscCall(expect("bad line rejected, names file and line", ierr, PETSC_ERR_FILE_UNEXPECTED, bad, "line 4"));
   ierr = ConvexShapeCreateFromFile(flat, &s);
-  expect("coplanar file rejected, names file", ierr, PETSC_ERR_FILE_UNEXPECTED, flat, "coplanar");
+  PetscCall(expect("coplanar file rejected, names file", ierr, PETSC_ERR_FILE_UNEXPECTED, flat, "coplanar"));
   PetscCall(PetscPopErrorHandler());
 
   PetscCall(ConvexShapeCreateFromFile(good, &s));
-  {
-    const double e = fabs(s.volume - 1.0 / 6) * 6;
-    if (e > 1e-14) nfail++;
-    printf("%s vertex file with comments and blank lines: volume rel. error %.3e (bound 1.0e-14)\n", e <= 1e-14 ? "PASS" : "FAIL", e);
-  }
+  PetscCall(CheckAtMost("vertex file with comments and blank lines: volume rel. error", fabs(s.volume - 1.0 / 6) * 6, 1e-14));
   PetscCall(ConvexShapeDestroy(&s));
   remove(bad);
   remove(flat);
   remove(good);
   PetscCall(PetscFinalize());
-  return nfail ? 1 : 0;
+  return check_failures ? 1 : 0;
 }

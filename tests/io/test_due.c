@@ -4,6 +4,7 @@
  * no other frame be written (a frame just below k*interval was once followed by a second one
  * just above it). */
 #include "check.h"
+#include "io/io.h"
 
 int main(int argc, char **argv)
 {
@@ -25,7 +26,9 @@ int main(int argc, char **argv)
     frames++;
   }
   const PetscInt expect = (PetscInt)PetscFloorReal(steps * dt / interval + 1e-6) + 1;
-  check((PetscBool)(frames == expect && wrong == 0), "frames every 0.1 s over %" PetscInt_FMT " steps of 1e-5 s: %" PetscInt_FMT " frames (expected %" PetscInt_FMT "), %" PetscInt_FMT " out of place, largest offset from k*interval %.2e s (bound one step, 1e-5)", steps, frames, expect, wrong, (double)worst);
+  PetscCall(CheckEqual(CheckName("frames every 0.1 s over %" PetscInt_FMT " steps of 1e-5 s: frames written", steps), frames, expect));
+  CheckDetail("largest offset from k*interval %.2e s", (double)worst);
+  PetscCall(CheckEqual("frames out of place (not the k-th frame, or more than one step, 1e-5 s, from k*interval)", wrong, 0));
   PetscCall(IoDestroy(&io));
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;
