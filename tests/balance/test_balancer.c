@@ -13,11 +13,10 @@
  * Coupled bed (the fluidized-bed case, small): after a few coupled steps one forced rebalance
  * leaves velocity, pressure and porosity equal cell by cell, bit for bit (gathered in natural
  * order; bound 0), and the particles too; then the run continues and matches the run without
- * balancing to the Poisson tolerance. */
+ * balancing to the Poisson tolerance. The column's scene: test_balancer_column.opts. */
 #include "cpl_common.h"
 
-#define COLUMN "-domain_lo 0,0,0 -domain_hi 0.1035,0.1035,0.45 -domain_cell 0.01725 -da_processors_x 1 -da_processors_y 1 -dem_box 0,0,0,0.1035,0.1035,0.45 -dem_radius 0.0069 -dem_contact_law linear -dem_kn 7.2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_lattice 6,6,20 -dem_lattice_spacing 0.01449 -dem_lattice_origin 0.008,0.008,0.008 -dem_lattice_jitter 0.5 -dem_lattice_speed 0.05 -dem_check_every 1 -lb_verbose 0"
-#define NCOL   720
+#define NCOL 720 /* particles in the column */
 
 static PetscErrorCode Gather(Dem dem, PetscInt N, double *x, double *v, PetscInt *cnt)
 {
@@ -36,15 +35,15 @@ static double MaxDiff(const double *a, const double *b, PetscInt n)
 /* The column run for `steps` steps, rebalancing every `every` steps (0: never); positions out. */
 static PetscErrorCode RunColumn(const char *mode, PetscInt steps, PetscInt every, double *x)
 {
-  char     opts[2048];
+  char     opts[256];
   Domain   dom;
   Dem      dem;
   Balance  lb;
   PetscInt cnt;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s %s %s", COLUMN, mode, every ? "-lb_scheme frequent" : ""));
-  PetscCall(TestDemCreate(opts, &dom, &dem));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s %s", mode, every ? "-lb_scheme frequent" : ""));
+  PetscCall(TestDemCreateScene("test_balancer_column.opts", opts, &dom, &dem));
   PetscCall(BalanceCreate(&dom, dem, NULL, &lb));
   PetscCall(PetscOptionsSetValue(NULL, "-lb_interval", every ? "50" : "1"));
   PetscCall(BalanceSetFromOptions(lb));
@@ -75,7 +74,7 @@ static PetscErrorCode TestColumnMove(void)
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
-  PetscCall(TestDemCreate(COLUMN, &dom, &dem));
+  PetscCall(TestDemCreateScene("test_balancer_column.opts", NULL, &dom, &dem));
   PetscCall(BalanceCreate(&dom, dem, NULL, &lb));
   PetscCall(BalanceSetFromOptions(lb));
   PetscCall(DemSetUp(dem));

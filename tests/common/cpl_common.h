@@ -1,5 +1,5 @@
 /* Shared by the coupling tests: a coupled set-up (Domain, Dem, Fluid, Cpl) from an options
- * string, and its tear-down. */
+ * string or a scene file, and its tear-down. */
 #pragma once
 #include "dem_common.h"
 #include "balance/balancer.h"
@@ -11,13 +11,11 @@ typedef struct {
   Cpl    cpl;
 } TestCpl;
 
-/* Replaces the options database by opts; builds and sets up everything; add (may be NULL)
- * adds particles before DemSetUp. */
-static inline PetscErrorCode TestCplCreateWith(const char *opts, PetscErrorCode (*add)(Dem), TestCpl *t)
+/* Builds and sets up everything from the options database; add (may be NULL) adds particles
+ * before DemSetUp. */
+static inline PetscErrorCode TestCplBuild(PetscErrorCode (*add)(Dem), TestCpl *t)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, opts));
   PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &t->dom));
   PetscCall(DemCreate(&t->dom, &t->dem));
   PetscCall(DemSetFromOptions(t->dem));
@@ -33,10 +31,30 @@ static inline PetscErrorCode TestCplCreateWith(const char *opts, PetscErrorCode 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Replaces the options database by opts, then as TestCplBuild. */
+static inline PetscErrorCode TestCplCreateWith(const char *opts, PetscErrorCode (*add)(Dem), TestCpl *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, opts));
+  PetscCall(TestCplBuild(add, t));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static inline PetscErrorCode TestCplCreate(const char *opts, TestCpl *t)
 {
   PetscFunctionBeginUser;
   PetscCall(TestCplCreateWith(opts, NULL, t));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Replaces the options database by the scene file `scene` of the test's folder and the options
+ * string extra (scene.h), then as TestCplBuild. */
+static inline PetscErrorCode TestCplCreateScene(const char *scene, const char *extra, PetscErrorCode (*add)(Dem), TestCpl *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, scene, extra));
+  PetscCall(TestCplBuild(add, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

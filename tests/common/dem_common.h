@@ -1,8 +1,19 @@
-/* Shared by the DEM tests: a Domain + Dem built from an options string, particles found by id,
- * and positions gathered by id over the ranks. */
+/* Shared by the DEM tests: a Domain + Dem built from an options string or a scene file,
+ * particles found by id, and positions gathered by id over the ranks. */
 #pragma once
 #include "check.h"
+#include "scene.h"
 #include "dem/dem.h"
+
+/* Builds Domain + Dem on comm from the options database (not yet set up). */
+static inline PetscErrorCode TestDemBuildOn(MPI_Comm comm, Domain *dom, Dem *dem)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DomainCreate(comm, 0.05, 1, dom));
+  PetscCall(DemCreate(dom, dem));
+  PetscCall(DemSetFromOptions(*dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* Replaces the options database by opts and builds Domain + Dem on comm (not yet set up). */
 static inline PetscErrorCode TestDemCreateOn(MPI_Comm comm, const char *opts, Domain *dom, Dem *dem)
@@ -10,9 +21,7 @@ static inline PetscErrorCode TestDemCreateOn(MPI_Comm comm, const char *opts, Do
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsClear(NULL));
   PetscCall(PetscOptionsInsertString(NULL, opts));
-  PetscCall(DomainCreate(comm, 0.05, 1, dom));
-  PetscCall(DemCreate(dom, dem));
-  PetscCall(DemSetFromOptions(*dem));
+  PetscCall(TestDemBuildOn(comm, dom, dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -20,6 +29,23 @@ static inline PetscErrorCode TestDemCreate(const char *opts, Domain *dom, Dem *d
 {
   PetscFunctionBeginUser;
   PetscCall(TestDemCreateOn(PETSC_COMM_WORLD, opts, dom, dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The same from the scene file `scene` of the test's folder and the options string extra
+ * (scene.h). */
+static inline PetscErrorCode TestDemCreateSceneOn(MPI_Comm comm, const char *scene, const char *extra, Domain *dom, Dem *dem)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TestSceneLoad(comm, scene, extra));
+  PetscCall(TestDemBuildOn(comm, dom, dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static inline PetscErrorCode TestDemCreateScene(const char *scene, const char *extra, Domain *dom, Dem *dem)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TestDemCreateSceneOn(PETSC_COMM_WORLD, scene, extra, dom, dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

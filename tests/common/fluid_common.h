@@ -2,6 +2,7 @@
  * initial porosity of fn (when given). */
 #pragma once
 #include "check.h"
+#include "scene.h"
 #include "fluid/fluid.h"
 
 static inline PetscErrorCode TestFluidCreate(PetscReal default_cell, FluidScalarFn fn, void *ctx, Domain *dom, Fluid *fl)

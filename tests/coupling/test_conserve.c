@@ -17,16 +17,9 @@
  *  4. checks 1-2 with cubes (edge 0.9 d, random orientations): the kernel takes the true volume.
  * The Poisson solve of a fully periodic box is singular; hypre's default Gaussian elimination on the
  * coarsest level then fails now and then on 2 ranks (a fluid-side limitation, reported), so this
- * test relaxes the coarsest level instead. */
+ * test relaxes the coarsest level instead. The scene: test_conserve.opts. */
 /* ranks: 1 2 4 */
 #include "cpl_common.h"
-
-static const char *Opts = "-domain_lo 0,0,0 -domain_hi 8,8,8 -domain_periodic_x -domain_periodic_y -domain_periodic_z "
-                          "-da_grid_x 8 -da_grid_y 8 -da_grid_z 8 "
-                          "-dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 1e-3 -dem_gravity 0,0,0 "
-                          "-dem_lattice 4,4,4 -dem_lattice_spacing 2 -dem_lattice_jitter 1 -dem_lattice_speed 0.5 "
-                          "-fluid_density 1 -fluid_viscosity 0.1 -cpl_substeps 5 "
-                          "-fluid_poisson_pc_hypre_boomeramg_relax_type_coarse symmetric-SOR/Jacobi";
 
 static PetscErrorCode Total(TestCpl *t, PetscReal P[3], PetscReal *pf_norm, PetscReal *scale)
 {
@@ -70,7 +63,7 @@ static PetscErrorCode OwedDecays(void)
   PetscReal pp[3], pf[3], ow[3], P0[3], o1, g1, o2, g2, pn, s0;
 
   PetscFunctionBeginUser;
-  PetscCall(TestCplCreate(Opts, &t));
+  PetscCall(TestCplCreateScene("test_conserve.opts", NULL, NULL, &t));
   PetscCall(Total(&t, P0, &pn, &s0));
   PetscCall(CplGetMomentum(t.cpl, pp, pf, ow));
   for (int k = 0; k < 3; k++) P0[k] = pp[k] + pf[k];
@@ -91,7 +84,7 @@ int main(int argc, char **argv)
   PetscReal g0, p0, g1, p1, P0[3], P1[3], pf0, pf1, s0, s1, err = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
-  PetscCall(TestCplCreate(Opts, &t));
+  PetscCall(TestCplCreateScene("test_conserve.opts", NULL, NULL, &t));
   PetscCall(CplGetSolidVolume(t.cpl, &g0, &p0));
   PetscCall(Total(&t, P0, &pf0, &s0));
   PetscCall(TestCplRun(&t, 40, &st));
@@ -108,13 +101,9 @@ int main(int argc, char **argv)
   PetscCall(TestCplDestroy(&t));
   PetscCall(OwedDecays());
   {
-    char opts[2048];
-    PetscCall(PetscSNPrintf(opts, sizeof opts, "%s -dem_shape cube -dem_shape_size 0.9 -dem_lattice_random_orientation", Opts));
-    { /* the cubes replace the spheres' radius option */
-      char *r = strstr(opts, "-dem_radius 0.5");
-      if (r) memset(r, ' ', strlen("-dem_radius 0.5"));
-    }
-    PetscCall(TestCplCreate(opts, &t));
+    PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_conserve.opts", "-dem_shape cube -dem_shape_size 0.9 -dem_lattice_random_orientation"));
+    PetscCall(PetscOptionsClearValue(NULL, "-dem_radius")); /* the cubes replace the spheres' radius */
+    PetscCall(TestCplBuild(NULL, &t));
     PetscCall(Total(&t, P0, &pf0, &s0));
     PetscCall(TestCplRun(&t, 20, &st));
     PetscCall(CplGetSolidVolume(t.cpl, &g1, &p1));

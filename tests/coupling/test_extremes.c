@@ -5,20 +5,9 @@
  * message (tests/coupling/test_badinput.sh).
  *   density ratio 1.2 and 3000: the small fluidized bed of test_fluidization.c at U = 0.2;
  *   porosity 0.36: a frozen body-centred cubic bed (cube side 1.18 d, one cell per cube);
- *   Re_p 0.01 and 1000: the frozen lattice bed of test_packed.c with mu = 100 and 0.001. */
+ *   Re_p 0.01 and 1000: the frozen lattice bed of test_packed.c with mu = 100 and 0.001.
+ * The scenes: fluidized_bed_periodic.opts and packed_bed.opts. */
 #include "cpl_common.h"
-
-static const char *Bed = "-domain_lo 0,0,0 -domain_hi 8,4,48 -domain_periodic_x -domain_periodic_y -da_grid_x 4 -da_grid_y 2 -da_grid_z 24 "
-                          "-dem_plane_0 0,0,2,0,0,1 -dem_plane_1 0,0,48,0,0,-1 "
-                         "-dem_radius 0.5 -dem_gravity 0,0,-1 -dem_contact_law linear -dem_kn 1000 -dem_restitution 0.9 "
-                         "-dem_friction 0.1 -dem_dt 0.005 -dem_lattice 8,4,12 -dem_lattice_spacing 1 "
-                         "-dem_lattice_speed 0.01 -dem_lattice_origin 0,0,2 -fluid_density 1 -fluid_viscosity 0.01 -fluid_advection tvd "
-                         "-fluid_bc_zlo inlet -fluid_bc_zhi outlet "
-                         "-fluid_bc_zlo_velocity 0,0,0.2 -cpl_substeps 5";
-static const char *Packed = "-domain_lo 0,0,0 -domain_hi 4,4,24 -domain_periodic_x -domain_periodic_y -da_grid_x 4 -da_grid_y 4 -da_grid_z 24 "
-                            "-dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 1e-3 -dem_frozen -dem_gravity 0,0,-1 "
-                            "-fluid_density 1 -fluid_dt 0.05 -fluid_viscous implicit -fluid_advection tvd "
-                            "-fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,1 -fluid_bc_zhi outlet";
 
 /* The body centres of a BCC bed whose corners are the -dem_lattice sites: the lattice (4 x 4 x
  * 10, spacing a = 1.18, origin -a/2, -a/2, 4.5 a) puts its sites at (i a, j a, 5 a + k a); each body
@@ -52,7 +41,7 @@ static PetscErrorCode AddBodyCentres(Dem dem)
  * more than its free-fall speed over H; the drag cannot push a particle past the fluid. Fluid
  * and particle velocity components must stay below 2 S. */
 typedef struct {
-  const char *name, *base, *extra;
+  const char *name, *scene, *extra; /* scene: an options file of this folder */
   PetscReal   uin, H, eps_want;
   PetscErrorCode (*add)(Dem);
 } ExtremeCase;
@@ -63,7 +52,6 @@ static PetscErrorCode Extreme(const ExtremeCase *c)
   const PetscReal uin = c->uin, H = c->H, eps_want = c->eps_want;
   TestCpl   t;
   CplStats  st;
-  char      opts[2048];
   PetscReal umax = 0, vmax = 0, emin = 1, bound;
   PetscInt  clipped = 0;
   PetscBool finite = PETSC_TRUE;
@@ -71,8 +59,7 @@ static PetscErrorCode Extreme(const ExtremeCase *c)
   Vec       u;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s %s", c->base, c->extra));
-  PetscCall(TestCplCreateWith(opts, c->add, &t));
+  PetscCall(TestCplCreateScene(c->scene, c->extra, c->add, &t));
   PetscCall(FluidGetVelocity(t.fl, &u));
   for (PetscInt s = 0; s < 1000; s++) {
     PetscReal un, vl = 0, vg;
@@ -111,13 +98,13 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   const PetscReal a = 1.18, eps_bcc = 1 - 2 * (PETSC_PI / 6) / (a * a * a), eps_sc = 1 - PETSC_PI / 6;
 
-  PetscCall(Extreme(&(ExtremeCase){"density ratio 1.2", Bed, "-dem_density 1.2", 0.2, 12, 0, NULL}));
-  PetscCall(Extreme(&(ExtremeCase){"density ratio 3000", Bed, "-dem_density 3000 -dem_kn 2e7 -dem_dt 0.001 -cpl_substeps 10", 0.2, 12, 0, NULL}));
-  PetscCall(Extreme(&(ExtremeCase){"porosity 0.36 (frozen BCC bed, Re_p 10)", Packed, "-domain_hi 4.72,4.72,28.32 -dem_lattice 4,4,10 -dem_lattice_spacing 1.18 -dem_lattice_origin -0.59,-0.59,5.31 -fluid_viscosity 0.1", 1, 0, eps_bcc, AddBodyCentres}));
+  PetscCall(Extreme(&(ExtremeCase){"density ratio 1.2", "fluidized_bed_periodic.opts", "-fluid_bc_zlo_velocity 0,0,0.2 -dem_density 1.2", 0.2, 12, 0, NULL}));
+  PetscCall(Extreme(&(ExtremeCase){"density ratio 3000", "fluidized_bed_periodic.opts", "-fluid_bc_zlo_velocity 0,0,0.2 -dem_density 3000 -dem_kn 2e7 -dem_dt 0.001 -cpl_substeps 10", 0.2, 12, 0, NULL}));
+  PetscCall(Extreme(&(ExtremeCase){"porosity 0.36 (frozen BCC bed, Re_p 10)", "packed_bed.opts", "-domain_hi 4.72,4.72,28.32 -dem_lattice 4,4,10 -dem_lattice_spacing 1.18 -dem_lattice_origin -0.59,-0.59,5.31 -fluid_viscosity 0.1", 1, 0, eps_bcc, AddBodyCentres}));
   /* Re_p = rho_f d U / mu with the superficial U = 1 (the interstitial form rho d eps |u| / mu
    * is the same number in a uniform bed) */
-  PetscCall(Extreme(&(ExtremeCase){"Re_p 0.01 (frozen lattice, mu 100)", Packed, "-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6 -fluid_viscosity 100", 1, 0, eps_sc, NULL}));
-  PetscCall(Extreme(&(ExtremeCase){"Re_p 1000 (frozen lattice, mu 0.001)", Packed, "-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6 -fluid_viscosity 0.001", 1, 0, eps_sc, NULL}));
+  PetscCall(Extreme(&(ExtremeCase){"Re_p 0.01 (frozen lattice, mu 100)", "packed_bed.opts", "-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6 -fluid_viscosity 100", 1, 0, eps_sc, NULL}));
+  PetscCall(Extreme(&(ExtremeCase){"Re_p 1000 (frozen lattice, mu 0.001)", "packed_bed.opts", "-dem_lattice 4,4,12 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,6 -fluid_viscosity 0.001", 1, 0, eps_sc, NULL}));
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;
 }

@@ -18,34 +18,23 @@
  *     bed and its first cell has the mean porosity of the two, so the fluid velocity the lowest
  *     (and the highest) layer of spheres sees is U/0.74 instead of U/0.48 and their drag is a
  *     third lower; with 12 layers the packed bed's pressure drop is 6% below the law's, which
- *     moves U_mf up (a resolution effect of cells 2 d tall at the bed's surfaces). */
+ *     moves U_mf up (a resolution effect of cells 2 d tall at the bed's surfaces).
+ * The scenes: fluidized_bed_walled.opts (side walls) and fluidized_bed_periodic.opts (the
+ * distributor and the lid are DEM planes). */
 #include "cpl_common.h"
 
-static const char *Walled = "-domain_lo 0,0,0 -domain_hi 8,4,48 -da_grid_x 4 -da_grid_y 2 -da_grid_z 24 -dem_box 0,0,2,8,4,48 "
-                          "-dem_radius 0.5 -dem_density 2 -dem_gravity 0,0,-1 -dem_contact_law linear -dem_kn 1000 -dem_restitution 0.9 "
-                          "-dem_friction 0.1 -dem_wall_friction 0 -dem_dt 0.005 -dem_lattice 8,4,12 -dem_lattice_spacing 1 "
-                          "-dem_lattice_speed 0.01 -dem_lattice_origin 0,0,2 -fluid_density 1 -fluid_viscosity 0.01 -fluid_advection tvd "
-                          "-fluid_bc_xlo slip -fluid_bc_xhi slip -fluid_bc_ylo slip -fluid_bc_yhi slip -fluid_bc_zlo inlet -fluid_bc_zhi outlet "
-                          "-cpl_substeps 5";
-/* the same bed with bi-periodic sides: the distributor and the lid are DEM planes */
-static const char *Periodic = "-domain_lo 0,0,0 -domain_hi 8,4,48 -domain_periodic_x -domain_periodic_y -da_grid_x 4 -da_grid_y 2 -da_grid_z 24 "
-                              "-dem_plane_0 0,0,2,0,0,1 -dem_plane_1 0,0,48,0,0,-1 -dem_radius 0.5 -dem_density 2 -dem_gravity 0,0,-1 "
-                              "-dem_contact_law linear -dem_kn 1000 -dem_restitution 0.9 -dem_friction 0.1 -dem_dt 0.005 -dem_lattice 8,4,12 "
-                              "-dem_lattice_spacing 1 -dem_lattice_speed 0.01 -dem_lattice_origin 0,0,2 -fluid_density 1 -fluid_viscosity 0.01 "
-                              "-fluid_advection tvd -fluid_bc_zlo inlet -fluid_bc_zhi outlet -cpl_substeps 5";
-
-/* Mean column pressure drop over t in [t0, t1] at inlet velocity U. */
-static PetscErrorCode Run(const char *Opts, PetscReal U, PetscReal t0, PetscReal t1, PetscReal *dp)
+/* Mean column pressure drop over t in [t0, t1] at inlet velocity U, scene: an options file. */
+static PetscErrorCode Run(const char *scene, PetscReal U, PetscReal t0, PetscReal t1, PetscReal *dp)
 {
   TestCpl   t;
   CplStats  st;
-  char      opts[2048];
+  char      opts[128];
   PetscReal time = 0, p0, p1, e, u, sum = 0;
   PetscInt  n = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s -fluid_bc_zlo_velocity 0,0,%.10g", Opts, (double)U));
-  PetscCall(TestCplCreate(opts, &t));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-fluid_bc_zlo_velocity 0,0,%.10g", (double)U));
+  PetscCall(TestCplCreateScene(scene, opts, NULL, &t));
   while (time < t1 - 1e-9) {
     PetscCall(CplStep(t.cpl, &st));
     PetscCall(CplGetTime(t.cpl, &time, NULL));
@@ -74,13 +63,13 @@ int main(int argc, char **argv)
   umf = 0.5 * (lo + hi);
   ar  = 1 * (2 - 1) * 1 / (mu * mu); /* Archimedes number rho_f (rho_p - rho_f) g d^3 / mu^2 */
   umf_wy = mu * (PetscSqrtReal(33.7 * 33.7 + 0.0408 * ar) - 33.7);
-  PetscCall(Run(Walled, 3 * umf, 100, 300, &plateau));
+  PetscCall(Run("fluidized_bed_walled.opts", 3 * umf, 100, 300, &plateau));
   PetscCall(CheckClose("U = 3 U_mf, side walls: mean pressure drop vs the buoyant weight per area", plateau, W, 0.03));
-  PetscCall(Run(Periodic, 3 * umf, 100, 300, &plateau_p));
+  PetscCall(Run("fluidized_bed_periodic.opts", 3 * umf, 100, 300, &plateau_p));
   PetscCall(CheckClose("U = 3 U_mf, bi-periodic sides: mean pressure drop vs the buoyant weight per area", plateau_p, W, 0.03));
   for (int k = 0; k < 2; k++) {
     U[k] = (0.6 + 0.3 * k) * umf;
-    PetscCall(Run(Walled, U[k], 10, 20, &dp[k]));
+    PetscCall(Run("fluidized_bed_walled.opts", U[k], 10, 20, &dp[k]));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "packed branch: U %.5f, dp %.5f\n", (double)U[k], (double)dp[k]));
   }
   b        = (dp[1] / U[1] - dp[0] / U[0]) / (U[1] - U[0]);

@@ -14,14 +14,9 @@
  *     porosity 0.70 on average, varying cell to cell; a stand-in for a settled random packing,
  *     which needs a settle run) within 5% of Beetstra at the mean cell porosity between the
  *     planes (measured 1.1%).
- * Run on 1, 2 and 4 ranks (the fluid grid is split along z and y). */
+ * Run on 1, 2 and 4 ranks (the fluid grid is split along z and y). The scene: packed_bed.opts. */
 /* ranks: 1 2 4 */
 #include "cpl_common.h"
-
-static const char *Base = "-domain_lo 0,0,0 -domain_hi 4,4,24 -domain_periodic_x -domain_periodic_y -da_grid_x 4 -da_grid_y 4 -da_grid_z 24 "
-                          "-dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 1e-3 -dem_frozen -dem_gravity 0,0,-1 "
-                          "-fluid_density 1 -fluid_dt 0.05 -fluid_viscous implicit -fluid_advection tvd "
-                          "-fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,1 -fluid_bc_zhi outlet ";
 
 static PetscErrorCode Bed(const char *extra, PetscReal mu, PetscReal z0, PetscReal z1, PetscReal *dpdl, PetscReal *eps, PetscReal *usup)
 {
@@ -31,8 +26,8 @@ static PetscErrorCode Bed(const char *extra, PetscReal mu, PetscReal z0, PetscRe
   PetscReal p0, p1, e0, e1, u1, zc0, zc1;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s %s -fluid_viscosity %g", Base, extra, (double)mu));
-  PetscCall(TestCplCreate(opts, &t));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s -fluid_viscosity %g", extra, (double)mu));
+  PetscCall(TestCplCreateScene("packed_bed.opts", opts, NULL, &t));
   PetscCall(TestCplRun(&t, 60, &st));
   PetscCall(CplGetLayer(t.cpl, 2, z0, &zc0, &p0, &e0, usup));
   PetscCall(CplGetLayer(t.cpl, 2, z1, &zc1, &p1, &e1, &u1));

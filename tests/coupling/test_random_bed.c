@@ -7,18 +7,9 @@
  * mean cell porosity between two planes inside the bed, within 5% (the issue's bound for a
  * random packing). The walls loosen the packing next to them, so the flow channels there a
  * little and the measured gradient falls below the prediction at the mean porosity (measured:
- * porosity 0.429, 0.7% below). */
+ * porosity 0.429, 0.7% below). The scenes: test_random_bed_dry.opts (the settle run) and
+ * test_random_bed_wet.opts (the flow through the frozen bed). */
 #include "cpl_common.h"
-
-static const char *Dry = "-domain_lo 0,0,0 -domain_hi 8,8,60 -dem_box 0,0,2,8,8,60 "
-                         "-dem_radius 0.5 -dem_density 2 -dem_gravity 0,0,-1 -dem_contact_law linear -dem_kn 1e4 -dem_restitution 0.5 "
-                         "-dem_friction 0.3 -dem_wall_friction 0 -dem_dt 1e-3 -dem_lattice 6,6,30 -dem_lattice_spacing 1.3 "
-                         "-dem_lattice_origin 0.1,0.1,2.2 -dem_lattice_jitter 1 -dem_lattice_speed 0.3";
-static const char *Wet = "-domain_lo 0,0,0 -domain_hi 8,8,60 -da_grid_x 4 -da_grid_y 4 -da_grid_z 30 "
-                         "-dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 1e-3 -dem_frozen -dem_gravity 0,0,-1 "
-                         "-fluid_density 1 -fluid_viscosity 0.1 -fluid_dt 0.05 -fluid_viscous implicit -fluid_advection tvd "
-                         "-fluid_bc_xlo slip -fluid_bc_xhi slip -fluid_bc_ylo slip -fluid_bc_yhi slip "
-                         "-fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,1 -fluid_bc_zhi outlet";
 
 static DemParticle *Bed;
 static PetscInt     Nbed;
@@ -44,7 +35,7 @@ int main(int argc, char **argv)
   PetscReal zc0, zc1, p0, p1, e, u0, u1, eps, dpdl, pred, ztop = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
-  PetscCall(TestDemCreate(Dry, &dom, &dem));
+  PetscCall(TestDemCreateScene("test_random_bed_dry.opts", NULL, &dom, &dem));
   PetscCall(DemSetUp(dem));
   for (PetscInt s = 0; s < 15000; s++) PetscCall(DemStep(dem));
   PetscCall(DemGetStats(dem, &ds));
@@ -55,7 +46,7 @@ int main(int argc, char **argv)
     ztop = PetscMax(ztop, Bed[p].x[2] + 0.5);
   }
   PetscCall(TestDemDestroy(&dom, &dem));
-  PetscCall(TestCplCreateWith(Wet, AddBed, &t));
+  PetscCall(TestCplCreateScene("test_random_bed_wet.opts", NULL, AddBed, &t));
   PetscCall(TestCplRun(&t, 60, &st));
   /* planes: the second cell layer above the distributor and the layer two cells below the top */
   PetscCall(CplGetLayer(t.cpl, 2, 5.0, &zc0, &p0, &e, &u0));

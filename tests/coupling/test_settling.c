@@ -8,13 +8,9 @@
  * and the measured velocity exceeds the prediction by that self-induced slip, which shrinks as
  * the kernel widens relative to d: measured +9% with cells of 2 d and a kernel of 4 d, +1.8%
  * with 4 d / 8 d, +0.3% with 8 d / 16 d (used here: 4 x 4 x 16 cells). Checks: terminal velocity
- * (mean over the last 10% of the run) within 2% of the prediction; no overshoot beyond 1%. */
+ * (mean over the last 10% of the run) within 2% of the prediction; no overshoot beyond 1%.
+ * The scene: test_settling.opts. */
 #include "cpl_common.h"
-
-static const char *Opts = "-domain_lo 0,0,0 -domain_hi 32,32,128 -da_grid_x 4 -da_grid_y 4 -da_grid_z 16 "
-                          "-dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 2e-3 -dem_gravity 0,0,-1 "
-                          "-dem_lattice 1,1,1 -dem_lattice_spacing 1 -dem_lattice_origin 15.5,15.5,95.5 "
-                          "-fluid_density 1 -fluid_viscosity 0.1 -cpl_substeps 25 -cpl_kernel_scale 19.8";
 
 int main(int argc, char **argv)
 {
@@ -26,7 +22,7 @@ int main(int argc, char **argv)
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   (void)m;
-  PetscCall(TestCplCreate(Opts, &t));
+  PetscCall(TestCplCreateScene("test_settling.opts", NULL, NULL, &t));
   PetscCall(CplInterpolate(t.cpl, u, &eps));
   for (int it = 0; it < 200; it++) { /* K(eps, Re(v)) v = W, Re = rho d eps v / mu */
     const PetscReal v = 0.5 * (lo + hi);

@@ -1,6 +1,6 @@
 /* ranks: 1 2 4 */
 /* Parallel DEM against itself on one rank: the same scene run on PETSC_COMM_SELF (rank 0) and
- * on all ranks must give the same trajectories. Three scenes, each in the default mode (half
+ * on all ranks must give the same trajectories. Four scenes, each in the default mode (half
  * list; local-ghost pairs computed on both sides, so sums differ in order and results agree to
  * roundoff amplified by the dynamics; bound 1e-10 of the box after 2000 steps) and in
  * -dem_deterministic mode (full rows summed in id order: bitwise equal, bound 0):
@@ -14,17 +14,13 @@
  * the global count and id checksum every step (-dem_check_every 1). Also:
  * total momentum of the periodic shear box conserved to roundoff over 10^4 steps, and a single
  * particle crossing periodic boundaries keeps its velocity bitwise. On 4 ranks the process grid
- * is 2 x 2 x 1. */
+ * is 2 x 2 x 1. The scenes: test_parallel_{settle,shear,corner,icosahedra}.opts. */
 #include "dem_common.h"
 
-#define SETTLE "-domain_lo 0,0,0 -domain_hi 0.11592,0.11592,0.2 -dem_box 0,0,0,0.11592,0.11592,0.2 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_lattice 8,8,10 -dem_lattice_spacing 0.01449 -dem_lattice_jitter 0.5 -dem_lattice_speed 0.05"
-#define SHEAR  "-domain_cell 0.0207 -domain_lo 0,0,0 -domain_hi 0.0828,0.0828,0.0828 -domain_periodic_x -domain_periodic_y -domain_periodic_z -dem_radius 0.0069 -dem_kn 7.2e5 -dem_restitution 0.8 -dem_friction 0.5 -dem_gravity 0,0,0 -dem_lattice 6,6,6 -dem_lattice_spacing 0.0138 -dem_lattice_jitter 0 -dem_lattice_speed 0.3"
-#define ICOSA  "-domain_cell 0.03 -domain_lo 0,0,0 -domain_hi 0.09,0.09,0.12 -dem_box 0,0,0,0.09,0.09,0.12 -dem_shape icosahedron -dem_shape_deq 0.0138 -dem_kn 7.2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_lattice 5,5,6 -dem_lattice_spacing 0.018 -dem_lattice_jitter 0.5 -dem_lattice_speed 0.2 -dem_gravity 0,0,-60"
-#define CORNER "-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.04 -domain_periodic_x -domain_periodic_y -dem_plane_0 0,0,0,0,0,1 -dem_plane_1 0,0,0.04,0,0,-1 -dem_radius 0.003 -dem_kn 1e4 -dem_restitution 0.9 -dem_friction 0.3 -dem_gravity 0,0,0 -dem_dt 2e-5 -dem_lattice 12,12,4 -dem_lattice_spacing 0.0083 -dem_lattice_jitter 0.5 -dem_lattice_speed 8.66"
-
+/* Runs the scene file on comm with the options extra; positions by id, contacts at the end. */
 static PetscErrorCode Run(MPI_Comm comm, const char *scene, const char *extra, PetscInt steps, PetscInt N, double *x, PetscInt *contacts)
 {
-  char        opts[2048];
+  char        opts[512];
   Domain      dom;
   Dem         dem;
   DemStats    st;
@@ -33,8 +29,8 @@ static PetscErrorCode Run(MPI_Comm comm, const char *scene, const char *extra, P
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s %s -dem_check_every 1 %s", scene, extra, size == 4 ? "-da_processors_x 2 -da_processors_y 2 -da_processors_z 1" : ""));
-  PetscCall(TestDemCreateOn(comm, opts, &dom, &dem));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s -dem_check_every 1 %s", extra, size == 4 ? "-da_processors_x 2 -da_processors_y 2 -da_processors_z 1" : ""));
+  PetscCall(TestDemCreateSceneOn(comm, scene, opts, &dom, &dem));
   PetscCall(DemSetUp(dem));
   for (PetscInt s = 0; s < steps; s++) PetscCall(DemStep(dem));
   PetscCall(DemGetStats(dem, &st));
@@ -94,8 +90,8 @@ static PetscErrorCode Momentum(void)
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s -dem_check_every 1 %s", SHEAR, size == 4 ? "-da_processors_x 2 -da_processors_y 2 -da_processors_z 1" : ""));
-  PetscCall(TestDemCreateOn(PETSC_COMM_WORLD, opts, &dom, &dem));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-dem_check_every 1 %s", size == 4 ? "-da_processors_x 2 -da_processors_y 2 -da_processors_z 1" : ""));
+  PetscCall(TestDemCreateScene("test_parallel_shear.opts", opts, &dom, &dem));
   PetscCall(DemSetUp(dem));
   for (PetscInt s = 0; s <= 10000; s++) {
     PetscInt n;
@@ -160,10 +156,10 @@ static PetscErrorCode Crossing(void)
 int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
-  PetscCall(Compare("settle", SETTLE, 640, 0.2, 2000));
-  PetscCall(Compare("periodic shear box", SHEAR, 216, 0.0828, 2000));
-  PetscCall(Compare("corner crossing at skin/2 per step", CORNER, 576, 0.1, 1000));
-  PetscCall(Compare("bed of icosahedra (libccd)", ICOSA, 150, 0.12, 3000));
+  PetscCall(Compare("settle", "test_parallel_settle.opts", 640, 0.2, 2000));
+  PetscCall(Compare("periodic shear box", "test_parallel_shear.opts", 216, 0.0828, 2000));
+  PetscCall(Compare("corner crossing at skin/2 per step", "test_parallel_corner.opts", 576, 0.1, 1000));
+  PetscCall(Compare("bed of icosahedra (libccd)", "test_parallel_icosahedra.opts", 150, 0.12, 3000));
   PetscCall(Momentum());
   PetscCall(Crossing());
   PetscCall(PetscFinalize());

@@ -3,21 +3,18 @@
  * over 6,000 steps of a polydisperse, frictional, moving configuration with periodic re-sorts.
  * (2) The tangential springs survive rebuilds and re-sorts: a run that rebuilds and re-sorts
  * often (small skin) and one that rebuilds rarely and never sorts (large skin) follow the same
- * trajectories, to roundoff amplified by the granular dynamics (bound 1e-9 of the box). */
+ * trajectories, to roundoff amplified by the granular dynamics (bound 1e-9 of the box).
+ * The scene: test_verlet.opts. */
 #include "dem_common.h"
-
-#define OPTS "-domain_lo 0,0,0 -domain_hi 0.08,0.08,0.16 -dem_box 0,0,0,0.08,0.08,0.16 -dem_radius 0.004,0.0055 -dem_contact_law linear -dem_kn 2e4 -dem_restitution 0.6 -dem_friction 0.4 -dem_dt 1e-5 -dem_lattice 6,6,10 -dem_lattice_spacing 0.0125 -dem_lattice_jitter 1 -dem_lattice_speed 1.0 "
 
 static PetscErrorCode Positions(const char *extra, PetscInt steps, PetscReal *x)
 {
-  char     opts[1024];
   Domain   dom;
   Dem      dem;
   PetscInt n;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "%s %s", OPTS, extra));
-  PetscCall(TestDemCreate(opts, &dom, &dem));
+  PetscCall(TestDemCreateScene("test_verlet.opts", extra, &dom, &dem));
   PetscCall(DemSetUp(dem));
   for (PetscInt s = 0; s < steps; s++) PetscCall(DemStep(dem));
   PetscCall(DemGetLocalCount(dem, &n));
@@ -38,7 +35,7 @@ int main(int argc, char **argv)
   PetscReal key[2], *xa, *xb, dmax = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
-  PetscCall(TestDemCreate(OPTS, &dom, &dem));
+  PetscCall(TestDemCreateScene("test_verlet.opts", NULL, &dom, &dem));
   PetscCall(DemSetUp(dem));
   for (PetscInt s = 0; s <= 6000; s++) {
     if (s % 20 == 0) {

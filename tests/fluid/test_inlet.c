@@ -9,7 +9,7 @@
  *           takes it) and 0.5 from t = 0.25 s (Grains3D's switch);
  *   linear: U = 1 m/s up to 0.1 s, then linear to 2 m/s at 0.3 s and 2 after.
  * The Poisson tolerance is 1e-12, the bound 1e-9. On 2 ranks the column is split along z, so
- * inlet and outlet lie on different ranks. */
+ * inlet and outlet lie on different ranks. The scene: test_inlet.opts. */
 #include "fluid_common.h"
 
 static PetscReal Band(const PetscReal x[3], void *ctx) { (void)ctx; return x[2] > 0.6 && x[2] < 1.4 ? 0.5 : 1.0; }
@@ -58,10 +58,7 @@ static PetscErrorCode Run(PetscBool linear, PetscReal *err, PetscReal *Ulast)
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, "-domain_lo 0,0,0 -domain_hi 1,1,2 -domain_periodic_x -domain_periodic_y -da_grid_x 4 -da_grid_y 4 -da_grid_z 8 "
-                                           "-fluid_density 1 -fluid_viscosity 0.01 -fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,1 -fluid_bc_zhi outlet "
-                                           "-fluid_poisson_ksp_rtol 1e-12 -fluid_poisson_ksp_norm_type unpreconditioned"));
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_inlet.opts", NULL));
   if (size == 2) PetscCall(PetscOptionsInsertString(NULL, "-da_processors_x 1 -da_processors_y 1 -da_processors_z 2"));
   if (linear) PetscCall(PetscOptionsInsertString(NULL, "-fluid_bc_zlo_velocity_table 0.1,0,0,1,0.3,0,0,2 -fluid_inlet_interpolation linear"));
   else PetscCall(PetscOptionsInsertString(NULL, "-fluid_bc_zlo_velocity_table 0.105,0,0,1.5,0.25,0,0,0.5"));

@@ -12,7 +12,8 @@
  *   - continuity residual of every step relative to U/h < 1e-8 in every run;
  *   - builds: 60 with lag 0, 3 with the default lag 20 (at the 1st, 22nd and 43rd change: the
  *     iterations stay flat, so the growth rule does not fire), 1 unbounded; PETSc's own count of
- *     PCSetUp events agrees. */
+ *     PCSetUp events agrees.
+ * The scene: test_poisson_options.opts. */
 #include "fluid_common.h"
 
 typedef struct {
@@ -55,10 +56,7 @@ static PetscErrorCode Run(const char *lag, PetscBool mg, Result *r)
 
   PetscFunctionBeginUser;
   PetscCall(SetUpCount(&s0));
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, "-domain_lo 0,0,0 -domain_hi 1,1,2 -domain_periodic_x -domain_periodic_y -da_grid_x 8 -da_grid_y 4 -da_grid_z 17 "
-                                           "-fluid_density 1 -fluid_viscosity 0.01 -fluid_advection tvd -fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,1 -fluid_bc_zhi outlet "
-                                           "-fluid_poisson_ksp_rtol 1e-11 -fluid_poisson_ksp_norm_type unpreconditioned"));
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_poisson_options.opts", NULL));
   if (lag) PetscCall(PetscOptionsSetValue(NULL, "-fluid_poisson_pc_lag", lag));
   if (mg)
     PetscCall(PetscOptionsInsertString(NULL, "-fluid_poisson_pc_type mg -fluid_poisson_pc_mg_levels 2 -fluid_poisson_pc_mg_galerkin pmat "
