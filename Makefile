@@ -22,8 +22,12 @@ LDLIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm
 
 LIB_SRC = $(filter-out src/main.c,$(shell find src -name '*.c' | sort))
 LIB_OBJ = $(LIB_SRC:%.c=$(BUILD)/%.o)
-TEST_SRC = $(wildcard tests/*.c)
+# Tests: tests/<folder>/test_*.c -> $(BUILD)/tests/<folder>/test_*; tests/common/ holds the
+# shared harness headers (on the tests' include path); TEST_DIR tells a test its own folder,
+# where its scenes (*.opts) are.
+TEST_SRC = $(wildcard tests/*/*.c)
 TEST_BIN = $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+TEST_HDRS = $(wildcard tests/common/*.h)
 HDRS = $(shell find src -name '*.h')
 
 .PHONY: all deps test run bench clean
@@ -54,9 +58,9 @@ $(BIN)/sable: $(BUILD)/src/main.o $(BUILD)/libsable.a
 	@mkdir -p $(BIN)
 	$(CC) $(CFLAGS) $^ $(LDLIBS) -o $@
 
-$(BUILD)/tests/%: tests/%.c $(BUILD)/libsable.a $(HDRS)
+$(BUILD)/tests/%: tests/%.c $(BUILD)/libsable.a $(HDRS) $(TEST_HDRS)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) $< $(BUILD)/libsable.a $(LDLIBS) -o $@
+	$(CC) $(CFLAGS) -Itests/common -DTEST_DIR='"$(abspath $(dir $<))"' $< $(BUILD)/libsable.a $(LDLIBS) -o $@
 
 # The targets that a fresh machine runs first install what is missing, then build.
 test: deps

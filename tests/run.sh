@@ -1,9 +1,14 @@
 #!/bin/sh
-# The test suite. Every tests/*.c is a self-checking executable that prints one line per check,
-#   PASS <check>: <measured> (<bound>)   or   FAIL <check>: ...
+# The test suite. Tests live in tests/<folder>/, one folder per part of src/ (geom, dem, fluid,
+# coupling, balance, io) and drivers/ for the program as a whole; tests/common/ holds the shared
+# harness (not tests). Every tests/<folder>/*.c is a self-checking executable, built as
+# $BUILD/tests/<folder>/<name>, that prints one line per check (tests/common/check.h),
+#   PASS <check>: <measured> (reference <r>, bound <b>)   or   FAIL <check>: ...
 # and may print NOTE lines: a figure reported against a known limitation, not counted.
 # A line "/* ranks: 1 2 4 */" in its source runs it on each of those rank counts (default 1).
-# Every tests/*.sh is a shell test printing the same kind of lines.
+# Every tests/<folder>/*.sh is a shell test printing the same kind of lines.
+# A test's label is <folder>/<name> (e.g. dem/test_verlet, dem/test_parallel[np=2]);
+# ONLY=<substring> runs the tests whose label holds it (ONLY=verlet, ONLY=coupling/).
 # A test that exits non-zero without printing a FAIL line counts as one failure; a test still
 # running after TEST_TIMEOUT seconds (default 900) is stopped and counts as one failure.
 # Last line: "N passed, N failed"; exit status non-zero when anything failed.
@@ -27,7 +32,7 @@ run_one() { # label, command...
   rc=$?
   timedout=0 # timeout's TERM (124) or, when the test ignored it, KILL 10 s later (137)
   { [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; } && timedout=1 && echo "timed out after $TEST_TIMEOUT s (TEST_TIMEOUT)" >>"$out"
-  grep -E '^(PASS|FAIL|NOTE) ' "$out" | sed "s/^\(PASS\|FAIL\|NOTE\) /\1 $label /"
+  grep -E '^(PASS|FAIL|NOTE) ' "$out" | sed "s#^\(PASS\|FAIL\|NOTE\) #\1 $label #" # a label holds a /
   np=$(grep -c '^PASS ' "$out"); nf=$(grep -c '^FAIL ' "$out")
   if [ "$rc" -ne 0 ] && { [ "$nf" -eq 0 ] || [ "$timedout" -eq 1 ]; }; then
     echo "FAIL $label: exit status $rc; last lines:"; tail -n 5 "$out" "$LOG/err" | sed 's/^/    /'
@@ -37,8 +42,9 @@ run_one() { # label, command...
   pass=$((pass + np)); fail=$((fail + nf))
 }
 
-for src in tests/*.c; do
-  name=$(basename "$src" .c)
+for src in tests/*/*.c; do
+  name=${src#tests/}; name=${name%.c} # <folder>/<name>
+  case "$name" in common/*) continue ;; esac
   case "$name" in *$ONLY*) ;; *) continue ;; esac
   ranks=$(sed -n 's|^/\* ranks: \(.*\) \*/$|\1|p' "$src" | head -n 1)
   for n in ${ranks:-1}; do
@@ -46,9 +52,9 @@ for src in tests/*.c; do
     else run_one "$name[np=$n]" mpiexec -n "$n" "$BUILD/tests/$name"; fi
   done
 done
-for t in tests/*.sh; do
-  [ "$t" = tests/run.sh ] && continue
-  name=$(basename "$t" .sh)
+for t in tests/*/*.sh; do
+  name=${t#tests/}; name=${name%.sh}
+  case "$name" in common/*) continue ;; esac
   case "$name" in *$ONLY*) ;; *) continue ;; esac
   run_one "$name" sh "$t"
 done

@@ -13,7 +13,7 @@ SIZES=${SIZES:-32 64 128}
 RANKS=${RANKS:-1 2}
 EXTRA=${EXTRA:-}
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-exe="$BUILD/tests/test_fluid_bench"
+exe="$BUILD/tests/fluid/test_bench"
 [ -x "$exe" ] || make -s -j2 "$exe"
 echo "| cells | ranks | steps | first step (s) | median step (s) | us / cell / step | core-us / cell / step | median BoomerAMG its (max) |"
 echo "|---|---|---|---|---|---|---|---|"

@@ -5,7 +5,7 @@
  *     -tr_v each, no gravity, no friction; dt = -tr_dt_tc x the contact time Tc that the contact
  *     law itself predicts (DemGetContactFigures: linear pi / sqrt(kn/m* - (gn/2)^2); Hertz from
  *     the reduced Hertz impact equation with its calibrated damping, checked against the closed
- *     form 2.8683 (m*^2/(R* E*^2 v))^(1/5) at e = 1 by tests/test_impact). References: the set
+ *     form 2.8683 (m*^2/(R* E*^2 v))^(1/5) at e = 1 by tests/dem/test_impact.c). References: the set
  *     restitution -dem_restitution and that Tc. Contact start and end are located by linear
  *     interpolation of the overlap between steps; the restitution is the ratio of the normal
  *     relative velocities after and before. All -dem_ options pass through.

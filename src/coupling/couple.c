@@ -10,7 +10,7 @@
  *     the particles gained G_f = sum_p J_p W_pf. The difference T_f - G_f is owed to the fluid:
  *     it is given back as the source (T_f - G_f)/(V_cell dt) of the next fluid step. So at every
  *     step end, particle momentum + fluid momentum + momentum owed is constant to roundoff
- *     (test_cpl_conserve), and the owed part is the change of drag over one step, which
+ *     (coupling/test_conserve), and the owed part is the change of drag over one step, which
  *     vanishes in steady flow. Faces on non-periodic domain faces (walls, inlets) take no part:
  *     there the boundary absorbs the drag, and nothing is owed.
  * A frozen bed (-dem_frozen) takes no DEM steps; its particles are fixed obstacles: the fluid
