@@ -220,7 +220,7 @@ static PetscErrorCode DemComputeForces(Dem dem)
     for (int k = 0; k < 3; k++) f[3 * i + k] = m * g[k];
   }
   if (dem->rotation) PetscCall(PetscArrayzero(dem->tq, 3 * dem->n));
-  if (dem->convex) { /* convex shapes: libccd narrow phase (contacts_convex.c) */
+  if (dem->convex) { /* convex shapes: libccd narrow phase (convex_contacts.c) */
     PetscCall(DemContactsPairsConvex(dem));
     PetscCall(DemContactsWallsConvex(dem));
   } else {

@@ -7,7 +7,7 @@
  * than skin/2, so every pair that can touch is in the list. */
 #pragma once
 #include "dem/dem.h"
-#include "dem/contact.h"
+#include "dem/contact_laws.h"
 #include "geom/convex.h"
 
 #define DEM_MAX_SHAPES 32
@@ -238,8 +238,8 @@ struct _p_Dem {
 };
 
 /* internal functions, by file */
-PetscErrorCode DemMaterialsSetUp(Dem dem);                         /* contact_params.c */
-PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* contact_params.c */
+PetscErrorCode DemMaterialsSetUp(Dem dem);                         /* contact_laws.c */
+PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* contact_laws.c */
 PetscErrorCode DemParticlesReserve(Dem dem, PetscInt n);           /* particles.c */
 PetscErrorCode DemParticlesPermute(Dem dem, const PetscInt *perm); /* particles.c */
 PetscErrorCode DemNeighBuild(Dem dem);                             /* neighbours.c */
@@ -282,8 +282,8 @@ void           DemExternalKick(Dem dem, double h);                 /* external.c
 PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c */
 PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
 PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
-PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* contacts_convex.c */
-/* A body in a pair test (contacts_convex.c, sat_box.c): shape, centre, quaternion and its
+PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* convex_contacts.c */
+/* A body in a pair test (convex_contacts.c, sat_box.c): shape, centre, quaternion and its
  * rotation matrix (body -> world), pointing into the particle arrays. */
 typedef struct {
   const DemShape *s;
@@ -301,10 +301,10 @@ typedef struct {
 } DemSatMin;
 PetscBool DemShapeBoxFrame(DemShape *sh);                                                            /* sat_box.c */
 PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3]); /* sat_box.c */
-PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c); /* contacts_convex.c: the forces' narrow phase */
-PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* contacts_convex.c */
-PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* diag_convex.c */
-PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* diag_convex.c */
+PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c); /* convex_contacts.c: the forces' narrow phase */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* convex_contacts.c */
+PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* convex_diag.c */
+PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* convex_diag.c */
 PetscErrorCode DemRotateFirstHalf(Dem dem);                        /* rotation.c */
 PetscErrorCode DemRotateSecondHalf(Dem dem);                       /* rotation.c */
 

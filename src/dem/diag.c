@@ -18,7 +18,7 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
   PetscInt c[3] = {dem->n, 0, 0}, cg[3];
 
   PetscFunctionBeginUser;
-  if (dem->convex) PetscCall(DemConvexStatsLocal(dem, r, c, &rmax)); /* diag_convex.c */
+  if (dem->convex) PetscCall(DemConvexStatsLocal(dem, r, c, &rmax)); /* convex_diag.c */
   for (PetscInt i = 0; i < dem->n && !dem->convex; i++) {
     const DemShape *s = &dem->shp[dem->shape[i]];
     r[0] += 0.5 * s->m * dem_dot(dem->v + 3 * i, dem->v + 3 * i);
@@ -145,7 +145,7 @@ PetscErrorCode DemWriteOutput(Dem dem, Io io)
   PetscCall(IoWriteParticles(io, "radius", dem->n, 1, r));
   PetscCall(IoWriteParticlesInt(io, "id", dem->n, dem->id));
   PetscCall(IoWriteParticlesInt(io, "shape", dem->n, dem->shape));
-  if (dem->convex) PetscCall(DemConvexWriteSurface(dem, io)); /* diag_convex.c */
+  if (dem->convex) PetscCall(DemConvexWriteSurface(dem, io)); /* convex_diag.c */
   PetscCall(PetscFree(r));
   PetscCall(PetscLogEventEnd(DEM_Output, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -4,7 +4,7 @@
  * mutually orthogonal and whose vertices all lie at +-h_k along them (DemShapeBoxFrame, found
  * when the shape table is set up; a cube whose principal frame is arbitrary qualifies too). Its
  * extent along a direction u is then sum_k h_k |a_k . u|, so for the 15 candidate axes of two
- * boxes (3 + 3 face normals, 3 x 3 edge cross products, the set dem_sat of contacts_convex.c
+ * boxes (3 + 3 face normals, 3 x 3 edge cross products, the set dem_sat of convex_contacts.c
  * scans by vertices) every extent comes from the 9 cosines C_ab = A_a . B_b of their world axes:
  *   face a of i:   r_i = h_a,                         r_j = sum_b g_b |C_ab|
  *   face b of j:   r_i = sum_a h_a |C_ab|,            r_j = g_b

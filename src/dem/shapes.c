@@ -182,7 +182,7 @@ static PetscInt DemFaceAxis(const DemShape *sh, const ConvexShape *c, PetscInt t
 }
 
 /* Distinct face directions of a polyhedron (n and -n count once), for the separating-axis cache
- * of contacts_convex.c. A cylinder has none (its axis test uses the centre line only). */
+ * of convex_contacts.c. A cylinder has none (its axis test uses the centre line only). */
 static PetscErrorCode DemShapeFaceAxes(DemShape *sh)
 {
   const ConvexShape *c = sh->cvx;

@@ -1,7 +1,7 @@
 /* Diagnostics and output of convex particles.
  * Statistics: translational energy 1/2 m v^2, rotational energy 1/2 W.(J W) with W = R^T w the
  * body-frame spin, gravity, and for every touching pair or wall contact (narrow phase as in
- * contacts_convex.c) the elastic energy of the law (linear 1/2 kn delta^2 + 1/2 kt |xi|^2, hertz
+ * convex_contacts.c) the elastic energy of the law (linear 1/2 kn delta^2 + 1/2 kt |xi|^2, hertz
  * 8/15 E* sqrt(R*) delta^(5/2)) and the overlap over the equivalent radius d_eq/2.
  * Output: besides the per-particle arrays (position, quaternion, ...), every particle's surface
  * in the world frame, x + R v for the shape's hull vertices v, as one triangle mesh that ParaView

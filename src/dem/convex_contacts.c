@@ -2,7 +2,7 @@
  *
  * The narrow phase (convex.h: libccd MPR for depth and normal, the contact features for the
  * point) gives for a touching pair the overlap delta, the unit normal n from i to its partner j
- * and the world contact point p. The same laws as for spheres (contact.h) act at p:
+ * and the world contact point p. The same laws as for spheres (contact_laws.h) act at p:
  *   r_i = p - x_i, r_j = p - x_j,  v_rel = (v_j + w_j x r_j) - (v_i + w_i x r_i),
  *   v_n = v_rel . n,  v_t = v_rel - v_n n,  F_i = -F_n n - F_t,  F_j = -F_i,
  *   T_i = r_i x F_i,  T_j = r_j x F_j   (the lever arm gives torque even without friction).
@@ -199,7 +199,7 @@ static inline ConvexBody dem_convex_body(const DemBody *b)
  * the last step; NULL for none. A pair of the separating-axis test that touched skips the
  * centre-line probe (it usually fails, and the test is complete without it: the same answer);
  * a pair left to MPR always takes it, as the statistics do. The forces and the statistics
- * (diag_convex.c) both call it, so the elastic energy is that of the depth the forces used. */
+ * (convex_diag.c) both call it, so the elastic energy is that of the depth the forces used. */
 static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const DemBody *bj, const double d[3], double *u, ConvexContact *c)
 {
   double    none[4] = {0, 0, 0, 0};
