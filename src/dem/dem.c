@@ -1,6 +1,7 @@
-/* The Dem object: options, set-up, the time step and the run loop (see dem.h).
+/* The Dem object: options, set-up and the time step (see dem.h).
  * One step (velocity Verlet): half kick + drift (+ rebuild check) -> walls move -> lists rebuilt
- * if a particle or a wall moved more than skin/2 -> forces (gravity, pairs, walls) -> half kick.
+ * (rebuild.c) if a particle or a wall moved more than skin/2 -> forces (gravity, pairs, walls) ->
+ * half kick.
  * The time step is checked against the contact time at set-up: dt <= dt_max_fraction * Tc for
  * every pair type (Tc of the hertz law at -dem_impact_velocity); -dem_dt_tc sets dt to a fraction
  * of the shortest Tc instead. A run that diverges anyway (dt too large for the stiffness: the
@@ -8,27 +9,14 @@
  * line or output frame when the largest overlap exceeds -dem_overlap_max radii (diag.c). */
 #include "dem/dem_impl.h"
 
-PetscLogEvent        DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
-static PetscClassId  DEM_CLASSID;
-static PetscBool     dem_registered = PETSC_FALSE;
-static const char   *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
+static const char *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
 
 PetscErrorCode DemCreate(Domain *dom, Dem *dem)
 {
   Dem d;
 
   PetscFunctionBeginUser;
-  if (!dem_registered) {
-    PetscCall(PetscClassIdRegister("DEM", &DEM_CLASSID));
-    PetscCall(PetscLogEventRegister("DemNeighbours", DEM_CLASSID, &DEM_Neighbours));
-    PetscCall(PetscLogEventRegister("DemExchange", DEM_CLASSID, &DEM_Exchange));
-    PetscCall(PetscLogEventRegister("DemContacts", DEM_CLASSID, &DEM_Contacts));
-    PetscCall(PetscLogEventRegister("DemWalls", DEM_CLASSID, &DEM_Walls));
-    PetscCall(PetscLogEventRegister("DemIntegrate", DEM_CLASSID, &DEM_Integrate));
-    PetscCall(PetscLogEventRegister("DemOutput", DEM_CLASSID, &DEM_Output));
-    PetscCall(PetscLogEventRegister("DemPlacement", DEM_CLASSID, &DEM_Placement));
-    dem_registered = PETSC_TRUE;
-  }
+  PetscCall(DemEventsRegister());
   PetscCall(PetscNew(&d));
   d->comm   = dom->comm;
   d->dom    = dom;
@@ -254,7 +242,7 @@ PetscErrorCode DemSetUp(Dem dem)
   dem->rotation = (PetscBool)(dem->mat.mu > 0 || dem->wmat.mu > 0 || dem->convex);
   for (PetscInt w = 0; w < dem->nwall; w++) dem->rotation = (PetscBool)(dem->rotation || dem->wall[w].mu > 0);
   PetscCall(DemExchangeSetUp(dem));
-  PetscCall(DemNeighBuild(dem));
+  PetscCall(DemRebuild(dem));
   PetscCall(DemCheckPlacement(dem)); /* needs the ghosts: pairs across ranks */
   PetscCall(DemGetStats(dem, &dem->initial));
   PetscCall(DemComputeForces(dem));
@@ -282,7 +270,7 @@ PetscErrorCode DemStep(Dem dem)
   if (dem->ex.active) PetscCallMPI(MPI_Allreduce(need, any, 2, MPI_INT, MPI_MAX, dem->comm));
   dem->stop_sig = any[1];
   SableProgress();
-  if (any[0]) PetscCall(DemNeighBuild(dem));
+  if (any[0]) PetscCall(DemRebuild(dem));
   else PetscCall(DemGhostsUpdate(dem));
   PetscLogDouble c0, c1;
   PetscCall(PetscTime(&c0));
@@ -297,6 +285,13 @@ PetscErrorCode DemStep(Dem dem)
     PetscCall(DemGetStats(dem, &st));
     PetscCheck(st.n == dem->initial.n && st.checksum == dem->initial.checksum, dem->comm, PETSC_ERR_PLIB, "step %" PetscInt_FMT ": %" PetscInt_FMT " particles with id checksum %.17g, expected %" PetscInt_FMT " and %.17g: a particle was lost or duplicated", dem->step, st.n, st.checksum, dem->initial.n, dem->initial.checksum);
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetStopSignal(Dem dem, int *sig)
+{
+  PetscFunctionBeginUser;
+  *sig = dem->stop_sig;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

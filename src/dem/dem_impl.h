@@ -237,12 +237,21 @@ struct _p_Dem {
   PetscBool external, frozen;
 };
 
-/* internal functions, by file */
-PetscErrorCode DemMaterialsSetUp(Dem dem);                         /* contact_laws.c */
-PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* contact_laws.c */
+/* Internal functions, by file, from the leaves up: a file calls only files listed above it
+ * (the DEM's .c files form no circle of calls). */
+PetscErrorCode DemEventsRegister(void);                            /* events.c */
+extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
+PetscErrorCode DemSpringsSort(DemSpring *r, PetscInt n);           /* springs.c */
+const DemSpring *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, PetscInt partner); /* springs.c */
+PetscErrorCode DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap); /* springs.c */
+PetscErrorCode DemSpringsRestore(Dem dem, const DemSpring *recs, PetscInt nrec); /* springs.c */
 PetscErrorCode DemParticlesReserve(Dem dem, PetscInt n);           /* particles.c */
 PetscErrorCode DemParticlesPermute(Dem dem, const PetscInt *perm); /* particles.c */
-PetscErrorCode DemNeighBuild(Dem dem);                             /* neighbours.c */
+PetscErrorCode DemMaterialsSetUp(Dem dem);                         /* contact_laws.c */
+PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* contact_laws.c */
+PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c */
+PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
+PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
 PetscErrorCode DemExchangeSetUp(Dem dem);                          /* exchange.c */
 PetscErrorCode DemExchangeDestroy(Dem dem);                        /* exchange.c */
 PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* exchange.c */
@@ -256,32 +265,22 @@ size_t         DemMigSize(Dem dem, PetscInt i, const DemSpring *recs, PetscInt n
 size_t         DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b);
 PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used);
 /* Errors when a local particle is wholly outside the domain across a non-periodic side. */
-PetscErrorCode DemCheckInDomain(Dem dem);
-PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* redistribute.c */
+PetscErrorCode DemCheckInDomain(Dem dem);                          /* exchange.c */
 PetscErrorCode DemGhostsCreate(Dem dem);                           /* exchange.c */
 PetscErrorCode DemGhostsUpdate(Dem dem);                           /* exchange.c */
-PetscErrorCode DemSpringsSort(DemSpring *r, PetscInt n);           /* neighbours.c */
-const DemSpring *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, PetscInt partner); /* neighbours.c */
+PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* redistribute.c */
+PetscErrorCode DemNeighSort(Dem dem);                              /* neighbours.c */
+PetscErrorCode DemNeighBuildList(Dem dem);                         /* neighbours.c */
+PetscErrorCode DemNeighResetCells(Dem dem);                        /* neighbours.c */
 PetscErrorCode DemNeighDestroy(Dem dem);                           /* neighbours.c */
-PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c */
-PetscErrorCode DemContactsWalls(Dem dem);                          /* walls.c */
-PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls.c */
-PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec); /* walls.c */
 PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3]); /* walls.c */
 PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first); /* walls.c */
+PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec); /* walls.c */
+PetscErrorCode DemContactsWalls(Dem dem);                          /* walls.c */
 PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_polygon.c */
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_cylinder.c */
-PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
-PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
-double         DemLatticeSpacing(Dem dem);                         /* insert.c */
-double         DemImpactOverlap(Dem dem, const DemPairParams *p);  /* diag.c */
-PetscErrorCode DemCheckPlacement(Dem dem);                         /* placement.c */
-PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
-PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
-void           DemExternalKick(Dem dem, double h);                 /* external.c */
-PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c */
-PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
-PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
+PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls_options.c */
+PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c */
 PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* convex_contacts.c */
 /* A body in a pair test (convex_contacts.c, sat_box.c): shape, centre, quaternion and its
  * rotation matrix (body -> world), pointing into the particle arrays. */
@@ -307,5 +306,12 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
 PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* convex_diag.c */
 PetscErrorCode DemRotateFirstHalf(Dem dem);                        /* rotation.c */
 PetscErrorCode DemRotateSecondHalf(Dem dem);                       /* rotation.c */
-
-extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
+void           DemExternalKick(Dem dem, double h);                 /* external.c */
+PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
+PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
+PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
+PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
+double         DemLatticeSpacing(Dem dem);                         /* insert.c */
+double         DemImpactOverlap(Dem dem, const DemPairParams *p);  /* diag.c */
+PetscErrorCode DemCheckPlacement(Dem dem);                         /* placement.c */
+PetscErrorCode DemRebuild(Dem dem);                                /* rebuild.c */

@@ -5,7 +5,9 @@
  * step, coupling state, tangential springs keyed by ids), after wrapping positions across
  * periodic boundaries. The owner is found from the cut positions computed exactly as the rank
  * boxes are (lo + cells * h), so the global and the neighbour migrations agree on every
- * particle. Then ghosts and lists are rebuilt from scratch (the cell grid follows the new box). */
+ * particle. DemRedistribute (rebuild.c) runs it as the migration of a full rebuild, the cell grid
+ * set up anew over the new box. Also here: what the balancer measures (the halo width, the
+ * particles per grid cell, the compute time). */
 #include "dem/dem_impl.h"
 
 /* Rank column along axis k whose box holds coordinate x: box r is [lo + s_r h, lo + s_{r+1} h)
@@ -78,35 +80,10 @@ PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, Petsc
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemRedistribute(Dem dem)
-{
-  PetscFunctionBeginUser;
-  PetscCall(DemExchangeSetUp(dem));  /* same neighbours; re-checks the box widths */
-  PetscCall(PetscFree(dem->nl.cstart)); /* the cell grid covers the new box */
-  dem->remap = PETSC_TRUE;
-  PetscCall(DemNeighBuild(dem));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach)
 {
   PetscFunctionBeginUser;
   *reach = dem->reach;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode DemGetStopSignal(Dem dem, int *sig)
-{
-  PetscFunctionBeginUser;
-  *sig = dem->stop_sig;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode DemGetLargestRadius(Dem dem, PetscReal *r)
-{
-  PetscFunctionBeginUser;
-  *r = 0;
-  for (PetscInt s = 0; s < dem->nshape; s++) *r = PetscMax(*r, dem->shp[s].r);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

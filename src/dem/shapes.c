@@ -300,6 +300,14 @@ PetscErrorCode DemHasConvexShapes(Dem dem, PetscBool *convex)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode DemGetLargestRadius(Dem dem, PetscReal *r)
+{
+  PetscFunctionBeginUser;
+  *r = 0;
+  for (PetscInt s = 0; s < dem->nshape; s++) *r = PetscMax(*r, dem->shp[s].r);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemGetShapeGeometry(Dem dem, PetscInt s, PetscReal *volume, PetscReal *d_eq)
 {
   PetscFunctionBeginUser;
