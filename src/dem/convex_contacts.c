@@ -21,7 +21,7 @@
  * directly (the centre-line probe usually fails). A particle's rotation matrix is formed at most
  * once per pass of the pair loop (dem->rot).
  * Few-axis pairs (box-box: 3 + 3 face normals and 3 x 3 edge-edge axes; -dem_convex_sat_axes
- * sets the limit, 16 by default; two boxes in closed form, sat_box.c) skip libccd: the
+ * sets the limit, 16 by default; two boxes in closed form, geom/sat_box.c) skip libccd: the
  * separating-axis test over all candidates gives the exact minimum penetration (depth and normal
  * of the least overlap, for convex polyhedra the minimum translation), continuous in the poses,
  * where MPR's portal depth jumps; the contact point follows (ConvexBodiesContactPoint, the model of
@@ -80,7 +80,7 @@ static inline double dem_extent(const ConvexShape *c, const double d[3])
 /* The same for a shape of the table: a box in closed form, sum_k h_k |a_k . d|. */
 static inline double dem_shape_extent(const DemShape *s, const double d[3])
 {
-  if (s->box) return s->bh[0] * PetscAbsReal(dem_dot(s->fn, d)) + s->bh[1] * PetscAbsReal(dem_dot(s->fn + 3, d)) + s->bh[2] * PetscAbsReal(dem_dot(s->fn + 6, d));
+  if (s->ax.box) return s->ax.bh[0] * PetscAbsReal(dem_dot(s->ax.fn, d)) + s->ax.bh[1] * PetscAbsReal(dem_dot(s->ax.fn + 3, d)) + s->ax.bh[2] * PetscAbsReal(dem_dot(s->ax.fn + 6, d));
   return dem_extent(s->cvx, d);
 }
 
@@ -107,7 +107,7 @@ static inline void dem_rotation(const double *q, double *R)
 
 static inline PetscBool dem_sat_pair(const Dem dem, const DemShape *si, const DemShape *sj)
 {
-  return (PetscBool)(dem->convex_sat && si->nfn > 0 && sj->nfn > 0 && si->nfn + sj->nfn + si->nen * sj->nen <= dem->convex_sat_axes);
+  return (PetscBool)(dem->convex_sat && si->ax.nfn > 0 && sj->ax.nfn > 0 && si->ax.nfn + sj->ax.nfn + si->ax.nen * sj->ax.nen <= dem->convex_sat_axes);
 }
 
 /* Least overlap of i (at the origin) and j (at d) along the unit world axis u: returns it, and
@@ -127,7 +127,7 @@ static inline double dem_sat_overlap(const DemBody *bi, const DemBody *bj, const
 
 /* One candidate axis a (unit, world): PETSC_TRUE when it separates the pair (u = a); otherwise
  * m keeps the least overlap so far and its axis oriented from i to j. */
-static inline PetscBool dem_sat_axis(const DemBody *bi, const DemBody *bj, const double d[3], const double a[3], DemSatMin *m, double u[3])
+static inline PetscBool dem_sat_axis(const DemBody *bi, const DemBody *bj, const double d[3], const double a[3], ConvexSatMin *m, double u[3])
 {
   double       n[3];
   const double ov = dem_sat_overlap(bi, bj, d, a, n);
@@ -146,25 +146,28 @@ static inline PetscBool dem_sat_axis(const DemBody *bi, const DemBody *bj, const
  * their edge directions (the complete candidate set): PETSC_FALSE with the separating axis in u,
  * or PETSC_TRUE with the least overlap and its axis (i to j) in m. After libccd found no contact
  * it also finds the axis the cache keeps (u = 0 if rounding left none). */
-static PetscBool dem_sat(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3])
+static PetscBool dem_sat(const DemBody *bi, const DemBody *bj, const double d[3], ConvexSatMin *m, double u[3])
 {
   const DemBody *b2[2] = {bi, bj};
   const double  *Ri = bi->R, *Rj = bj->R;
   const DemShape *si = bi->s, *sj = bj->s;
   double          a[3];
   m->depth = PETSC_MAX_REAL;
-  if (si->box && sj->box) return DemSatBox(bi, bj, d, m, u); /* the same axes in closed form */
+  if (si->ax.box && sj->ax.box) { /* the same axes in closed form (geom/sat_box.c) */
+    const ConvexSatBody gi = {&si->ax, Ri}, gj = {&sj->ax, Rj};
+    return ConvexSatBox(&gi, &gj, d, m, u);
+  }
   for (int b = 0; b < 2; b++)
-    for (PetscInt f = 0; f < b2[b]->s->nfn; f++) {
-      const double *fn = b2[b]->s->fn + 3 * f, *R = b2[b]->R;
+    for (PetscInt f = 0; f < b2[b]->s->ax.nfn; f++) {
+      const double *fn = b2[b]->s->ax.fn + 3 * f, *R = b2[b]->R;
       for (int k = 0; k < 3; k++) a[k] = R[3 * k] * fn[0] + R[3 * k + 1] * fn[1] + R[3 * k + 2] * fn[2];
       if (dem_sat_axis(bi, bj, d, a, m, u)) return PETSC_FALSE;
     }
-  for (PetscInt e = 0; e < si->nen; e++) {
+  for (PetscInt e = 0; e < si->ax.nen; e++) {
     double ei[3], ej[3];
-    for (int k = 0; k < 3; k++) ei[k] = Ri[3 * k] * si->en[3 * e] + Ri[3 * k + 1] * si->en[3 * e + 1] + Ri[3 * k + 2] * si->en[3 * e + 2];
-    for (PetscInt g = 0; g < sj->nen; g++) {
-      for (int k = 0; k < 3; k++) ej[k] = Rj[3 * k] * sj->en[3 * g] + Rj[3 * k + 1] * sj->en[3 * g + 1] + Rj[3 * k + 2] * sj->en[3 * g + 2];
+    for (int k = 0; k < 3; k++) ei[k] = Ri[3 * k] * si->ax.en[3 * e] + Ri[3 * k + 1] * si->ax.en[3 * e + 1] + Ri[3 * k + 2] * si->ax.en[3 * e + 2];
+    for (PetscInt g = 0; g < sj->ax.nen; g++) {
+      for (int k = 0; k < 3; k++) ej[k] = Rj[3 * k] * sj->ax.en[3 * g] + Rj[3 * k + 1] * sj->ax.en[3 * g + 1] + Rj[3 * k + 2] * sj->ax.en[3 * g + 2];
       dem_cross(ei, ej, a);
       const double l2 = dem_dot(a, a);
       if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
@@ -203,7 +206,7 @@ static inline ConvexBody dem_convex_body(const DemBody *b)
 static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const DemBody *bj, const double d[3], double *u, ConvexContact *c)
 {
   double    none[4] = {0, 0, 0, 0};
-  DemSatMin m;
+  ConvexSatMin m;
 
   PetscFunctionBeginUser;
   if (!u) u = none;

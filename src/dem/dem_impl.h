@@ -9,6 +9,7 @@
 #include "dem/dem.h"
 #include "dem/contact_laws.h"
 #include "geom/convex.h"
+#include "geom/sat.h"
 
 #define DEM_MAX_SHAPES 32
 #define DEM_MAX_WALLS  24
@@ -19,13 +20,8 @@ typedef struct {
   const ConvexShape *cvx;
   double J[3], invJ[3]; /* principal moments of inertia (kg m^2), body axes */
   double vol, req;      /* volume (m^3), equivalent radius for the contact laws (m) */
-  double  *fn;          /* distinct face normals of a polyhedron (body frame, 3 each), for sepaxis */
-  PetscInt nfn;
-  double  *en;          /* distinct edge directions of a polyhedron (body frame, 3 each) */
-  PetscInt nen;
-  PetscBool iso;        /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
-  PetscBool box;        /* a box: 8 vertices at +-bh[k] along fn[0..2], a right-handed frame (sat_box.c) */
-  double    bh[3];
+  ConvexAxes ax;        /* a polyhedron's separating-axis candidates and box frame (geom/sat.h) */
+  PetscBool  iso;       /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
 } DemShape;
 
 typedef enum { DEM_WALL_PLANE, DEM_WALL_RECT, DEM_WALL_POLYGON, DEM_WALL_CYLINDER } DemWallKind;
@@ -282,7 +278,7 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls_options.c */
 PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c */
 PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* convex_contacts.c */
-/* A body in a pair test (convex_contacts.c, sat_box.c): shape, centre, quaternion and its
+/* A body in a pair test (convex_contacts.c): shape, centre, quaternion and its
  * rotation matrix (body -> world), pointing into the particle arrays. */
 typedef struct {
   const DemShape *s;
@@ -294,12 +290,6 @@ static inline ConvexPose DemPose(const double *x, const double *q)
   ConvexPose p = {{x[0], x[1], x[2]}, {q[0], q[1], q[2], q[3]}};
   return p;
 }
-/* The least overlap of a pair found so far, and its axis oriented from i to j. */
-typedef struct {
-  double depth, n[3];
-} DemSatMin;
-PetscBool DemShapeBoxFrame(DemShape *sh);                                                            /* sat_box.c */
-PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3]); /* sat_box.c */
 PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c); /* convex_contacts.c: the forces' narrow phase */
 PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* convex_contacts.c */
 PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* convex_diag.c */

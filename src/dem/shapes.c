@@ -165,81 +165,6 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The face axis (index into sh->fn) parallel to the normal of hull triangle t. */
-static PetscInt DemFaceAxis(const DemShape *sh, const ConvexShape *c, PetscInt t)
-{
-  const double *a = c->v + 3 * c->f[3 * t], *b = c->v + 3 * c->f[3 * t + 1], *d = c->v + 3 * c->f[3 * t + 2];
-  double        e1[3], e2[3], n[3], len, best = -1;
-  PetscInt      m = 0;
-  for (int k = 0; k < 3; k++) e1[k] = b[k] - a[k], e2[k] = d[k] - a[k];
-  dem_cross(e1, e2, n);
-  len = sqrt(dem_dot(n, n));
-  for (PetscInt k = 0; k < sh->nfn; k++) {
-    const double t2 = PetscAbsReal(dem_dot(n, sh->fn + 3 * k)) / len;
-    if (t2 > best) best = t2, m = k;
-  }
-  return m;
-}
-
-/* Distinct face directions of a polyhedron (n and -n count once), for the separating-axis cache
- * of convex_contacts.c. A cylinder has none (its axis test uses the centre line only). */
-static PetscErrorCode DemShapeFaceAxes(DemShape *sh)
-{
-  const ConvexShape *c = sh->cvx;
-
-  PetscFunctionBeginUser;
-  sh->nfn = 0;
-  if (c->kind != CONVEX_POLYHEDRON) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscFree(sh->fn));
-  PetscCall(PetscMalloc1(3 * c->nf, &sh->fn));
-  for (PetscInt t = 0; t < c->nf; t++) {
-    const double *a = c->v + 3 * c->f[3 * t], *b = c->v + 3 * c->f[3 * t + 1], *d = c->v + 3 * c->f[3 * t + 2];
-    double        e1[3], e2[3], n[3], len;
-    PetscBool     dup = PETSC_FALSE;
-    for (int k = 0; k < 3; k++) e1[k] = b[k] - a[k], e2[k] = d[k] - a[k];
-    dem_cross(e1, e2, n);
-    len = sqrt(dem_dot(n, n));
-    for (int k = 0; k < 3; k++) n[k] /= len;
-    for (PetscInt m = 0; m < sh->nfn && !dup; m++) dup = (PetscBool)(PetscAbsReal(dem_dot(n, sh->fn + 3 * m)) > 1 - 1e-9);
-    if (dup) continue;
-    for (int k = 0; k < 3; k++) sh->fn[3 * sh->nfn + k] = n[k];
-    sh->nfn++;
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Distinct directions of the true edges of a polyhedron (hull triangle edges whose two triangles
- * are not coplanar), for the edge-edge axes of the separating-axis cache. */
-static PetscErrorCode DemShapeEdgeAxes(DemShape *sh)
-{
-  const ConvexShape *c = sh->cvx;
-
-  PetscFunctionBeginUser;
-  sh->nen = 0;
-  if (c->kind != CONVEX_POLYHEDRON) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscFree(sh->en));
-  PetscCall(PetscMalloc1(9 * c->nf, &sh->en));
-  for (PetscInt t = 0; t < c->nf; t++)
-    for (int e = 0; e < 3; e++) {
-      const PetscInt a = c->f[3 * t + e], b = c->f[3 * t + (e + 1) % 3];
-      PetscInt       o = -1;
-      for (PetscInt u = 0; u < c->nf && o < 0; u++) /* the triangle across the edge (b, a) */
-        for (int g = 0; g < 3; g++)
-          if (c->f[3 * u + g] == b && c->f[3 * u + (g + 1) % 3] == a) o = u;
-      if (o < 0 || PetscAbsReal(dem_dot(sh->fn + 3 * DemFaceAxis(sh, c, t), sh->fn + 3 * DemFaceAxis(sh, c, o))) > 1 - 1e-9) continue;
-      double    d[3], len;
-      PetscBool dup = PETSC_FALSE;
-      for (int k = 0; k < 3; k++) d[k] = c->v[3 * b + k] - c->v[3 * a + k];
-      len = sqrt(dem_dot(d, d));
-      for (int k = 0; k < 3; k++) d[k] /= len;
-      for (PetscInt m = 0; m < sh->nen && !dup; m++) dup = (PetscBool)(PetscAbsReal(dem_dot(d, sh->en + 3 * m)) > 1 - 1e-9);
-      if (dup) continue;
-      for (int k = 0; k < 3; k++) sh->en[3 * sh->nen + k] = d[k];
-      sh->nen++;
-    }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* Mass properties from the density (after dem.c has set those of the spheres). */
 PetscErrorCode DemShapesSetUp(Dem dem)
 {
@@ -264,9 +189,8 @@ PetscErrorCode DemShapesSetUp(Dem dem)
       sh->invJ[k] = 1.0 / sh->J[k];
     }
     sh->inertia = (sh->J[0] + sh->J[1] + sh->J[2]) / 3.0; /* only for reports */
-    PetscCall(DemShapeFaceAxes(sh));
-    PetscCall(DemShapeEdgeAxes(sh));
-    (void)DemShapeBoxFrame(sh);
+    PetscCall(ConvexAxesDestroy(&sh->ax));
+    PetscCall(ConvexAxesCreate(sh->cvx, &sh->ax)); /* for the separating-axis tests (convex_contacts.c) */
     sh->iso = (PetscBool)(PetscAbsReal(sh->J[0] - sh->J[2]) <= 1e-12 * sh->J[2] && PetscAbsReal(sh->J[1] - sh->J[2]) <= 1e-12 * sh->J[2]);
     sh->invi    = 1.0 / sh->inertia;
   }
@@ -281,14 +205,11 @@ PetscErrorCode DemShapesDestroy(Dem dem)
   dem->rot_cap = dem->rot_pass = dem->rot_pairs = 0;
   for (PetscInt s = 0; s < DEM_MAX_SHAPES; s++) {
     PetscCall(ConvexShapeDestroy(&dem->cvx[s]));
-    if (dem->shp[s].cvx) {
-      PetscCall(PetscFree(dem->shp[s].fn));
-      PetscCall(PetscFree(dem->shp[s].en));
-    }
-    dem->shp[s].nen = 0;
-    dem->shp[s].cvx = NULL;
-    dem->shp[s].nfn = 0;
-    dem->shp[s].box = PETSC_FALSE;
+    if (dem->shp[s].cvx) PetscCall(ConvexAxesDestroy(&dem->shp[s].ax));
+    dem->shp[s].cvx    = NULL;
+    dem->shp[s].ax.nfn = 0;
+    dem->shp[s].ax.nen = 0;
+    dem->shp[s].ax.box = PETSC_FALSE;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
