@@ -5,7 +5,7 @@
  * pair computed on two ranks get exactly opposite forces. Spheres: n = (x_j - x_i)/|x_j - x_i|, overlap
  * delta = r_i + r_j - |x_j - x_i|, contact point at r_i - delta/2 from i along n. The spring of
  * a pair that is not touching is reset to zero (a new contact starts unloaded). Torques only
- * when the scene has friction (dem->rotation).
+ * when the scene has friction (dem->contact.rotation).
  * Speed (the pair loop is most of a dense step): in a settled bed only about a third of the
  * list entries touch, in no predictable pattern, so the loop screens the entries of a block
  * first (branch-free, flat over rows: DemNeigh.own gives each entry's row) and then computes the
@@ -43,13 +43,13 @@ typedef struct {
 static void dem_pair_block(const Dem dem, PetscBool mono, const double *rad, PetscInt a0, PetscInt a1, DemRowSum *sum)
 {
   DemRowSum                S = *sum; /* a local copy, kept in registers */
-  const double *restrict   x = dem->x, *restrict v = dem->v, *restrict w = dem->w;
-  double *restrict         f = dem->f, *restrict tq = dem->tq, *restrict hist = dem->nl.hist;
-  const PetscInt *restrict shape = dem->shape, *restrict nbr = dem->nl.nbr, *restrict own = dem->nl.own;
-  const PetscInt           ns = dem->nshape, nhalf = dem->full_list ? 0 : dem->n;
-  const DemLaw             law = dem->law;
-  const PetscBool          rot = dem->rotation;
-  const double             dt = dem->dt;
+  const double *restrict   x = dem->p.x, *restrict v = dem->p.v, *restrict w = dem->p.w;
+  double *restrict         f = dem->p.f, *restrict tq = dem->p.tq, *restrict hist = dem->nl.hist;
+  const PetscInt *restrict shape = dem->p.shape, *restrict nbr = dem->nl.nbr, *restrict own = dem->nl.own;
+  const PetscInt           ns = dem->shapes.nshape, nhalf = dem->nl.full_list ? 0 : dem->p.n;
+  const DemLaw             law = dem->contact.law;
+  const PetscBool          rot = dem->contact.rotation;
+  const double             dt = dem->clock.dt;
   PetscInt                 m = 0, mn = 0, ta[DEM_PAIR_BLOCK], tn[DEM_PAIR_BLOCK];
   double                   td[DEM_PAIR_BLOCK][4];
 
@@ -73,7 +73,7 @@ static void dem_pair_block(const Dem dem, PetscBool mono, const double *rad, Pet
     const PetscInt       a = ta[t], i = own[a], j = nbr[a];
     const double         d[3] = {td[t][0], td[t][1], td[t][2]}, d2 = td[t][3];
     const double         ri = mono ? rad[0] : rad[shape[i]], rj = mono ? rad[0] : rad[shape[j]], rs = ri + rj;
-    const DemPairParams *p    = mono ? dem->pp : dem->pp + shape[i] * ns + shape[j];
+    const DemPairParams *p    = mono ? dem->contact.pp : dem->contact.pp + shape[i] * ns + shape[j];
     double              *xi_t = hist ? hist + 3 * a : NULL;
     if (i != S.cur) { /* the previous row is complete */
       if (S.cur >= 0)
@@ -121,19 +121,19 @@ static void dem_pair_block(const Dem dem, PetscBool mono, const double *rad, Pet
 
 PetscErrorCode DemContactsPairs(Dem dem)
 {
-  const PetscInt  ne = dem->nl.start[dem->n];
-  const PetscBool mono = (PetscBool)(dem->nshape == 1);
+  const PetscInt  ne = dem->nl.start[dem->p.n];
+  const PetscBool mono = (PetscBool)(dem->shapes.nshape == 1);
   double          rad[DEM_MAX_SHAPES];
   DemRowSum       sum = {.cur = -1};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
-  for (PetscInt s = 0; s < dem->nshape; s++) rad[s] = dem->shp[s].r;
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) rad[s] = dem->shapes.shp[s].r;
   for (PetscInt a0 = 0; a0 < ne; a0 += DEM_PAIR_BLOCK) dem_pair_block(dem, mono, rad, a0, PetscMin(a0 + DEM_PAIR_BLOCK, ne), &sum);
   if (sum.cur >= 0)
     for (int k = 0; k < 3; k++) {
-      dem->f[3 * sum.cur + k] += sum.fi[k];
-      dem->tq[3 * sum.cur + k] += sum.ti[k];
+      dem->p.f[3 * sum.cur + k] += sum.fi[k];
+      dem->p.tq[3 * sum.cur + k] += sum.ti[k];
     }
   PetscCall(PetscLogEventEnd(DEM_Contacts, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

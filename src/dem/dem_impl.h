@@ -130,7 +130,7 @@ static inline void dem_wall_velocity(const DemWall *w, const double *c, double v
 }
 
 /* Pair parameters of shape s with wall w (a copy with the wall's own friction, if it has one). */
-#define DemWallParams(dem, w, s, tmp) ((w)->mu < 0 ? &(dem)->pw[s] : ((*(tmp) = (dem)->pw[s]), (tmp)->mu = (w)->mu, (tmp)))
+#define DemWallParams(dem, w, s, tmp) ((w)->mu < 0 ? &(dem)->contact.pw[s] : ((*(tmp) = (dem)->contact.pw[s]), (tmp)->mu = (w)->mu, (tmp)))
 
 typedef struct { /* material of one side of a contact */
   PetscReal kn, kt, e, mu, E, nu;
@@ -153,9 +153,14 @@ typedef struct {
   size_t      capsbuf, caprbuf;
   PetscBool   active;                /* any neighbour at all (else exchange is a no-op) */
   PetscInt    migrated;              /* particles sent away at the last rebuild (diagnostic) */
+  PetscBool   remap;                 /* the decomposition changed: the next build migrates to any rank */
 } DemExchange;
 
+/* Neighbour search (neighbours.c): its settings, the cells and the half (or full) Verlet list. */
 typedef struct {
+  PetscReal  skin, reach; /* reach = 2 r_max + skin = halo width */
+  PetscBool  full_list;   /* -dem_deterministic: full rows summed in id order */
+  PetscInt   sort_interval;
   /* cells over the local box (plus halo): counting sort */
   PetscInt   nc[3], ncell;
   double     lo[3], inv[3];
@@ -168,69 +173,103 @@ typedef struct {
   PetscInt   builds, sorts;
 } DemNeigh;
 
-struct _p_Dem {
-  MPI_Comm  comm;
-  Domain   *dom;
-  /* particles */
+/* The particles (particles.c): local 0..n-1, then ghosts n..n+ng-1, room for cap. */
+typedef struct {
   PetscInt  n, ng, cap;
-  double   *x, *v, *w, *f, *tq, *q, *x0;
+  double   *x, *v, *w, *f, *tq, *q, *x0; /* x0: positions at the last list build */
   PetscInt *id, *shape;
   PetscInt  next_id;
-  /* shapes and pair parameters */
-  DemShape      shp[DEM_MAX_SHAPES];
-  PetscInt      nshape;
-  PetscReal     shape_frac[DEM_MAX_SHAPES];
+} DemParticles;
+
+/* The shape table (shapes.c): spheres or convex shapes, which the table owns (cvx); convex =
+ * the scene has any. */
+typedef struct {
+  DemShape    shp[DEM_MAX_SHAPES];
+  PetscInt    nshape;
+  PetscReal   shape_frac[DEM_MAX_SHAPES];
+  ConvexShape cvx[DEM_MAX_SHAPES];
+  PetscBool   convex;
+} DemShapeTable;
+
+/* The contact model (contact_laws.c): the law, the materials and the parameters of every
+ * (shape, shape) and (shape, wall) pair. */
+typedef struct {
   DemMaterial   mat, wmat;
   DemLaw        law;
   PetscReal     tdamp_ratio, vimpact;
   DemPairParams pp[DEM_MAX_SHAPES * DEM_MAX_SHAPES], pw[DEM_MAX_SHAPES];
   PetscBool     rotation; /* any friction: torques and spins are integrated */
-  /* convex shapes (shapes.c): the table owns them; convex = the scene has any */
-  ConvexShape   cvx[DEM_MAX_SHAPES];
-  PetscBool     convex, random_orient;
-  double       *sepax;       /* per Verlet-list entry: a separating axis (world), 0 = none, and
-                                a flag: touching at the last step (4 each) */
-  PetscInt      sepax_build; /* the list build it belongs to */
-  double       *rot;         /* rotation matrices of the particles (9 each) for the pair loop, */
-  PetscInt     *rot_stamp;   /* each valid where its stamp is the loop's pass number */
-  PetscInt      rot_cap, rot_pass, rot_pairs; /* rot_pairs: pairs the last pass tested */
-  /* walls */
-  DemWall   wall[DEM_MAX_WALLS];
-  PetscInt  nwall;
-  /* neighbours */
-  DemNeigh  nl;
-  PetscReal skin, reach; /* reach = 2 r_max + skin = halo width */
-  PetscBool full_list;   /* -dem_deterministic: full rows summed in id order */
-  PetscBool convex_sat;  /* -dem_convex_sat: separating-axis narrow phase for few-axis polyhedron pairs */
-  PetscInt  convex_sat_axes;     /* -dem_convex_sat_axes: the most candidate axes a pair may have for it */
-  ConvexPointModel convex_point; /* -dem_convex_contact_point patch|support */
-  DemExchange ex;
-  PetscInt  check_every;
-  DemStats  initial; /* count and checksum at set-up, for -dem_check_every */
-  PetscInt  sort_interval;
-  PetscBool need_build;
-  int       stop_sig; /* a signal any rank had caught at the last step's reduction (0: none) */
-  PetscBool remap; /* the decomposition changed: the next build migrates to any rank */
-  PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
-  /* time */
-  PetscReal g[3], dt, t, dt_frac, dt_tc, overlap_max;
-  PetscReal dt_given;          /* -dem_dt as given, for the log when -dem_dt_tc replaces it */
-  PetscBool dt_set; /* -dem_dt given */
+} DemContactModel;
+
+/* The narrow phase of convex pairs (convex_contacts.c): its settings and its caches. */
+typedef struct {
+  PetscBool        convex_sat;      /* -dem_convex_sat: separating-axis narrow phase for few-axis polyhedron pairs */
+  PetscInt         convex_sat_axes; /* -dem_convex_sat_axes: the most candidate axes a pair may have for it */
+  ConvexPointModel convex_point;    /* -dem_convex_contact_point patch|support */
+  double          *sepax;           /* per Verlet-list entry: a separating axis (world), 0 = none, and
+                                       a flag: touching at the last step (4 each) */
+  PetscInt         sepax_build;     /* the list build it belongs to */
+  double          *rot;             /* rotation matrices of the particles (9 each) for the pair loop, */
+  PetscInt        *rot_stamp;       /* each valid where its stamp is the loop's pass number */
+  PetscInt         rot_cap, rot_pass, rot_pairs; /* rot_pairs: pairs the last pass tested */
+} DemConvexNarrow;
+
+/* The walls (walls.c). */
+typedef struct {
+  DemWall  wall[DEM_MAX_WALLS];
+  PetscInt nwall;
+} DemWalls;
+
+/* Time (dem.c). */
+typedef struct {
+  PetscReal dt, t, dt_frac, dt_tc;
+  PetscReal dt_given; /* -dem_dt as given, for the log when -dem_dt_tc replaces it */
+  PetscBool dt_set;   /* -dem_dt given */
   PetscInt  step;
-  PetscInt  state; /* changes whenever positions or the local order may have (DemGetState) */
-  /* insertion */
+} DemClock;
+
+/* Insertion (insert.c). */
+typedef struct {
   PetscInt  lat[3], lat_count; /* lattice sites, and how many of them are filled (-1: all) */
   PetscReal lat_a, lat_origin[3], lat_jitter, lat_speed;
-  PetscBool lat_origin_set;
+  PetscBool lat_origin_set, random_orient;
   PetscInt  seed;
   char      init_file[PETSC_MAX_PATH_LEN];
   /* where the inserted particles came from, by id (placement.c): the file's are below file_end
      (0: no file), the lattice's follow, [file_end, file_end + lat_count) */
   PetscInt  file_end;
   PetscReal init_overlap_max; /* -dem_init_file_overlap_max (radii); 0: from the contact design */
-  /* external forces from a coupling (external.c); NULL unless DemSetExternal was called */
+} DemInsertion;
+
+/* External forces from a coupling (external.c): per-particle arrays, NULL unless DemSetExternal
+ * switched them on; frozen: nothing is integrated. */
+typedef struct {
   double   *fext, *kdrag, *udrag, *jdrag;
-  PetscBool external, frozen;
+  PetscBool on, frozen;
+} DemExternalState;
+
+struct _p_Dem {
+  MPI_Comm         comm;
+  Domain          *dom;
+  DemParticles     p;
+  DemShapeTable    shapes;
+  DemContactModel  contact;
+  DemConvexNarrow  narrow;
+  DemWalls         walls;
+  DemNeigh         nl;
+  DemExchange      ex;
+  DemClock         clock;
+  DemInsertion     insert;
+  DemExternalState ext;
+  /* run control */
+  PetscReal      g[3];        /* gravity (m/s^2) */
+  PetscReal      overlap_max; /* -dem_overlap_max: a larger overlap stops the run (DemCheckHealth) */
+  PetscInt       check_every;
+  DemStats       initial;     /* count and checksum at set-up, for -dem_check_every */
+  PetscBool      need_build;
+  int            stop_sig;    /* a signal any rank had caught at the last step's reduction (0: none) */
+  PetscLogDouble t_compute;   /* wall time in force computation and integration (s) */
+  PetscInt       state;       /* changes whenever positions or the local order may have (DemGetState) */
 };
 
 /* Internal functions, by file, from the leaves up: a file calls only files listed above it
@@ -253,7 +292,7 @@ PetscErrorCode DemExchangeDestroy(Dem dem);                        /* exchange.c
 PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* exchange.c */
 #define MIG_HEAD 22 /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
 #define MIG_EXT  10 /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
-#define MIG_RECORD_SIZE(dem, ns) (MIG_HEAD + ((dem)->external ? MIG_EXT : 0) + 4 * (size_t)(ns))
+#define MIG_RECORD_SIZE(dem, ns) (MIG_HEAD + ((dem)->ext.on ? MIG_EXT : 0) + 4 * (size_t)(ns))
 PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n); /* exchange.c */
 /* exchange.c: the migration record of local particle i (position + shift, state, coupling
  * state, springs): doubles written; unpack appends the particle and its springs */

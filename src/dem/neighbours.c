@@ -52,24 +52,24 @@ static PetscErrorCode DemCellsZOrder(DemNeigh *nl)
 static PetscErrorCode DemCellsSetUp(Dem dem)
 {
   DemNeigh *nl = &dem->nl;
-  double    len[3], c = dem->reach, ncell;
+  double    len[3], c = dem->nl.reach, ncell;
 
   PetscFunctionBeginUser;
-  for (int k = 0; k < 3; k++) len[k] = dem->dom->subhi[k] - dem->dom->sublo[k] + 2 * dem->reach;
+  for (int k = 0; k < 3; k++) len[k] = dem->dom->subhi[k] - dem->dom->sublo[k] + 2 * dem->nl.reach;
   /* never more than ~8 cells per particle (+1000): a huge box with few particles stays cheap,
      and a tall column whose bed fills a fifth of it (a fluidized bed) keeps cells of one reach
      (at 2 per particle its cells grew to 1.56 reach: 3.8x the candidate pairs, +23% list time) */
   for (;;) {
     ncell = 1;
     for (int k = 0; k < 3; k++) ncell *= PetscMax(1.0, PetscFloorReal(len[k] / c));
-    if (ncell <= 8.0 * dem->n + 1000) break;
+    if (ncell <= 8.0 * dem->p.n + 1000) break;
     c *= 1.25;
   }
   PetscCall(PetscFree(nl->cstart));
   nl->ncell = 1;
   for (int k = 0; k < 3; k++) {
     nl->nc[k]  = (PetscInt)PetscMax(1.0, PetscFloorReal(len[k] / c));
-    nl->lo[k]  = dem->dom->sublo[k] - dem->reach;
+    nl->lo[k]  = dem->dom->sublo[k] - dem->nl.reach;
     nl->inv[k] = nl->nc[k] / len[k];
     nl->ncell *= nl->nc[k];
   }
@@ -97,7 +97,7 @@ static PetscErrorCode DemBin(Dem dem, PetscInt m, const PetscInt *key)
   PetscCall(PetscMalloc1(m + 1, &nl->order));
   PetscCall(PetscArrayzero(nl->cstart, nl->ncell + 1));
   for (PetscInt i = 0; i < m; i++) {
-    const double *xi = dem->x + 3 * i;
+    const double *xi = dem->p.x + 3 * i;
     nl->cof[i]       = dem_cell_coord(nl, xi, 0) + nl->nc[0] * (dem_cell_coord(nl, xi, 1) + nl->nc[1] * dem_cell_coord(nl, xi, 2));
     if (key) nl->cof[i] = key[nl->cof[i]];
     nl->cstart[nl->cof[i] + 1]++;
@@ -118,7 +118,7 @@ static const int dem_stencil[14][3] = {
 
 static int dem_nbr_id_cmp(const void *a, const void *b, const Dem dem)
 {
-  const PetscInt x = dem->id[*(const PetscInt *)a], y = dem->id[*(const PetscInt *)b];
+  const PetscInt x = dem->p.id[*(const PetscInt *)a], y = dem->p.id[*(const PetscInt *)b];
   return x < y ? -1 : (x > y);
 }
 
@@ -141,13 +141,13 @@ static PetscErrorCode DemPairList(Dem dem)
 {
   DemNeigh    *nl = &dem->nl;
   PetscInt     m = 0;
-  const double skin = dem->skin;
+  const double skin = dem->nl.skin;
 
   PetscFunctionBeginUser;
   PetscCall(PetscFree(nl->start));
-  PetscCall(PetscMalloc1(dem->n + 1, &nl->start));
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const double *xi = dem->x + 3 * i, ri = dem->shp[dem->shape[i]].r;
+  PetscCall(PetscMalloc1(dem->p.n + 1, &nl->start));
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    const double *xi = dem->p.x + 3 * i, ri = dem->shapes.shp[dem->p.shape[i]].r;
     PetscInt      c[3];
     nl->start[i] = m;
     for (int k = 0; k < 3; k++) c[k] = dem_cell_coord(nl, xi, k);
@@ -164,8 +164,8 @@ static PetscErrorCode DemPairList(Dem dem)
       for (PetscInt a = nl->cstart[cell]; a < nl->cstart[cell + 1]; a++) {
         const PetscInt j = nl->order[a];
         if (j == i) continue;
-        if (!dem->full_list && j < dem->n && (s >= 14 || (s == 0 && j < i))) continue; /* the pair is in j's row */
-        const double *xj = dem->x + 3 * j, rc = ri + dem->shp[dem->shape[j]].r + skin;
+        if (!dem->nl.full_list && j < dem->p.n && (s >= 14 || (s == 0 && j < i))) continue; /* the pair is in j's row */
+        const double *xj = dem->p.x + 3 * j, rc = ri + dem->shapes.shp[dem->p.shape[j]].r + skin;
         const double  d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
         if (dem_dot(d, d) >= rc * rc) continue;
         if (m == nl->cap) {
@@ -175,12 +175,12 @@ static PetscErrorCode DemPairList(Dem dem)
         nl->nbr[m++] = j;
       }
     }
-    if (dem->full_list) dem_row_sort(dem, nl->nbr + nl->start[i], m - nl->start[i]);
+    if (dem->nl.full_list) dem_row_sort(dem, nl->nbr + nl->start[i], m - nl->start[i]);
   }
-  nl->start[dem->n] = m;
+  nl->start[dem->p.n] = m;
   PetscCall(PetscFree(nl->own));
   PetscCall(PetscMalloc1(m + 1, &nl->own));
-  for (PetscInt i = 0; i < dem->n; i++)
+  for (PetscInt i = 0; i < dem->p.n; i++)
     for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) nl->own[a] = i;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -194,8 +194,8 @@ PetscErrorCode DemNeighSort(Dem dem)
 
   PetscFunctionBeginUser;
   if (!nl->cstart) PetscCall(DemCellsSetUp(dem));
-  if (dem->sort_interval > 0 && nl->builds % dem->sort_interval == 0) {
-    PetscCall(DemBin(dem, dem->n, nl->zrank));
+  if (dem->nl.sort_interval > 0 && nl->builds % dem->nl.sort_interval == 0) {
+    PetscCall(DemBin(dem, dem->p.n, nl->zrank));
     PetscCall(DemParticlesPermute(dem, nl->order));
     nl->sorts++;
   }
@@ -206,7 +206,7 @@ PetscErrorCode DemNeighSort(Dem dem)
 PetscErrorCode DemNeighBuildList(Dem dem)
 {
   PetscFunctionBeginUser;
-  PetscCall(DemBin(dem, dem->n + dem->ng, NULL));
+  PetscCall(DemBin(dem, dem->p.n + dem->p.ng, NULL));
   PetscCall(DemPairList(dem));
   dem->nl.builds++;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -19,22 +19,22 @@ PetscErrorCode DemRebuild(Dem dem)
   dem->state++; /* migration and re-sorting change the local order */
   PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));
   PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
-  dem->ng = 0;
+  dem->p.ng = 0;
   PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
   PetscCall(DemCheckInDomain(dem));
-  if (dem->remap) PetscCall(DemMigrateGlobal(dem, &recs, &nrec, &caprec));
+  if (dem->ex.remap) PetscCall(DemMigrateGlobal(dem, &recs, &nrec, &caprec));
   else PetscCall(DemMigrate(dem, &recs, &nrec, &caprec));
-  dem->remap = PETSC_FALSE;
+  dem->ex.remap = PETSC_FALSE;
   PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
   PetscCall(DemNeighSort(dem));
   PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
   PetscCall(DemGhostsCreate(dem));
   PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
   PetscCall(DemNeighBuildList(dem));
-  if (dem->law != DEM_LAW_LINEAR_NOHIST) PetscCall(DemSpringsRestore(dem, recs, nrec));
+  if (dem->contact.law != DEM_LAW_LINEAR_NOHIST) PetscCall(DemSpringsRestore(dem, recs, nrec));
   PetscCall(DemWallsBuildLists(dem, recs, nrec));
-  PetscCall(PetscArraycpy(dem->x0, dem->x, 3 * dem->n));
-  for (PetscInt w = 0; w < dem->nwall; w++) dem->wall[w].moved = 0;
+  PetscCall(PetscArraycpy(dem->p.x0, dem->p.x, 3 * dem->p.n));
+  for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->walls.wall[w].moved = 0;
   dem->need_build = PETSC_FALSE;
   PetscCall(PetscFree(recs));
   PetscCall(PetscLogEventEnd(DEM_Neighbours, 0, 0, 0, 0));
@@ -46,7 +46,7 @@ PetscErrorCode DemRedistribute(Dem dem)
   PetscFunctionBeginUser;
   PetscCall(DemExchangeSetUp(dem)); /* same neighbours; re-checks the box widths */
   PetscCall(DemNeighResetCells(dem)); /* the cell grid covers the new box */
-  dem->remap = PETSC_TRUE;
+  dem->ex.remap = PETSC_TRUE;
   PetscCall(DemRebuild(dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

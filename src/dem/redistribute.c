@@ -36,10 +36,10 @@ PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, Petsc
   PetscCallMPI(MPI_Comm_size(dem->comm, &size));
   PetscCallMPI(MPI_Comm_rank(dem->comm, &me));
   PetscCall(DMDAGetOwnershipRanges(dom->da, &l[0], &l[1], &l[2]));
-  PetscCall(PetscMalloc2(dem->n + 1, &owner, dem->n + 1, &keep));
+  PetscCall(PetscMalloc2(dem->p.n + 1, &owner, dem->p.n + 1, &keep));
   PetscCall(PetscCalloc4(size, &scnt, size + 1, &sdsp, size, &rcnt, size + 1, &rdsp));
-  for (PetscInt i = 0; i < dem->n; i++) {
-    double     *x = dem->x + 3 * i;
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    double     *x = dem->p.x + 3 * i;
     PetscMPIInt c[3];
     for (int k = 0; k < 3; k++) {
       if (dom->periodic[k] && x[k] < dom->lo[k]) x[k] += dom->len[k];
@@ -59,10 +59,10 @@ PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, Petsc
   for (PetscMPIInt r = 0; r < size; r++) sdsp[r + 1] = sdsp[r] + scnt[r];
   PetscCall(PetscArraycpy(rdsp, sdsp, size)); /* running positions while packing */
   PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, total + 1));
-  for (PetscInt i = 0; i < dem->n; i++)
+  for (PetscInt i = 0; i < dem->p.n; i++)
     if (owner[i] != me) rdsp[owner[i]] += (PetscMPIInt)DemMigPack(dem, i, *recs, *nrec, zero, ex->sbuf + rdsp[owner[i]]);
-  ex->migrated = dem->n - nkeep;
-  dem->n       = nkeep;
+  ex->migrated = dem->p.n - nkeep;
+  dem->p.n       = nkeep;
   PetscCall(DemParticlesPermute(dem, keep));
   PetscCallMPI(MPI_Alltoall(scnt, 1, MPI_INT, rcnt, 1, MPI_INT, dem->comm));
   rdsp[0] = 0;
@@ -83,7 +83,7 @@ PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, Petsc
 PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach)
 {
   PetscFunctionBeginUser;
-  *reach = dem->reach;
+  *reach = dem->nl.reach;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -92,10 +92,10 @@ PetscErrorCode DemGetCellCounts(Dem dem, PetscInt *count)
   const Domain *dom = dem->dom;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->n; i++) {
+  for (PetscInt i = 0; i < dem->p.n; i++) {
     PetscInt c[3];
     for (int k = 0; k < 3; k++) { /* a particle a little outside its box counts in its edge cell */
-      c[k] = (PetscInt)PetscFloorReal((dem->x[3 * i + k] - dom->lo[k]) / dom->h[k]);
+      c[k] = (PetscInt)PetscFloorReal((dem->p.x[3 * i + k] - dom->lo[k]) / dom->h[k]);
       c[k] = PetscMin(PetscMax(c[k], dom->cstart[k]), dom->cstart[k] + dom->ccount[k] - 1);
     }
     count[c[0] + dom->cells[0] * (c[1] + dom->cells[1] * c[2])] += 1;

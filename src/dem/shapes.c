@@ -66,18 +66,18 @@ static PetscErrorCode DemConvexCreate(Dem dem, const DemShapeSpec *sp, ConvexSha
 /* Fills shape s from its spec (collective: every rank builds the same table). */
 static PetscErrorCode DemShapeBuild(Dem dem, PetscInt s, const DemShapeSpec *sp)
 {
-  DemShape *sh = &dem->shp[s];
+  DemShape *sh = &dem->shapes.shp[s];
 
   PetscFunctionBeginUser;
-  sh->rho = dem->shp[0].rho;
+  sh->rho = dem->shapes.shp[0].rho;
   if (sp->kind == DEM_SHAPE_SPHERE) {
     sh->r   = sp->deq > 0 ? 0.5 * sp->deq : 0.5 * sp->size;
     sh->cvx = NULL;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(DemConvexCreate(dem, sp, &dem->cvx[s]));
-  sh->cvx = &dem->cvx[s];
-  sh->r   = dem->cvx[s].bounding_radius;
+  PetscCall(DemConvexCreate(dem, sp, &dem->shapes.cvx[s]));
+  sh->cvx = &dem->shapes.cvx[s];
+  sh->r   = dem->shapes.cvx[s].bounding_radius;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -158,8 +158,8 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem)
   if (ns) {
     PetscCall(DemShapesDestroy(dem));
     for (PetscInt s = 0; s < ns; s++) PetscCall(DemShapeBuild(dem, s, &sp[s]));
-    dem->nshape = ns;
-    dem->convex = (PetscBool)(sp[0].kind != DEM_SHAPE_SPHERE);
+    dem->shapes.nshape = ns;
+    dem->shapes.convex = (PetscBool)(sp[0].kind != DEM_SHAPE_SPHERE);
   }
   for (PetscInt s = 0; s < DEM_MAX_SHAPES; s++) PetscCall(PetscFree(files[s]));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -169,8 +169,8 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem)
 PetscErrorCode DemShapesSetUp(Dem dem)
 {
   PetscFunctionBeginUser;
-  for (PetscInt s = 0; s < dem->nshape; s++) {
-    DemShape *sh = &dem->shp[s];
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    DemShape *sh = &dem->shapes.shp[s];
     if (!sh->cvx) {
       sh->vol = 4.0 / 3.0 * PETSC_PI * sh->r * sh->r * sh->r;
       sh->req = sh->r;
@@ -200,16 +200,16 @@ PetscErrorCode DemShapesSetUp(Dem dem)
 PetscErrorCode DemShapesDestroy(Dem dem)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree(dem->sepax));
-  PetscCall(PetscFree2(dem->rot, dem->rot_stamp));
-  dem->rot_cap = dem->rot_pass = dem->rot_pairs = 0;
+  PetscCall(PetscFree(dem->narrow.sepax));
+  PetscCall(PetscFree2(dem->narrow.rot, dem->narrow.rot_stamp));
+  dem->narrow.rot_cap = dem->narrow.rot_pass = dem->narrow.rot_pairs = 0;
   for (PetscInt s = 0; s < DEM_MAX_SHAPES; s++) {
-    PetscCall(ConvexShapeDestroy(&dem->cvx[s]));
-    if (dem->shp[s].cvx) PetscCall(ConvexAxesDestroy(&dem->shp[s].ax));
-    dem->shp[s].cvx    = NULL;
-    dem->shp[s].ax.nfn = 0;
-    dem->shp[s].ax.nen = 0;
-    dem->shp[s].ax.box = PETSC_FALSE;
+    PetscCall(ConvexShapeDestroy(&dem->shapes.cvx[s]));
+    if (dem->shapes.shp[s].cvx) PetscCall(ConvexAxesDestroy(&dem->shapes.shp[s].ax));
+    dem->shapes.shp[s].cvx    = NULL;
+    dem->shapes.shp[s].ax.nfn = 0;
+    dem->shapes.shp[s].ax.nen = 0;
+    dem->shapes.shp[s].ax.box = PETSC_FALSE;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -217,7 +217,7 @@ PetscErrorCode DemShapesDestroy(Dem dem)
 PetscErrorCode DemHasConvexShapes(Dem dem, PetscBool *convex)
 {
   PetscFunctionBeginUser;
-  *convex = dem->convex;
+  *convex = dem->shapes.convex;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -225,15 +225,15 @@ PetscErrorCode DemGetLargestRadius(Dem dem, PetscReal *r)
 {
   PetscFunctionBeginUser;
   *r = 0;
-  for (PetscInt s = 0; s < dem->nshape; s++) *r = PetscMax(*r, dem->shp[s].r);
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) *r = PetscMax(*r, dem->shapes.shp[s].r);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetShapeGeometry(Dem dem, PetscInt s, PetscReal *volume, PetscReal *d_eq)
 {
   PetscFunctionBeginUser;
-  PetscCheck(s >= 0 && s < dem->nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", s, dem->nshape);
-  if (volume) *volume = dem->shp[s].vol;
-  if (d_eq) *d_eq = 2 * dem->shp[s].req;
+  PetscCheck(s >= 0 && s < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", s, dem->shapes.nshape);
+  if (volume) *volume = dem->shapes.shp[s].vol;
+  if (d_eq) *d_eq = 2 * dem->shapes.shp[s].req;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

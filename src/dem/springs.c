@@ -45,7 +45,7 @@ PetscErrorCode DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, PetscIn
   PetscInt  n  = 0;
   /* a pair listed once is saved from both sides when particles may move to another rank, so
      that each takes its own side of the spring along */
-  const PetscBool twice = (PetscBool)(!dem->full_list && dem->ex.active);
+  const PetscBool twice = (PetscBool)(!dem->nl.full_list && dem->ex.active);
 
   PetscFunctionBeginUser;
   for (int pass = 0; pass < 2; pass++) { /* count, then fill: the records are a transient peak */
@@ -55,23 +55,23 @@ PetscErrorCode DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, PetscIn
     }
     n = 0;
     if (nl->hist && nl->start)
-      for (PetscInt i = 0; i < dem->n; i++)
+      for (PetscInt i = 0; i < dem->p.n; i++)
         for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
           const double  *h = nl->hist + 3 * a;
           const PetscInt j = nl->nbr[a];
           if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-          if (pass) (*recs)[n] = (DemSpring){dem->id[i], dem->id[j], {h[0], h[1], h[2]}};
+          if (pass) (*recs)[n] = (DemSpring){dem->p.id[i], dem->p.id[j], {h[0], h[1], h[2]}};
           n++;
-          if (!twice || j >= dem->n) continue;
-          if (pass) (*recs)[n] = (DemSpring){dem->id[j], dem->id[i], {-h[0], -h[1], -h[2]}};
+          if (!twice || j >= dem->p.n) continue;
+          if (pass) (*recs)[n] = (DemSpring){dem->p.id[j], dem->p.id[i], {-h[0], -h[1], -h[2]}};
           n++;
         }
-    if (dem->law != DEM_LAW_LINEAR_NOHIST)
-      for (PetscInt w = 0; w < dem->nwall; w++)
-        for (PetscInt a = 0; a < dem->wall[w].cnt; a++) {
-          const double *h = dem->wall[w].hist + 3 * a;
+    if (dem->contact.law != DEM_LAW_LINEAR_NOHIST)
+      for (PetscInt w = 0; w < dem->walls.nwall; w++)
+        for (PetscInt a = 0; a < dem->walls.wall[w].cnt; a++) {
+          const double *h = dem->walls.wall[w].hist + 3 * a;
           if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-          if (pass) (*recs)[n] = (DemSpring){dem->id[dem->wall[w].idx[a]], -1 - w, {h[0], h[1], h[2]}};
+          if (pass) (*recs)[n] = (DemSpring){dem->p.id[dem->walls.wall[w].idx[a]], -1 - w, {h[0], h[1], h[2]}};
           n++;
         }
   }
@@ -85,19 +85,19 @@ PetscErrorCode DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, PetscIn
 PetscErrorCode DemSpringsRestore(Dem dem, const DemSpring *recs, PetscInt nrec)
 {
   DemNeigh *nl = &dem->nl;
-  PetscInt  m  = nl->start[dem->n];
+  PetscInt  m  = nl->start[dem->p.n];
 
   PetscFunctionBeginUser;
   PetscCall(PetscFree(nl->hist));
   PetscCall(PetscCalloc1(3 * (size_t)m + 3, &nl->hist));
   if (!nrec) PetscFunctionReturn(PETSC_SUCCESS);
-  for (PetscInt i = 0; i < dem->n; i++)
+  for (PetscInt i = 0; i < dem->p.n; i++)
     for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
       const PetscInt   j = nl->nbr[a];
-      const DemSpring *r = DemSpringFind(recs, nrec, dem->id[i], dem->id[j]);
+      const DemSpring *r = DemSpringFind(recs, nrec, dem->p.id[i], dem->p.id[j]);
       double          *h = nl->hist + 3 * a;
       if (r) for (int k = 0; k < 3; k++) h[k] = r->xi[k];
-      else if (!dem->full_list && (r = DemSpringFind(recs, nrec, dem->id[j], dem->id[i])))
+      else if (!dem->nl.full_list && (r = DemSpringFind(recs, nrec, dem->p.id[j], dem->p.id[i])))
         for (int k = 0; k < 3; k++) h[k] = -r->xi[k]; /* stored from the partner's side */
     }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -24,9 +24,9 @@ PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const do
   double   nn = sqrt(dem_dot(n, n));
 
   PetscFunctionBeginUser;
-  PetscCheck(dem->nwall < DEM_MAX_WALLS, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "at most %d walls", DEM_MAX_WALLS);
-  PetscCheck(nn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "wall %" PetscInt_FMT ": the normal must be non-zero", dem->nwall);
-  w = &dem->wall[dem->nwall++];
+  PetscCheck(dem->walls.nwall < DEM_MAX_WALLS, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "at most %d walls", DEM_MAX_WALLS);
+  PetscCheck(nn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "wall %" PetscInt_FMT ": the normal must be non-zero", dem->walls.nwall);
+  w = &dem->walls.wall[dem->walls.nwall++];
   PetscCall(PetscMemzero(w, sizeof *w));
   w->mu = -1; /* the wall material's friction */
   PetscCall(PetscStrncpy(w->name, name, sizeof w->name));
@@ -53,7 +53,7 @@ PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem d
   for (PetscInt k = 0; k < n; k++) {
     PetscCheck(mu[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", opt, (double)mu[k]);
     /* box walls were added as xlo, xhi, ylo, yhi, zlo, zhi */
-    dem->wall[first + (n == 6 ? 2 * (k % 3) + k / 3 : k)].mu = mu[k];
+    dem->walls.wall[first + (n == 6 ? 2 * (k % 3) + k / 3 : k)].mu = mu[k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -88,8 +88,8 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
     c[q][b] = q & 2 ? dom->hi[b] : dom->lo[b];
   }
   *closed = PETSC_FALSE;
-  for (PetscInt wi = 0; wi < dem->nwall && !*closed; wi++) {
-    const DemWall *w      = &dem->wall[wi];
+  for (PetscInt wi = 0; wi < dem->walls.nwall && !*closed; wi++) {
+    const DemWall *w      = &dem->walls.wall[wi];
     PetscBool      behind = PETSC_TRUE, spans = PETSC_TRUE;
     if (w->kind == DEM_WALL_CYLINDER) { /* parallel to the face and wholly inside of it */
       if (PetscAbsReal(w->n[d]) < 1e-12) *closed = (PetscBool)(side ? w->p[d] + w->R <= dom->hi[d] + tol : w->p[d] - w->R >= dom->lo[d] - tol);
@@ -110,25 +110,25 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
 PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
 {
   PetscFunctionBeginUser;
-  for (PetscInt wi = 0; wi < dem->nwall; wi++) {
-    DemWall *w = &dem->wall[wi];
+  for (PetscInt wi = 0; wi < dem->walls.nwall; wi++) {
+    DemWall *w = &dem->walls.wall[wi];
     w->cnt     = 0;
-    for (PetscInt i = 0; i < dem->n; i++) {
-      const double d[3] = {dem->x[3 * i] - w->p[0], dem->x[3 * i + 1] - w->p[1], dem->x[3 * i + 2] - w->p[2]};
-      const double reach = dem->shp[dem->shape[i]].r + dem->skin;
+    for (PetscInt i = 0; i < dem->p.n; i++) {
+      const double d[3] = {dem->p.x[3 * i] - w->p[0], dem->p.x[3 * i + 1] - w->p[1], dem->p.x[3 * i + 2] - w->p[2]};
+      const double reach = dem->shapes.shp[dem->p.shape[i]].r + dem->nl.skin;
       if (w->kind == DEM_WALL_CYLINDER) { /* distance from the curved surface, inside */
         const double a = dem_dot(d, w->n), rho2 = dem_dot(d, d) - a * a;
         if (w->R - sqrt(PetscMax(rho2, 0.0)) >= reach) continue;
       } else {
         if (dem_dot(d, w->n) >= reach) continue;
-        if (w->finite && dem_dot(d, w->n) < -dem->skin) continue; /* behind a rectangle or polygon */
+        if (w->finite && dem_dot(d, w->n) < -dem->nl.skin) continue; /* behind a rectangle or polygon */
       }
       if (w->cnt == w->cap) {
         w->cap = 2 * w->cap + 256;
         PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)w->cap, &w->idx));
         PetscCall(PetscRealloc(3 * sizeof(double) * (size_t)w->cap, &w->hist));
       }
-      const DemSpring *r = nrec ? DemSpringFind(recs, nrec, dem->id[i], -1 - wi) : NULL;
+      const DemSpring *r = nrec ? DemSpringFind(recs, nrec, dem->p.id[i], -1 - wi) : NULL;
       w->idx[w->cnt] = i;
       for (int k = 0; k < 3; k++) w->hist[3 * w->cnt + k] = r ? r->xi[k] : 0;
       w->cnt++;
@@ -140,21 +140,21 @@ PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
 /* Adds the walls' contact forces on the spheres (DemStep has moved the walls). */
 PetscErrorCode DemContactsWalls(Dem dem)
 {
-  const double dt = dem->dt;
+  const double dt = dem->clock.dt;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
-  for (PetscInt wi = 0; wi < dem->nwall; wi++) {
-    DemWall      *w = &dem->wall[wi];
+  for (PetscInt wi = 0; wi < dem->walls.nwall; wi++) {
+    DemWall      *w = &dem->walls.wall[wi];
     DemPairParams pwl;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt       i  = w->idx[a];
-      const double        *xi = dem->x + 3 * i, *vi = dem->v + 3 * i, *wi_ = dem->w + 3 * i;
-      const double         r  = dem->shp[dem->shape[i]].r;
+      const double        *xi = dem->p.x + 3 * i, *vi = dem->p.v + 3 * i, *wi_ = dem->p.w + 3 * i;
+      const double         r  = dem->shapes.shp[dem->p.shape[i]].r;
       double               nrm[3]; /* from the particle to the wall */
       const double         delta = dem_wall_sphere(w, xi, r, nrm);
-      double              *xi_t  = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
-      const DemPairParams *p     = DemWallParams(dem, w, dem->shape[i], &pwl);
+      double              *xi_t  = dem->contact.law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
+      const DemPairParams *p     = DemWallParams(dem, w, dem->p.shape[i], &pwl);
       if (delta <= 0) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
@@ -166,19 +166,19 @@ PetscErrorCode DemContactsWalls(Dem dem)
       dem_cross(wi_, nrm, c);
       for (int k = 0; k < 3; k++) vr[k] = vw[k] - vi[k] - l * c[k];
       const double vn = dem_dot(vr, nrm);
-      const double fn = dem_normal_force(dem->law, p, delta, vn, &kt, &gt);
+      const double fn = dem_normal_force(dem->contact.law, p, delta, vn, &kt, &gt);
       for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k];
       if (p->mu > 0) {
         double vt[3], ft[3];
         for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
         dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft);
-        if (dem->rotation) {
+        if (dem->contact.rotation) {
           dem_cross(nrm, ft, c);
-          for (int k = 0; k < 3; k++) dem->tq[3 * i + k] -= l * c[k];
+          for (int k = 0; k < 3; k++) dem->p.tq[3 * i + k] -= l * c[k];
         }
         for (int k = 0; k < 3; k++) F[k] -= ft[k];
       }
-      for (int k = 0; k < 3; k++) dem->f[3 * i + k] += F[k];
+      for (int k = 0; k < 3; k++) dem->p.f[3 * i + k] += F[k];
     }
   }
   PetscCall(PetscLogEventEnd(DEM_Walls, 0, 0, 0, 0));

@@ -23,7 +23,7 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
   const double l1 = sqrt(dem_dot(e1, e1)), l2 = sqrt(dem_dot(e2, e2));
   PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
   PetscCall(DemWallAdd(dem, opt, r, n, z));
-  w         = &dem->wall[dem->nwall - 1];
+  w         = &dem->walls.wall[dem->walls.nwall - 1];
   w->finite = PETSC_TRUE;
   w->kind   = DEM_WALL_RECT;
   for (int k = 0; k < 3; k++) {
@@ -56,7 +56,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
       PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_box %chi", "xyz"[k]));
       PetscCall(DemWallAdd(dem, opt, p, n, z));
     }
-    PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, dem->nwall - 6));
+    PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, dem->walls.nwall - 6));
   }
   for (int k = 0; k < 10; k++) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_plane_%d", k));
@@ -68,7 +68,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
     if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
-    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
+    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->walls.nwall - 1));
   }
   for (int k = 0; k < 10; k++) {
     PetscReal r[9];
@@ -76,7 +76,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2 (m); faces the side (p1-p0)x(p2-p0) points to", NULL, r, 9, &set);
     if (set) PetscCall(DemWallAddRect(dem, opt, r));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
-    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
+    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->walls.nwall - 1));
   }
   PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));  /* -dem_quad_<k>, -dem_hopper */
   PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem)); /* -dem_cylinder (drum) */
