@@ -392,7 +392,7 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      in.p  = DemWallParams(dem, w, dem->p.shape[i], &pwl);
+      in.p  = DemWallParams(&dem->contact, w, dem->p.shape[i], &pwl);
       in.c  = &c;
       in.xi = dem->p.x + 3 * i;
       in.vi = dem->p.v + 3 * i;

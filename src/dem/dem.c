@@ -18,29 +18,29 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
   PetscFunctionBeginUser;
   PetscCall(DemEventsRegister());
   PetscCall(PetscNew(&d));
-  d->comm   = dom->comm;
-  d->dom    = dom;
-  d->contact.law    = DEM_LAW_LINEAR;
-  d->shapes.nshape = 1;
-  d->shapes.shp[0].r   = 0.0069;
-  d->shapes.shp[0].rho = 2500;
-  d->shapes.shape_frac[0] = 1;
-  d->contact.mat.e = 0.75;
-  d->contact.mat.mu = 0.3;
-  d->contact.mat.nu = 0.3;
-  d->contact.tdamp_ratio = 1;
-  d->contact.vimpact     = 1;
-  d->clock.dt          = 1e-5;
-  d->clock.dt_frac     = 0.1;
-  d->overlap_max = 0.5;
-  d->g[2]        = -9.81;
-  d->nl.sort_interval = 1;
-  d->insert.lat_count     = -1; /* all lattice sites */
-  d->insert.seed          = 1;
-  d->nl.skin          = -1;
-  d->narrow.convex_sat    = PETSC_TRUE;
+  d->comm                   = dom->comm;
+  d->dom                    = dom;
+  d->shapes.nshape          = 1;
+  d->shapes.shp[0].r        = 0.0069;
+  d->shapes.shp[0].rho      = 2500;
+  d->shapes.shape_frac[0]   = 1;
+  d->contact.law            = DEM_LAW_LINEAR;
+  d->contact.mat.e          = 0.75;
+  d->contact.mat.mu         = 0.3;
+  d->contact.mat.nu         = 0.3;
+  d->contact.tdamp_ratio    = 1;
+  d->contact.vimpact        = 1;
+  d->narrow.convex_sat      = PETSC_TRUE;
   d->narrow.convex_sat_axes = 16; /* box-box: 3 + 3 face normals, 3 x 3 edge-edge axes */
   d->narrow.convex_point    = CONVEX_POINT_PATCH;
+  d->nl.skin                = -1;
+  d->nl.sort_interval       = 1;
+  d->clock.dt               = 1e-5;
+  d->clock.dt_frac          = 0.1;
+  d->insert.lat_count       = -1; /* all lattice sites */
+  d->insert.seed            = 1;
+  d->overlap_max            = 0.5;
+  d->g[2]                   = -9.81;
   *dem = d;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -212,8 +212,8 @@ static PetscErrorCode DemComputeForces(Dem dem)
     PetscCall(DemContactsPairsConvex(dem));
     PetscCall(DemContactsWallsConvex(dem));
   } else {
-    PetscCall(DemContactsPairs(dem));
-    PetscCall(DemContactsWalls(dem));
+    PetscCall(DemContactsPairs(&dem->p, &dem->shapes, &dem->contact, &dem->nl, dem->clock.dt));
+    PetscCall(DemContactsWalls(&dem->p, &dem->shapes, &dem->contact, &dem->walls, dem->clock.dt));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -255,7 +255,7 @@ PetscErrorCode DemStep(Dem dem)
 
   PetscFunctionBeginUser;
   dem->state++;
-  PetscCall(DemIntegrateFirstHalf(dem, &d2));
+  PetscCall(DemIntegrateFirstHalf(&dem->p, &dem->shapes, &dem->ext, dem->contact.rotation, dem->clock.dt, &d2));
   PetscCheck(PetscIsNormalReal(d2) || d2 == 0, PETSC_COMM_SELF, PETSC_ERR_FP, "step %" PetscInt_FMT ": a particle position became non-finite; lower -dem_dt (now %g s)", dem->clock.step, (double)dem->clock.dt);
   for (PetscInt w = 0; w < dem->walls.nwall; w++) {
     DemWall *wl = &dem->walls.wall[w];
@@ -275,7 +275,7 @@ PetscErrorCode DemStep(Dem dem)
   PetscLogDouble c0, c1;
   PetscCall(PetscTime(&c0));
   PetscCall(DemComputeForces(dem));
-  PetscCall(DemIntegrateSecondHalf(dem));
+  PetscCall(DemIntegrateSecondHalf(&dem->p, &dem->shapes, &dem->ext, dem->contact.rotation, dem->clock.dt));
   PetscCall(PetscTime(&c1));
   dem->t_compute += c1 - c0; /* local work only, no waiting: the measured load-balancing weight */
   dem->clock.t += dem->clock.dt;

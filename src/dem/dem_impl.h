@@ -129,8 +129,9 @@ static inline void dem_wall_velocity(const DemWall *w, const double *c, double v
   }
 }
 
-/* Pair parameters of shape s with wall w (a copy with the wall's own friction, if it has one). */
-#define DemWallParams(dem, w, s, tmp) ((w)->mu < 0 ? &(dem)->contact.pw[s] : ((*(tmp) = (dem)->contact.pw[s]), (tmp)->mu = (w)->mu, (tmp)))
+/* Pair parameters of shape s with wall w from the contact model cm (a copy with the wall's own
+ * friction, if it has one). */
+#define DemWallParams(cm, w, s, tmp) ((w)->mu < 0 ? &(cm)->pw[s] : ((*(tmp) = (cm)->pw[s]), (tmp)->mu = (w)->mu, (tmp)))
 
 typedef struct { /* material of one side of a contact */
   PetscReal kn, kt, e, mu, E, nu;
@@ -310,12 +311,12 @@ PetscErrorCode DemNeighResetCells(Dem dem);                        /* neighbours
 PetscErrorCode DemNeighDestroy(Dem dem);                           /* neighbours.c */
 PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3]); /* walls.c */
 PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first); /* walls.c */
-PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec); /* walls.c */
-PetscErrorCode DemContactsWalls(Dem dem);                          /* walls.c */
+PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const DemShapeTable *st, double skin, const DemSpring *recs, PetscInt nrec); /* walls.c */
+PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt); /* walls.c */
 PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_polygon.c */
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_cylinder.c */
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls_options.c */
-PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c */
+PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const DemContactModel *cm, DemNeigh *nl, double dt); /* contacts.c */
 PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* convex_contacts.c */
 /* A body in a pair test (convex_contacts.c): shape, centre, quaternion and its
  * rotation matrix (body -> world), pointing into the particle arrays. */
@@ -333,11 +334,11 @@ PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexConta
 PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* convex_contacts.c */
 PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* convex_diag.c */
 PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* convex_diag.c */
-PetscErrorCode DemRotateFirstHalf(Dem dem);                        /* rotation.c */
-PetscErrorCode DemRotateSecondHalf(Dem dem);                       /* rotation.c */
-void           DemExternalKick(Dem dem, double h);                 /* external.c */
-PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
-PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
+PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);  /* rotation.c */
+PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt); /* rotation.c */
+void           DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h); /* external.c */
+PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2); /* integrate.c */
+PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt); /* integrate.c */
 PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
 PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
 double         DemLatticeSpacing(Dem dem);                         /* insert.c */

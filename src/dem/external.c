@@ -9,14 +9,16 @@
  * A frozen DEM (-dem_frozen) integrates nothing: its particles are fixed obstacles. */
 #include "dem/dem_impl.h"
 
-void DemExternalKick(Dem dem, double h)
+/* The translational half kick of length h with the coupling's forces: writes the local
+ * particles' v and the impulse j; reads f, the coupling's fext, k, u and the shapes' masses. */
+void DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h)
 {
-  double        *v = dem->p.v, *j = dem->ext.jdrag;
-  const double  *f = dem->p.f, *fe = dem->ext.fext, *kd = dem->ext.kdrag, *u = dem->ext.udrag;
-  const PetscInt n = dem->p.n, *shape = dem->p.shape;
+  double        *v = p->v, *j = e->jdrag;
+  const double  *f = p->f, *fe = e->fext, *kd = e->kdrag, *u = e->udrag;
+  const PetscInt n = p->n, *shape = p->shape;
 
   for (PetscInt i = 0; i < n; i++) {
-    const double im = dem->shapes.shp[shape[i]].invm, hk = h * kd[i];
+    const double im = st->shp[shape[i]].invm, hk = h * kd[i];
     const double den = 1.0 / (1.0 + hk * im);
     for (int k = 0; k < 3; k++) {
       const double vn = (v[3 * i + k] + h * (f[3 * i + k] + fe[3 * i + k]) * im + hk * im * u[3 * i + k]) * den;

@@ -32,7 +32,7 @@ PetscErrorCode DemRebuild(Dem dem)
   PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
   PetscCall(DemNeighBuildList(dem));
   if (dem->contact.law != DEM_LAW_LINEAR_NOHIST) PetscCall(DemSpringsRestore(dem, recs, nrec));
-  PetscCall(DemWallsBuildLists(dem, recs, nrec));
+  PetscCall(DemWallsBuildLists(&dem->walls, &dem->p, &dem->shapes, dem->nl.skin, recs, nrec));
   PetscCall(PetscArraycpy(dem->p.x0, dem->p.x, 3 * dem->p.n));
   for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->walls.wall[w].moved = 0;
   dem->need_build = PETSC_FALSE;

@@ -107,28 +107,28 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
 
 /* Lists of the local particles within r + skin of each wall; springs restored from the id-keyed
  * records (partner = -1 - wall index). */
-PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
+PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const DemShapeTable *st, double skin, const DemSpring *recs, PetscInt nrec)
 {
   PetscFunctionBeginUser;
-  for (PetscInt wi = 0; wi < dem->walls.nwall; wi++) {
-    DemWall *w = &dem->walls.wall[wi];
+  for (PetscInt wi = 0; wi < walls->nwall; wi++) {
+    DemWall *w = &walls->wall[wi];
     w->cnt     = 0;
-    for (PetscInt i = 0; i < dem->p.n; i++) {
-      const double d[3] = {dem->p.x[3 * i] - w->p[0], dem->p.x[3 * i + 1] - w->p[1], dem->p.x[3 * i + 2] - w->p[2]};
-      const double reach = dem->shapes.shp[dem->p.shape[i]].r + dem->nl.skin;
+    for (PetscInt i = 0; i < pt->n; i++) {
+      const double d[3] = {pt->x[3 * i] - w->p[0], pt->x[3 * i + 1] - w->p[1], pt->x[3 * i + 2] - w->p[2]};
+      const double reach = st->shp[pt->shape[i]].r + skin;
       if (w->kind == DEM_WALL_CYLINDER) { /* distance from the curved surface, inside */
         const double a = dem_dot(d, w->n), rho2 = dem_dot(d, d) - a * a;
         if (w->R - sqrt(PetscMax(rho2, 0.0)) >= reach) continue;
       } else {
         if (dem_dot(d, w->n) >= reach) continue;
-        if (w->finite && dem_dot(d, w->n) < -dem->nl.skin) continue; /* behind a rectangle or polygon */
+        if (w->finite && dem_dot(d, w->n) < -skin) continue; /* behind a rectangle or polygon */
       }
       if (w->cnt == w->cap) {
         w->cap = 2 * w->cap + 256;
         PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)w->cap, &w->idx));
         PetscCall(PetscRealloc(3 * sizeof(double) * (size_t)w->cap, &w->hist));
       }
-      const DemSpring *r = nrec ? DemSpringFind(recs, nrec, dem->p.id[i], -1 - wi) : NULL;
+      const DemSpring *r = nrec ? DemSpringFind(recs, nrec, pt->id[i], -1 - wi) : NULL;
       w->idx[w->cnt] = i;
       for (int k = 0; k < 3; k++) w->hist[3 * w->cnt + k] = r ? r->xi[k] : 0;
       w->cnt++;
@@ -137,24 +137,27 @@ PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Adds the walls' contact forces on the spheres (DemStep has moved the walls). */
-PetscErrorCode DemContactsWalls(Dem dem)
+/* The walls' contact forces on the spheres (DemStep has moved the walls): adds to f and tq of the
+ * particles in the wall lists, advances or resets the walls' springs; reads x, v, w, the radii
+ * and the contact model. */
+PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt)
 {
-  const double dt = dem->clock.dt;
+  double rad[DEM_MAX_SHAPES]; /* the radii, side by side (as in the pair loop) */
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
-  for (PetscInt wi = 0; wi < dem->walls.nwall; wi++) {
-    DemWall      *w = &dem->walls.wall[wi];
+  for (PetscInt s = 0; s < st->nshape; s++) rad[s] = st->shp[s].r;
+  for (PetscInt wi = 0; wi < walls->nwall; wi++) {
+    DemWall      *w = &walls->wall[wi];
     DemPairParams pwl;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt       i  = w->idx[a];
-      const double        *xi = dem->p.x + 3 * i, *vi = dem->p.v + 3 * i, *wi_ = dem->p.w + 3 * i;
-      const double         r  = dem->shapes.shp[dem->p.shape[i]].r;
+      const double        *xi = pt->x + 3 * i, *vi = pt->v + 3 * i, *wi_ = pt->w + 3 * i;
+      const double         r  = rad[pt->shape[i]];
       double               nrm[3]; /* from the particle to the wall */
       const double         delta = dem_wall_sphere(w, xi, r, nrm);
-      double              *xi_t  = dem->contact.law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
-      const DemPairParams *p     = DemWallParams(dem, w, dem->p.shape[i], &pwl);
+      double              *xi_t  = cm->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
+      const DemPairParams *p     = DemWallParams(cm, w, pt->shape[i], &pwl);
       if (delta <= 0) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
@@ -166,19 +169,19 @@ PetscErrorCode DemContactsWalls(Dem dem)
       dem_cross(wi_, nrm, c);
       for (int k = 0; k < 3; k++) vr[k] = vw[k] - vi[k] - l * c[k];
       const double vn = dem_dot(vr, nrm);
-      const double fn = dem_normal_force(dem->contact.law, p, delta, vn, &kt, &gt);
+      const double fn = dem_normal_force(cm->law, p, delta, vn, &kt, &gt);
       for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k];
       if (p->mu > 0) {
         double vt[3], ft[3];
         for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
         dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft);
-        if (dem->contact.rotation) {
+        if (cm->rotation) {
           dem_cross(nrm, ft, c);
-          for (int k = 0; k < 3; k++) dem->p.tq[3 * i + k] -= l * c[k];
+          for (int k = 0; k < 3; k++) pt->tq[3 * i + k] -= l * c[k];
         }
         for (int k = 0; k < 3; k++) F[k] -= ft[k];
       }
-      for (int k = 0; k < 3; k++) dem->p.f[3 * i + k] += F[k];
+      for (int k = 0; k < 3; k++) pt->f[3 * i + k] += F[k];
     }
   }
   PetscCall(PetscLogEventEnd(DEM_Walls, 0, 0, 0, 0));
