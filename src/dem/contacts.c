@@ -5,7 +5,7 @@
  * pair computed on two ranks get exactly opposite forces. Spheres: n = (x_j - x_i)/|x_j - x_i|, overlap
  * delta = r_i + r_j - |x_j - x_i|, contact point at r_i - delta/2 from i along n. The spring of
  * a pair that is not touching is reset to zero (a new contact starts unloaded). Torques only
- * when the scene has friction (dem->rotation).
+ * when the scene has friction (dem->contact.rotation).
  * Speed (the pair loop is most of a dense step): in a settled bed only about a third of the
  * list entries touch, in no predictable pattern, so the loop screens the entries of a block
  * first (branch-free, flat over rows: DemNeigh.own gives each entry's row) and then computes the
@@ -40,16 +40,29 @@ typedef struct {
   double   fi[3], ti[3];
 } DemRowSum;
 
-static void dem_pair_block(const Dem dem, PetscBool mono, const double *rad, PetscInt a0, PetscInt a1, DemRowSum *sum)
+/* What one pass of the pair loop works on: the particles (x, v, w read; f, tq added to), the list
+ * (springs written), the contact model, the radius of each shape and the time step. */
+typedef struct {
+  DemParticles          *pt;
+  DemNeigh              *nl;
+  const DemContactModel *cm;
+  const double          *rad;
+  PetscInt               ns;   /* shapes */
+  PetscBool              mono; /* one shape: its radius and parameters are read once */
+  double                 dt;
+} DemPairPass;
+
+static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRowSum *sum)
 {
   DemRowSum                S = *sum; /* a local copy, kept in registers */
-  const double *restrict   x = dem->x, *restrict v = dem->v, *restrict w = dem->w;
-  double *restrict         f = dem->f, *restrict tq = dem->tq, *restrict hist = dem->nl.hist;
-  const PetscInt *restrict shape = dem->shape, *restrict nbr = dem->nl.nbr, *restrict own = dem->nl.own;
-  const PetscInt           ns = dem->nshape, nhalf = dem->full_list ? 0 : dem->n;
-  const DemLaw             law = dem->law;
-  const PetscBool          rot = dem->rotation;
-  const double             dt = dem->dt;
+  const double *restrict   x = P->pt->x, *restrict v = P->pt->v, *restrict w = P->pt->w;
+  double *restrict         f = P->pt->f, *restrict tq = P->pt->tq, *restrict hist = P->nl->hist;
+  const PetscInt *restrict shape = P->pt->shape, *restrict nbr = P->nl->nbr, *restrict own = P->nl->own;
+  const PetscInt           ns = P->ns, nhalf = P->nl->full_list ? 0 : P->pt->n;
+  const DemLaw             law = P->cm->law;
+  const PetscBool          rot = P->cm->rotation, mono = P->mono;
+  const double             dt = P->dt, *rad = P->rad;
+  const DemPairParams     *pp = P->cm->pp;
   PetscInt                 m = 0, mn = 0, ta[DEM_PAIR_BLOCK], tn[DEM_PAIR_BLOCK];
   double                   td[DEM_PAIR_BLOCK][4];
 
@@ -73,7 +86,7 @@ static void dem_pair_block(const Dem dem, PetscBool mono, const double *rad, Pet
     const PetscInt       a = ta[t], i = own[a], j = nbr[a];
     const double         d[3] = {td[t][0], td[t][1], td[t][2]}, d2 = td[t][3];
     const double         ri = mono ? rad[0] : rad[shape[i]], rj = mono ? rad[0] : rad[shape[j]], rs = ri + rj;
-    const DemPairParams *p    = mono ? dem->pp : dem->pp + shape[i] * ns + shape[j];
+    const DemPairParams *p    = mono ? pp : pp + shape[i] * ns + shape[j];
     double              *xi_t = hist ? hist + 3 * a : NULL;
     if (i != S.cur) { /* the previous row is complete */
       if (S.cur >= 0)
@@ -119,21 +132,23 @@ static void dem_pair_block(const Dem dem, PetscBool mono, const double *rad, Pet
   *sum = S;
 }
 
-PetscErrorCode DemContactsPairs(Dem dem)
+/* Pair forces over the list: adds to f and tq of the local particles, resets or advances the
+ * springs of the list; reads x, v, w of the particles and ghosts, the radii and the contact model. */
+PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const DemContactModel *cm, DemNeigh *nl, double dt)
 {
-  const PetscInt  ne = dem->nl.start[dem->n];
-  const PetscBool mono = (PetscBool)(dem->nshape == 1);
-  double          rad[DEM_MAX_SHAPES];
-  DemRowSum       sum = {.cur = -1};
+  const PetscInt    ne = nl->start[p->n];
+  double            rad[DEM_MAX_SHAPES];
+  DemRowSum         sum = {.cur = -1};
+  const DemPairPass P   = {p, nl, cm, rad, st->nshape, (PetscBool)(st->nshape == 1), dt};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
-  for (PetscInt s = 0; s < dem->nshape; s++) rad[s] = dem->shp[s].r;
-  for (PetscInt a0 = 0; a0 < ne; a0 += DEM_PAIR_BLOCK) dem_pair_block(dem, mono, rad, a0, PetscMin(a0 + DEM_PAIR_BLOCK, ne), &sum);
+  for (PetscInt s = 0; s < st->nshape; s++) rad[s] = st->shp[s].r;
+  for (PetscInt a0 = 0; a0 < ne; a0 += DEM_PAIR_BLOCK) dem_pair_block(&P, a0, PetscMin(a0 + DEM_PAIR_BLOCK, ne), &sum);
   if (sum.cur >= 0)
     for (int k = 0; k < 3; k++) {
-      dem->f[3 * sum.cur + k] += sum.fi[k];
-      dem->tq[3 * sum.cur + k] += sum.ti[k];
+      p->f[3 * sum.cur + k] += sum.fi[k];
+      p->tq[3 * sum.cur + k] += sum.ti[k];
     }
   PetscCall(PetscLogEventEnd(DEM_Contacts, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -1,6 +1,7 @@
-/* The Dem object: options, set-up, the time step and the run loop (see dem.h).
+/* The Dem object: options, set-up and the time step (see dem.h).
  * One step (velocity Verlet): half kick + drift (+ rebuild check) -> walls move -> lists rebuilt
- * if a particle or a wall moved more than skin/2 -> forces (gravity, pairs, walls) -> half kick.
+ * (rebuild.c) if a particle or a wall moved more than skin/2 -> forces (gravity, pairs, walls) ->
+ * half kick.
  * The time step is checked against the contact time at set-up: dt <= dt_max_fraction * Tc for
  * every pair type (Tc of the hertz law at -dem_impact_velocity); -dem_dt_tc sets dt to a fraction
  * of the shortest Tc instead. A run that diverges anyway (dt too large for the stiffness: the
@@ -8,51 +9,38 @@
  * line or output frame when the largest overlap exceeds -dem_overlap_max radii (diag.c). */
 #include "dem/dem_impl.h"
 
-PetscLogEvent        DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
-static PetscClassId  DEM_CLASSID;
-static PetscBool     dem_registered = PETSC_FALSE;
-static const char   *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
+static const char *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
 
 PetscErrorCode DemCreate(Domain *dom, Dem *dem)
 {
   Dem d;
 
   PetscFunctionBeginUser;
-  if (!dem_registered) {
-    PetscCall(PetscClassIdRegister("DEM", &DEM_CLASSID));
-    PetscCall(PetscLogEventRegister("DemNeighbours", DEM_CLASSID, &DEM_Neighbours));
-    PetscCall(PetscLogEventRegister("DemExchange", DEM_CLASSID, &DEM_Exchange));
-    PetscCall(PetscLogEventRegister("DemContacts", DEM_CLASSID, &DEM_Contacts));
-    PetscCall(PetscLogEventRegister("DemWalls", DEM_CLASSID, &DEM_Walls));
-    PetscCall(PetscLogEventRegister("DemIntegrate", DEM_CLASSID, &DEM_Integrate));
-    PetscCall(PetscLogEventRegister("DemOutput", DEM_CLASSID, &DEM_Output));
-    PetscCall(PetscLogEventRegister("DemPlacement", DEM_CLASSID, &DEM_Placement));
-    dem_registered = PETSC_TRUE;
-  }
+  PetscCall(DemEventsRegister());
   PetscCall(PetscNew(&d));
-  d->comm   = dom->comm;
-  d->dom    = dom;
-  d->law    = DEM_LAW_LINEAR;
-  d->nshape = 1;
-  d->shp[0].r   = 0.0069;
-  d->shp[0].rho = 2500;
-  d->shape_frac[0] = 1;
-  d->mat.e = 0.75;
-  d->mat.mu = 0.3;
-  d->mat.nu = 0.3;
-  d->tdamp_ratio = 1;
-  d->vimpact     = 1;
-  d->dt          = 1e-5;
-  d->dt_frac     = 0.1;
-  d->overlap_max = 0.5;
-  d->g[2]        = -9.81;
-  d->sort_interval = 1;
-  d->lat_count     = -1; /* all lattice sites */
-  d->seed          = 1;
-  d->skin          = -1;
-  d->convex_sat    = PETSC_TRUE;
-  d->convex_sat_axes = 16; /* box-box: 3 + 3 face normals, 3 x 3 edge-edge axes */
-  d->convex_point    = CONVEX_POINT_PATCH;
+  d->comm                   = dom->comm;
+  d->dom                    = dom;
+  d->shapes.nshape          = 1;
+  d->shapes.shp[0].r        = 0.0069;
+  d->shapes.shp[0].rho      = 2500;
+  d->shapes.shape_frac[0]   = 1;
+  d->contact.law            = DEM_LAW_LINEAR;
+  d->contact.mat.e          = 0.75;
+  d->contact.mat.mu         = 0.3;
+  d->contact.mat.nu         = 0.3;
+  d->contact.tdamp_ratio    = 1;
+  d->contact.vimpact        = 1;
+  d->narrow.convex_sat      = PETSC_TRUE;
+  d->narrow.convex_sat_axes = 16; /* box-box: 3 + 3 face normals, 3 x 3 edge-edge axes */
+  d->narrow.convex_point    = CONVEX_POINT_PATCH;
+  d->nl.skin                = -1;
+  d->nl.sort_interval       = 1;
+  d->clock.dt               = 1e-5;
+  d->clock.dt_frac          = 0.1;
+  d->insert.lat_count       = -1; /* all lattice sites */
+  d->insert.seed            = 1;
+  d->overlap_max            = 0.5;
+  d->g[2]                   = -9.81;
   *dem = d;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -102,13 +90,13 @@ static PetscErrorCode DemCheckMaterialConflicts(Dem dem)
     for (int k = 0; k < 6; k++) PetscCall(PetscOptionsHasName(NULL, NULL, DemMaterialNames[m][k], &has[m][k]));
   for (int m = 0; m < 2; m++) {
     const char *const *n = DemMaterialNames[m];
-    for (int k = 0; k < 2; k++) PetscCheck(dem->law != DEM_LAW_HERTZ || !has[m][k], dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_contact_law hertz, which takes the stiffness from %s and %s: give one of them", n[k], n[4], n[5]);
-    PetscCheck(dem->law != DEM_LAW_LINEAR_NOHIST || !has[m][1], dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_contact_law linear_nohist, which has no tangential spring: give one of them", n[1]);
+    for (int k = 0; k < 2; k++) PetscCheck(dem->contact.law != DEM_LAW_HERTZ || !has[m][k], dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_contact_law hertz, which takes the stiffness from %s and %s: give one of them", n[k], n[4], n[5]);
+    PetscCheck(dem->contact.law != DEM_LAW_LINEAR_NOHIST || !has[m][1], dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_contact_law linear_nohist, which has no tangential spring: give one of them", n[1]);
   }
-  if (dem->law == DEM_LAW_HERTZ) PetscFunctionReturn(PETSC_SUCCESS);
+  if (dem->contact.law == DEM_LAW_HERTZ) PetscFunctionReturn(PETSC_SUCCESS);
   for (int k = 4; k < 6; k++) {
-    PetscCheck(!has[0][0] || !has[0][k], dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the contact stiffness of -dem_contact_law %s; %s wins and %s would be ignored: give one of them", o[0], o[k], DemLawNames[dem->law], o[0], o[k]);
-    PetscCheck(!(has[0][0] || has[1][0]) || !has[1][k], dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the wall stiffness of -dem_contact_law %s%s; %s wins and %s would be ignored: give one of them", has[1][0] ? w[0] : o[0], w[k], DemLawNames[dem->law], has[1][0] ? "" : " (walls take -dem_kn unless -dem_wall_kn is given)", has[1][0] ? w[0] : o[0], w[k]);
+    PetscCheck(!has[0][0] || !has[0][k], dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the contact stiffness of -dem_contact_law %s; %s wins and %s would be ignored: give one of them", o[0], o[k], DemLawNames[dem->contact.law], o[0], o[k]);
+    PetscCheck(!(has[0][0] || has[1][0]) || !has[1][k], dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the wall stiffness of -dem_contact_law %s%s; %s wins and %s would be ignored: give one of them", has[1][0] ? w[0] : o[0], w[k], DemLawNames[dem->contact.law], has[1][0] ? "" : " (walls take -dem_kn unless -dem_wall_kn is given)", has[1][0] ? w[0] : o[0], w[k]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -116,38 +104,38 @@ static PetscErrorCode DemCheckMaterialConflicts(Dem dem)
 PetscErrorCode DemSetFromOptions(Dem dem)
 {
   PetscReal r[DEM_MAX_SHAPES] = {0}, fr[DEM_MAX_SHAPES] = {0}, sum = 0;
-  PetscInt  nr = DEM_MAX_SHAPES, nf = DEM_MAX_SHAPES, law = dem->law;
+  PetscInt  nr = DEM_MAX_SHAPES, nf = DEM_MAX_SHAPES, law = dem->contact.law;
   PetscBool rset, fset, gset, sset;
 
   PetscFunctionBeginUser;
-  r[0]  = dem->shp[0].r; /* the defaults -help shows: one shape of the default radius */
+  r[0]  = dem->shapes.shp[0].r; /* the defaults -help shows: one shape of the default radius */
   fr[0] = 1;
   PetscOptionsBegin(dem->comm, NULL, "DEM: particles, contacts, time stepping", NULL);
   PetscCall(PetscOptionsRealArray("-dem_radius", "Sphere radii r1,r2,... (m), one shape each", NULL, r, &nr, &rset));
   PetscCall(PetscOptionsRealArray("-dem_radius_fraction", "Number fraction of each radius (default equal)", NULL, fr, &nf, &fset));
-  PetscCall(PetscOptionsReal("-dem_density", "Particle density (kg/m^3)", NULL, dem->shp[0].rho, &dem->shp[0].rho, NULL));
-  PetscCall(PetscOptionsEList("-dem_contact_law", "Contact law", NULL, DemLawNames, 3, DemLawNames[dem->law], &law, NULL));
-  dem->law = (DemLaw)law;
-  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[0], &dem->mat, NULL));
-  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[1], &dem->wmat, &dem->mat));
-  PetscCall(PetscOptionsReal("-dem_tangential_damping", "Tangential over normal damping ratio, >= 0", NULL, dem->tdamp_ratio, &dem->tdamp_ratio, NULL));
-  PetscCall(PetscOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates (m/s)", NULL, dem->vimpact, &dem->vimpact, NULL));
-  PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->dt, &dem->dt, &dem->dt_set));
-  PetscCall(PetscOptionsReal("-dem_dt_tc", "Time step as this fraction of the shortest contact time (every pair type, at -dem_impact_velocity); replaces -dem_dt when > 0 (the presets in cases/presets use it)", NULL, dem->dt_tc, &dem->dt_tc, NULL));
-  PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->dt_frac, &dem->dt_frac, NULL));
+  PetscCall(PetscOptionsReal("-dem_density", "Particle density (kg/m^3)", NULL, dem->shapes.shp[0].rho, &dem->shapes.shp[0].rho, NULL));
+  PetscCall(PetscOptionsEList("-dem_contact_law", "Contact law", NULL, DemLawNames, 3, DemLawNames[dem->contact.law], &law, NULL));
+  dem->contact.law = (DemLaw)law;
+  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[0], &dem->contact.mat, NULL));
+  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[1], &dem->contact.wmat, &dem->contact.mat));
+  PetscCall(PetscOptionsReal("-dem_tangential_damping", "Tangential over normal damping ratio, >= 0", NULL, dem->contact.tdamp_ratio, &dem->contact.tdamp_ratio, NULL));
+  PetscCall(PetscOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates (m/s)", NULL, dem->contact.vimpact, &dem->contact.vimpact, NULL));
+  PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->clock.dt, &dem->clock.dt, &dem->clock.dt_set));
+  PetscCall(PetscOptionsReal("-dem_dt_tc", "Time step as this fraction of the shortest contact time (every pair type, at -dem_impact_velocity); replaces -dem_dt when > 0 (the presets in cases/presets use it)", NULL, dem->clock.dt_tc, &dem->clock.dt_tc, NULL));
+  PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->clock.dt_frac, &dem->clock.dt_frac, NULL));
   PetscCall(PetscOptionsReal("-dem_overlap_max", "Largest overlap / radius allowed at a progress line or output frame; above it the run is diverging and stops, > 0", NULL, dem->overlap_max, &dem->overlap_max, NULL));
   PetscCall(SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz", "m/s^2", dem->g, 3, 3, &gset));
-  PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->skin, &dem->skin, &sset));
-  PetscCall(PetscOptionsBool("-dem_convex_sat", "Polyhedron pairs with at most -dem_convex_sat_axes candidate axes by the exact separating-axis test instead of libccd's MPR (default true)", NULL, dem->convex_sat, &dem->convex_sat, NULL));
-  PetscCall(PetscOptionsInt("-dem_convex_sat_axes", "Most candidate axes (distinct face normals of both + edge-direction pairs) of a pair that takes the separating-axis test: 16 = box-box; 58 box-icosahedron, 245 icosahedron pairs (exact, ~9x MPR's cost in a dense bed)", NULL, dem->convex_sat_axes, &dem->convex_sat_axes, NULL));
-  PetscCall(PetscOptionsEnum("-dem_convex_contact_point", "Pair contact point: patch (centroid of the contact patch, smooth) or support (the deepest vertex / edge crossing: the energy's own gradient, conserves energy with the exact depth)", NULL, ConvexPointModels, (PetscEnum)dem->convex_point, (PetscEnum *)&dem->convex_point, NULL));
-  PetscCall(PetscOptionsBool("-dem_deterministic", "Full neighbour rows summed in id order: results bitwise independent of the rank count (about 2x the contact cost)", NULL, dem->full_list, &dem->full_list, NULL));
+  PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->nl.skin, &dem->nl.skin, &sset));
+  PetscCall(PetscOptionsBool("-dem_convex_sat", "Polyhedron pairs with at most -dem_convex_sat_axes candidate axes by the exact separating-axis test instead of libccd's MPR (default true)", NULL, dem->narrow.convex_sat, &dem->narrow.convex_sat, NULL));
+  PetscCall(PetscOptionsInt("-dem_convex_sat_axes", "Most candidate axes (distinct face normals of both + edge-direction pairs) of a pair that takes the separating-axis test: 16 = box-box; 58 box-icosahedron, 245 icosahedron pairs (exact, ~9x MPR's cost in a dense bed)", NULL, dem->narrow.convex_sat_axes, &dem->narrow.convex_sat_axes, NULL));
+  PetscCall(PetscOptionsEnum("-dem_convex_contact_point", "Pair contact point: patch (centroid of the contact patch, smooth) or support (the deepest vertex / edge crossing: the energy's own gradient, conserves energy with the exact depth)", NULL, ConvexPointModels, (PetscEnum)dem->narrow.convex_point, (PetscEnum *)&dem->narrow.convex_point, NULL));
+  PetscCall(PetscOptionsBool("-dem_deterministic", "Full neighbour rows summed in id order: results bitwise independent of the rank count (about 2x the contact cost)", NULL, dem->nl.full_list, &dem->nl.full_list, NULL));
   PetscCall(PetscOptionsInt("-dem_check_every", "Debug: check the global particle count and id checksum every this many steps (0 = never)", NULL, dem->check_every, &dem->check_every, NULL));
-  PetscCall(PetscOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, dem->sort_interval, &dem->sort_interval, NULL));
+  PetscCall(PetscOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, dem->nl.sort_interval, &dem->nl.sort_interval, NULL));
   PetscOptionsEnd();
-  dem->dt_given = dem->dt;
+  dem->clock.dt_given = dem->clock.dt;
   PetscCall(DemCheckMaterialConflicts(dem));
-  PetscCheck(!sset || dem->skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->skin);
+  PetscCheck(!sset || dem->nl.skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->nl.skin);
   PetscCheck(dem->check_every >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_check_every %d must be >= 0 (0 = never)", (int)dem->check_every);
   for (int k = 0; k < 2; k++) { /* PETSc stops reading an array at its capacity without a word */
     const char *opt = k ? "-dem_radius_fraction" : "-dem_radius";
@@ -155,33 +143,33 @@ PetscErrorCode DemSetFromOptions(Dem dem)
     PetscCall(SableOptionCount(opt, &cnt));
     PetscCheck(cnt <= DEM_MAX_SHAPES, dem->comm, PETSC_ERR_ARG_SIZ, "%s has %d values; at most %d shapes", opt, (int)cnt, DEM_MAX_SHAPES);
   }
-  PetscCheck(dem->convex_sat_axes >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_convex_sat_axes %d must be >= 0 (candidate axes of a pair; 16 covers box-box pairs)", (int)dem->convex_sat_axes);
+  PetscCheck(dem->narrow.convex_sat_axes >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_convex_sat_axes %d must be >= 0 (candidate axes of a pair; 16 covers box-box pairs)", (int)dem->narrow.convex_sat_axes);
   if (rset) {
     PetscCheck(nr >= 1, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius needs at least one value");
     for (PetscInt s = 0; s < nr; s++) {
       PetscCheck(r[s] > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_radius %g must be > 0 (m)", (double)r[s]);
-      dem->shp[s]     = dem->shp[0];
-      dem->shp[s].r   = r[s];
+      dem->shapes.shp[s]     = dem->shapes.shp[0];
+      dem->shapes.shp[s].r   = r[s];
     }
-    dem->nshape = nr;
+    dem->shapes.nshape = nr;
   }
   PetscCall(DemShapesSetFromOptions(dem)); /* -dem_shape: non-spherical shapes (shapes.c) */
-  PetscCheck(!fset || nf == dem->nshape, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius_fraction has %" PetscInt_FMT " values for %" PetscInt_FMT " radii", nf, dem->nshape);
-  for (PetscInt s = 0; s < dem->nshape; s++) {
-    dem->shape_frac[s] = fset ? fr[s] : 1.0;
-    PetscCheck(dem->shape_frac[s] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_radius_fraction %g must be >= 0", (double)dem->shape_frac[s]);
-    sum += dem->shape_frac[s];
+  PetscCheck(!fset || nf == dem->shapes.nshape, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius_fraction has %" PetscInt_FMT " values for %" PetscInt_FMT " radii", nf, dem->shapes.nshape);
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    dem->shapes.shape_frac[s] = fset ? fr[s] : 1.0;
+    PetscCheck(dem->shapes.shape_frac[s] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_radius_fraction %g must be >= 0", (double)dem->shapes.shape_frac[s]);
+    sum += dem->shapes.shape_frac[s];
   }
   PetscCheck(sum > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_radius_fraction must not be all zero");
-  for (PetscInt s = 0; s < dem->nshape; s++) dem->shape_frac[s] /= sum;
-  PetscCheck(dem->shp[0].rho > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_density %g must be > 0 (kg/m^3)", (double)dem->shp[0].rho);
-  PetscCheck(dem->dt > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt %g must be > 0 (s)", (double)dem->dt);
-  PetscCheck(dem->dt_frac > 0 && dem->dt_frac <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_max_fraction %g must be in (0,1]", (double)dem->dt_frac);
-  PetscCheck(dem->dt_tc >= 0 && dem->dt_tc <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_tc %g must be in [0,1] (0: use -dem_dt)", (double)dem->dt_tc);
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) dem->shapes.shape_frac[s] /= sum;
+  PetscCheck(dem->shapes.shp[0].rho > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_density %g must be > 0 (kg/m^3)", (double)dem->shapes.shp[0].rho);
+  PetscCheck(dem->clock.dt > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt %g must be > 0 (s)", (double)dem->clock.dt);
+  PetscCheck(dem->clock.dt_frac > 0 && dem->clock.dt_frac <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_max_fraction %g must be in (0,1]", (double)dem->clock.dt_frac);
+  PetscCheck(dem->clock.dt_tc >= 0 && dem->clock.dt_tc <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_tc %g must be in [0,1] (0: use -dem_dt)", (double)dem->clock.dt_tc);
   PetscCheck(dem->overlap_max > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_overlap_max %g must be > 0", (double)dem->overlap_max);
-  PetscCheck(dem->vimpact > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_impact_velocity %g must be > 0 (m/s)", (double)dem->vimpact);
-  PetscCheck(dem->tdamp_ratio >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_tangential_damping %g must be >= 0", (double)dem->tdamp_ratio);
-  PetscCheck(dem->sort_interval >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_sort_interval %" PetscInt_FMT " must be >= 0", dem->sort_interval);
+  PetscCheck(dem->contact.vimpact > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_impact_velocity %g must be > 0 (m/s)", (double)dem->contact.vimpact);
+  PetscCheck(dem->contact.tdamp_ratio >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_tangential_damping %g must be >= 0", (double)dem->contact.tdamp_ratio);
+  PetscCheck(dem->nl.sort_interval >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_sort_interval %" PetscInt_FMT " must be >= 0", dem->nl.sort_interval);
   PetscCall(DemWallsSetFromOptions(dem));
   PetscCall(DemInsertSetFromOptions(dem));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -192,22 +180,22 @@ PetscErrorCode DemSetFromOptions(Dem dem)
 static PetscErrorCode DemCheckTimeStep(Dem dem)
 {
   PetscFunctionBeginUser;
-  if (dem->dt_tc > 0) {
+  if (dem->clock.dt_tc > 0) {
     PetscReal tmin = PETSC_MAX_REAL;
-    for (PetscInt s = 0; s < dem->nshape; s++)
-      for (PetscInt t = -1; t < dem->nshape; t++) {
+    for (PetscInt s = 0; s < dem->shapes.nshape; s++)
+      for (PetscInt t = -1; t < dem->shapes.nshape; t++) {
         PetscReal tc, e;
-        PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
+        PetscCall(DemGetContactFigures(dem, s, t, dem->contact.vimpact, &tc, &e));
         tmin = PetscMin(tmin, tc);
       }
-    dem->dt = dem->dt_tc * tmin;
+    dem->clock.dt = dem->clock.dt_tc * tmin;
   }
-  for (PetscInt s = 0; s < dem->nshape; s++)
-    for (PetscInt t = -1; t < dem->nshape; t++) {
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++)
+    for (PetscInt t = -1; t < dem->shapes.nshape; t++) {
       PetscReal tc, e;
-      PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
-      PetscCheck(dem->dt <= dem->dt_frac * tc, dem->comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "%s %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (%s, radius %g m): use -dem_dt <= %g", dem->dt_tc > 0 ? "-dem_dt_tc gives dt" : "-dem_dt", (double)dem->dt, (double)dem->dt_frac, (double)tc, t < 0 ? "particle-wall" : "particle-particle", (double)dem->shp[s].r, (double)(dem->dt_frac * tc));
+      PetscCall(DemGetContactFigures(dem, s, t, dem->contact.vimpact, &tc, &e));
+      PetscCheck(dem->clock.dt <= dem->clock.dt_frac * tc, dem->comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "%s %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (%s, radius %g m): use -dem_dt <= %g", dem->clock.dt_tc > 0 ? "-dem_dt_tc gives dt" : "-dem_dt", (double)dem->clock.dt, (double)dem->clock.dt_frac, (double)tc, t < 0 ? "particle-wall" : "particle-particle", (double)dem->shapes.shp[s].r, (double)(dem->clock.dt_frac * tc));
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -215,19 +203,19 @@ static PetscErrorCode DemCheckTimeStep(Dem dem)
 static PetscErrorCode DemComputeForces(Dem dem)
 {
   PetscFunctionBeginUser;
-  double *restrict f = dem->f;
+  double *restrict f = dem->p.f;
   const double     g[3] = {dem->g[0], dem->g[1], dem->g[2]};
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const double m = dem->shp[dem->nshape == 1 ? 0 : dem->shape[i]].m;
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    const double m = dem->shapes.shp[dem->shapes.nshape == 1 ? 0 : dem->p.shape[i]].m;
     for (int k = 0; k < 3; k++) f[3 * i + k] = m * g[k];
   }
-  if (dem->rotation) PetscCall(PetscArrayzero(dem->tq, 3 * dem->n));
-  if (dem->convex) { /* convex shapes: libccd narrow phase (contacts_convex.c) */
+  if (dem->contact.rotation) PetscCall(PetscArrayzero(dem->p.tq, 3 * dem->p.n));
+  if (dem->shapes.convex) { /* convex shapes: libccd narrow phase (convex_contacts.c) */
     PetscCall(DemContactsPairsConvex(dem));
     PetscCall(DemContactsWallsConvex(dem));
   } else {
-    PetscCall(DemContactsPairs(dem));
-    PetscCall(DemContactsWalls(dem));
+    PetscCall(DemContactsPairs(&dem->p, &dem->shapes, &dem->contact, &dem->nl, dem->clock.dt));
+    PetscCall(DemContactsWalls(&dem->p, &dem->shapes, &dem->contact, &dem->walls, dem->clock.dt));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -239,8 +227,8 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscFunctionBeginUser;
   dem->state++;
   PetscCall(DemInsert(dem));
-  for (PetscInt s = 0; s < dem->nshape; s++) {
-    DemShape *sh = &dem->shp[s];
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    DemShape *sh = &dem->shapes.shp[s];
     sh->m        = sh->rho * 4.0 / 3.0 * PETSC_PI * sh->r * sh->r * sh->r;
     sh->inertia  = 0.4 * sh->m * sh->r * sh->r;
     sh->invm     = 1.0 / sh->m;
@@ -250,13 +238,13 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscCall(DemShapesSetUp(dem)); /* convex shapes: mass, inertia tensor (shapes.c) */
   PetscCall(DemMaterialsSetUp(dem));
   PetscCall(DemCheckTimeStep(dem));
-  if (dem->skin < 0) dem->skin = 0.2 * rmax;
-  PetscCheck(dem->skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->skin);
-  dem->reach    = 2 * rmax + dem->skin;
-  dem->rotation = (PetscBool)(dem->mat.mu > 0 || dem->wmat.mu > 0 || dem->convex);
-  for (PetscInt w = 0; w < dem->nwall; w++) dem->rotation = (PetscBool)(dem->rotation || dem->wall[w].mu > 0);
+  if (dem->nl.skin < 0) dem->nl.skin = 0.2 * rmax;
+  PetscCheck(dem->nl.skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->nl.skin);
+  dem->nl.reach    = 2 * rmax + dem->nl.skin;
+  dem->contact.rotation = (PetscBool)(dem->contact.mat.mu > 0 || dem->contact.wmat.mu > 0 || dem->shapes.convex);
+  for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->contact.rotation = (PetscBool)(dem->contact.rotation || dem->walls.wall[w].mu > 0);
   PetscCall(DemExchangeSetUp(dem));
-  PetscCall(DemNeighBuild(dem));
+  PetscCall(DemRebuild(dem));
   PetscCall(DemCheckPlacement(dem)); /* needs the ghosts: pairs across ranks */
   PetscCall(DemGetStats(dem, &dem->initial));
   PetscCall(DemComputeForces(dem));
@@ -269,58 +257,65 @@ PetscErrorCode DemStep(Dem dem)
 
   PetscFunctionBeginUser;
   dem->state++;
-  PetscCall(DemIntegrateFirstHalf(dem, &d2));
-  PetscCheck(PetscIsNormalReal(d2) || d2 == 0, PETSC_COMM_SELF, PETSC_ERR_FP, "step %" PetscInt_FMT ": a particle position became non-finite; lower -dem_dt (now %g s)", dem->step, (double)dem->dt);
-  for (PetscInt w = 0; w < dem->nwall; w++) {
-    DemWall *wl = &dem->wall[w];
-    for (int k = 0; k < 3; k++) wl->p[k] += wl->v[k] * dem->dt;
-    wl->moved += sqrt(dem_dot(wl->v, wl->v)) * dem->dt;
+  PetscCall(DemIntegrateFirstHalf(&dem->p, &dem->shapes, &dem->ext, dem->contact.rotation, dem->clock.dt, &d2));
+  PetscCheck(PetscIsNormalReal(d2) || d2 == 0, PETSC_COMM_SELF, PETSC_ERR_FP, "step %" PetscInt_FMT ": a particle position became non-finite; lower -dem_dt (now %g s)", dem->clock.step, (double)dem->clock.dt);
+  for (PetscInt w = 0; w < dem->walls.nwall; w++) {
+    DemWall *wl = &dem->walls.wall[w];
+    for (int k = 0; k < 3; k++) wl->p[k] += wl->v[k] * dem->clock.dt;
+    wl->moved += sqrt(dem_dot(wl->v, wl->v)) * dem->clock.dt;
     wmax = PetscMax(wmax, wl->moved);
   }
   /* every rank rebuilds when one needs to: the ghosts must be re-created everywhere */
   /* the same reduction tells every rank whether any caught a signal (the run loop stops at the
      next step, on every rank alike) */
-  int need[2] = {dem->need_build || 4 * d2 > dem->skin * dem->skin || 2 * wmax > dem->skin, SableSignalCaught()}, any[2] = {need[0], need[1]};
+  int need[2] = {dem->need_build || 4 * d2 > dem->nl.skin * dem->nl.skin || 2 * wmax > dem->nl.skin, SableSignalCaught()}, any[2] = {need[0], need[1]};
   if (dem->ex.active) PetscCallMPI(MPI_Allreduce(need, any, 2, MPI_INT, MPI_MAX, dem->comm));
   dem->stop_sig = any[1];
   SableProgress();
-  if (any[0]) PetscCall(DemNeighBuild(dem));
+  if (any[0]) PetscCall(DemRebuild(dem));
   else PetscCall(DemGhostsUpdate(dem));
   PetscLogDouble c0, c1;
   PetscCall(PetscTime(&c0));
   PetscCall(DemComputeForces(dem));
-  PetscCall(DemIntegrateSecondHalf(dem));
+  PetscCall(DemIntegrateSecondHalf(&dem->p, &dem->shapes, &dem->ext, dem->contact.rotation, dem->clock.dt));
   PetscCall(PetscTime(&c1));
   dem->t_compute += c1 - c0; /* local work only, no waiting: the measured load-balancing weight */
-  dem->t += dem->dt;
-  dem->step++;
-  if (dem->check_every > 0 && dem->step % dem->check_every == 0) {
+  dem->clock.t += dem->clock.dt;
+  dem->clock.step++;
+  if (dem->check_every > 0 && dem->clock.step % dem->check_every == 0) {
     DemStats st;
     PetscCall(DemGetStats(dem, &st));
-    PetscCheck(st.n == dem->initial.n && st.checksum == dem->initial.checksum, dem->comm, PETSC_ERR_PLIB, "step %" PetscInt_FMT ": %" PetscInt_FMT " particles with id checksum %.17g, expected %" PetscInt_FMT " and %.17g: a particle was lost or duplicated", dem->step, st.n, st.checksum, dem->initial.n, dem->initial.checksum);
+    PetscCheck(st.n == dem->initial.n && st.checksum == dem->initial.checksum, dem->comm, PETSC_ERR_PLIB, "step %" PetscInt_FMT ": %" PetscInt_FMT " particles with id checksum %.17g, expected %" PetscInt_FMT " and %.17g: a particle was lost or duplicated", dem->clock.step, st.n, st.checksum, dem->initial.n, dem->initial.checksum);
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetStopSignal(Dem dem, int *sig)
+{
+  PetscFunctionBeginUser;
+  *sig = dem->stop_sig;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetTime(Dem dem, PetscReal *t, PetscInt *step)
 {
   PetscFunctionBeginUser;
-  if (t) *t = dem->t;
-  if (step) *step = dem->step;
+  if (t) *t = dem->clock.t;
+  if (step) *step = dem->clock.step;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetTimeStep(Dem dem, PetscReal *dt)
 {
   PetscFunctionBeginUser;
-  *dt = dem->dt;
+  *dt = dem->clock.dt;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetTimeStepOption(Dem dem, const char **opt)
 {
   PetscFunctionBeginUser;
-  *opt = dem->dt_tc > 0 ? "-dem_dt_tc" : "-dem_dt";
+  *opt = dem->clock.dt_tc > 0 ? "-dem_dt_tc" : "-dem_dt";
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -332,19 +327,19 @@ PetscErrorCode DemDestroy(Dem *dem)
   PetscCall(DemNeighDestroy(*dem));
   PetscCall(DemExchangeDestroy(*dem));
   PetscCall(DemShapesDestroy(*dem));
-  for (PetscInt w = 0; w < (*dem)->nwall; w++) {
-    PetscCall(PetscFree((*dem)->wall[w].idx));
-    PetscCall(PetscFree((*dem)->wall[w].hist));
+  for (PetscInt w = 0; w < (*dem)->walls.nwall; w++) {
+    PetscCall(PetscFree((*dem)->walls.wall[w].idx));
+    PetscCall(PetscFree((*dem)->walls.wall[w].hist));
   }
-  PetscCall(PetscFree((*dem)->x));
-  PetscCall(PetscFree((*dem)->v));
-  PetscCall(PetscFree((*dem)->w));
-  PetscCall(PetscFree((*dem)->f));
-  PetscCall(PetscFree((*dem)->tq));
-  PetscCall(PetscFree((*dem)->q));
-  PetscCall(PetscFree((*dem)->x0));
-  PetscCall(PetscFree((*dem)->id));
-  PetscCall(PetscFree((*dem)->shape));
+  PetscCall(PetscFree((*dem)->p.x));
+  PetscCall(PetscFree((*dem)->p.v));
+  PetscCall(PetscFree((*dem)->p.w));
+  PetscCall(PetscFree((*dem)->p.f));
+  PetscCall(PetscFree((*dem)->p.tq));
+  PetscCall(PetscFree((*dem)->p.q));
+  PetscCall(PetscFree((*dem)->p.x0));
+  PetscCall(PetscFree((*dem)->p.id));
+  PetscCall(PetscFree((*dem)->p.shape));
   PetscCall(PetscFree(*dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -121,13 +121,14 @@ PetscErrorCode DemExternalSetFromOptions(Dem dem);
 PetscErrorCode DemSetFrozen(Dem dem, PetscBool frozen);
 PetscErrorCode DemGetFrozen(Dem dem, PetscBool *frozen);
 
-/* Load balancing hooks (redistribute.c). DemRedistribute: collective; after the Domain changed
- * its ownership (DomainSetOwnership) every particle moves to the rank that now owns its centre,
- * with its full state, its tangential springs and its coupling state; ghosts and lists are
- * rebuilt. Call between steps. DemGetHaloWidth: the ghost halo 2 r_max + skin (m), the
- * thinnest a rank box may be along a split or periodic axis (valid after DemSetUp).
- * DemGetCellCounts: adds the number of local particles whose centre lies in each owned cell of
- * the Domain's grid to count[], indexed over the global grid, x fastest (not collective). */
+/* Load balancing hooks (redistribute.c, DemRedistribute in rebuild.c). DemRedistribute:
+ * collective; after the Domain changed its ownership (DomainSetOwnership) every particle moves to
+ * the rank that now owns its centre, with its full state, its tangential springs and its coupling
+ * state; ghosts and lists are rebuilt. Call between steps. DemGetHaloWidth: the ghost halo
+ * 2 r_max + skin (m), the thinnest a rank box may be along a split or periodic axis (valid after
+ * DemSetUp). DemGetCellCounts: adds the number of local particles whose centre lies in each
+ * owned cell of the Domain's grid to count[], indexed over the global grid, x fastest (not
+ * collective). */
 PetscErrorCode DemRedistribute(Dem dem);
 PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach);
 PetscErrorCode DemGetCellCounts(Dem dem, PetscInt *count);

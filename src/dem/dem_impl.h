@@ -7,8 +7,9 @@
  * than skin/2, so every pair that can touch is in the list. */
 #pragma once
 #include "dem/dem.h"
-#include "dem/contact.h"
+#include "dem/contact_laws.h"
 #include "geom/convex.h"
+#include "geom/sat.h"
 
 #define DEM_MAX_SHAPES 32
 #define DEM_MAX_WALLS  24
@@ -19,13 +20,8 @@ typedef struct {
   const ConvexShape *cvx;
   double J[3], invJ[3]; /* principal moments of inertia (kg m^2), body axes */
   double vol, req;      /* volume (m^3), equivalent radius for the contact laws (m) */
-  double  *fn;          /* distinct face normals of a polyhedron (body frame, 3 each), for sepaxis */
-  PetscInt nfn;
-  double  *en;          /* distinct edge directions of a polyhedron (body frame, 3 each) */
-  PetscInt nen;
-  PetscBool iso;        /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
-  PetscBool box;        /* a box: 8 vertices at +-bh[k] along fn[0..2], a right-handed frame (sat_box.c) */
-  double    bh[3];
+  ConvexAxes ax;        /* a polyhedron's separating-axis candidates and box frame (geom/sat.h) */
+  PetscBool  iso;       /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
 } DemShape;
 
 typedef enum { DEM_WALL_PLANE, DEM_WALL_RECT, DEM_WALL_POLYGON, DEM_WALL_CYLINDER } DemWallKind;
@@ -133,8 +129,9 @@ static inline void dem_wall_velocity(const DemWall *w, const double *c, double v
   }
 }
 
-/* Pair parameters of shape s with wall w (a copy with the wall's own friction, if it has one). */
-#define DemWallParams(dem, w, s, tmp) ((w)->mu < 0 ? &(dem)->pw[s] : ((*(tmp) = (dem)->pw[s]), (tmp)->mu = (w)->mu, (tmp)))
+/* Pair parameters of shape s with wall w from the contact model cm (a copy with the wall's own
+ * friction, if it has one). */
+#define DemWallParams(cm, w, s, tmp) ((w)->mu < 0 ? &(cm)->pw[s] : ((*(tmp) = (cm)->pw[s]), (tmp)->mu = (w)->mu, (tmp)))
 
 typedef struct { /* material of one side of a contact */
   PetscReal kn, kt, e, mu, E, nu;
@@ -157,9 +154,14 @@ typedef struct {
   size_t      capsbuf, caprbuf;
   PetscBool   active;                /* any neighbour at all (else exchange is a no-op) */
   PetscInt    migrated;              /* particles sent away at the last rebuild (diagnostic) */
+  PetscBool   remap;                 /* the decomposition changed: the next build migrates to any rank */
 } DemExchange;
 
+/* Neighbour search (neighbours.c): its settings, the cells and the half (or full) Verlet list. */
 typedef struct {
+  PetscReal  skin, reach; /* reach = 2 r_max + skin = halo width */
+  PetscBool  full_list;   /* -dem_deterministic: full rows summed in id order */
+  PetscInt   sort_interval;
   /* cells over the local box (plus halo): counting sort */
   PetscInt   nc[3], ncell;
   double     lo[3], inv[3];
@@ -172,83 +174,126 @@ typedef struct {
   PetscInt   builds, sorts;
 } DemNeigh;
 
-struct _p_Dem {
-  MPI_Comm  comm;
-  Domain   *dom;
-  /* particles */
+/* The particles (particles.c): local 0..n-1, then ghosts n..n+ng-1, room for cap. */
+typedef struct {
   PetscInt  n, ng, cap;
-  double   *x, *v, *w, *f, *tq, *q, *x0;
+  double   *x, *v, *w, *f, *tq, *q, *x0; /* x0: positions at the last list build */
   PetscInt *id, *shape;
   PetscInt  next_id;
-  /* shapes and pair parameters */
-  DemShape      shp[DEM_MAX_SHAPES];
-  PetscInt      nshape;
-  PetscReal     shape_frac[DEM_MAX_SHAPES];
+} DemParticles;
+
+/* The shape table (shapes.c): spheres or convex shapes, which the table owns (cvx); convex =
+ * the scene has any. */
+typedef struct {
+  DemShape    shp[DEM_MAX_SHAPES];
+  PetscInt    nshape;
+  PetscReal   shape_frac[DEM_MAX_SHAPES];
+  ConvexShape cvx[DEM_MAX_SHAPES];
+  PetscBool   convex;
+} DemShapeTable;
+
+/* The contact model (contact_laws.c): the law, the materials and the parameters of every
+ * (shape, shape) and (shape, wall) pair. */
+typedef struct {
   DemMaterial   mat, wmat;
   DemLaw        law;
   PetscReal     tdamp_ratio, vimpact;
   DemPairParams pp[DEM_MAX_SHAPES * DEM_MAX_SHAPES], pw[DEM_MAX_SHAPES];
   PetscBool     rotation; /* any friction: torques and spins are integrated */
-  /* convex shapes (shapes.c): the table owns them; convex = the scene has any */
-  ConvexShape   cvx[DEM_MAX_SHAPES];
-  PetscBool     convex, random_orient;
-  double       *sepax;       /* per Verlet-list entry: a separating axis (world), 0 = none, and
-                                a flag: touching at the last step (4 each) */
-  PetscInt      sepax_build; /* the list build it belongs to */
-  double       *rot;         /* rotation matrices of the particles (9 each) for the pair loop, */
-  PetscInt     *rot_stamp;   /* each valid where its stamp is the loop's pass number */
-  PetscInt      rot_cap, rot_pass, rot_pairs; /* rot_pairs: pairs the last pass tested */
-  /* walls */
-  DemWall   wall[DEM_MAX_WALLS];
-  PetscInt  nwall;
-  /* neighbours */
-  DemNeigh  nl;
-  PetscReal skin, reach; /* reach = 2 r_max + skin = halo width */
-  PetscBool full_list;   /* -dem_deterministic: full rows summed in id order */
-  PetscBool convex_sat;  /* -dem_convex_sat: separating-axis narrow phase for few-axis polyhedron pairs */
-  PetscInt  convex_sat_axes;     /* -dem_convex_sat_axes: the most candidate axes a pair may have for it */
-  ConvexPointModel convex_point; /* -dem_convex_contact_point patch|support */
-  DemExchange ex;
-  PetscInt  check_every;
-  DemStats  initial; /* count and checksum at set-up, for -dem_check_every */
-  PetscInt  sort_interval;
-  PetscBool need_build;
-  int       stop_sig; /* a signal any rank had caught at the last step's reduction (0: none) */
-  PetscBool remap; /* the decomposition changed: the next build migrates to any rank */
-  PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
-  /* time */
-  PetscReal g[3], dt, t, dt_frac, dt_tc, overlap_max;
-  PetscReal dt_given;          /* -dem_dt as given, for the log when -dem_dt_tc replaces it */
-  PetscBool dt_set; /* -dem_dt given */
+} DemContactModel;
+
+/* The narrow phase of convex pairs (convex_contacts.c): its settings and its caches. */
+typedef struct {
+  PetscBool        convex_sat;      /* -dem_convex_sat: separating-axis narrow phase for few-axis polyhedron pairs */
+  PetscInt         convex_sat_axes; /* -dem_convex_sat_axes: the most candidate axes a pair may have for it */
+  ConvexPointModel convex_point;    /* -dem_convex_contact_point patch|support */
+  double          *sepax;           /* per Verlet-list entry: a separating axis (world), 0 = none, and
+                                       a flag: touching at the last step (4 each) */
+  PetscInt         sepax_build;     /* the list build it belongs to */
+  double          *rot;             /* rotation matrices of the particles (9 each) for the pair loop, */
+  PetscInt        *rot_stamp;       /* each valid where its stamp is the loop's pass number */
+  PetscInt         rot_cap, rot_pass, rot_pairs; /* rot_pairs: pairs the last pass tested */
+} DemConvexNarrow;
+
+/* The walls (walls.c). */
+typedef struct {
+  DemWall  wall[DEM_MAX_WALLS];
+  PetscInt nwall;
+} DemWalls;
+
+/* Time (dem.c). */
+typedef struct {
+  PetscReal dt, t, dt_frac, dt_tc;
+  PetscReal dt_given; /* -dem_dt as given, for the log when -dem_dt_tc replaces it */
+  PetscBool dt_set;   /* -dem_dt given */
   PetscInt  step;
-  PetscInt  state; /* changes whenever positions or the local order may have (DemGetState) */
-  /* insertion */
+} DemClock;
+
+/* Insertion (insert.c). */
+typedef struct {
   PetscInt  lat[3], lat_count; /* lattice sites, and how many of them are filled (-1: all) */
   PetscReal lat_a, lat_origin[3], lat_jitter, lat_speed;
-  PetscBool lat_origin_set;
+  PetscBool lat_origin_set, random_orient;
   PetscInt  seed;
   char      init_file[PETSC_MAX_PATH_LEN];
   /* where the inserted particles came from, by id (placement.c): the file's are below file_end
      (0: no file), the lattice's follow, [file_end, file_end + lat_count) */
   PetscInt  file_end;
   PetscReal init_overlap_max; /* -dem_init_file_overlap_max (radii); 0: from the contact design */
-  /* external forces from a coupling (external.c); NULL unless DemSetExternal was called */
+} DemInsertion;
+
+/* External forces from a coupling (external.c): per-particle arrays, NULL unless DemSetExternal
+ * switched them on; frozen: nothing is integrated. */
+typedef struct {
   double   *fext, *kdrag, *udrag, *jdrag;
-  PetscBool external, frozen;
+  PetscBool on, frozen;
+} DemExternalState;
+
+struct _p_Dem {
+  MPI_Comm         comm;
+  Domain          *dom;
+  DemParticles     p;
+  DemShapeTable    shapes;
+  DemContactModel  contact;
+  DemConvexNarrow  narrow;
+  DemWalls         walls;
+  DemNeigh         nl;
+  DemExchange      ex;
+  DemClock         clock;
+  DemInsertion     insert;
+  DemExternalState ext;
+  /* run control */
+  PetscReal      g[3];        /* gravity (m/s^2) */
+  PetscReal      overlap_max; /* -dem_overlap_max: a larger overlap stops the run (DemCheckHealth) */
+  PetscInt       check_every;
+  DemStats       initial;     /* count and checksum at set-up, for -dem_check_every */
+  PetscBool      need_build;
+  int            stop_sig;    /* a signal any rank had caught at the last step's reduction (0: none) */
+  PetscLogDouble t_compute;   /* wall time in force computation and integration (s) */
+  PetscInt       state;       /* changes whenever positions or the local order may have (DemGetState) */
 };
 
-/* internal functions, by file */
-PetscErrorCode DemMaterialsSetUp(Dem dem);                         /* contact_params.c */
-PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* contact_params.c */
+/* Internal functions, by file, from the leaves up: a file calls only files listed above it
+ * (the DEM's .c files form no circle of calls). */
+PetscErrorCode DemEventsRegister(void);                            /* events.c */
+extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
+PetscErrorCode DemSpringsSort(DemSpring *r, PetscInt n);           /* springs.c */
+const DemSpring *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, PetscInt partner); /* springs.c */
+PetscErrorCode DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap); /* springs.c */
+PetscErrorCode DemSpringsRestore(Dem dem, const DemSpring *recs, PetscInt nrec); /* springs.c */
 PetscErrorCode DemParticlesReserve(Dem dem, PetscInt n);           /* particles.c */
 PetscErrorCode DemParticlesPermute(Dem dem, const PetscInt *perm); /* particles.c */
-PetscErrorCode DemNeighBuild(Dem dem);                             /* neighbours.c */
+PetscErrorCode DemMaterialsSetUp(Dem dem);                         /* contact_laws.c */
+PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* contact_laws.c */
+PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c */
+PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
+PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
 PetscErrorCode DemExchangeSetUp(Dem dem);                          /* exchange.c */
 PetscErrorCode DemExchangeDestroy(Dem dem);                        /* exchange.c */
 PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* exchange.c */
 #define MIG_HEAD 22 /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
 #define MIG_EXT  10 /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
-#define MIG_RECORD_SIZE(dem, ns) (MIG_HEAD + ((dem)->external ? MIG_EXT : 0) + 4 * (size_t)(ns))
+#define MIG_RECORD_SIZE(dem, ns) (MIG_HEAD + ((dem)->ext.on ? MIG_EXT : 0) + 4 * (size_t)(ns))
 PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n); /* exchange.c */
 /* exchange.c: the migration record of local particle i (position + shift, state, coupling
  * state, springs): doubles written; unpack appends the particle and its springs */
@@ -256,34 +301,24 @@ size_t         DemMigSize(Dem dem, PetscInt i, const DemSpring *recs, PetscInt n
 size_t         DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b);
 PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used);
 /* Errors when a local particle is wholly outside the domain across a non-periodic side. */
-PetscErrorCode DemCheckInDomain(Dem dem);
-PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* redistribute.c */
+PetscErrorCode DemCheckInDomain(Dem dem);                          /* exchange.c */
 PetscErrorCode DemGhostsCreate(Dem dem);                           /* exchange.c */
 PetscErrorCode DemGhostsUpdate(Dem dem);                           /* exchange.c */
-PetscErrorCode DemSpringsSort(DemSpring *r, PetscInt n);           /* neighbours.c */
-const DemSpring *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, PetscInt partner); /* neighbours.c */
+PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* redistribute.c */
+PetscErrorCode DemNeighSort(Dem dem);                              /* neighbours.c */
+PetscErrorCode DemNeighBuildList(Dem dem);                         /* neighbours.c */
+PetscErrorCode DemNeighResetCells(Dem dem);                        /* neighbours.c */
 PetscErrorCode DemNeighDestroy(Dem dem);                           /* neighbours.c */
-PetscErrorCode DemContactsPairs(Dem dem);                          /* contacts.c */
-PetscErrorCode DemContactsWalls(Dem dem);                          /* walls.c */
-PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls.c */
-PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec); /* walls.c */
 PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3]); /* walls.c */
 PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first); /* walls.c */
+PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const DemShapeTable *st, double skin, const DemSpring *recs, PetscInt nrec); /* walls.c */
+PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt); /* walls.c */
 PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_polygon.c */
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_cylinder.c */
-PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
-PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
-double         DemLatticeSpacing(Dem dem);                         /* insert.c */
-double         DemImpactOverlap(Dem dem, const DemPairParams *p);  /* diag.c */
-PetscErrorCode DemCheckPlacement(Dem dem);                         /* placement.c */
-PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2);   /* integrate.c */
-PetscErrorCode DemIntegrateSecondHalf(Dem dem);                    /* integrate.c */
-void           DemExternalKick(Dem dem, double h);                 /* external.c */
-PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c */
-PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
-PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
-PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* contacts_convex.c */
-/* A body in a pair test (contacts_convex.c, sat_box.c): shape, centre, quaternion and its
+PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls_options.c */
+PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const DemContactModel *cm, DemNeigh *nl, double dt); /* contacts.c */
+PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* convex_contacts.c */
+/* A body in a pair test (convex_contacts.c): shape, centre, quaternion and its
  * rotation matrix (body -> world), pointing into the particle arrays. */
 typedef struct {
   const DemShape *s;
@@ -295,17 +330,18 @@ static inline ConvexPose DemPose(const double *x, const double *q)
   ConvexPose p = {{x[0], x[1], x[2]}, {q[0], q[1], q[2], q[3]}};
   return p;
 }
-/* The least overlap of a pair found so far, and its axis oriented from i to j. */
-typedef struct {
-  double depth, n[3];
-} DemSatMin;
-PetscBool DemShapeBoxFrame(DemShape *sh);                                                            /* sat_box.c */
-PetscBool DemSatBox(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3]); /* sat_box.c */
-PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c); /* contacts_convex.c: the forces' narrow phase */
-PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* contacts_convex.c */
-PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* diag_convex.c */
-PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* diag_convex.c */
-PetscErrorCode DemRotateFirstHalf(Dem dem);                        /* rotation.c */
-PetscErrorCode DemRotateSecondHalf(Dem dem);                       /* rotation.c */
-
-extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
+PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c); /* convex_contacts.c: the forces' narrow phase */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* convex_contacts.c */
+PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* convex_diag.c */
+PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* convex_diag.c */
+PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);  /* rotation.c */
+PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt); /* rotation.c */
+void           DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h); /* external.c */
+PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2); /* integrate.c */
+PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt); /* integrate.c */
+PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
+PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
+double         DemLatticeSpacing(Dem dem);                         /* insert.c */
+double         DemImpactOverlap(Dem dem, const DemPairParams *p);  /* diag.c */
+PetscErrorCode DemCheckPlacement(Dem dem);                         /* placement.c */
+PetscErrorCode DemRebuild(Dem dem);                                /* rebuild.c */

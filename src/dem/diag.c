@@ -7,46 +7,46 @@
 
 static double dem_spring_energy(const Dem dem, const DemPairParams *p, double delta, const double *xi)
 {
-  double e = dem->law == DEM_LAW_HERTZ ? 8.0 / 15.0 * p->es * sqrt(p->reff) * pow(delta, 2.5) : 0.5 * p->kn * delta * delta;
-  if (xi && dem->law == DEM_LAW_LINEAR) e += 0.5 * p->kt * dem_dot(xi, xi);
+  double e = dem->contact.law == DEM_LAW_HERTZ ? 8.0 / 15.0 * p->es * sqrt(p->reff) * pow(delta, 2.5) : 0.5 * p->kn * delta * delta;
+  if (xi && dem->contact.law == DEM_LAW_LINEAR) e += 0.5 * p->kt * dem_dot(xi, xi);
   return e;
 }
 
 PetscErrorCode DemGetStats(Dem dem, DemStats *st)
 {
   double   r[6] = {0, 0, 0, 0, 0, 0}, rmax = 0, g[6];
-  PetscInt c[3] = {dem->n, 0, 0}, cg[3];
+  PetscInt c[3] = {dem->p.n, 0, 0}, cg[3];
 
   PetscFunctionBeginUser;
-  if (dem->convex) PetscCall(DemConvexStatsLocal(dem, r, c, &rmax)); /* diag_convex.c */
-  for (PetscInt i = 0; i < dem->n && !dem->convex; i++) {
-    const DemShape *s = &dem->shp[dem->shape[i]];
-    r[0] += 0.5 * s->m * dem_dot(dem->v + 3 * i, dem->v + 3 * i);
-    r[1] += 0.5 * s->inertia * dem_dot(dem->w + 3 * i, dem->w + 3 * i);
-    r[2] -= s->m * dem_dot(dem->g, dem->x + 3 * i);
-    r[4] += (double)dem->id[i];
+  if (dem->shapes.convex) PetscCall(DemConvexStatsLocal(dem, r, c, &rmax)); /* convex_diag.c */
+  for (PetscInt i = 0; i < dem->p.n && !dem->shapes.convex; i++) {
+    const DemShape *s = &dem->shapes.shp[dem->p.shape[i]];
+    r[0] += 0.5 * s->m * dem_dot(dem->p.v + 3 * i, dem->p.v + 3 * i);
+    r[1] += 0.5 * s->inertia * dem_dot(dem->p.w + 3 * i, dem->p.w + 3 * i);
+    r[2] -= s->m * dem_dot(dem->g, dem->p.x + 3 * i);
+    r[4] += (double)dem->p.id[i];
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
       const PetscInt j  = dem->nl.nbr[a];
       /* a pair seen from both sides (full list, or a ghost partner) counts half on each */
-      const PetscBool both = (PetscBool)(dem->full_list || j >= dem->n);
-      const double   rs = s->r + dem->shp[dem->shape[j]].r;
-      const double   d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
+      const PetscBool both = (PetscBool)(dem->nl.full_list || j >= dem->p.n);
+      const double   rs = s->r + dem->shapes.shp[dem->p.shape[j]].r;
+      const double   d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
       const double   delta = rs - sqrt(dem_dot(d, d));
       if (delta <= 0) continue;
-      if (!both || dem->id[i] < dem->id[j]) c[1]++;
-      r[3] += (both ? 0.5 : 1.0) * dem_spring_energy(dem, &dem->pp[dem->shape[i] * dem->nshape + dem->shape[j]], delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
-      rmax = PetscMax(rmax, delta / PetscMin(s->r, dem->shp[dem->shape[j]].r));
+      if (!both || dem->p.id[i] < dem->p.id[j]) c[1]++;
+      r[3] += (both ? 0.5 : 1.0) * dem_spring_energy(dem, &dem->contact.pp[dem->p.shape[i] * dem->shapes.nshape + dem->p.shape[j]], delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
+      rmax = PetscMax(rmax, delta / PetscMin(s->r, dem->shapes.shp[dem->p.shape[j]].r));
     }
   }
-  for (PetscInt w = 0; w < dem->nwall && !dem->convex; w++) {
-    const DemWall *wl = &dem->wall[w];
+  for (PetscInt w = 0; w < dem->walls.nwall && !dem->shapes.convex; w++) {
+    const DemWall *wl = &dem->walls.wall[w];
     for (PetscInt a = 0; a < wl->cnt; a++) {
       const PetscInt i = wl->idx[a];
       double         nrm[3];
-      const double   rr = dem->shp[dem->shape[i]].r, delta = dem_wall_sphere(wl, dem->x + 3 * i, rr, nrm);
+      const double   rr = dem->shapes.shp[dem->p.shape[i]].r, delta = dem_wall_sphere(wl, dem->p.x + 3 * i, rr, nrm);
       if (delta <= 0) continue;
       c[2]++;
-      r[3] += dem_spring_energy(dem, &dem->pw[dem->shape[i]], delta, dem->law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);
+      r[3] += dem_spring_energy(dem, &dem->contact.pw[dem->p.shape[i]], delta, dem->contact.law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);
       rmax = PetscMax(rmax, delta / rr);
     }
   }
@@ -75,17 +75,17 @@ PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord)
   DemStats      st;
 
   PetscFunctionBeginUser;
-  for (PetscInt s = 0; s < dem->nshape; s++) dmax = PetscMax(dmax, 2 * dem->shp[s].r);
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) dmax = PetscMax(dmax, 2 * dem->shapes.shp[s].r);
   gx = PetscMax(1, (PetscInt)(dom->len[0] / dmax));
   gy = PetscMax(1, (PetscInt)(dom->len[1] / dmax));
   PetscCall(PetscMalloc2(gx * gy, &top, gx * gy, &gtop));
   for (PetscInt c = 0; c < gx * gy; c++) top[c] = -PETSC_MAX_REAL;
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const double   r  = dem->shp[dem->shape[i]].r, *x = dem->x + 3 * i;
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    const double   r  = dem->shapes.shp[dem->p.shape[i]].r, *x = dem->p.x + 3 * i;
     const PetscInt cx = PetscMin(gx - 1, PetscMax(0, (PetscInt)((x[0] - dom->lo[0]) / dom->len[0] * gx)));
     const PetscInt cy = PetscMin(gy - 1, PetscMax(0, (PetscInt)((x[1] - dom->lo[1]) / dom->len[1] * gy)));
     top[cx + gx * cy] = PetscMax(top[cx + gx * cy], x[2] + r - dom->lo[2]);
-    vol += dem->shp[dem->shape[i]].vol;
+    vol += dem->shapes.shp[dem->p.shape[i]].vol;
   }
   PetscCallMPI(MPI_Allreduce(top, gtop, (PetscMPIInt)(gx * gy), MPI_DOUBLE, MPI_MAX, dem->comm));
   PetscCallMPI(MPI_Allreduce(&vol, &vg, 1, MPI_DOUBLE, MPI_SUM, dem->comm));
@@ -106,8 +106,8 @@ PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord)
  * V sqrt(meff/kn), hertz 1.0934 X (m). */
 double DemImpactOverlap(Dem dem, const DemPairParams *p)
 {
-  if (dem->law == DEM_LAW_HERTZ) return 1.0934 * pow(p->meff * dem->vimpact * dem->vimpact / (4.0 / 3.0 * p->es * sqrt(p->reff)), 0.4);
-  return dem->vimpact * sqrt(p->meff / p->kn);
+  if (dem->contact.law == DEM_LAW_HERTZ) return 1.0934 * pow(p->meff * dem->contact.vimpact * dem->contact.vimpact / (4.0 / 3.0 * p->es * sqrt(p->reff)), 0.4);
+  return dem->contact.vimpact * sqrt(p->meff / p->kn);
 }
 
 PetscErrorCode DemView(Dem dem, PetscViewer v)
@@ -117,15 +117,15 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
 
   PetscFunctionBeginUser;
   PetscCall(DemGetStats(dem, &st));
-  if (dem->dt_tc > 0 && dem->dt_set) PetscCall(PetscViewerASCIIPrintf(v, "time step: -dem_dt_tc %g gives dt = %g s, replacing -dem_dt %g s\n", (double)dem->dt_tc, (double)dem->dt, (double)dem->dt_given));
-  PetscCall(PetscViewerASCIIPrintf(v, "DEM: %" PetscInt_FMT " %s, %" PetscInt_FMT " shape(s), %s; rotation %s; %" PetscInt_FMT " wall(s)\n", st.n, dem->convex ? "convex particles" : "spheres", dem->nshape, law[dem->law], dem->rotation ? "on" : "off (no friction)", dem->nwall));
-  for (PetscInt s = 0; s < dem->nshape; s++)
-    for (PetscInt t = -1; t < dem->nshape; t++) {
+  if (dem->clock.dt_tc > 0 && dem->clock.dt_set) PetscCall(PetscViewerASCIIPrintf(v, "time step: -dem_dt_tc %g gives dt = %g s, replacing -dem_dt %g s\n", (double)dem->clock.dt_tc, (double)dem->clock.dt, (double)dem->clock.dt_given));
+  PetscCall(PetscViewerASCIIPrintf(v, "DEM: %" PetscInt_FMT " %s, %" PetscInt_FMT " shape(s), %s; rotation %s; %" PetscInt_FMT " wall(s)\n", st.n, dem->shapes.convex ? "convex particles" : "spheres", dem->shapes.nshape, law[dem->contact.law], dem->contact.rotation ? "on" : "off (no friction)", dem->walls.nwall));
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++)
+    for (PetscInt t = -1; t < dem->shapes.nshape; t++) {
       PetscReal tc, e;
-      PetscCall(DemGetContactFigures(dem, s, t, dem->vimpact, &tc, &e));
-      const DemPairParams *p = t < 0 ? &dem->pw[s] : &dem->pp[s * dem->nshape + t];
+      PetscCall(DemGetContactFigures(dem, s, t, dem->contact.vimpact, &tc, &e));
+      const DemPairParams *p = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
       const double         ov = DemImpactOverlap(dem, p);
-      PetscCall(PetscViewerASCIIPrintf(v, "  contact r=%g m with %s: Tc = %.3g s, dt/Tc = %.3g (limit %g), e = %g, overlap at %g m/s <= %.3g r\n", (double)dem->shp[s].r, t < 0 ? "wall" : "particle", (double)tc, (double)(dem->dt / tc), (double)dem->dt_frac, (double)e, (double)dem->vimpact, ov / dem->shp[s].r));
+      PetscCall(PetscViewerASCIIPrintf(v, "  contact r=%g m with %s: Tc = %.3g s, dt/Tc = %.3g (limit %g), e = %g, overlap at %g m/s <= %.3g r\n", (double)dem->shapes.shp[s].r, t < 0 ? "wall" : "particle", (double)tc, (double)(dem->clock.dt / tc), (double)dem->clock.dt_frac, (double)e, (double)dem->contact.vimpact, ov / dem->shapes.shp[s].r));
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -136,16 +136,16 @@ PetscErrorCode DemWriteOutput(Dem dem, Io io)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Output, 0, 0, 0, 0));
-  PetscCall(PetscMalloc1(dem->n + 1, &r));
-  for (PetscInt i = 0; i < dem->n; i++) r[i] = dem->shp[dem->shape[i]].r;
-  PetscCall(IoWriteParticles(io, "position", dem->n, 3, dem->x));
-  PetscCall(IoWriteParticles(io, "velocity", dem->n, 3, dem->v));
-  PetscCall(IoWriteParticles(io, "angular_velocity", dem->n, 3, dem->w));
-  PetscCall(IoWriteParticles(io, "quaternion", dem->n, 4, dem->q));
-  PetscCall(IoWriteParticles(io, "radius", dem->n, 1, r));
-  PetscCall(IoWriteParticlesInt(io, "id", dem->n, dem->id));
-  PetscCall(IoWriteParticlesInt(io, "shape", dem->n, dem->shape));
-  if (dem->convex) PetscCall(DemConvexWriteSurface(dem, io)); /* diag_convex.c */
+  PetscCall(PetscMalloc1(dem->p.n + 1, &r));
+  for (PetscInt i = 0; i < dem->p.n; i++) r[i] = dem->shapes.shp[dem->p.shape[i]].r;
+  PetscCall(IoWriteParticles(io, "position", dem->p.n, 3, dem->p.x));
+  PetscCall(IoWriteParticles(io, "velocity", dem->p.n, 3, dem->p.v));
+  PetscCall(IoWriteParticles(io, "angular_velocity", dem->p.n, 3, dem->p.w));
+  PetscCall(IoWriteParticles(io, "quaternion", dem->p.n, 4, dem->p.q));
+  PetscCall(IoWriteParticles(io, "radius", dem->p.n, 1, r));
+  PetscCall(IoWriteParticlesInt(io, "id", dem->p.n, dem->p.id));
+  PetscCall(IoWriteParticlesInt(io, "shape", dem->p.n, dem->p.shape));
+  if (dem->shapes.convex) PetscCall(DemConvexWriteSurface(dem, io)); /* convex_diag.c */
   PetscCall(PetscFree(r));
   PetscCall(PetscLogEventEnd(DEM_Output, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -164,23 +164,23 @@ PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]
   PetscFunctionBeginUser;
   count[0] = count[1] = 0;
   key[0] = key[1] = 0;
-  for (PetscInt i = 0; i < dem->n; i++)
+  for (PetscInt i = 0; i < dem->p.n; i++)
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
       const PetscInt j    = dem->nl.nbr[a];
-      const double   rs   = dem->shp[dem->shape[i]].r + dem->shp[dem->shape[j]].r;
-      const double   d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
-      if (dem_dot(d, d) < rs * rs && (!(dem->full_list || j >= dem->n) || dem->id[i] < dem->id[j])) {
+      const double   rs   = dem->shapes.shp[dem->p.shape[i]].r + dem->shapes.shp[dem->p.shape[j]].r;
+      const double   d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
+      if (dem_dot(d, d) < rs * rs && (!(dem->nl.full_list || j >= dem->p.n) || dem->p.id[i] < dem->p.id[j])) {
         count[0]++;
-        key[0] += dem_pair_key(dem->id[i], dem->id[j]);
+        key[0] += dem_pair_key(dem->p.id[i], dem->p.id[j]);
       }
     }
-  for (PetscInt i = 0; i < dem->n; i++)
-    for (PetscInt j = i + 1; j < dem->n; j++) {
-      const double rs   = dem->shp[dem->shape[i]].r + dem->shp[dem->shape[j]].r;
-      const double d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
+  for (PetscInt i = 0; i < dem->p.n; i++)
+    for (PetscInt j = i + 1; j < dem->p.n; j++) {
+      const double rs   = dem->shapes.shp[dem->p.shape[i]].r + dem->shapes.shp[dem->p.shape[j]].r;
+      const double d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
       if (dem_dot(d, d) < rs * rs) {
         count[1]++;
-        key[1] += dem_pair_key(dem->id[i], dem->id[j]);
+        key[1] += dem_pair_key(dem->p.id[i], dem->p.id[j]);
       }
     }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -191,8 +191,8 @@ PetscErrorCode DemCheckHealth(Dem dem, const DemStats *st)
   PetscReal tc = 0, e;
 
   PetscFunctionBeginUser;
-  PetscCheck(PetscIsNormalReal(st->ke) || st->ke == 0, dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": kinetic energy is not finite; lower -dem_dt", dem->step);
+  PetscCheck(PetscIsNormalReal(st->ke) || st->ke == 0, dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": kinetic energy is not finite; lower -dem_dt", dem->clock.step);
   if (st->max_overlap <= dem->overlap_max) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(DemGetContactFigures(dem, 0, 0, dem->vimpact, &tc, &e));
-  SETERRQ(dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": the largest overlap is %.3g radii, above -dem_overlap_max %g: the contacts are not resolved and the run is diverging (dt/Tc = %.3g); lower -dem_dt or raise -dem_kn", dem->step, (double)st->max_overlap, (double)dem->overlap_max, (double)(dem->dt / tc));
+  PetscCall(DemGetContactFigures(dem, 0, 0, dem->contact.vimpact, &tc, &e));
+  SETERRQ(dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": the largest overlap is %.3g radii, above -dem_overlap_max %g: the contacts are not resolved and the run is diverging (dt/Tc = %.3g); lower -dem_dt or raise -dem_kn", dem->clock.step, (double)st->max_overlap, (double)dem->overlap_max, (double)(dem->clock.dt / tc));
 }

@@ -40,8 +40,8 @@ PetscErrorCode DemExchangeSetUp(Dem dem)
     PetscInt s = 0;
     for (c[k] = 0; s < dom->cstart[k]; c[k]++) s += l[k][c[k]];
     const double w = dom->subhi[k] - dom->sublo[k];
-    PetscCheck(!(dom->nranks[k] > 1 || dom->periodic[k]) || w >= dem->reach, dem->comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "rank box width %g m along axis %d is thinner than the halo %g m (2 r_max + skin): use fewer ranks along that axis (-da_processors_%c) or a larger domain", w, k, (double)dem->reach, "xyz"[k]);
+    PetscCheck(!(dom->nranks[k] > 1 || dom->periodic[k]) || w >= dem->nl.reach, dem->comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "rank box width %g m along axis %d is thinner than the halo %g m (2 r_max + skin): use fewer ranks along that axis (-da_processors_%c) or a larger domain", w, k, (double)dem->nl.reach, "xyz"[k]);
   }
   ex->active = PETSC_FALSE;
   for (int d = 0; d < 27; d++) {
@@ -137,33 +137,33 @@ static const DemSpring *dem_springs_of(const DemSpring *recs, PetscInt nrec, Pet
 size_t DemMigSize(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec)
 {
   PetscInt ns;
-  (void)dem_springs_of(recs, nrec, dem->id[i], &ns);
+  (void)dem_springs_of(recs, nrec, dem->p.id[i], &ns);
   return MIG_RECORD_SIZE(dem, ns);
 }
 
 size_t DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b)
 {
   PetscInt         ns;
-  const DemSpring *s0 = dem_springs_of(recs, nrec, dem->id[i], &ns);
-  const size_t     hw = MIG_HEAD + (dem->external ? MIG_EXT : 0);
+  const DemSpring *s0 = dem_springs_of(recs, nrec, dem->p.id[i], &ns);
+  const size_t     hw = MIG_HEAD + (dem->ext.on ? MIG_EXT : 0);
 
-  b[0] = (double)dem->id[i];
-  b[1] = (double)dem->shape[i];
+  b[0] = (double)dem->p.id[i];
+  b[1] = (double)dem->p.shape[i];
   for (int k = 0; k < 3; k++) {
-    b[2 + k]  = dem->x[3 * i + k] + shift[k];
-    b[5 + k]  = dem->v[3 * i + k];
-    b[8 + k]  = dem->w[3 * i + k];
-    b[15 + k] = dem->f[3 * i + k];
-    b[18 + k] = dem->tq[3 * i + k];
+    b[2 + k]  = dem->p.x[3 * i + k] + shift[k];
+    b[5 + k]  = dem->p.v[3 * i + k];
+    b[8 + k]  = dem->p.w[3 * i + k];
+    b[15 + k] = dem->p.f[3 * i + k];
+    b[18 + k] = dem->p.tq[3 * i + k];
   }
-  for (int k = 0; k < 4; k++) b[11 + k] = dem->q[4 * i + k];
+  for (int k = 0; k < 4; k++) b[11 + k] = dem->p.q[4 * i + k];
   b[21] = (double)ns;
-  if (dem->external) { /* the coupling's per-particle state, so its impulse count stays exact */
-    b[MIG_HEAD + 3] = dem->kdrag[i];
+  if (dem->ext.on) { /* the coupling's per-particle state, so its impulse count stays exact */
+    b[MIG_HEAD + 3] = dem->ext.kdrag[i];
     for (int k = 0; k < 3; k++) {
-      b[MIG_HEAD + k]     = dem->fext[3 * i + k];
-      b[MIG_HEAD + 4 + k] = dem->udrag[3 * i + k];
-      b[MIG_HEAD + 7 + k] = dem->jdrag[3 * i + k];
+      b[MIG_HEAD + k]     = dem->ext.fext[3 * i + k];
+      b[MIG_HEAD + 4 + k] = dem->ext.udrag[3 * i + k];
+      b[MIG_HEAD + 7 + k] = dem->ext.jdrag[3 * i + k];
     }
   }
   for (PetscInt a = 0; a < ns; a++) {
@@ -176,8 +176,8 @@ size_t DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, con
 PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used)
 {
   DemParticle    p;
-  const PetscInt ns = (PetscInt)b[21], i = dem->n;
-  const size_t   hw = MIG_HEAD + (dem->external ? MIG_EXT : 0);
+  const PetscInt ns = (PetscInt)b[21], i = dem->p.n;
+  const size_t   hw = MIG_HEAD + (dem->ext.on ? MIG_EXT : 0);
 
   PetscFunctionBeginUser;
   p.id    = (PetscInt)b[0];
@@ -190,15 +190,15 @@ PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt
   for (int k = 0; k < 4; k++) p.q[k] = b[11 + k];
   PetscCall(DemAddParticle(dem, &p));
   for (int k = 0; k < 3; k++) {
-    dem->f[3 * i + k]  = b[15 + k];
-    dem->tq[3 * i + k] = b[18 + k];
+    dem->p.f[3 * i + k]  = b[15 + k];
+    dem->p.tq[3 * i + k] = b[18 + k];
   }
-  if (dem->external) {
-    dem->kdrag[i] = b[MIG_HEAD + 3];
+  if (dem->ext.on) {
+    dem->ext.kdrag[i] = b[MIG_HEAD + 3];
     for (int k = 0; k < 3; k++) {
-      dem->fext[3 * i + k]  = b[MIG_HEAD + k];
-      dem->udrag[3 * i + k] = b[MIG_HEAD + 4 + k];
-      dem->jdrag[3 * i + k] = b[MIG_HEAD + 7 + k];
+      dem->ext.fext[3 * i + k]  = b[MIG_HEAD + k];
+      dem->ext.udrag[3 * i + k] = b[MIG_HEAD + 4 + k];
+      dem->ext.jdrag[3 * i + k] = b[MIG_HEAD + 7 + k];
     }
   }
   if (*nrec + ns > *caprec) {
@@ -223,19 +223,19 @@ PetscErrorCode DemCheckInDomain(Dem dem)
   const Domain *dom = dem->dom;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->n; i++)
+  for (PetscInt i = 0; i < dem->p.n; i++)
     for (int k = 0; k < 3; k++) {
-      const double x = dem->x[3 * i + k], r = dem->shp[dem->shape[i]].r;
-      PetscCheck(PetscIsInfOrNanReal(x) == PETSC_FALSE, PETSC_COMM_SELF, PETSC_ERR_FP, "t = %g s: particle %" PetscInt_FMT " has a non-finite position; the run is diverging: lower -dem_dt (now %g s)", (double)dem->t, dem->id[i], (double)dem->dt);
+      const double x = dem->p.x[3 * i + k], r = dem->shapes.shp[dem->p.shape[i]].r;
+      PetscCheck(PetscIsInfOrNanReal(x) == PETSC_FALSE, PETSC_COMM_SELF, PETSC_ERR_FP, "t = %g s: particle %" PetscInt_FMT " has a non-finite position; the run is diverging: lower -dem_dt (now %g s)", (double)dem->clock.t, dem->p.id[i], (double)dem->clock.dt);
       if (dom->periodic[k] || (x >= dom->lo[k] - r && x <= dom->hi[k] + r)) continue;
-      for (PetscInt w = 0; w < dem->nwall; w++) { /* wholly behind an unbounded plane: it went through, the step cannot resolve the contact */
-        const DemWall *wl = &dem->wall[w];
+      for (PetscInt w = 0; w < dem->walls.nwall; w++) { /* wholly behind an unbounded plane: it went through, the step cannot resolve the contact */
+        const DemWall *wl = &dem->walls.wall[w];
         double         s  = 0;
         if (wl->kind != DEM_WALL_PLANE || wl->finite) continue;
-        for (int c = 0; c < 3; c++) s += (dem->x[3 * i + c] - wl->p[c]) * wl->n[c];
-        PetscCheck(s >= -r, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "t = %g s: particle %" PetscInt_FMT " went through wall %s and left the domain (%c = %g m): the run is diverging; lower -dem_dt (now %g s) or raise -dem_kn", (double)dem->t, dem->id[i], wl->name, "xyz"[k], x, (double)dem->dt);
+        for (int c = 0; c < 3; c++) s += (dem->p.x[3 * i + c] - wl->p[c]) * wl->n[c];
+        PetscCheck(s >= -r, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "t = %g s: particle %" PetscInt_FMT " went through wall %s and left the domain (%c = %g m): the run is diverging; lower -dem_dt (now %g s) or raise -dem_kn", (double)dem->clock.t, dem->p.id[i], wl->name, "xyz"[k], x, (double)dem->clock.dt);
       }
-      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "t = %g s: particle %" PetscInt_FMT " left the domain across its %s %c side (%c = %g m, domain [%g, %g] m); close that side with walls (-dem_box, -dem_plane_k) or enlarge -domain_lo/-domain_hi", (double)dem->t, dem->id[i], x < dom->lo[k] ? "lower" : "upper", "xyz"[k], "xyz"[k], x, (double)dom->lo[k], (double)dom->hi[k]);
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "t = %g s: particle %" PetscInt_FMT " left the domain across its %s %c side (%c = %g m, domain [%g, %g] m); close that side with walls (-dem_box, -dem_plane_k) or enlarge -domain_lo/-domain_hi", (double)dem->clock.t, dem->p.id[i], x < dom->lo[k] ? "lower" : "upper", "xyz"[k], "xyz"[k], x, (double)dom->lo[k], (double)dom->hi[k]);
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -250,11 +250,11 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
 
   PetscFunctionBeginUser;
   if (!ex->active) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscMalloc2(dem->n + 1, &dir, dem->n + 1, &keep));
+  PetscCall(PetscMalloc2(dem->p.n + 1, &dir, dem->p.n + 1, &keep));
   for (int d = 0; d < 27; d++) soff[d] = 0;
   size_t total = 0;
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const double *x = dem->x + 3 * i;
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    const double *x = dem->p.x + 3 * i;
     dir[i]          = (dem_leave(dem, x, 0) + 1) + 3 * (dem_leave(dem, x, 1) + 1) + 9 * (dem_leave(dem, x, 2) + 1);
     if (dir[i] == 13) {
       keep[nkeep++] = i;
@@ -272,10 +272,10 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
   }
   soff[27] = total;
   PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, total + 1));
-  for (PetscInt i = 0; i < dem->n; i++)
+  for (PetscInt i = 0; i < dem->p.n; i++)
     if (dir[i] != 13) pos[dir[i]] += DemMigPack(dem, i, *recs, *nrec, ex->shift[dir[i]], ex->sbuf + pos[dir[i]]);
-  ex->migrated = dem->n - nkeep;
-  dem->n       = nkeep;
+  ex->migrated = dem->p.n - nkeep;
+  dem->p.n       = nkeep;
   PetscCall(DemParticlesPermute(dem, keep));
   PetscCall(PetscFree2(dir, keep));
   PetscCall(DemExchangeVariable(dem, soff, roff));
@@ -289,15 +289,15 @@ PetscErrorCode DemGhostsCreate(Dem dem)
 {
   DemExchange  *ex = &dem->ex;
   const Domain *dom = dem->dom;
-  const double  h = dem->reach;
+  const double  h = dem->nl.reach;
   size_t        soff[28], roff[28];
 
   PetscFunctionBeginUser;
-  dem->ng = 0;
+  dem->p.ng = 0;
   if (!ex->active) PetscFunctionReturn(PETSC_SUCCESS);
   for (int d = 0; d < 27; d++) ex->nsend[d] = 0;
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const double *x = dem->x + 3 * i;
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    const double *x = dem->p.x + 3 * i;
     int           lo[3], hi[3];
     for (int k = 0; k < 3; k++) {
       lo[k] = x[k] < dom->sublo[k] + h;
@@ -323,31 +323,31 @@ PetscErrorCode DemGhostsCreate(Dem dem)
     for (PetscInt a = 0; a < ex->nsend[d]; a++) {
       const PetscInt i = ex->send[d][a];
       double        *b = ex->sbuf + soff[d] + GHOST_WIDTH * a;
-      b[0]             = (double)dem->id[i];
-      b[1]             = (double)dem->shape[i];
+      b[0]             = (double)dem->p.id[i];
+      b[1]             = (double)dem->p.shape[i];
       for (int k = 0; k < 3; k++) {
-        b[2 + k] = dem->x[3 * i + k] + ex->shift[d][k];
-        b[5 + k] = dem->v[3 * i + k];
-        b[8 + k] = dem->w[3 * i + k];
+        b[2 + k] = dem->p.x[3 * i + k] + ex->shift[d][k];
+        b[5 + k] = dem->p.v[3 * i + k];
+        b[8 + k] = dem->p.w[3 * i + k];
       }
-      for (int k = 0; k < 4; k++) b[11 + k] = dem->q[4 * i + k];
+      for (int k = 0; k < 4; k++) b[11 + k] = dem->p.q[4 * i + k];
     }
   PetscCall(DemExchangeVariable(dem, soff, roff));
-  PetscCall(DemParticlesReserve(dem, dem->n + (PetscInt)(roff[27] / GHOST_WIDTH)));
+  PetscCall(DemParticlesReserve(dem, dem->p.n + (PetscInt)(roff[27] / GHOST_WIDTH)));
   for (int d = 0; d < 27; d++) {
-    ex->recvstart[d] = dem->n + dem->ng;
+    ex->recvstart[d] = dem->p.n + dem->p.ng;
     ex->nrecv[d]     = (PetscInt)((roff[d + 1] - roff[d]) / GHOST_WIDTH);
     for (PetscInt a = 0; a < ex->nrecv[d]; a++) {
       const double  *b = ex->rbuf + roff[d] + GHOST_WIDTH * a;
-      const PetscInt g = dem->n + dem->ng++;
-      dem->id[g]       = (PetscInt)b[0];
-      dem->shape[g]    = (PetscInt)b[1];
+      const PetscInt g = dem->p.n + dem->p.ng++;
+      dem->p.id[g]       = (PetscInt)b[0];
+      dem->p.shape[g]    = (PetscInt)b[1];
       for (int k = 0; k < 3; k++) {
-        dem->x[3 * g + k] = b[2 + k];
-        dem->v[3 * g + k] = b[5 + k];
-        dem->w[3 * g + k] = b[8 + k];
+        dem->p.x[3 * g + k] = b[2 + k];
+        dem->p.v[3 * g + k] = b[5 + k];
+        dem->p.w[3 * g + k] = b[8 + k];
       }
-      for (int k = 0; k < 4; k++) dem->q[4 * g + k] = b[11 + k];
+      for (int k = 0; k < 4; k++) dem->p.q[4 * g + k] = b[11 + k];
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -381,11 +381,11 @@ PetscErrorCode DemGhostsUpdate(Dem dem)
       const PetscInt i = ex->send[d][a];
       double        *b = ex->sbuf + soff[d] + W * a;
       for (int k = 0; k < 3; k++) {
-        b[k]     = dem->x[3 * i + k] + ex->shift[d][k];
-        b[3 + k] = dem->v[3 * i + k];
-        b[6 + k] = dem->w[3 * i + k];
+        b[k]     = dem->p.x[3 * i + k] + ex->shift[d][k];
+        b[3 + k] = dem->p.v[3 * i + k];
+        b[6 + k] = dem->p.w[3 * i + k];
       }
-      for (int k = 0; k < 4; k++) b[9 + k] = dem->q[4 * i + k];
+      for (int k = 0; k < 4; k++) b[9 + k] = dem->p.q[4 * i + k];
     }
     PetscCallMPI(MPI_Isend(ex->sbuf + soff[d], W * (PetscMPIInt)ex->nsend[d], MPI_DOUBLE, ex->rank[d], d, dem->comm, &req[nr++]));
   }
@@ -395,11 +395,11 @@ PetscErrorCode DemGhostsUpdate(Dem dem)
       const PetscInt g = ex->recvstart[d] + a;
       const double  *b = ex->rbuf + roff[d] + W * a;
       for (int k = 0; k < 3; k++) {
-        dem->x[3 * g + k] = b[k];
-        dem->v[3 * g + k] = b[3 + k];
-        dem->w[3 * g + k] = b[6 + k];
+        dem->p.x[3 * g + k] = b[k];
+        dem->p.v[3 * g + k] = b[3 + k];
+        dem->p.w[3 * g + k] = b[6 + k];
       }
-      for (int k = 0; k < 4; k++) dem->q[4 * g + k] = b[9 + k];
+      for (int k = 0; k < 4; k++) dem->p.q[4 * g + k] = b[9 + k];
     }
   PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

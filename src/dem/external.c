@@ -9,14 +9,16 @@
  * A frozen DEM (-dem_frozen) integrates nothing: its particles are fixed obstacles. */
 #include "dem/dem_impl.h"
 
-void DemExternalKick(Dem dem, double h)
+/* The translational half kick of length h with the coupling's forces: writes the local
+ * particles' v and the impulse j; reads f, the coupling's fext, k, u and the shapes' masses. */
+void DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h)
 {
-  double        *v = dem->v, *j = dem->jdrag;
-  const double  *f = dem->f, *fe = dem->fext, *kd = dem->kdrag, *u = dem->udrag;
-  const PetscInt n = dem->n, *shape = dem->shape;
+  double        *v = p->v, *j = e->jdrag;
+  const double  *f = p->f, *fe = e->fext, *kd = e->kdrag, *u = e->udrag;
+  const PetscInt n = p->n, *shape = p->shape;
 
   for (PetscInt i = 0; i < n; i++) {
-    const double im = dem->shp[shape[i]].invm, hk = h * kd[i];
+    const double im = st->shp[shape[i]].invm, hk = h * kd[i];
     const double den = 1.0 / (1.0 + hk * im);
     for (int k = 0; k < 3; k++) {
       const double vn = (v[3 * i + k] + h * (f[3 * i + k] + fe[3 * i + k]) * im + hk * im * u[3 * i + k]) * den;
@@ -28,27 +30,27 @@ void DemExternalKick(Dem dem, double h)
 
 PetscErrorCode DemSetExternal(Dem dem, PetscBool on)
 {
-  double **a[4] = {&dem->fext, &dem->kdrag, &dem->udrag, &dem->jdrag};
+  double **a[4] = {&dem->ext.fext, &dem->ext.kdrag, &dem->ext.udrag, &dem->ext.jdrag};
   int      w[4] = {3, 1, 3, 3};
 
   PetscFunctionBeginUser;
-  if (on == dem->external) PetscFunctionReturn(PETSC_SUCCESS);
+  if (on == dem->ext.on) PetscFunctionReturn(PETSC_SUCCESS);
   for (int k = 0; k < 4; k++) {
-    if (on) PetscCall(PetscCalloc1((size_t)w[k] * (size_t)dem->cap + 1, a[k]));
+    if (on) PetscCall(PetscCalloc1((size_t)w[k] * (size_t)dem->p.cap + 1, a[k]));
     else PetscCall(PetscFree(*a[k]));
   }
-  dem->external = on;
+  dem->ext.on = on;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetExternal(Dem dem, DemExternal *e)
 {
   PetscFunctionBeginUser;
-  PetscCheck(dem->external, PETSC_COMM_SELF, PETSC_ERR_ORDER, "call DemSetExternal(dem, PETSC_TRUE) before DemGetExternal");
-  e->fext = dem->fext;
-  e->k    = dem->kdrag;
-  e->u    = dem->udrag;
-  e->j    = dem->jdrag;
+  PetscCheck(dem->ext.on, PETSC_COMM_SELF, PETSC_ERR_ORDER, "call DemSetExternal(dem, PETSC_TRUE) before DemGetExternal");
+  e->fext = dem->ext.fext;
+  e->k    = dem->ext.kdrag;
+  e->u    = dem->ext.udrag;
+  e->j    = dem->ext.jdrag;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -62,28 +64,28 @@ PetscErrorCode DemGetState(Dem dem, PetscInt *state)
 PetscErrorCode DemGetArrays(Dem dem, DemArrays *a)
 {
   PetscFunctionBeginUser;
-  a->nlocal = dem->n;
-  a->nghost = dem->ng;
-  a->x      = dem->x;
-  a->v      = dem->v;
-  a->id     = dem->id;
-  a->shape  = dem->shape;
+  a->nlocal = dem->p.n;
+  a->nghost = dem->p.ng;
+  a->x      = dem->p.x;
+  a->v      = dem->p.v;
+  a->id     = dem->p.id;
+  a->shape  = dem->p.shape;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetShape(Dem dem, PetscInt s, PetscReal *radius, PetscReal *mass)
 {
   PetscFunctionBeginUser;
-  PetscCheck(s >= 0 && s < dem->nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", s, dem->nshape);
-  if (radius) *radius = dem->shp[s].r;
-  if (mass) *mass = dem->shp[s].m;
+  PetscCheck(s >= 0 && s < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", s, dem->shapes.nshape);
+  if (radius) *radius = dem->shapes.shp[s].r;
+  if (mass) *mass = dem->shapes.shp[s].m;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetShapeCount(Dem dem, PetscInt *n)
 {
   PetscFunctionBeginUser;
-  *n = dem->nshape;
+  *n = dem->shapes.nshape;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -98,7 +100,7 @@ PetscErrorCode DemExternalSetFromOptions(Dem dem)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(dem->comm, NULL, "DEM frozen bed", NULL);
-  PetscCall(PetscOptionsBool("-dem_frozen", "Integrate no particles (fixed obstacles, e.g. a packed bed)", NULL, dem->frozen, &dem->frozen, NULL));
+  PetscCall(PetscOptionsBool("-dem_frozen", "Integrate no particles (fixed obstacles, e.g. a packed bed)", NULL, dem->ext.frozen, &dem->ext.frozen, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -106,13 +108,13 @@ PetscErrorCode DemExternalSetFromOptions(Dem dem)
 PetscErrorCode DemSetFrozen(Dem dem, PetscBool frozen)
 {
   PetscFunctionBeginUser;
-  dem->frozen = frozen;
+  dem->ext.frozen = frozen;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetFrozen(Dem dem, PetscBool *frozen)
 {
   PetscFunctionBeginUser;
-  *frozen = dem->frozen;
+  *frozen = dem->ext.frozen;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

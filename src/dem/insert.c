@@ -45,31 +45,31 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscFunctionBeginUser;
   PetscOptionsBegin(dem->comm, NULL, "DEM insertion", NULL);
   PetscInt nl = 3;
-  PetscCall(PetscOptionsIntArray("-dem_lattice", "Cubic lattice site counts nx,ny,nz (0 = no lattice)", NULL, dem->lat, &nl, &set));
+  PetscCall(PetscOptionsIntArray("-dem_lattice", "Cubic lattice site counts nx,ny,nz (0 = no lattice)", NULL, dem->insert.lat, &nl, &set));
   if (set) PetscCall(SableOptionCount("-dem_lattice", &nl)); /* PETSc drops a surplus count */
   PetscCheck(!set || nl == 3, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_lattice takes 3 counts nx,ny,nz, got %" PetscInt_FMT, nl);
-  PetscCall(PetscOptionsInt("-dem_lattice_count", "Fill only the first this many lattice sites, x fastest then y then z (default all nx*ny*nz)", NULL, dem->lat_count, &dem->lat_count, NULL));
-  PetscCall(PetscOptionsReal("-dem_lattice_spacing", "Lattice spacing (m); default 1.05 x the largest diameter", NULL, dem->lat_a, &dem->lat_a, &set));
-  PetscCheck(!set || dem->lat_a > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_spacing %g must be > 0 (m)", (double)dem->lat_a);
-  PetscCall(SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region; default the domain's lower corner", "m", dem->lat_origin, 0, 3, &dem->lat_origin_set));
-  PetscCall(PetscOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2, in [0,1]", NULL, dem->lat_jitter, &dem->lat_jitter, NULL));
-  PetscCall(PetscOptionsReal("-dem_lattice_speed", "Amplitude of the deterministic random initial velocity (m/s)", NULL, dem->lat_speed, &dem->lat_speed, NULL));
-  PetscCall(PetscOptionsBool("-dem_lattice_random_orientation", "Uniformly random initial orientations (convex shapes)", NULL, dem->random_orient, &dem->random_orient, NULL));
-  PetscCall(PetscOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, dem->seed, &dem->seed, NULL));
-  PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles); default none (the particles come from -dem_lattice)", NULL, dem->init_file, dem->init_file, sizeof dem->init_file, NULL));
-  PetscCall(PetscOptionsReal("-dem_init_file_overlap_max", "Largest overlap / radius a -dem_init_file particle may start with, with another or with a wall; default twice the contact design's overlap at -dem_impact_velocity, at least 0.05", NULL, dem->init_overlap_max, &dem->init_overlap_max, &set));
+  PetscCall(PetscOptionsInt("-dem_lattice_count", "Fill only the first this many lattice sites, x fastest then y then z (default all nx*ny*nz)", NULL, dem->insert.lat_count, &dem->insert.lat_count, NULL));
+  PetscCall(PetscOptionsReal("-dem_lattice_spacing", "Lattice spacing (m); default 1.05 x the largest diameter", NULL, dem->insert.lat_a, &dem->insert.lat_a, &set));
+  PetscCheck(!set || dem->insert.lat_a > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_spacing %g must be > 0 (m)", (double)dem->insert.lat_a);
+  PetscCall(SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region; default the domain's lower corner", "m", dem->insert.lat_origin, 0, 3, &dem->insert.lat_origin_set));
+  PetscCall(PetscOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2, in [0,1]", NULL, dem->insert.lat_jitter, &dem->insert.lat_jitter, NULL));
+  PetscCall(PetscOptionsReal("-dem_lattice_speed", "Amplitude of the deterministic random initial velocity (m/s)", NULL, dem->insert.lat_speed, &dem->insert.lat_speed, NULL));
+  PetscCall(PetscOptionsBool("-dem_lattice_random_orientation", "Uniformly random initial orientations (convex shapes)", NULL, dem->insert.random_orient, &dem->insert.random_orient, NULL));
+  PetscCall(PetscOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, dem->insert.seed, &dem->insert.seed, NULL));
+  PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles); default none (the particles come from -dem_lattice)", NULL, dem->insert.init_file, dem->insert.init_file, sizeof dem->insert.init_file, NULL));
+  PetscCall(PetscOptionsReal("-dem_init_file_overlap_max", "Largest overlap / radius a -dem_init_file particle may start with, with another or with a wall; default twice the contact design's overlap at -dem_impact_velocity, at least 0.05", NULL, dem->insert.init_overlap_max, &dem->insert.init_overlap_max, &set));
   PetscOptionsEnd();
-  PetscCheck(!set || (dem->init_overlap_max > 0 && dem->init_overlap_max < 2), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file_overlap_max %g must be in (0,2) (radii)", (double)dem->init_overlap_max);
-  for (int k = 0; k < 3; k++) PetscCheck(dem->lat[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice count %" PetscInt_FMT " must be >= 0", dem->lat[k]);
+  PetscCheck(!set || (dem->insert.init_overlap_max > 0 && dem->insert.init_overlap_max < 2), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file_overlap_max %g must be in (0,2) (radii)", (double)dem->insert.init_overlap_max);
+  for (int k = 0; k < 3; k++) PetscCheck(dem->insert.lat[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice count %" PetscInt_FMT " must be >= 0", dem->insert.lat[k]);
   {
-    const double sites = (double)dem->lat[0] * (double)dem->lat[1] * (double)dem->lat[2];
-    PetscCheck(sites <= (double)PETSC_MAX_INT, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ": %.0f sites, more than %" PetscInt_FMT " (the integer size PETSc was built with)", dem->lat[0], dem->lat[1], dem->lat[2], sites, (PetscInt)PETSC_MAX_INT);
+    const double sites = (double)dem->insert.lat[0] * (double)dem->insert.lat[1] * (double)dem->insert.lat[2];
+    PetscCheck(sites <= (double)PETSC_MAX_INT, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ": %.0f sites, more than %" PetscInt_FMT " (the integer size PETSc was built with)", dem->insert.lat[0], dem->insert.lat[1], dem->insert.lat[2], sites, (PetscInt)PETSC_MAX_INT);
   }
-  PetscCheck(dem->lat_count >= -1 && dem->lat_count <= dem->lat[0] * dem->lat[1] * dem->lat[2], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_count %" PetscInt_FMT " must be in [0, nx*ny*nz = %" PetscInt_FMT "]", dem->lat_count, dem->lat[0] * dem->lat[1] * dem->lat[2]);
-  if (dem->lat_count < 0) dem->lat_count = dem->lat[0] * dem->lat[1] * dem->lat[2];
-  PetscCheck(dem->lat_jitter >= 0 && dem->lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->lat_jitter);
-  PetscCheck(dem->lat_speed >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_speed %g must be >= 0", (double)dem->lat_speed);
-  if (dem->init_file[0]) PetscCall(IoCheckReadable(dem->comm, "-dem_init_file", dem->init_file));
+  PetscCheck(dem->insert.lat_count >= -1 && dem->insert.lat_count <= dem->insert.lat[0] * dem->insert.lat[1] * dem->insert.lat[2], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_count %" PetscInt_FMT " must be in [0, nx*ny*nz = %" PetscInt_FMT "]", dem->insert.lat_count, dem->insert.lat[0] * dem->insert.lat[1] * dem->insert.lat[2]);
+  if (dem->insert.lat_count < 0) dem->insert.lat_count = dem->insert.lat[0] * dem->insert.lat[1] * dem->insert.lat[2];
+  PetscCheck(dem->insert.lat_jitter >= 0 && dem->insert.lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->insert.lat_jitter);
+  PetscCheck(dem->insert.lat_speed >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_speed %g must be >= 0", (double)dem->insert.lat_speed);
+  if (dem->insert.init_file[0]) PetscCall(IoCheckReadable(dem->comm, "-dem_init_file", dem->insert.init_file));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -98,8 +98,8 @@ static void dem_wrap_periodic(const Domain *dom, double *x)
 double DemLatticeSpacing(Dem dem)
 {
   double dmax = 0;
-  for (PetscInt s = 0; s < dem->nshape; s++) dmax = PetscMax(dmax, 2 * dem->shp[s].r);
-  return dem->lat_a > 0 ? dem->lat_a : 1.05 * dmax;
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) dmax = PetscMax(dmax, 2 * dem->shapes.shp[s].r);
+  return dem->insert.lat_a > 0 ? dem->insert.lat_a : 1.05 * dmax;
 }
 
 /* Site n gets id base + n: base is 0, or one past the largest id of the -dem_init_file
@@ -107,36 +107,36 @@ double DemLatticeSpacing(Dem dem)
 static PetscErrorCode DemInsertLattice(Dem dem, PetscInt base)
 {
   double   dmax = 0, a, gap;
-  PetscInt nsite = dem->lat_count;
+  PetscInt nsite = dem->insert.lat_count;
 
   PetscFunctionBeginUser;
-  for (PetscInt s = 0; s < dem->nshape; s++) dmax = PetscMax(dmax, 2 * dem->shp[s].r);
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) dmax = PetscMax(dmax, 2 * dem->shapes.shp[s].r);
   a = DemLatticeSpacing(dem);
   PetscCheck(a >= dmax, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_spacing %g must be >= the largest diameter %g", a, dmax);
-  gap = 0.5 * (a - dmax) * dem->lat_jitter;
-  if (!dem->lat_origin_set)
-    for (int k = 0; k < 3; k++) dem->lat_origin[k] = dem->dom->lo[k];
-  PetscCall(DemParticlesReserve(dem, dem->n + nsite)); /* exact, not by doubling (upper bound on one rank) */
+  gap = 0.5 * (a - dmax) * dem->insert.lat_jitter;
+  if (!dem->insert.lat_origin_set)
+    for (int k = 0; k < 3; k++) dem->insert.lat_origin[k] = dem->dom->lo[k];
+  PetscCall(DemParticlesReserve(dem, dem->p.n + nsite)); /* exact, not by doubling (upper bound on one rank) */
   for (PetscInt n = 0; n < nsite; n++) {
-    const PetscInt ijk[3] = {n % dem->lat[0], (n / dem->lat[0]) % dem->lat[1], n / (dem->lat[0] * dem->lat[1])};
+    const PetscInt ijk[3] = {n % dem->insert.lat[0], (n / dem->insert.lat[0]) % dem->insert.lat[1], n / (dem->insert.lat[0] * dem->insert.lat[1])};
     DemParticle    p;
-    double         u = dem_uniform(dem->seed, n, 0), acc = 0;
+    double         u = dem_uniform(dem->insert.seed, n, 0), acc = 0;
     PetscCall(PetscMemzero(&p, sizeof p));
     p.id    = base + n;
     p.q[0]  = 1;
-    p.shape = dem->nshape - 1;
-    for (PetscInt s = 0; s < dem->nshape; s++) {
-      acc += dem->shape_frac[s];
+    p.shape = dem->shapes.nshape - 1;
+    for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+      acc += dem->shapes.shape_frac[s];
       if (u < acc) {
         p.shape = s;
         break;
       }
     }
     for (int k = 0; k < 3; k++) {
-      p.x[k] = dem->lat_origin[k] + (ijk[k] + 0.5) * a + gap * (2 * dem_uniform(dem->seed, n, 1 + k) - 1);
-      p.v[k] = dem->lat_speed * (2 * dem_hash_frac((double)(n + 1), k + 1) - 1);
+      p.x[k] = dem->insert.lat_origin[k] + (ijk[k] + 0.5) * a + gap * (2 * dem_uniform(dem->insert.seed, n, 1 + k) - 1);
+      p.v[k] = dem->insert.lat_speed * (2 * dem_hash_frac((double)(n + 1), k + 1) - 1);
     }
-    if (dem->random_orient) dem_random_quat(dem->seed, n, p.q);
+    if (dem->insert.random_orient) dem_random_quat(dem->insert.seed, n, p.q);
     if (dem_in_box(dem->dom, p.x)) PetscCall(DemAddParticle(dem, &p));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -146,13 +146,13 @@ static PetscErrorCode DemInsertLattice(Dem dem, PetscInt base)
 static PetscErrorCode DemShapeForRadius(Dem dem, double r, PetscInt *s)
 {
   PetscFunctionBeginUser;
-  for (*s = 0; *s < dem->nshape; (*s)++)
-    if (PetscAbsReal(dem->shp[*s].r - r) <= 1e-12 * r) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCheck(dem->nshape < DEM_MAX_SHAPES, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: more than %d distinct radii", dem->init_file, DEM_MAX_SHAPES);
-  PetscCheck(r > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: radius %g must be > 0", dem->init_file, r);
-  PetscCheck(!dem->convex, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_init_file %s: bounding radius %g matches none of the -dem_shape shapes", dem->init_file, r);
-  dem->shp[dem->nshape]     = dem->shp[0];
-  dem->shp[dem->nshape++].r = r;
+  for (*s = 0; *s < dem->shapes.nshape; (*s)++)
+    if (PetscAbsReal(dem->shapes.shp[*s].r - r) <= 1e-12 * r) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(dem->shapes.nshape < DEM_MAX_SHAPES, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: more than %d distinct radii", dem->insert.init_file, DEM_MAX_SHAPES);
+  PetscCheck(r > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: radius %g must be > 0", dem->insert.init_file, r);
+  PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_init_file %s: bounding radius %g matches none of the -dem_shape shapes", dem->insert.init_file, r);
+  dem->shapes.shp[dem->shapes.nshape]     = dem->shapes.shp[0];
+  dem->shapes.shp[dem->shapes.nshape++].r = r;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -164,11 +164,11 @@ static PetscErrorCode DemCheckFileIds(Dem dem, const PetscReal *d, PetscInt rows
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(rows + 1, &ids));
   for (PetscInt i = 0; i < rows; i++) {
-    PetscCheck(d[i] >= 0 && d[i] == PetscFloorReal(d[i]) && d[i] <= (PetscReal)PETSC_MAX_INT, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/id, %g, is not an id (a whole number >= 0)", dem->init_file, i, (double)d[i]);
+    PetscCheck(d[i] >= 0 && d[i] == PetscFloorReal(d[i]) && d[i] <= (PetscReal)PETSC_MAX_INT, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/id, %g, is not an id (a whole number >= 0)", dem->insert.init_file, i, (double)d[i]);
     ids[i] = (PetscInt)d[i];
   }
   PetscCall(PetscSortInt(rows, ids));
-  for (PetscInt i = 1; i < rows; i++) PetscCheck(ids[i] != ids[i - 1], dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: particle id %" PetscInt_FMT " appears more than once in /particles/id", dem->init_file, ids[i]);
+  for (PetscInt i = 1; i < rows; i++) PetscCheck(ids[i] != ids[i - 1], dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: particle id %" PetscInt_FMT " appears more than once in /particles/id", dem->insert.init_file, ids[i]);
   PetscCall(PetscFree(ids));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -178,13 +178,13 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
   const char *names[6] = {"/particles/position", "/particles/velocity", "/particles/angular_velocity", "/particles/quaternion", "/particles/id", "/particles/radius"};
   const int   width[6] = {3, 3, 3, 4, 1, 1};
   PetscReal  *d;
-  PetscInt    rows = 0, r, *mine, nmine = 0, n0 = dem->n;
+  PetscInt    rows = 0, r, *mine, nmine = 0, n0 = dem->p.n;
 
   PetscFunctionBeginUser;
   /* one dataset at a time, keeping only this rank's rows: the peak is one column of the file */
   for (int k = 0; k < 6; k++) {
-    PetscCall(IoReadDatasetAll(dem->comm, dem->init_file, names[k], width[k], &r, &d));
-    PetscCheck(k == 0 || r == rows, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " rows, expected %" PetscInt_FMT " (as /particles/position)", dem->init_file, names[k], r, rows);
+    PetscCall(IoReadDatasetAll(dem->comm, dem->insert.init_file, names[k], width[k], &r, &d));
+    PetscCheck(k == 0 || r == rows, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: %s has %" PetscInt_FMT " rows, expected %" PetscInt_FMT " (as /particles/position)", dem->insert.init_file, names[k], r, rows);
     if (k == 0) {
       rows = r;
       PetscCall(PetscMalloc1(rows + 1, &mine));
@@ -204,34 +204,34 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
     if (k == 4) PetscCall(DemCheckFileIds(dem, d, rows));
     for (PetscInt a = 0; a < nmine && k > 0; a++) {
       const PetscInt i = n0 + a, row = mine[a];
-      if (k == 1) for (int c = 0; c < 3; c++) dem->v[3 * i + c] = d[3 * row + c];
-      if (k == 2) for (int c = 0; c < 3; c++) dem->w[3 * i + c] = d[3 * row + c];
+      if (k == 1) for (int c = 0; c < 3; c++) dem->p.v[3 * i + c] = d[3 * row + c];
+      if (k == 2) for (int c = 0; c < 3; c++) dem->p.w[3 * i + c] = d[3 * row + c];
       if (k == 3) {
         const PetscReal *q = d + 4 * row, nq = PetscSqrtReal(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-        PetscCheck(PetscIsNormalReal(nq) && nq > 1e-12, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/quaternion, (%g, %g, %g, %g), is not a rotation (norm %g)", dem->init_file, row, (double)q[0], (double)q[1], (double)q[2], (double)q[3], (double)nq);
+        PetscCheck(PetscIsNormalReal(nq) && nq > 1e-12, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/quaternion, (%g, %g, %g, %g), is not a rotation (norm %g)", dem->insert.init_file, row, (double)q[0], (double)q[1], (double)q[2], (double)q[3], (double)nq);
         const PetscReal sc = PetscAbsReal(nq - 1) < 1e-12 ? 1 : 1 / nq; /* Sable's own (unit) ones kept bitwise, others normalised */
-        for (int c = 0; c < 4; c++) dem->q[4 * i + c] = q[c] * sc;
+        for (int c = 0; c < 4; c++) dem->p.q[4 * i + c] = q[c] * sc;
       }
-      if (k == 4) dem->id[i] = (PetscInt)d[row];
-      if (k == 5) PetscCall(DemShapeForRadius(dem, d[row], &dem->shape[i]));
+      if (k == 4) dem->p.id[i] = (PetscInt)d[row];
+      if (k == 5) PetscCall(DemShapeForRadius(dem, d[row], &dem->p.shape[i]));
     }
     PetscCall(PetscFree(d));
   }
   { /* the shape index written with the frame, when it names a shape of this run with the same
        (bounding) radius; else the shape found by radius stays */
     PetscBool hasshape;
-    PetscCall(IoHasDataset(dem->init_file, "/particles/shape", &hasshape));
+    PetscCall(IoHasDataset(dem->insert.init_file, "/particles/shape", &hasshape));
     if (hasshape) {
-      PetscCall(IoReadDatasetAll(dem->comm, dem->init_file, "/particles/shape", 1, &r, &d));
-      PetscCheck(r == rows, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: /particles/shape has %" PetscInt_FMT " rows, expected %" PetscInt_FMT, dem->init_file, r, rows);
+      PetscCall(IoReadDatasetAll(dem->comm, dem->insert.init_file, "/particles/shape", 1, &r, &d));
+      PetscCheck(r == rows, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: /particles/shape has %" PetscInt_FMT " rows, expected %" PetscInt_FMT, dem->insert.init_file, r, rows);
       for (PetscInt a = 0; a < nmine; a++) {
         const PetscInt i = n0 + a, s = (PetscInt)d[mine[a]];
-        if (s >= 0 && s < dem->nshape && PetscAbsReal(dem->shp[s].r - dem->shp[dem->shape[i]].r) <= 1e-12 * dem->shp[s].r) dem->shape[i] = s;
+        if (s >= 0 && s < dem->shapes.nshape && PetscAbsReal(dem->shapes.shp[s].r - dem->shapes.shp[dem->p.shape[i]].r) <= 1e-12 * dem->shapes.shp[s].r) dem->p.shape[i] = s;
       }
       PetscCall(PetscFree(d));
     }
   }
-  for (PetscInt a = 0; a < nmine; a++) dem->next_id = PetscMax(dem->next_id, dem->id[n0 + a] + 1);
+  for (PetscInt a = 0; a < nmine; a++) dem->p.next_id = PetscMax(dem->p.next_id, dem->p.id[n0 + a] + 1);
   PetscCall(PetscFree(mine));
   *nfile = rows;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -240,24 +240,24 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
 /* Collective. Inserts the lattice and/or the file's particles. */
 PetscErrorCode DemInsert(Dem dem)
 {
-  PetscInt nfile = 0, n0 = dem->n, added, got;
+  PetscInt nfile = 0, n0 = dem->p.n, added, got;
 
   PetscFunctionBeginUser;
   /* a particle outside every rank's box would be lost silently: refuse */
-  if (dem->init_file[0]) {
+  if (dem->insert.init_file[0]) {
     PetscCall(DemInsertFile(dem, &nfile));
-    added = dem->n - n0;
+    added = dem->p.n - n0;
     PetscCallMPI(MPI_Allreduce(&added, &got, 1, MPIU_INT, MPI_SUM, dem->comm));
-    PetscCheck(got == nfile, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: %" PetscInt_FMT " of its %" PetscInt_FMT " particles lie outside the domain box (-domain_lo/-domain_hi): give the domain of the run that wrote it", dem->init_file, nfile - got, nfile);
+    PetscCheck(got == nfile, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file %s: %" PetscInt_FMT " of its %" PetscInt_FMT " particles lie outside the domain box (-domain_lo/-domain_hi): give the domain of the run that wrote it", dem->insert.init_file, nfile - got, nfile);
     /* one past the file's largest id: its particles have ids below it, the lattice's start there */
-    if (nfile) PetscCallMPI(MPI_Allreduce(&dem->next_id, &dem->file_end, 1, MPIU_INT, MPI_MAX, dem->comm));
+    if (nfile) PetscCallMPI(MPI_Allreduce(&dem->p.next_id, &dem->insert.file_end, 1, MPIU_INT, MPI_MAX, dem->comm));
   }
-  if (dem->lat_count > 0) {
-    n0            = dem->n;
-    PetscCall(DemInsertLattice(dem, dem->file_end));
-    added = dem->n - n0;
+  if (dem->insert.lat_count > 0) {
+    n0            = dem->p.n;
+    PetscCall(DemInsertLattice(dem, dem->insert.file_end));
+    added = dem->p.n - n0;
     PetscCallMPI(MPI_Allreduce(&added, &got, 1, MPIU_INT, MPI_SUM, dem->comm));
-    PetscCheck(got == dem->lat_count, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " of %" PetscInt_FMT " lattice particles lie outside the domain box (-domain_lo/-domain_hi); enlarge it or move the lattice (-dem_lattice_origin)", dem->lat_count - got, dem->lat_count);
+    PetscCheck(got == dem->insert.lat_count, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " of %" PetscInt_FMT " lattice particles lie outside the domain box (-domain_lo/-domain_hi); enlarge it or move the lattice (-dem_lattice_origin)", dem->insert.lat_count - got, dem->insert.lat_count);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -34,33 +34,34 @@ static inline void dem_spin_first_half(double *restrict wi, double *restrict qi,
 }
 
 /* Half kick and drift (with one shape a flat loop over the 3n components, which vectorises)
- * and the largest displacement since the list build, block by block, and for spheres with friction the spin half
- * kick and quaternion step. */
-PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
+ * and the largest displacement since the list build, block by block, and for spheres with
+ * friction (rotation) the spin half kick and quaternion step. Writes the local particles' x, v,
+ * w, q (and the coupling's impulse); reads f, tq, x0 and the shapes' masses and inertias. */
+PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2)
 {
-  const double           dt = dem->dt, h = 0.5 * dem->dt;
-  double *restrict       x = dem->x, *restrict v = dem->v, *restrict w = dem->w, *restrict q = dem->q;
-  const double *restrict f = dem->f, *restrict tq = dem->tq, *restrict x0 = dem->x0;
-  const PetscInt         n = dem->n, *restrict shape = dem->shape;
+  const double           h = 0.5 * dt;
+  double *restrict       x = p->x, *restrict v = p->v, *restrict w = p->w, *restrict q = p->q;
+  const double *restrict f = p->f, *restrict tq = p->tq, *restrict x0 = p->x0;
+  const PetscInt         n = p->n, *restrict shape = p->shape;
   double                 d2max = 0, d2sum = 0;
 
   PetscFunctionBeginUser;
   *maxdisp2 = 0;
-  if (dem->frozen) PetscFunctionReturn(PETSC_SUCCESS);
+  if (e->frozen) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(DEM_Integrate, 0, 0, 0, 0));
-  if (dem->external) DemExternalKick(dem, h);
+  if (e->on) DemExternalKick(p, st, e, h);
   /* blocks of particles small enough to stay in L1 between the kick-drift and the displacement */
   for (PetscInt b0 = 0; b0 < n; b0 += DEM_INTEGRATE_BLOCK) {
     const PetscInt b1 = PetscMin(b0 + DEM_INTEGRATE_BLOCK, n);
-    if (dem->nshape == 1) {
-      const double im = dem->external ? 0 : dem->shp[0].invm;
+    if (st->nshape == 1) {
+      const double im = e->on ? 0 : st->shp[0].invm;
       for (PetscInt k = 3 * b0; k < 3 * b1; k++) {
         v[k] += h * f[k] * im;
         x[k] += dt * v[k];
       }
     } else
       for (PetscInt i = b0; i < b1; i++) {
-        const double im = dem->external ? 0 : dem->shp[shape[i]].invm;
+        const double im = e->on ? 0 : st->shp[shape[i]].invm;
         for (int k = 0; k < 3; k++) {
           v[3 * i + k] += h * f[3 * i + k] * im;
           x[3 * i + k] += dt * v[3 * i + k];
@@ -77,10 +78,10 @@ PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
     }
   }
   if (d2sum != d2sum) d2max = d2sum; /* DemStep stops on a non-finite displacement */
-  if (dem->convex) PetscCall(DemRotateFirstHalf(dem)); /* full inertia tensor (rotation.c) */
-  else if (dem->rotation)
+  if (st->convex) PetscCall(DemRotateFirstHalf(p, st, dt)); /* full inertia tensor (rotation.c) */
+  else if (rotation)
     for (PetscInt i = 0; i < n; i++) {
-      const double ii = dem->nshape == 1 ? dem->shp[0].invi : dem->shp[shape[i]].invi;
+      const double ii = st->nshape == 1 ? st->shp[0].invi : st->shp[shape[i]].invi;
       dem_spin_first_half(w + 3 * i, q + 4 * i, tq + 3 * i, ii, h);
     }
   *maxdisp2 = d2max;
@@ -90,33 +91,33 @@ PetscErrorCode DemIntegrateFirstHalf(Dem dem, double *maxdisp2)
 }
 
 /* Half kicks of v and (spheres) w; with one shape a flat loop over the 3n components. */
-PetscErrorCode DemIntegrateSecondHalf(Dem dem)
+PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt)
 {
-  const double           h = 0.5 * dem->dt;
-  double *restrict       v = dem->v, *restrict w = dem->w;
-  const double *restrict f = dem->f, *restrict tq = dem->tq;
-  const PetscInt         n = dem->n, *restrict shape = dem->shape;
-  const PetscBool        spin = (PetscBool)(dem->rotation && !dem->convex);
+  const double           h = 0.5 * dt;
+  double *restrict       v = p->v, *restrict w = p->w;
+  const double *restrict f = p->f, *restrict tq = p->tq;
+  const PetscInt         n = p->n, *restrict shape = p->shape;
+  const PetscBool        spin = (PetscBool)(rotation && !st->convex);
 
   PetscFunctionBeginUser;
-  if (dem->frozen) PetscFunctionReturn(PETSC_SUCCESS);
+  if (e->frozen) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(DEM_Integrate, 0, 0, 0, 0));
-  if (dem->external) DemExternalKick(dem, h);
-  else if (dem->nshape == 1) {
-    const double im = dem->shp[0].invm;
+  if (e->on) DemExternalKick(p, st, e, h);
+  else if (st->nshape == 1) {
+    const double im = st->shp[0].invm;
     for (PetscInt k = 0; k < 3 * n; k++) v[k] += h * f[k] * im;
   } else
     for (PetscInt i = 0; i < n; i++) {
-      const double im = dem->shp[shape[i]].invm;
+      const double im = st->shp[shape[i]].invm;
       for (int k = 0; k < 3; k++) v[3 * i + k] += h * f[3 * i + k] * im;
     }
-  if (dem->convex) PetscCall(DemRotateSecondHalf(dem)); /* full inertia tensor (rotation.c) */
-  else if (spin && dem->nshape == 1) {
-    const double ii = dem->shp[0].invi;
+  if (st->convex) PetscCall(DemRotateSecondHalf(p, st, dt)); /* full inertia tensor (rotation.c) */
+  else if (spin && st->nshape == 1) {
+    const double ii = st->shp[0].invi;
     for (PetscInt k = 0; k < 3 * n; k++) w[k] += h * tq[k] * ii;
   } else if (spin)
     for (PetscInt i = 0; i < n; i++) {
-      const double ii = dem->shp[shape[i]].invi;
+      const double ii = st->shp[shape[i]].invi;
       for (int k = 0; k < 3; k++) w[3 * i + k] += h * tq[3 * i + k] * ii;
     }
   PetscCall(PetscLogEventEnd(DEM_Integrate, 0, 0, 0, 0));

@@ -5,41 +5,13 @@
  *   cells); a local-ghost pair is listed in the local particle's row on both ranks.
  *   Full list (-dem_deterministic): every partner in every row, rows sorted by partner id, so a
  *   particle's force is summed in the same order whatever the decomposition or the sort.
- * Rebuild (dem.c decides when: a particle or a wall moved more than skin/2, agreed by all
- * ranks): springs saved by id pair -> migration -> re-sort of the locals by cell every
- * -dem_sort_interval builds -> ghost creation -> bins -> rows -> springs restored by id pair
- * (in the half list a pair found under (j, i) takes the opposite spring). Cell coordinates are
- * clamped to the grid, which keeps every pair within reach in adjacent cells even for a particle
- * outside the box (clamping is 1-Lipschitz). */
+ * This file only builds lists: the rebuild that calls it (rebuild.c) also migrates, creates the
+ * ghosts and carries the springs. Between migration and ghost creation the locals are re-sorted
+ * along a Z-order curve of the cells every -dem_sort_interval builds (DemNeighSort); after it the
+ * bins and rows cover locals and ghosts (DemNeighBuildList). Cell coordinates are clamped to the
+ * grid, which keeps every pair within reach in adjacent cells even for a particle outside the box
+ * (clamping is 1-Lipschitz). */
 #include "dem/dem_impl.h"
-
-static int dem_spring_cmp(const void *a, const void *b)
-{
-  const DemSpring *x = (const DemSpring *)a, *y = (const DemSpring *)b;
-  if (x->owner != y->owner) return x->owner < y->owner ? -1 : 1;
-  return x->partner < y->partner ? -1 : (x->partner > y->partner);
-}
-
-PetscErrorCode DemSpringsSort(DemSpring *r, PetscInt n)
-{
-  PetscFunctionBeginUser;
-  if (n > 1) qsort(r, (size_t)n, sizeof *r, dem_spring_cmp);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* The record (owner, partner), or with partner = PETSC_MIN_INT the first record of owner. */
-const DemSpring *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, PetscInt partner)
-{
-  PetscInt lo = 0, hi = n; /* first record >= (owner, partner) */
-  while (lo < hi) {
-    const PetscInt m = (lo + hi) / 2;
-    if (r[m].owner < owner || (r[m].owner == owner && r[m].partner < partner)) lo = m + 1;
-    else hi = m;
-  }
-  if (lo == n || r[lo].owner != owner) return NULL;
-  if (partner != PETSC_MIN_INT && r[lo].partner != partner) return NULL;
-  return r + lo;
-}
 
 /* Morton key of a cell: the bits of cx, cy, cz interleaved. */
 static uint64_t dem_morton(PetscInt cx, PetscInt cy, PetscInt cz)
@@ -80,24 +52,24 @@ static PetscErrorCode DemCellsZOrder(DemNeigh *nl)
 static PetscErrorCode DemCellsSetUp(Dem dem)
 {
   DemNeigh *nl = &dem->nl;
-  double    len[3], c = dem->reach, ncell;
+  double    len[3], c = dem->nl.reach, ncell;
 
   PetscFunctionBeginUser;
-  for (int k = 0; k < 3; k++) len[k] = dem->dom->subhi[k] - dem->dom->sublo[k] + 2 * dem->reach;
+  for (int k = 0; k < 3; k++) len[k] = dem->dom->subhi[k] - dem->dom->sublo[k] + 2 * dem->nl.reach;
   /* never more than ~8 cells per particle (+1000): a huge box with few particles stays cheap,
      and a tall column whose bed fills a fifth of it (a fluidized bed) keeps cells of one reach
      (at 2 per particle its cells grew to 1.56 reach: 3.8x the candidate pairs, +23% list time) */
   for (;;) {
     ncell = 1;
     for (int k = 0; k < 3; k++) ncell *= PetscMax(1.0, PetscFloorReal(len[k] / c));
-    if (ncell <= 8.0 * dem->n + 1000) break;
+    if (ncell <= 8.0 * dem->p.n + 1000) break;
     c *= 1.25;
   }
   PetscCall(PetscFree(nl->cstart));
   nl->ncell = 1;
   for (int k = 0; k < 3; k++) {
     nl->nc[k]  = (PetscInt)PetscMax(1.0, PetscFloorReal(len[k] / c));
-    nl->lo[k]  = dem->dom->sublo[k] - dem->reach;
+    nl->lo[k]  = dem->dom->sublo[k] - dem->nl.reach;
     nl->inv[k] = nl->nc[k] / len[k];
     nl->ncell *= nl->nc[k];
   }
@@ -125,7 +97,7 @@ static PetscErrorCode DemBin(Dem dem, PetscInt m, const PetscInt *key)
   PetscCall(PetscMalloc1(m + 1, &nl->order));
   PetscCall(PetscArrayzero(nl->cstart, nl->ncell + 1));
   for (PetscInt i = 0; i < m; i++) {
-    const double *xi = dem->x + 3 * i;
+    const double *xi = dem->p.x + 3 * i;
     nl->cof[i]       = dem_cell_coord(nl, xi, 0) + nl->nc[0] * (dem_cell_coord(nl, xi, 1) + nl->nc[1] * dem_cell_coord(nl, xi, 2));
     if (key) nl->cof[i] = key[nl->cof[i]];
     nl->cstart[nl->cof[i] + 1]++;
@@ -146,7 +118,7 @@ static const int dem_stencil[14][3] = {
 
 static int dem_nbr_id_cmp(const void *a, const void *b, const Dem dem)
 {
-  const PetscInt x = dem->id[*(const PetscInt *)a], y = dem->id[*(const PetscInt *)b];
+  const PetscInt x = dem->p.id[*(const PetscInt *)a], y = dem->p.id[*(const PetscInt *)b];
   return x < y ? -1 : (x > y);
 }
 
@@ -169,13 +141,13 @@ static PetscErrorCode DemPairList(Dem dem)
 {
   DemNeigh    *nl = &dem->nl;
   PetscInt     m = 0;
-  const double skin = dem->skin;
+  const double skin = dem->nl.skin;
 
   PetscFunctionBeginUser;
   PetscCall(PetscFree(nl->start));
-  PetscCall(PetscMalloc1(dem->n + 1, &nl->start));
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const double *xi = dem->x + 3 * i, ri = dem->shp[dem->shape[i]].r;
+  PetscCall(PetscMalloc1(dem->p.n + 1, &nl->start));
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    const double *xi = dem->p.x + 3 * i, ri = dem->shapes.shp[dem->p.shape[i]].r;
     PetscInt      c[3];
     nl->start[i] = m;
     for (int k = 0; k < 3; k++) c[k] = dem_cell_coord(nl, xi, k);
@@ -192,8 +164,8 @@ static PetscErrorCode DemPairList(Dem dem)
       for (PetscInt a = nl->cstart[cell]; a < nl->cstart[cell + 1]; a++) {
         const PetscInt j = nl->order[a];
         if (j == i) continue;
-        if (!dem->full_list && j < dem->n && (s >= 14 || (s == 0 && j < i))) continue; /* the pair is in j's row */
-        const double *xj = dem->x + 3 * j, rc = ri + dem->shp[dem->shape[j]].r + skin;
+        if (!dem->nl.full_list && j < dem->p.n && (s >= 14 || (s == 0 && j < i))) continue; /* the pair is in j's row */
+        const double *xj = dem->p.x + 3 * j, rc = ri + dem->shapes.shp[dem->p.shape[j]].r + skin;
         const double  d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
         if (dem_dot(d, d) >= rc * rc) continue;
         if (m == nl->cap) {
@@ -203,117 +175,48 @@ static PetscErrorCode DemPairList(Dem dem)
         nl->nbr[m++] = j;
       }
     }
-    if (dem->full_list) dem_row_sort(dem, nl->nbr + nl->start[i], m - nl->start[i]);
+    if (dem->nl.full_list) dem_row_sort(dem, nl->nbr + nl->start[i], m - nl->start[i]);
   }
-  nl->start[dem->n] = m;
+  nl->start[dem->p.n] = m;
   PetscCall(PetscFree(nl->own));
   PetscCall(PetscMalloc1(m + 1, &nl->own));
-  for (PetscInt i = 0; i < dem->n; i++)
+  for (PetscInt i = 0; i < dem->p.n; i++)
     for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) nl->own[a] = i;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The current springs as id-keyed records, sorted (pairs and walls). */
-static PetscErrorCode DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap)
+/* Not collective. At each rebuild, after migration: sets up the cells over the box if there are
+ * none (the first build, or after DemNeighResetCells) and, every -dem_sort_interval builds,
+ * re-sorts the local particles along the Z-order of the cells. */
+PetscErrorCode DemNeighSort(Dem dem)
 {
   DemNeigh *nl = &dem->nl;
-  PetscInt  n  = 0;
-  /* a pair listed once is saved from both sides when particles may move to another rank, so
-     that each takes its own side of the spring along */
-  const PetscBool twice = (PetscBool)(!dem->full_list && dem->ex.active);
 
   PetscFunctionBeginUser;
-  for (int pass = 0; pass < 2; pass++) { /* count, then fill: the records are a transient peak */
-    if (pass) {
-      *cap = n + 64;
-      PetscCall(PetscMalloc1(*cap, recs));
-    }
-    n = 0;
-    if (nl->hist && nl->start)
-      for (PetscInt i = 0; i < dem->n; i++)
-        for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
-          const double  *h = nl->hist + 3 * a;
-          const PetscInt j = nl->nbr[a];
-          if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-          if (pass) (*recs)[n] = (DemSpring){dem->id[i], dem->id[j], {h[0], h[1], h[2]}};
-          n++;
-          if (!twice || j >= dem->n) continue;
-          if (pass) (*recs)[n] = (DemSpring){dem->id[j], dem->id[i], {-h[0], -h[1], -h[2]}};
-          n++;
-        }
-    if (dem->law != DEM_LAW_LINEAR_NOHIST)
-      for (PetscInt w = 0; w < dem->nwall; w++)
-        for (PetscInt a = 0; a < dem->wall[w].cnt; a++) {
-          const double *h = dem->wall[w].hist + 3 * a;
-          if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-          if (pass) (*recs)[n] = (DemSpring){dem->id[dem->wall[w].idx[a]], -1 - w, {h[0], h[1], h[2]}};
-          n++;
-        }
-  }
-  *nrec = n;
-  PetscCall(DemSpringsSort(*recs, n));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Springs of the new rows from the records. */
-static PetscErrorCode DemSpringsRestore(Dem dem, const DemSpring *recs, PetscInt nrec)
-{
-  DemNeigh *nl = &dem->nl;
-  PetscInt  m  = nl->start[dem->n];
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscFree(nl->hist));
-  PetscCall(PetscCalloc1(3 * (size_t)m + 3, &nl->hist));
-  if (!nrec) PetscFunctionReturn(PETSC_SUCCESS);
-  for (PetscInt i = 0; i < dem->n; i++)
-    for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
-      const PetscInt   j = nl->nbr[a];
-      const DemSpring *r = DemSpringFind(recs, nrec, dem->id[i], dem->id[j]);
-      double          *h = nl->hist + 3 * a;
-      if (r) for (int k = 0; k < 3; k++) h[k] = r->xi[k];
-      else if (!dem->full_list && (r = DemSpringFind(recs, nrec, dem->id[j], dem->id[i])))
-        for (int k = 0; k < 3; k++) h[k] = -r->xi[k]; /* stored from the partner's side */
-    }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Collective. Rebuilds exchange, cells, lists and springs. */
-PetscErrorCode DemNeighBuild(Dem dem)
-{
-  DemNeigh  *nl = &dem->nl;
-  DemSpring *recs;
-  PetscInt   nrec, caprec;
-
-  PetscFunctionBeginUser;
-  dem->state++; /* migration and re-sorting change the local order */
-  PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));
-  PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
-  dem->ng = 0;
-  PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
-  PetscCall(DemCheckInDomain(dem));
-  if (dem->remap) PetscCall(DemMigrateGlobal(dem, &recs, &nrec, &caprec));
-  else PetscCall(DemMigrate(dem, &recs, &nrec, &caprec));
-  dem->remap = PETSC_FALSE;
-  PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
   if (!nl->cstart) PetscCall(DemCellsSetUp(dem));
-  if (dem->sort_interval > 0 && nl->builds % dem->sort_interval == 0) {
-    PetscCall(DemBin(dem, dem->n, nl->zrank));
+  if (dem->nl.sort_interval > 0 && nl->builds % dem->nl.sort_interval == 0) {
+    PetscCall(DemBin(dem, dem->p.n, nl->zrank));
     PetscCall(DemParticlesPermute(dem, nl->order));
     nl->sorts++;
   }
-  PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
-  PetscCall(DemGhostsCreate(dem));
-  PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
-  PetscCall(DemBin(dem, dem->n + dem->ng, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective. Bins the local particles and the ghosts and builds the pair list. */
+PetscErrorCode DemNeighBuildList(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DemBin(dem, dem->p.n + dem->p.ng, NULL));
   PetscCall(DemPairList(dem));
-  if (dem->law != DEM_LAW_LINEAR_NOHIST) PetscCall(DemSpringsRestore(dem, recs, nrec));
-  PetscCall(DemWallsBuildLists(dem, recs, nrec));
-  PetscCall(PetscArraycpy(dem->x0, dem->x, 3 * dem->n));
-  for (PetscInt w = 0; w < dem->nwall; w++) dem->wall[w].moved = 0;
-  nl->builds++;
-  dem->need_build = PETSC_FALSE;
-  PetscCall(PetscFree(recs));
-  PetscCall(PetscLogEventEnd(DEM_Neighbours, 0, 0, 0, 0));
+  dem->nl.builds++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The cell grid is set up anew at the next build (the rank's box changed). */
+PetscErrorCode DemNeighResetCells(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(dem->nl.cstart));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -42,8 +42,8 @@ typedef struct {
 
 static DemPlaceOrigin dem_origin(const Dem dem, PetscInt id)
 {
-  if (dem->lat_count > 0 && id >= dem->file_end && id < dem->file_end + dem->lat_count) return PLACE_LATTICE;
-  return id < dem->file_end ? PLACE_FILE : PLACE_OTHER;
+  if (dem->insert.lat_count > 0 && id >= dem->insert.file_end && id < dem->insert.file_end + dem->insert.lat_count) return PLACE_LATTICE;
+  return id < dem->insert.file_end ? PLACE_FILE : PLACE_OTHER;
 }
 
 /* Whether key a is a worse finding than key b: a lower kind, then deeper, then a smaller id. */
@@ -56,7 +56,7 @@ static PetscBool dem_place_worse(const double *a, const double *b)
 
 static void dem_place_consider(const Dem dem, DemPlaceKind kind, double depth, PetscInt i, PetscInt j, PetscInt wall, DemPlaceFind *best)
 {
-  const double key[3] = {(double)kind, depth, (double)(j < 0 ? dem->id[i] : PetscMin(dem->id[i], dem->id[j]))};
+  const double key[3] = {(double)kind, depth, (double)(j < 0 ? dem->p.id[i] : PetscMin(dem->p.id[i], dem->p.id[j]))};
   if (!dem_place_worse(key, best->key)) return;
   for (int k = 0; k < 3; k++) best->key[k] = key[k];
   best->i    = i;
@@ -71,12 +71,12 @@ static double DemPlaceFileLimit(Dem dem)
 {
   double ov = 0;
 
-  if (dem->init_overlap_max > 0) return dem->init_overlap_max;
-  for (PetscInt s = 0; s < dem->nshape; s++)
-    for (PetscInt t = -1; t < dem->nshape; t++) {
-      const DemPairParams *p = t < 0 ? &dem->pw[s] : &dem->pp[s * dem->nshape + t];
-      const DemShape      *a = &dem->shp[s], *b = &dem->shp[t < 0 ? s : t];
-      ov = PetscMax(ov, DemImpactOverlap(dem, p) / (dem->convex ? PetscMin(a->req, b->req) : PetscMin(a->r, b->r)));
+  if (dem->insert.init_overlap_max > 0) return dem->insert.init_overlap_max;
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++)
+    for (PetscInt t = -1; t < dem->shapes.nshape; t++) {
+      const DemPairParams *p = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
+      const DemShape      *a = &dem->shapes.shp[s], *b = &dem->shapes.shp[t < 0 ? s : t];
+      ov = PetscMax(ov, DemImpactOverlap(dem, p) / (dem->shapes.convex ? PetscMin(a->req, b->req) : PetscMin(a->r, b->r)));
     }
   return PetscMax(DEM_PLACE_FILE_MIN, 2 * ov);
 }
@@ -84,13 +84,13 @@ static double DemPlaceFileLimit(Dem dem)
 /* Overlap of local particle i with wall w, in radii (0: clear). */
 static PetscErrorCode DemPlaceWallDepth(Dem dem, const DemWall *w, PetscInt i, double *depth)
 {
-  const DemShape *s = &dem->shp[dem->shape[i]];
-  const double   *x = dem->x + 3 * i;
+  const DemShape *s = &dem->shapes.shp[dem->p.shape[i]];
+  const double   *x = dem->p.x + 3 * i;
 
   PetscFunctionBeginUser;
   *depth = 0;
-  if (dem->convex) {
-    const ConvexPose pose = DemPose(x, dem->q + 4 * i);
+  if (dem->shapes.convex) {
+    const ConvexPose pose = DemPose(x, dem->p.q + 4 * i);
     ConvexContact    c;
     PetscCall(ConvexCollidePlane(s->cvx, &pose, w->p, w->n, &c));
     if (c.overlap && DemWallCovers(w, c.point, x)) *depth = c.depth / s->req;
@@ -104,16 +104,16 @@ static PetscErrorCode DemPlaceWallDepth(Dem dem, const DemWall *w, PetscInt i, d
 /* Overlap of the pair (i, j) in radii of the smaller (0: clear). */
 static PetscErrorCode DemPlacePairDepth(Dem dem, PetscInt i, PetscInt j, double *depth)
 {
-  const DemShape *si = &dem->shp[dem->shape[i]], *sj = &dem->shp[dem->shape[j]];
+  const DemShape *si = &dem->shapes.shp[dem->p.shape[i]], *sj = &dem->shapes.shp[dem->p.shape[j]];
 
   PetscFunctionBeginUser;
   *depth = 0;
-  if (dem->convex) {
+  if (dem->shapes.convex) {
     ConvexContact c;
     PetscCall(DemConvexPairContact(dem, i, j, &c));
     if (c.overlap) *depth = c.depth / PetscMin(si->req, sj->req);
   } else {
-    const double d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
+    const double d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
     *depth = PetscMax(0.0, si->r + sj->r - sqrt(dem_dot(d, d))) / PetscMin(si->r, sj->r);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -124,20 +124,20 @@ static PetscErrorCode DemPlaceScan(Dem dem, double limit, DemPlaceFind *best)
   const DemNeigh *nl = &dem->nl;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const DemPlaceOrigin oi = dem_origin(dem, dem->id[i]);
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    const DemPlaceOrigin oi = dem_origin(dem, dem->p.id[i]);
     if (oi == PLACE_OTHER) continue;
-    for (PetscInt w = 0; w < dem->nwall; w++) {
+    for (PetscInt w = 0; w < dem->walls.nwall; w++) {
       double depth;
-      PetscCall(DemPlaceWallDepth(dem, &dem->wall[w], i, &depth));
+      PetscCall(DemPlaceWallDepth(dem, &dem->walls.wall[w], i, &depth));
       if (depth > (oi == PLACE_LATTICE ? DEM_PLACE_ROUNDOFF : limit)) dem_place_consider(dem, oi == PLACE_LATTICE ? FIND_LATTICE_WALL : FIND_FILE_WALL, depth, i, -1, w, best);
     }
     for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
       const PetscInt       j  = nl->nbr[a];
-      const DemPlaceOrigin oj = dem_origin(dem, dem->id[j]);
+      const DemPlaceOrigin oj = dem_origin(dem, dem->p.id[j]);
       DemPlaceKind         kind;
       double               depth;
-      if (oj == PLACE_OTHER || dem->id[j] == dem->id[i]) continue; /* a periodic image of itself */
+      if (oj == PLACE_OTHER || dem->p.id[j] == dem->p.id[i]) continue; /* a periodic image of itself */
       if (oi == PLACE_LATTICE) kind = oj == PLACE_LATTICE ? FIND_LATTICE_LATTICE : FIND_LATTICE_FILE;
       else kind = oj == PLACE_LATTICE ? FIND_LATTICE_FILE : FIND_FILE_FILE;
       PetscCall(DemPlacePairDepth(dem, i, j, &depth));
@@ -163,14 +163,14 @@ static PetscErrorCode DemPlaceWallText(const DemWall *w, char *buf, size_t len)
 static PetscErrorCode DemPlaceLatticeText(Dem dem, char *buf, size_t len, double ext[3])
 {
   const double   a   = DemLatticeSpacing(dem);
-  const PetscInt cnt = dem->lat_count, nx = dem->lat[0], nxy = dem->lat[0] * dem->lat[1];
+  const PetscInt cnt = dem->insert.lat_count, nx = dem->insert.lat[0], nxy = dem->insert.lat[0] * dem->insert.lat[1];
 
   PetscFunctionBeginUser;
   ext[0] = a * PetscMin(nx, cnt);
-  ext[1] = a * PetscMin(dem->lat[1], (cnt + nx - 1) / nx);
+  ext[1] = a * PetscMin(dem->insert.lat[1], (cnt + nx - 1) / nx);
   ext[2] = a * ((cnt + nxy - 1) / nxy);
-  PetscCall(PetscSNPrintf(buf, len, "-dem_lattice %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT " from -dem_lattice_origin %.6g,%.6g,%.6g%s, -dem_lattice_spacing %.6g%s", dem->lat[0], dem->lat[1], dem->lat[2], dem->lat_origin[0], dem->lat_origin[1], dem->lat_origin[2], dem->lat_origin_set ? "" : " (default: the domain's lower corner)", a,
-                         dem->lat_a > 0 ? "" : " (default: 1.05 x the largest diameter)"));
+  PetscCall(PetscSNPrintf(buf, len, "-dem_lattice %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT " from -dem_lattice_origin %.6g,%.6g,%.6g%s, -dem_lattice_spacing %.6g%s", dem->insert.lat[0], dem->insert.lat[1], dem->insert.lat[2], dem->insert.lat_origin[0], dem->insert.lat_origin[1], dem->insert.lat_origin[2], dem->insert.lat_origin_set ? "" : " (default: the domain's lower corner)", a,
+                         dem->insert.lat_a > 0 ? "" : " (default: 1.05 x the largest diameter)"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -181,7 +181,7 @@ static PetscErrorCode DemPlaceOriginHint(Dem dem, const DemWall *w, const double
   buf[0] = 0;
   if (w->kind != DEM_WALL_PLANE) PetscFunctionReturn(PETSC_SUCCESS);
   for (int k = 0; k < 3; k++) {
-    double o[3] = {dem->lat_origin[0], dem->lat_origin[1], dem->lat_origin[2]};
+    double o[3] = {dem->insert.lat_origin[0], dem->insert.lat_origin[1], dem->insert.lat_origin[2]};
     if (PetscAbsReal(w->n[k]) <= 1 - 1e-12) continue;
     o[k] = w->n[k] > 0 ? w->p[k] : w->p[k] - ext[k];
     PetscCall(PetscSNPrintf(buf, len, " (e.g. -dem_lattice_origin %.6g,%.6g,%.6g puts it on the wall)", o[0], o[1], o[2]));
@@ -194,7 +194,7 @@ static void dem_place_position(const Dem dem, PetscInt i, double x[3])
 {
   const Domain *dom = dem->dom;
   for (int k = 0; k < 3; k++) {
-    x[k] = dem->x[3 * i + k];
+    x[k] = dem->p.x[3 * i + k];
     if (dom->periodic[k] && (x[k] < dom->lo[k] || x[k] >= dom->hi[k])) x[k] -= dom->len[k] * floor((x[k] - dom->lo[k]) / dom->len[k]);
   }
 }
@@ -209,40 +209,40 @@ static PetscErrorCode DemPlaceMessage(Dem dem, const DemPlaceFind *f, double lim
   double             ext[3];
 
   PetscFunctionBeginUser;
-  if (dem->lat_count > 0) PetscCall(DemPlaceLatticeText(dem, lat, sizeof lat, ext));
-  if (kind == FIND_LATTICE_FILE && dem_origin(dem, dem->id[i]) != PLACE_LATTICE) { /* the lattice particle first */
+  if (dem->insert.lat_count > 0) PetscCall(DemPlaceLatticeText(dem, lat, sizeof lat, ext));
+  if (kind == FIND_LATTICE_FILE && dem_origin(dem, dem->p.id[i]) != PLACE_LATTICE) { /* the lattice particle first */
     i = f->j;
     j = f->i;
   }
-  if (j >= 0 && kind != FIND_LATTICE_FILE && dem->id[j] < dem->id[i]) { /* a pair of one kind: by id */
+  if (j >= 0 && kind != FIND_LATTICE_FILE && dem->p.id[j] < dem->p.id[i]) { /* a pair of one kind: by id */
     i = f->j;
     j = f->i;
   }
   double xi[3], xj[3] = {0, 0, 0};
   dem_place_position(dem, i, xi);
   if (j >= 0) dem_place_position(dem, j, xj);
-  PetscCall(PetscSNPrintf(lim, sizeof lim, "more than a contact reaches (limit %.3g radii, -dem_init_file_overlap_max%s)", limit, dem->init_overlap_max > 0 ? "" : ": by default twice the contact design's overlap at -dem_impact_velocity, at least 0.05"));
+  PetscCall(PetscSNPrintf(lim, sizeof lim, "more than a contact reaches (limit %.3g radii, -dem_init_file_overlap_max%s)", limit, dem->insert.init_overlap_max > 0 ? "" : ": by default twice the contact design's overlap at -dem_impact_velocity, at least 0.05"));
   if (f->wall >= 0) {
-    PetscCall(DemPlaceWallText(&dem->wall[f->wall], wall, sizeof wall));
+    PetscCall(DemPlaceWallText(&dem->walls.wall[f->wall], wall, sizeof wall));
     if (depth >= 2) PetscCall(PetscSNPrintf(how, sizeof how, "lies wholly on the wrong side of %s", wall));
     else PetscCall(PetscSNPrintf(how, sizeof how, "overlaps %s by %.3g radii", wall, depth));
   }
   switch (kind) {
   case FIND_LATTICE_WALL:
-    PetscCall(DemPlaceOriginHint(dem, &dem->wall[f->wall], ext, hint, sizeof hint));
-    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "lattice particle id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) %s: the lattice (%s) crosses that wall; move -dem_lattice_origin so that the whole block, %.6g x %.6g x %.6g m from the origin, lies on the wall's granular side%s, or use fewer sites", dem->id[i], xi[0], xi[1], xi[2], how, lat, ext[0], ext[1], ext[2], hint));
+    PetscCall(DemPlaceOriginHint(dem, &dem->walls.wall[f->wall], ext, hint, sizeof hint));
+    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "lattice particle id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) %s: the lattice (%s) crosses that wall; move -dem_lattice_origin so that the whole block, %.6g x %.6g x %.6g m from the origin, lies on the wall's granular side%s, or use fewer sites", dem->p.id[i], xi[0], xi[1], xi[2], how, lat, ext[0], ext[1], ext[2], hint));
     break;
   case FIND_LATTICE_LATTICE:
-    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "lattice particles id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) and id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) overlap by %.3g radii: the lattice (%s) is longer than the periodic domain along an axis (-domain_lo/-domain_hi), so its last layer meets the periodic image of the first; use fewer sites or a smaller spacing", dem->id[i], xi[0], xi[1], xi[2], dem->id[j], xj[0], xj[1], xj[2], depth, lat));
+    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "lattice particles id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) and id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) overlap by %.3g radii: the lattice (%s) is longer than the periodic domain along an axis (-domain_lo/-domain_hi), so its last layer meets the periodic image of the first; use fewer sites or a smaller spacing", dem->p.id[i], xi[0], xi[1], xi[2], dem->p.id[j], xj[0], xj[1], xj[2], depth, lat));
     break;
   case FIND_LATTICE_FILE:
-    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "lattice particle id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) overlaps particle id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) of -dem_init_file %s by %.3g radii: the lattice (%s) is inserted in addition to the file's particles; to restart from the file alone give -dem_lattice 0,0,0, or move the lattice clear of them with -dem_lattice_origin", dem->id[i], xi[0], xi[1], xi[2], dem->id[j], xj[0], xj[1], xj[2], dem->init_file, depth, lat));
+    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "lattice particle id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) overlaps particle id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) of -dem_init_file %s by %.3g radii: the lattice (%s) is inserted in addition to the file's particles; to restart from the file alone give -dem_lattice 0,0,0, or move the lattice clear of them with -dem_lattice_origin", dem->p.id[i], xi[0], xi[1], xi[2], dem->p.id[j], xj[0], xj[1], xj[2], dem->insert.init_file, depth, lat));
     break;
   case FIND_FILE_WALL:
-    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "-dem_init_file %s: particle id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) %s, %s: the file's particles do not fit this run's walls; give the walls of the run that wrote it", dem->init_file, dem->id[i], xi[0], xi[1], xi[2], how, lim));
+    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "-dem_init_file %s: particle id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) %s, %s: the file's particles do not fit this run's walls; give the walls of the run that wrote it", dem->insert.init_file, dem->p.id[i], xi[0], xi[1], xi[2], how, lim));
     break;
   default:
-    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "-dem_init_file %s: particles id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) and id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) overlap by %.3g radii, %s: no run reaches that state (an edited or merged file, or a diverged run); rebuild the file, or raise -dem_init_file_overlap_max knowingly", dem->init_file, dem->id[i], xi[0], xi[1], xi[2], dem->id[j], xj[0], xj[1], xj[2], depth, lim));
+    PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "-dem_init_file %s: particles id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) and id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) overlap by %.3g radii, %s: no run reaches that state (an edited or merged file, or a diverged run); rebuild the file, or raise -dem_init_file_overlap_max knowingly", dem->insert.init_file, dem->p.id[i], xi[0], xi[1], xi[2], dem->p.id[j], xj[0], xj[1], xj[2], depth, lim));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -257,7 +257,7 @@ PetscErrorCode DemCheckPlacement(Dem dem)
   const double limit = DemPlaceFileLimit(dem);
 
   PetscFunctionBeginUser;
-  if (dem->lat_count <= 0 && dem->file_end <= 0) PetscFunctionReturn(PETSC_SUCCESS);
+  if (dem->insert.lat_count <= 0 && dem->insert.file_end <= 0) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(DEM_Placement, 0, 0, 0, 0));
   PetscCall(DemPlaceScan(dem, limit, &best));
   PetscCallMPI(MPI_Comm_size(dem->comm, &size));

@@ -5,7 +5,9 @@
  * step, coupling state, tangential springs keyed by ids), after wrapping positions across
  * periodic boundaries. The owner is found from the cut positions computed exactly as the rank
  * boxes are (lo + cells * h), so the global and the neighbour migrations agree on every
- * particle. Then ghosts and lists are rebuilt from scratch (the cell grid follows the new box). */
+ * particle. DemRedistribute (rebuild.c) runs it as the migration of a full rebuild, the cell grid
+ * set up anew over the new box. Also here: what the balancer measures (the halo width, the
+ * particles per grid cell, the compute time). */
 #include "dem/dem_impl.h"
 
 /* Rank column along axis k whose box holds coordinate x: box r is [lo + s_r h, lo + s_{r+1} h)
@@ -34,10 +36,10 @@ PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, Petsc
   PetscCallMPI(MPI_Comm_size(dem->comm, &size));
   PetscCallMPI(MPI_Comm_rank(dem->comm, &me));
   PetscCall(DMDAGetOwnershipRanges(dom->da, &l[0], &l[1], &l[2]));
-  PetscCall(PetscMalloc2(dem->n + 1, &owner, dem->n + 1, &keep));
+  PetscCall(PetscMalloc2(dem->p.n + 1, &owner, dem->p.n + 1, &keep));
   PetscCall(PetscCalloc4(size, &scnt, size + 1, &sdsp, size, &rcnt, size + 1, &rdsp));
-  for (PetscInt i = 0; i < dem->n; i++) {
-    double     *x = dem->x + 3 * i;
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    double     *x = dem->p.x + 3 * i;
     PetscMPIInt c[3];
     for (int k = 0; k < 3; k++) {
       if (dom->periodic[k] && x[k] < dom->lo[k]) x[k] += dom->len[k];
@@ -57,10 +59,10 @@ PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, Petsc
   for (PetscMPIInt r = 0; r < size; r++) sdsp[r + 1] = sdsp[r] + scnt[r];
   PetscCall(PetscArraycpy(rdsp, sdsp, size)); /* running positions while packing */
   PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, total + 1));
-  for (PetscInt i = 0; i < dem->n; i++)
+  for (PetscInt i = 0; i < dem->p.n; i++)
     if (owner[i] != me) rdsp[owner[i]] += (PetscMPIInt)DemMigPack(dem, i, *recs, *nrec, zero, ex->sbuf + rdsp[owner[i]]);
-  ex->migrated = dem->n - nkeep;
-  dem->n       = nkeep;
+  ex->migrated = dem->p.n - nkeep;
+  dem->p.n       = nkeep;
   PetscCall(DemParticlesPermute(dem, keep));
   PetscCallMPI(MPI_Alltoall(scnt, 1, MPI_INT, rcnt, 1, MPI_INT, dem->comm));
   rdsp[0] = 0;
@@ -78,35 +80,10 @@ PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, Petsc
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemRedistribute(Dem dem)
-{
-  PetscFunctionBeginUser;
-  PetscCall(DemExchangeSetUp(dem));  /* same neighbours; re-checks the box widths */
-  PetscCall(PetscFree(dem->nl.cstart)); /* the cell grid covers the new box */
-  dem->remap = PETSC_TRUE;
-  PetscCall(DemNeighBuild(dem));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach)
 {
   PetscFunctionBeginUser;
-  *reach = dem->reach;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode DemGetStopSignal(Dem dem, int *sig)
-{
-  PetscFunctionBeginUser;
-  *sig = dem->stop_sig;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode DemGetLargestRadius(Dem dem, PetscReal *r)
-{
-  PetscFunctionBeginUser;
-  *r = 0;
-  for (PetscInt s = 0; s < dem->nshape; s++) *r = PetscMax(*r, dem->shp[s].r);
+  *reach = dem->nl.reach;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -115,10 +92,10 @@ PetscErrorCode DemGetCellCounts(Dem dem, PetscInt *count)
   const Domain *dom = dem->dom;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->n; i++) {
+  for (PetscInt i = 0; i < dem->p.n; i++) {
     PetscInt c[3];
     for (int k = 0; k < 3; k++) { /* a particle a little outside its box counts in its edge cell */
-      c[k] = (PetscInt)PetscFloorReal((dem->x[3 * i + k] - dom->lo[k]) / dom->h[k]);
+      c[k] = (PetscInt)PetscFloorReal((dem->p.x[3 * i + k] - dom->lo[k]) / dom->h[k]);
       c[k] = PetscMin(PetscMax(c[k], dom->cstart[k]), dom->cstart[k] + dom->ccount[k] - 1);
     }
     count[c[0] + dom->cells[0] * (c[1] + dom->cells[1] * c[2])] += 1;

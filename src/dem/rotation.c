@@ -77,20 +77,21 @@ static inline void dem_kick(const double *R, const double *invJ, double h, const
   for (int k = 0; k < 3; k++) w[k] += dw[k];
 }
 
-PetscErrorCode DemRotateFirstHalf(Dem dem)
+/* Writes the local particles' q and w; reads tq and the shapes' inertia. */
+PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt)
 {
-  const double h = 0.5 * dem->dt, dt = dem->dt;
+  const double h = 0.5 * dt;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const DemShape *sh = &dem->shp[dem->shape[i]];
-    double         *q = dem->q + 4 * i, *w = dem->w + 3 * i, R[9], wb[3], L[3];
+  for (PetscInt i = 0; i < p->n; i++) {
+    const DemShape *sh = &st->shp[p->shape[i]];
+    double         *q = p->q + 4 * i, *w = p->w + 3 * i, R[9], wb[3], L[3];
     if (sh->iso) {
-      dem_rotor_iso(dt, h * sh->invJ[0], dem->tq + 3 * i, q, w);
+      dem_rotor_iso(dt, h * sh->invJ[0], p->tq + 3 * i, q, w);
       continue;
     }
     dem_quat_matrix(q, R);
-    dem_kick(R, sh->invJ, h, dem->tq + 3 * i, w);
+    dem_kick(R, sh->invJ, h, p->tq + 3 * i, w);
     convex_mat_tvec(R, w, wb);
     for (int k = 0; k < 3; k++) L[k] = sh->J[k] * wb[k];
     const double l2 = L[0] * L[0] + L[1] * L[1] + L[2] * L[2];
@@ -110,25 +111,26 @@ PetscErrorCode DemRotateFirstHalf(Dem dem)
     for (int k = 0; k < 3; k++) wb[k] = L[k] * sh->invJ[k];
     convex_mat_vec(R, wb, w);
   }
-  PetscCall(PetscLogFlops(250.0 * dem->n));
+  PetscCall(PetscLogFlops(250.0 * p->n));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemRotateSecondHalf(Dem dem)
+/* Writes the local particles' w; reads q, tq and the shapes' inertia. */
+PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt)
 {
-  const double h = 0.5 * dem->dt;
+  const double h = 0.5 * dt;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const DemShape *sh = &dem->shp[dem->shape[i]];
+  for (PetscInt i = 0; i < p->n; i++) {
+    const DemShape *sh = &st->shp[p->shape[i]];
     double          R[9];
     if (sh->iso) {
-      for (int k = 0; k < 3; k++) dem->w[3 * i + k] += h * sh->invJ[0] * dem->tq[3 * i + k];
+      for (int k = 0; k < 3; k++) p->w[3 * i + k] += h * sh->invJ[0] * p->tq[3 * i + k];
       continue;
     }
-    dem_quat_matrix(dem->q + 4 * i, R);
-    dem_kick(R, sh->invJ, h, dem->tq + 3 * i, dem->w + 3 * i);
+    dem_quat_matrix(p->q + 4 * i, R);
+    dem_kick(R, sh->invJ, h, p->tq + 3 * i, p->w + 3 * i);
   }
-  PetscCall(PetscLogFlops(40.0 * dem->n));
+  PetscCall(PetscLogFlops(40.0 * p->n));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

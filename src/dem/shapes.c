@@ -66,18 +66,18 @@ static PetscErrorCode DemConvexCreate(Dem dem, const DemShapeSpec *sp, ConvexSha
 /* Fills shape s from its spec (collective: every rank builds the same table). */
 static PetscErrorCode DemShapeBuild(Dem dem, PetscInt s, const DemShapeSpec *sp)
 {
-  DemShape *sh = &dem->shp[s];
+  DemShape *sh = &dem->shapes.shp[s];
 
   PetscFunctionBeginUser;
-  sh->rho = dem->shp[0].rho;
+  sh->rho = dem->shapes.shp[0].rho;
   if (sp->kind == DEM_SHAPE_SPHERE) {
     sh->r   = sp->deq > 0 ? 0.5 * sp->deq : 0.5 * sp->size;
     sh->cvx = NULL;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(DemConvexCreate(dem, sp, &dem->cvx[s]));
-  sh->cvx = &dem->cvx[s];
-  sh->r   = dem->cvx[s].bounding_radius;
+  PetscCall(DemConvexCreate(dem, sp, &dem->shapes.cvx[s]));
+  sh->cvx = &dem->shapes.cvx[s];
+  sh->r   = dem->shapes.cvx[s].bounding_radius;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -158,85 +158,10 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem)
   if (ns) {
     PetscCall(DemShapesDestroy(dem));
     for (PetscInt s = 0; s < ns; s++) PetscCall(DemShapeBuild(dem, s, &sp[s]));
-    dem->nshape = ns;
-    dem->convex = (PetscBool)(sp[0].kind != DEM_SHAPE_SPHERE);
+    dem->shapes.nshape = ns;
+    dem->shapes.convex = (PetscBool)(sp[0].kind != DEM_SHAPE_SPHERE);
   }
   for (PetscInt s = 0; s < DEM_MAX_SHAPES; s++) PetscCall(PetscFree(files[s]));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* The face axis (index into sh->fn) parallel to the normal of hull triangle t. */
-static PetscInt DemFaceAxis(const DemShape *sh, const ConvexShape *c, PetscInt t)
-{
-  const double *a = c->v + 3 * c->f[3 * t], *b = c->v + 3 * c->f[3 * t + 1], *d = c->v + 3 * c->f[3 * t + 2];
-  double        e1[3], e2[3], n[3], len, best = -1;
-  PetscInt      m = 0;
-  for (int k = 0; k < 3; k++) e1[k] = b[k] - a[k], e2[k] = d[k] - a[k];
-  dem_cross(e1, e2, n);
-  len = sqrt(dem_dot(n, n));
-  for (PetscInt k = 0; k < sh->nfn; k++) {
-    const double t2 = PetscAbsReal(dem_dot(n, sh->fn + 3 * k)) / len;
-    if (t2 > best) best = t2, m = k;
-  }
-  return m;
-}
-
-/* Distinct face directions of a polyhedron (n and -n count once), for the separating-axis cache
- * of contacts_convex.c. A cylinder has none (its axis test uses the centre line only). */
-static PetscErrorCode DemShapeFaceAxes(DemShape *sh)
-{
-  const ConvexShape *c = sh->cvx;
-
-  PetscFunctionBeginUser;
-  sh->nfn = 0;
-  if (c->kind != CONVEX_POLYHEDRON) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscFree(sh->fn));
-  PetscCall(PetscMalloc1(3 * c->nf, &sh->fn));
-  for (PetscInt t = 0; t < c->nf; t++) {
-    const double *a = c->v + 3 * c->f[3 * t], *b = c->v + 3 * c->f[3 * t + 1], *d = c->v + 3 * c->f[3 * t + 2];
-    double        e1[3], e2[3], n[3], len;
-    PetscBool     dup = PETSC_FALSE;
-    for (int k = 0; k < 3; k++) e1[k] = b[k] - a[k], e2[k] = d[k] - a[k];
-    dem_cross(e1, e2, n);
-    len = sqrt(dem_dot(n, n));
-    for (int k = 0; k < 3; k++) n[k] /= len;
-    for (PetscInt m = 0; m < sh->nfn && !dup; m++) dup = (PetscBool)(PetscAbsReal(dem_dot(n, sh->fn + 3 * m)) > 1 - 1e-9);
-    if (dup) continue;
-    for (int k = 0; k < 3; k++) sh->fn[3 * sh->nfn + k] = n[k];
-    sh->nfn++;
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Distinct directions of the true edges of a polyhedron (hull triangle edges whose two triangles
- * are not coplanar), for the edge-edge axes of the separating-axis cache. */
-static PetscErrorCode DemShapeEdgeAxes(DemShape *sh)
-{
-  const ConvexShape *c = sh->cvx;
-
-  PetscFunctionBeginUser;
-  sh->nen = 0;
-  if (c->kind != CONVEX_POLYHEDRON) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscFree(sh->en));
-  PetscCall(PetscMalloc1(9 * c->nf, &sh->en));
-  for (PetscInt t = 0; t < c->nf; t++)
-    for (int e = 0; e < 3; e++) {
-      const PetscInt a = c->f[3 * t + e], b = c->f[3 * t + (e + 1) % 3];
-      PetscInt       o = -1;
-      for (PetscInt u = 0; u < c->nf && o < 0; u++) /* the triangle across the edge (b, a) */
-        for (int g = 0; g < 3; g++)
-          if (c->f[3 * u + g] == b && c->f[3 * u + (g + 1) % 3] == a) o = u;
-      if (o < 0 || PetscAbsReal(dem_dot(sh->fn + 3 * DemFaceAxis(sh, c, t), sh->fn + 3 * DemFaceAxis(sh, c, o))) > 1 - 1e-9) continue;
-      double    d[3], len;
-      PetscBool dup = PETSC_FALSE;
-      for (int k = 0; k < 3; k++) d[k] = c->v[3 * b + k] - c->v[3 * a + k];
-      len = sqrt(dem_dot(d, d));
-      for (int k = 0; k < 3; k++) d[k] /= len;
-      for (PetscInt m = 0; m < sh->nen && !dup; m++) dup = (PetscBool)(PetscAbsReal(dem_dot(d, sh->en + 3 * m)) > 1 - 1e-9);
-      if (dup) continue;
-      for (int k = 0; k < 3; k++) sh->en[3 * sh->nen + k] = d[k];
-      sh->nen++;
-    }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -244,8 +169,8 @@ static PetscErrorCode DemShapeEdgeAxes(DemShape *sh)
 PetscErrorCode DemShapesSetUp(Dem dem)
 {
   PetscFunctionBeginUser;
-  for (PetscInt s = 0; s < dem->nshape; s++) {
-    DemShape *sh = &dem->shp[s];
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    DemShape *sh = &dem->shapes.shp[s];
     if (!sh->cvx) {
       sh->vol = 4.0 / 3.0 * PETSC_PI * sh->r * sh->r * sh->r;
       sh->req = sh->r;
@@ -264,9 +189,8 @@ PetscErrorCode DemShapesSetUp(Dem dem)
       sh->invJ[k] = 1.0 / sh->J[k];
     }
     sh->inertia = (sh->J[0] + sh->J[1] + sh->J[2]) / 3.0; /* only for reports */
-    PetscCall(DemShapeFaceAxes(sh));
-    PetscCall(DemShapeEdgeAxes(sh));
-    (void)DemShapeBoxFrame(sh);
+    PetscCall(ConvexAxesDestroy(&sh->ax));
+    PetscCall(ConvexAxesCreate(sh->cvx, &sh->ax)); /* for the separating-axis tests (convex_contacts.c) */
     sh->iso = (PetscBool)(PetscAbsReal(sh->J[0] - sh->J[2]) <= 1e-12 * sh->J[2] && PetscAbsReal(sh->J[1] - sh->J[2]) <= 1e-12 * sh->J[2]);
     sh->invi    = 1.0 / sh->inertia;
   }
@@ -276,19 +200,16 @@ PetscErrorCode DemShapesSetUp(Dem dem)
 PetscErrorCode DemShapesDestroy(Dem dem)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree(dem->sepax));
-  PetscCall(PetscFree2(dem->rot, dem->rot_stamp));
-  dem->rot_cap = dem->rot_pass = dem->rot_pairs = 0;
+  PetscCall(PetscFree(dem->narrow.sepax));
+  PetscCall(PetscFree2(dem->narrow.rot, dem->narrow.rot_stamp));
+  dem->narrow.rot_cap = dem->narrow.rot_pass = dem->narrow.rot_pairs = 0;
   for (PetscInt s = 0; s < DEM_MAX_SHAPES; s++) {
-    PetscCall(ConvexShapeDestroy(&dem->cvx[s]));
-    if (dem->shp[s].cvx) {
-      PetscCall(PetscFree(dem->shp[s].fn));
-      PetscCall(PetscFree(dem->shp[s].en));
-    }
-    dem->shp[s].nen = 0;
-    dem->shp[s].cvx = NULL;
-    dem->shp[s].nfn = 0;
-    dem->shp[s].box = PETSC_FALSE;
+    PetscCall(ConvexShapeDestroy(&dem->shapes.cvx[s]));
+    if (dem->shapes.shp[s].cvx) PetscCall(ConvexAxesDestroy(&dem->shapes.shp[s].ax));
+    dem->shapes.shp[s].cvx    = NULL;
+    dem->shapes.shp[s].ax.nfn = 0;
+    dem->shapes.shp[s].ax.nen = 0;
+    dem->shapes.shp[s].ax.box = PETSC_FALSE;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -296,15 +217,23 @@ PetscErrorCode DemShapesDestroy(Dem dem)
 PetscErrorCode DemHasConvexShapes(Dem dem, PetscBool *convex)
 {
   PetscFunctionBeginUser;
-  *convex = dem->convex;
+  *convex = dem->shapes.convex;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetLargestRadius(Dem dem, PetscReal *r)
+{
+  PetscFunctionBeginUser;
+  *r = 0;
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) *r = PetscMax(*r, dem->shapes.shp[s].r);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetShapeGeometry(Dem dem, PetscInt s, PetscReal *volume, PetscReal *d_eq)
 {
   PetscFunctionBeginUser;
-  PetscCheck(s >= 0 && s < dem->nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", s, dem->nshape);
-  if (volume) *volume = dem->shp[s].vol;
-  if (d_eq) *d_eq = 2 * dem->shp[s].req;
+  PetscCheck(s >= 0 && s < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape %" PetscInt_FMT " not in [0, %" PetscInt_FMT ")", s, dem->shapes.nshape);
+  if (volume) *volume = dem->shapes.shp[s].vol;
+  if (d_eq) *d_eq = 2 * dem->shapes.shp[s].req;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

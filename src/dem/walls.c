@@ -1,7 +1,8 @@
-/* Walls: infinite planes given by a point p and a unit normal n pointing into the granular side,
- * optionally translating at a constant velocity; an axis-aligned box is six such planes facing
- * inward; finite rectangles, convex polygons and a square hopper (walls_polygon.c); a cylinder
- * with particles inside, rotating about its axis, with co-rotating end caps (walls_cylinder.c).
+/* Walls: the store and the sphere contacts. A wall is an infinite plane given by a point p and a
+ * unit normal n pointing into the granular side, optionally translating at a constant velocity;
+ * or a finite rectangle, a convex polygon (walls_polygon.c), a cylinder with particles inside,
+ * rotating about its axis (walls_cylinder.c). The options that make them are read in
+ * walls_options.c, which calls the readers of those files; they add walls here (DemWallAdd).
  * A sphere touches a wall when its overlap (dem_impl.h: dem_wall_sphere) is positive: for a
  * plane r - (x - p).n; for a cylinder r + |rho| - R. The contact uses the same kernels as a
  * particle pair, with the wall as a partner of infinite mass and radius (m* = m, R* = r) whose
@@ -12,13 +13,8 @@
  * Edges: a rectangle or a polygon is touched only where the sphere's centre (the contact point)
  * projects inside it and lies in front of it; a sphere overhanging a joint edge feels no force
  * from that face (the neighbouring face takes over, as in a box corner or a hopper's corners).
- * Only edges marked as free rims (the hopper's orifice) are touched as segments.
- * Options: -dem_box xlo,ylo,zlo,xhi,yhi,zhi (m); -dem_plane_<k> px,py,pz,nx,ny,nz (m, -);
- * -dem_plane_<k>_velocity vx,vy,vz (m/s), k = 0..9; -dem_rect_<k> x0,y0,z0,x1,y1,z1,x2,y2,z2 (m),
- * k = 0..9: a finite rectangle with corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0), facing
- * the side (p1 - p0) x (p2 - p0) points to; -dem_quad_<k> (4 vertices), -dem_hopper (walls_polygon.c);
- * -dem_cylinder, -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); -dem_<wall>_friction
- * overrides -dem_wall_friction for that wall. At most DEM_MAX_WALLS walls in all. */
+ * Only edges marked as free rims (the hopper's orifice) are touched as segments. At most
+ * DEM_MAX_WALLS walls in all. */
 #include "dem/dem_impl.h"
 
 /* Adds a plane wall; name is the option that made it (messages name the wall by it). */
@@ -28,9 +24,9 @@ PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const do
   double   nn = sqrt(dem_dot(n, n));
 
   PetscFunctionBeginUser;
-  PetscCheck(dem->nwall < DEM_MAX_WALLS, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "at most %d walls", DEM_MAX_WALLS);
-  PetscCheck(nn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "wall %" PetscInt_FMT ": the normal must be non-zero", dem->nwall);
-  w = &dem->wall[dem->nwall++];
+  PetscCheck(dem->walls.nwall < DEM_MAX_WALLS, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "at most %d walls", DEM_MAX_WALLS);
+  PetscCheck(nn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "wall %" PetscInt_FMT ": the normal must be non-zero", dem->walls.nwall);
+  w = &dem->walls.wall[dem->walls.nwall++];
   PetscCall(PetscMemzero(w, sizeof *w));
   w->mu = -1; /* the wall material's friction */
   PetscCall(PetscStrncpy(w->name, name, sizeof w->name));
@@ -38,30 +34,6 @@ PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const do
     w->p[k] = p[k];
     w->n[k] = n[k] / nn;
     w->v[k] = v[k];
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r[9])
-{
-  double   e1[3], e2[3], n[3], z[3] = {0, 0, 0};
-  DemWall *w;
-
-  PetscFunctionBeginUser;
-  for (int k = 0; k < 3; k++) {
-    e1[k] = r[3 + k] - r[k];
-    e2[k] = r[6 + k] - r[k];
-  }
-  dem_cross(e1, e2, n);
-  const double l1 = sqrt(dem_dot(e1, e1)), l2 = sqrt(dem_dot(e2, e2));
-  PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
-  PetscCall(DemWallAdd(dem, opt, r, n, z));
-  w         = &dem->wall[dem->nwall - 1];
-  w->finite = PETSC_TRUE;
-  w->kind   = DEM_WALL_RECT;
-  for (int k = 0; k < 3; k++) {
-    w->e1[k] = e1[k];
-    w->e2[k] = e2[k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -75,66 +47,15 @@ PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem d
   PetscBool set;
 
   PetscFunctionBeginUser;
-  for (int k = 0; k < 7; k++) mu[k] = dem->wmat.mu; /* the default -help shows */
+  for (int k = 0; k < 7; k++) mu[k] = dem->contact.wmat.mu; /* the default -help shows */
   PetscCall(PetscOptionsRealArray(opt, "Friction coefficient of this wall, overriding -dem_wall_friction (box: xlo,ylo,zlo,xhi,yhi,zhi)", NULL, mu, &got, &set));
   if (!set) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(got == n, dem->comm, PETSC_ERR_ARG_SIZ, "%s takes %" PetscInt_FMT " values, got %" PetscInt_FMT, opt, n, got);
   for (PetscInt k = 0; k < n; k++) {
     PetscCheck(mu[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", opt, (double)mu[k]);
     /* box walls were added as xlo, xhi, ylo, yhi, zlo, zhi */
-    dem->wall[first + (n == 6 ? 2 * (k % 3) + k / 3 : k)].mu = mu[k];
+    dem->walls.wall[first + (n == 6 ? 2 * (k % 3) + k / 3 : k)].mu = mu[k];
   }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode DemWallsSetFromOptions(Dem dem)
-{
-  PetscReal box[6], pl[6], vel[3];
-  PetscBool set, vset;
-  char      opt[64], optv[80];
-
-  PetscFunctionBeginUser;
-  PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
-  PetscCall(SableOptionsRealN("-dem_box", "Closed box of six inward-facing walls: xlo,ylo,zlo,xhi,yhi,zhi", "m", box, 0, 6, &set));
-  if (set) {
-    for (int k = 0; k < 3; k++) {
-      double p[3] = {0, 0, 0}, n[3] = {0, 0, 0}, z[3] = {0, 0, 0};
-      PetscCheck(box[k + 3] > box[k], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_box: upper bound %g must exceed lower bound %g on axis %d", (double)box[k + 3], (double)box[k], k);
-      PetscCheck(!dem->dom->periodic[k], dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_box puts walls across the %c axis, which is periodic (-domain_periodic_%c): nothing could cross it; close the other axes with -dem_plane_k", "xyz"[k], "xyz"[k]);
-      p[k] = box[k];
-      n[k] = 1;
-      PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_box %clo", "xyz"[k]));
-      PetscCall(DemWallAdd(dem, opt, p, n, z));
-      p[k] = box[k + 3];
-      n[k] = -1;
-      PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_box %chi", "xyz"[k]));
-      PetscCall(DemWallAdd(dem, opt, p, n, z));
-    }
-    PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, dem->nwall - 6));
-  }
-  for (int k = 0; k < 10; k++) {
-    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_plane_%d", k));
-    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_velocity", k));
-    PetscCall(SableOptionsRealN(opt, "Infinite plane wall: point px,py,pz and normal nx,ny,nz into the granular side", "m, -", pl, 0, 6, &set));
-    vel[0] = vel[1] = vel[2] = 0;
-    PetscCall(SableOptionsRealN(optv, "Translation velocity of the plane wall", "m/s", vel, 3, 3, &vset));
-    PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
-    PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
-    if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
-    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
-    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
-  }
-  for (int k = 0; k < 10; k++) {
-    PetscReal r[9];
-    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_rect_%d", k));
-    PetscCall(SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2; faces the side (p1-p0)x(p2-p0) points to", "m", r, 0, 9, &set));
-    if (set) PetscCall(DemWallAddRect(dem, opt, r));
-    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
-    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->nwall - 1));
-  }
-  PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));  /* -dem_quad_<k>, -dem_hopper */
-  PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem)); /* -dem_cylinder (drum) */
-  PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -168,8 +89,8 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
     c[q][b] = q & 2 ? dom->hi[b] : dom->lo[b];
   }
   *closed = PETSC_FALSE;
-  for (PetscInt wi = 0; wi < dem->nwall && !*closed; wi++) {
-    const DemWall *w      = &dem->wall[wi];
+  for (PetscInt wi = 0; wi < dem->walls.nwall && !*closed; wi++) {
+    const DemWall *w      = &dem->walls.wall[wi];
     PetscBool      behind = PETSC_TRUE, spans = PETSC_TRUE;
     if (w->kind == DEM_WALL_CYLINDER) { /* parallel to the face and wholly inside of it */
       if (PetscAbsReal(w->n[d]) < 1e-12) *closed = (PetscBool)(side ? w->p[d] + w->R <= dom->hi[d] + tol : w->p[d] - w->R >= dom->lo[d] - tol);
@@ -187,28 +108,28 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
 
 /* Lists of the local particles within r + skin of each wall; springs restored from the id-keyed
  * records (partner = -1 - wall index). */
-PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
+PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const DemShapeTable *st, double skin, const DemSpring *recs, PetscInt nrec)
 {
   PetscFunctionBeginUser;
-  for (PetscInt wi = 0; wi < dem->nwall; wi++) {
-    DemWall *w = &dem->wall[wi];
+  for (PetscInt wi = 0; wi < walls->nwall; wi++) {
+    DemWall *w = &walls->wall[wi];
     w->cnt     = 0;
-    for (PetscInt i = 0; i < dem->n; i++) {
-      const double d[3] = {dem->x[3 * i] - w->p[0], dem->x[3 * i + 1] - w->p[1], dem->x[3 * i + 2] - w->p[2]};
-      const double reach = dem->shp[dem->shape[i]].r + dem->skin;
+    for (PetscInt i = 0; i < pt->n; i++) {
+      const double d[3] = {pt->x[3 * i] - w->p[0], pt->x[3 * i + 1] - w->p[1], pt->x[3 * i + 2] - w->p[2]};
+      const double reach = st->shp[pt->shape[i]].r + skin;
       if (w->kind == DEM_WALL_CYLINDER) { /* distance from the curved surface, inside */
         const double a = dem_dot(d, w->n), rho2 = dem_dot(d, d) - a * a;
         if (w->R - sqrt(PetscMax(rho2, 0.0)) >= reach) continue;
       } else {
         if (dem_dot(d, w->n) >= reach) continue;
-        if (w->finite && dem_dot(d, w->n) < -dem->skin) continue; /* behind a rectangle or polygon */
+        if (w->finite && dem_dot(d, w->n) < -skin) continue; /* behind a rectangle or polygon */
       }
       if (w->cnt == w->cap) {
         w->cap = 2 * w->cap + 256;
         PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)w->cap, &w->idx));
         PetscCall(PetscRealloc(3 * sizeof(double) * (size_t)w->cap, &w->hist));
       }
-      const DemSpring *r = nrec ? DemSpringFind(recs, nrec, dem->id[i], -1 - wi) : NULL;
+      const DemSpring *r = nrec ? DemSpringFind(recs, nrec, pt->id[i], -1 - wi) : NULL;
       w->idx[w->cnt] = i;
       for (int k = 0; k < 3; k++) w->hist[3 * w->cnt + k] = r ? r->xi[k] : 0;
       w->cnt++;
@@ -217,24 +138,27 @@ PetscErrorCode DemWallsBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Moves the walls by dt and adds their contact forces. */
-PetscErrorCode DemContactsWalls(Dem dem)
+/* The walls' contact forces on the spheres (DemStep has moved the walls): adds to f and tq of the
+ * particles in the wall lists, advances or resets the walls' springs; reads x, v, w, the radii
+ * and the contact model. */
+PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt)
 {
-  const double dt = dem->dt;
+  double rad[DEM_MAX_SHAPES]; /* the radii, side by side (as in the pair loop) */
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
-  for (PetscInt wi = 0; wi < dem->nwall; wi++) {
-    DemWall      *w = &dem->wall[wi];
+  for (PetscInt s = 0; s < st->nshape; s++) rad[s] = st->shp[s].r;
+  for (PetscInt wi = 0; wi < walls->nwall; wi++) {
+    DemWall      *w = &walls->wall[wi];
     DemPairParams pwl;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt       i  = w->idx[a];
-      const double        *xi = dem->x + 3 * i, *vi = dem->v + 3 * i, *wi_ = dem->w + 3 * i;
-      const double         r  = dem->shp[dem->shape[i]].r;
+      const double        *xi = pt->x + 3 * i, *vi = pt->v + 3 * i, *wi_ = pt->w + 3 * i;
+      const double         r  = rad[pt->shape[i]];
       double               nrm[3]; /* from the particle to the wall */
       const double         delta = dem_wall_sphere(w, xi, r, nrm);
-      double              *xi_t  = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
-      const DemPairParams *p     = DemWallParams(dem, w, dem->shape[i], &pwl);
+      double              *xi_t  = cm->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
+      const DemPairParams *p     = DemWallParams(cm, w, pt->shape[i], &pwl);
       if (delta <= 0) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
@@ -246,19 +170,19 @@ PetscErrorCode DemContactsWalls(Dem dem)
       dem_cross(wi_, nrm, c);
       for (int k = 0; k < 3; k++) vr[k] = vw[k] - vi[k] - l * c[k];
       const double vn = dem_dot(vr, nrm);
-      const double fn = dem_normal_force(dem->law, p, delta, vn, &kt, &gt);
+      const double fn = dem_normal_force(cm->law, p, delta, vn, &kt, &gt);
       for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k];
       if (p->mu > 0) {
         double vt[3], ft[3];
         for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
         dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft);
-        if (dem->rotation) {
+        if (cm->rotation) {
           dem_cross(nrm, ft, c);
-          for (int k = 0; k < 3; k++) dem->tq[3 * i + k] -= l * c[k];
+          for (int k = 0; k < 3; k++) pt->tq[3 * i + k] -= l * c[k];
         }
         for (int k = 0; k < 3; k++) F[k] -= ft[k];
       }
-      for (int k = 0; k < 3; k++) dem->f[3 * i + k] += F[k];
+      for (int k = 0; k < 3; k++) pt->f[3 * i + k] += F[k];
     }
   }
   PetscCall(PetscLogEventEnd(DEM_Walls, 0, 0, 0, 0));

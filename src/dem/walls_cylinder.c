@@ -35,11 +35,11 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
   PetscCheck(cyl[6] > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder: radius %g must be > 0 (m)", (double)cyl[6]);
   PetscCheck(PetscIsNormalReal(omega) || omega == 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder_omega %g must be finite (rad/s)", (double)omega);
   PetscCheck(!cset || caps[1] > caps[0], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder_caps: s1 %g must exceed s0 %g (m)", (double)caps[1], (double)caps[0]);
-  PetscCheck(!dem->convex, dem->comm, PETSC_ERR_SUP, "-dem_cylinder: implemented for spheres only, not with -dem_shape");
+  PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_SUP, "-dem_cylinder: implemented for spheres only, not with -dem_shape");
   const double a[3] = {cyl[0], cyl[1], cyl[2]}, un[3] = {u[0] / lu, u[1] / lu, u[2] / lu};
-  const PetscInt first = dem->nwall;
+  const PetscInt first = dem->walls.nwall;
   PetscCall(DemWallAdd(dem, "-dem_cylinder", a, un, (double[3]){0, 0, 0}));
-  w       = &dem->wall[dem->nwall - 1];
+  w       = &dem->walls.wall[dem->walls.nwall - 1];
   w->kind = DEM_WALL_CYLINDER;
   w->R    = cyl[6];
   for (int c = 0; c < 2 && cset; c++) { /* caps facing inward: +u at s0, -u at s1 */
@@ -47,8 +47,8 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
     const double n[3] = {c ? -un[0] : un[0], c ? -un[1] : un[1], c ? -un[2] : un[2]};
     PetscCall(DemWallAdd(dem, c ? "-dem_cylinder_caps s1" : "-dem_cylinder_caps s0", p, n, (double[3]){0, 0, 0}));
   }
-  for (PetscInt k = first; k < dem->nwall; k++) {
-    w        = &dem->wall[k];
+  for (PetscInt k = first; k < dem->walls.nwall; k++) {
+    w        = &dem->walls.wall[k];
     w->omega = omega;
     for (int c = 0; c < 3; c++) {
       w->ax_p[c] = a[c];
@@ -56,6 +56,6 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
     }
   }
   PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_cylinder_friction", 1, first));
-  for (PetscInt k = first + 1; k < dem->nwall; k++) dem->wall[k].mu = dem->wall[first].mu;
+  for (PetscInt k = first + 1; k < dem->walls.nwall; k++) dem->walls.wall[k].mu = dem->walls.wall[first].mu;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -56,7 +56,7 @@ static PetscErrorCode DemWallAddPolygon(Dem dem, const char *opt, PetscInt nv, c
     PetscCheck(dem_dot(t, n) > 1e-9 * L * L, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the polygon is not convex, or its vertices are not in order around it (turn at vertex %" PetscInt_FMT " is %s)", opt, (e + 1) % nv, dem_dot(t, n) < 0 ? "the wrong way" : "straight");
   }
   PetscCall(DemWallAdd(dem, opt, v, n, (double[3]){0, 0, 0}));
-  w         = &dem->wall[dem->nwall - 1];
+  w         = &dem->walls.wall[dem->walls.nwall - 1];
   w->kind   = DEM_WALL_POLYGON;
   w->finite = PETSC_TRUE;
   w->nv     = nv;
@@ -123,13 +123,13 @@ PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem d
       PetscCall(DemWallAddPolygon(dem, opt, 4, dv, NULL));
     }
     PetscCall(PetscSNPrintf(optf, sizeof optf, "-dem_quad_%d_friction", k));
-    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optf, 1, dem->nwall - 1));
+    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optf, 1, dem->walls.nwall - 1));
   }
   PetscCall(SableOptionsRealN("-dem_hopper", "Square truncated-pyramid hopper, four plates facing inward: centre x,y, top z, top half-width, bottom z, bottom half-width; wall angle from the horizontal atan((ztop-zbot)/(htop-hbot))", "m", h, 0, 6, &set));
   if (set) {
     PetscCall(DemWallAddHopper(dem, h));
-    PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_hopper_friction", 1, dem->nwall - 4));
-    for (int q = 1; q < 4; q++) dem->wall[dem->nwall - 4 + q].mu = dem->wall[dem->nwall - 4].mu;
+    PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_hopper_friction", 1, dem->walls.nwall - 4));
+    for (int q = 1; q < 4; q++) dem->walls.wall[dem->walls.nwall - 4 + q].mu = dem->walls.wall[dem->walls.nwall - 4].mu;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

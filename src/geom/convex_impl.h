@@ -1,7 +1,9 @@
-/* Private header of the convex-shape module (polyhedron.c, hull.c, narrowphase.c). */
+/* Private header of the geometry library (polyhedron.c, hull.c, narrowphase.c, feature.c,
+ * shapes.c, sat_axes.c, sat_box.c). */
 #pragma once
 #include "sable.h" /* PETSC_SUCCESS on PETSc 3.18 */
 #include "geom/convex.h"
+#include "geom/sat.h"
 
 /* Outcome of the hull construction; a degenerate input is reported, not raised, so that the
  * caller can name its source (a file and its line count, or an options value). */
@@ -29,3 +31,7 @@ const char *ConvexHullStatusText(ConvexHullStatus s);
  * (the support heights along n differ from depth) or the features do not intersect. support:
  * the features are the vertices on the support planes only (CONVEX_POINT_SUPPORT). */
 PetscBool ConvexFeaturePoint(const ConvexBody *A, const ConvexBody *B, const PetscReal n[3], PetscReal depth, PetscBool support, PetscReal point[3]);
+
+/* The box frame of a polyhedron whose face axes ax->fn are built (sat_box.c, for sat_axes.c):
+ * PETSC_TRUE and ax->box, ax->bh when it is a box; ax->fn[6..8] turned to a right-handed frame. */
+PetscBool ConvexAxesBoxFrame(const ConvexShape *c, ConvexAxes *ax);

@@ -89,15 +89,15 @@ static PetscErrorCode DemPairFill(Dem dem, const DemMaterial *a, const DemMateri
     p->g8 = 8.0 / ((2 - a->nu) / Ga + (2 - b->nu) / Gb);
   }
   p->ch     = ch;
-  p->hratio = dem->tdamp_ratio;
+  p->hratio = dem->contact.tdamp_ratio;
   if (b->kn_set) p->kn = b->kn;
   else {
-    const double V = dem->vimpact, sr = sqrt(p->reff);
+    const double V = dem->contact.vimpact, sr = sqrt(p->reff);
     p->kn          = 16.0 / 15.0 * sr * p->es * pow(15.0 * p->meff * V * V / (16.0 * sr * p->es), 0.2);
   }
   p->kt = b->kt_set ? b->kt : 2.0 / 7.0 * p->kn;
   p->gn = 2 * dem_zeta(e) * sqrt(p->kn / p->meff);
-  p->gt = dem->tdamp_ratio * p->gn;
+  p->gt = dem->contact.tdamp_ratio * p->gn;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -106,33 +106,33 @@ PetscErrorCode DemMaterialsSetUp(Dem dem)
   double chp = 0, chw = 0, tau;
 
   PetscFunctionBeginUser;
-  if (dem->law == DEM_LAW_HERTZ) {
-    PetscCheck(dem->mat.E_set && dem->wmat.E_set, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_contact_law hertz needs -dem_youngs_modulus (Pa)");
-    PetscCall(DemHertzRestitutionMap(dem->mat.e, &chp, &tau));
-    PetscCall(DemHertzRestitutionMap(PetscMin(dem->mat.e, dem->wmat.e), &chw, &tau));
+  if (dem->contact.law == DEM_LAW_HERTZ) {
+    PetscCheck(dem->contact.mat.E_set && dem->contact.wmat.E_set, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_contact_law hertz needs -dem_youngs_modulus (Pa)");
+    PetscCall(DemHertzRestitutionMap(dem->contact.mat.e, &chp, &tau));
+    PetscCall(DemHertzRestitutionMap(PetscMin(dem->contact.mat.e, dem->contact.wmat.e), &chw, &tau));
   } else {
-    PetscCheck(dem->mat.kn_set || dem->mat.E_set, dem->comm, PETSC_ERR_ARG_WRONG, "the linear laws need -dem_kn (N/m) or -dem_youngs_modulus (Pa)");
+    PetscCheck(dem->contact.mat.kn_set || dem->contact.mat.E_set, dem->comm, PETSC_ERR_ARG_WRONG, "the linear laws need -dem_kn (N/m) or -dem_youngs_modulus (Pa)");
   }
-  for (PetscInt s = 0; s < dem->nshape; s++) {
-    const DemShape *a = &dem->shp[s];
-    for (PetscInt t = 0; t < dem->nshape; t++) {
-      const DemShape *b = &dem->shp[t];
-      PetscCall(DemPairFill(dem, &dem->mat, &dem->mat, a->m, a->req, b->m, b->req, chp, &dem->pp[s * dem->nshape + t]));
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    const DemShape *a = &dem->shapes.shp[s];
+    for (PetscInt t = 0; t < dem->shapes.nshape; t++) {
+      const DemShape *b = &dem->shapes.shp[t];
+      PetscCall(DemPairFill(dem, &dem->contact.mat, &dem->contact.mat, a->m, a->req, b->m, b->req, chp, &dem->contact.pp[s * dem->shapes.nshape + t]));
     }
-    PetscCall(DemPairFill(dem, &dem->mat, &dem->wmat, a->m, a->req, 0, 0, chw, &dem->pw[s]));
+    PetscCall(DemPairFill(dem, &dem->contact.mat, &dem->contact.wmat, a->m, a->req, 0, 0, chw, &dem->contact.pw[s]));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v, PetscReal *tc, PetscReal *e)
 {
-  const DemPairParams *p = t < 0 ? &dem->pw[s] : &dem->pp[s * dem->nshape + t];
-  const double         ee = t < 0 ? PetscMin(dem->mat.e, dem->wmat.e) : dem->mat.e;
+  const DemPairParams *p = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
+  const double         ee = t < 0 ? PetscMin(dem->contact.mat.e, dem->contact.wmat.e) : dem->contact.mat.e;
 
   PetscFunctionBeginUser;
-  PetscCheck(s >= 0 && s < dem->nshape && t < dem->nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape pair (%" PetscInt_FMT ", %" PetscInt_FMT ") out of range", s, t);
+  PetscCheck(s >= 0 && s < dem->shapes.nshape && t < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape pair (%" PetscInt_FMT ", %" PetscInt_FMT ") out of range", s, t);
   *e = ee;
-  if (dem->law == DEM_LAW_HERTZ) {
+  if (dem->contact.law == DEM_LAW_HERTZ) {
     double ch, tau;
     PetscCall(DemHertzRestitutionMap(ee, &ch, &tau));
     const double K = 4.0 / 3.0 * p->es * sqrt(p->reff), X = pow(p->meff * v * v / K, 0.4);

@@ -2,7 +2,7 @@
  *
  * The narrow phase (convex.h: libccd MPR for depth and normal, the contact features for the
  * point) gives for a touching pair the overlap delta, the unit normal n from i to its partner j
- * and the world contact point p. The same laws as for spheres (contact.h) act at p:
+ * and the world contact point p. The same laws as for spheres (contact_laws.h) act at p:
  *   r_i = p - x_i, r_j = p - x_j,  v_rel = (v_j + w_j x r_j) - (v_i + w_i x r_i),
  *   v_n = v_rel . n,  v_t = v_rel - v_n n,  F_i = -F_n n - F_t,  F_j = -F_i,
  *   T_i = r_i x F_i,  T_j = r_j x F_j   (the lever arm gives torque even without friction).
@@ -19,9 +19,9 @@
  * either separates or the full test runs) and is cleared at every list build. An entry also
  * flags a pair that touched at the last step: a separating-axis pair then goes to its test
  * directly (the centre-line probe usually fails). A particle's rotation matrix is formed at most
- * once per pass of the pair loop (dem->rot).
+ * once per pass of the pair loop (dem->narrow.rot).
  * Few-axis pairs (box-box: 3 + 3 face normals and 3 x 3 edge-edge axes; -dem_convex_sat_axes
- * sets the limit, 16 by default; two boxes in closed form, sat_box.c) skip libccd: the
+ * sets the limit, 16 by default; two boxes in closed form, geom/sat_box.c) skip libccd: the
  * separating-axis test over all candidates gives the exact minimum penetration (depth and normal
  * of the least overlap, for convex polyhedra the minimum translation), continuous in the poses,
  * where MPR's portal depth jumps; the contact point follows (ConvexBodiesContactPoint, the model of
@@ -80,7 +80,7 @@ static inline double dem_extent(const ConvexShape *c, const double d[3])
 /* The same for a shape of the table: a box in closed form, sum_k h_k |a_k . d|. */
 static inline double dem_shape_extent(const DemShape *s, const double d[3])
 {
-  if (s->box) return s->bh[0] * PetscAbsReal(dem_dot(s->fn, d)) + s->bh[1] * PetscAbsReal(dem_dot(s->fn + 3, d)) + s->bh[2] * PetscAbsReal(dem_dot(s->fn + 6, d));
+  if (s->ax.box) return s->ax.bh[0] * PetscAbsReal(dem_dot(s->ax.fn, d)) + s->ax.bh[1] * PetscAbsReal(dem_dot(s->ax.fn + 3, d)) + s->ax.bh[2] * PetscAbsReal(dem_dot(s->ax.fn + 6, d));
   return dem_extent(s->cvx, d);
 }
 
@@ -107,7 +107,7 @@ static inline void dem_rotation(const double *q, double *R)
 
 static inline PetscBool dem_sat_pair(const Dem dem, const DemShape *si, const DemShape *sj)
 {
-  return (PetscBool)(dem->convex_sat && si->nfn > 0 && sj->nfn > 0 && si->nfn + sj->nfn + si->nen * sj->nen <= dem->convex_sat_axes);
+  return (PetscBool)(dem->narrow.convex_sat && si->ax.nfn > 0 && sj->ax.nfn > 0 && si->ax.nfn + sj->ax.nfn + si->ax.nen * sj->ax.nen <= dem->narrow.convex_sat_axes);
 }
 
 /* Least overlap of i (at the origin) and j (at d) along the unit world axis u: returns it, and
@@ -127,7 +127,7 @@ static inline double dem_sat_overlap(const DemBody *bi, const DemBody *bj, const
 
 /* One candidate axis a (unit, world): PETSC_TRUE when it separates the pair (u = a); otherwise
  * m keeps the least overlap so far and its axis oriented from i to j. */
-static inline PetscBool dem_sat_axis(const DemBody *bi, const DemBody *bj, const double d[3], const double a[3], DemSatMin *m, double u[3])
+static inline PetscBool dem_sat_axis(const DemBody *bi, const DemBody *bj, const double d[3], const double a[3], ConvexSatMin *m, double u[3])
 {
   double       n[3];
   const double ov = dem_sat_overlap(bi, bj, d, a, n);
@@ -146,25 +146,28 @@ static inline PetscBool dem_sat_axis(const DemBody *bi, const DemBody *bj, const
  * their edge directions (the complete candidate set): PETSC_FALSE with the separating axis in u,
  * or PETSC_TRUE with the least overlap and its axis (i to j) in m. After libccd found no contact
  * it also finds the axis the cache keeps (u = 0 if rounding left none). */
-static PetscBool dem_sat(const DemBody *bi, const DemBody *bj, const double d[3], DemSatMin *m, double u[3])
+static PetscBool dem_sat(const DemBody *bi, const DemBody *bj, const double d[3], ConvexSatMin *m, double u[3])
 {
   const DemBody *b2[2] = {bi, bj};
   const double  *Ri = bi->R, *Rj = bj->R;
   const DemShape *si = bi->s, *sj = bj->s;
   double          a[3];
   m->depth = PETSC_MAX_REAL;
-  if (si->box && sj->box) return DemSatBox(bi, bj, d, m, u); /* the same axes in closed form */
+  if (si->ax.box && sj->ax.box) { /* the same axes in closed form (geom/sat_box.c) */
+    const ConvexSatBody gi = {&si->ax, Ri}, gj = {&sj->ax, Rj};
+    return ConvexSatBox(&gi, &gj, d, m, u);
+  }
   for (int b = 0; b < 2; b++)
-    for (PetscInt f = 0; f < b2[b]->s->nfn; f++) {
-      const double *fn = b2[b]->s->fn + 3 * f, *R = b2[b]->R;
+    for (PetscInt f = 0; f < b2[b]->s->ax.nfn; f++) {
+      const double *fn = b2[b]->s->ax.fn + 3 * f, *R = b2[b]->R;
       for (int k = 0; k < 3; k++) a[k] = R[3 * k] * fn[0] + R[3 * k + 1] * fn[1] + R[3 * k + 2] * fn[2];
       if (dem_sat_axis(bi, bj, d, a, m, u)) return PETSC_FALSE;
     }
-  for (PetscInt e = 0; e < si->nen; e++) {
+  for (PetscInt e = 0; e < si->ax.nen; e++) {
     double ei[3], ej[3];
-    for (int k = 0; k < 3; k++) ei[k] = Ri[3 * k] * si->en[3 * e] + Ri[3 * k + 1] * si->en[3 * e + 1] + Ri[3 * k + 2] * si->en[3 * e + 2];
-    for (PetscInt g = 0; g < sj->nen; g++) {
-      for (int k = 0; k < 3; k++) ej[k] = Rj[3 * k] * sj->en[3 * g] + Rj[3 * k + 1] * sj->en[3 * g + 1] + Rj[3 * k + 2] * sj->en[3 * g + 2];
+    for (int k = 0; k < 3; k++) ei[k] = Ri[3 * k] * si->ax.en[3 * e] + Ri[3 * k + 1] * si->ax.en[3 * e + 1] + Ri[3 * k + 2] * si->ax.en[3 * e + 2];
+    for (PetscInt g = 0; g < sj->ax.nen; g++) {
+      for (int k = 0; k < 3; k++) ej[k] = Rj[3 * k] * sj->ax.en[3 * g] + Rj[3 * k + 1] * sj->ax.en[3 * g + 1] + Rj[3 * k + 2] * sj->ax.en[3 * g + 2];
       dem_cross(ei, ej, a);
       const double l2 = dem_dot(a, a);
       if (l2 < 1e-12) continue; /* parallel edges: the face axes cover them */
@@ -180,9 +183,9 @@ static PetscBool dem_sat(const DemBody *bi, const DemBody *bj, const double d[3]
 /* Particle i as a body of the pair tests, its rotation matrix in R (9). */
 static inline void dem_body(const Dem dem, PetscInt i, const double *R, DemBody *b)
 {
-  b->s = &dem->shp[dem->shape[i]];
-  b->x = dem->x + 3 * i;
-  b->q = dem->q + 4 * i;
+  b->s = &dem->shapes.shp[dem->p.shape[i]];
+  b->x = dem->p.x + 3 * i;
+  b->q = dem->p.q + 4 * i;
   b->R = R;
 }
 
@@ -199,11 +202,11 @@ static inline ConvexBody dem_convex_body(const DemBody *b)
  * the last step; NULL for none. A pair of the separating-axis test that touched skips the
  * centre-line probe (it usually fails, and the test is complete without it: the same answer);
  * a pair left to MPR always takes it, as the statistics do. The forces and the statistics
- * (diag_convex.c) both call it, so the elastic energy is that of the depth the forces used. */
+ * (convex_diag.c) both call it, so the elastic energy is that of the depth the forces used. */
 static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const DemBody *bj, const double d[3], double *u, ConvexContact *c)
 {
   double    none[4] = {0, 0, 0, 0};
-  DemSatMin m;
+  ConvexSatMin m;
 
   PetscFunctionBeginUser;
   if (!u) u = none;
@@ -221,7 +224,7 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const 
     if (!dem_sat(bi, bj, d, &m, u)) PetscFunctionReturn(PETSC_SUCCESS); /* u: the separating axis found */
     if (m.depth > 0) {
       const ConvexBody A = dem_convex_body(bi), B = dem_convex_body(bj);
-      if (ConvexBodiesContactPoint(&A, &B, m.n, m.depth, dem->convex_point, c)) {
+      if (ConvexBodiesContactPoint(&A, &B, m.n, m.depth, dem->narrow.convex_point, c)) {
         u[3] = 1;
         PetscFunctionReturn(PETSC_SUCCESS);
       }
@@ -229,7 +232,7 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const 
     /* touching at 0 depth, or no supporting feature: MPR below (u is 0) */
   }
   const ConvexPose pi = DemPose(bi->x, bi->q), pj = DemPose(bj->x, bj->q);
-  PetscCall(ConvexCollideWith(bi->s->cvx, &pi, bj->s->cvx, &pj, dem->convex_point, c)); /* MPR's depth and normal */
+  PetscCall(ConvexCollideWith(bi->s->cvx, &pi, bj->s->cvx, &pj, dem->narrow.convex_point, c)); /* MPR's depth and normal */
   if (c->overlap) u[0] = u[1] = u[2] = 0, u[3] = 1;
   else if (!sat) (void)dem_sat(bi, bj, d, &m, u); /* the axis to keep, or u = 0 */
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -238,17 +241,17 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const 
 /* Contact of the pair (i, j) for the statistics: the narrow phase of the forces, no cache. */
 PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c)
 {
-  const DemShape *si = &dem->shp[dem->shape[i]], *sj = &dem->shp[dem->shape[j]];
+  const DemShape *si = &dem->shapes.shp[dem->p.shape[i]], *sj = &dem->shapes.shp[dem->p.shape[j]];
   const double    rs = si->r + sj->r;
-  const double    d[3] = {dem->x[3 * j] - dem->x[3 * i], dem->x[3 * j + 1] - dem->x[3 * i + 1], dem->x[3 * j + 2] - dem->x[3 * i + 2]};
+  const double    d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
   double          Ri[9], Rj[9];
   DemBody         bi, bj;
 
   PetscFunctionBeginUser;
   c->overlap = PETSC_FALSE;
   if (dem_dot(d, d) >= rs * rs) PetscFunctionReturn(PETSC_SUCCESS);
-  dem_rotation(dem->q + 4 * i, Ri);
-  dem_rotation(dem->q + 4 * j, Rj);
+  dem_rotation(dem->p.q + 4 * i, Ri);
+  dem_rotation(dem->p.q + 4 * j, Rj);
   dem_body(dem, i, Ri, &bi);
   dem_body(dem, j, Rj, &bj);
   PetscCall(dem_convex_narrow(dem, &bi, &bj, d, NULL, c));
@@ -256,71 +259,71 @@ PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexConta
 }
 
 /* The rotation matrices of the particles, local and ghost, for one pass of the pair loop:
- * room for all (dem->rot), each formed when a pair first needs it (a particle whose stamp is
+ * room for all (dem->narrow.rot), each formed when a pair first needs it (a particle whose stamp is
  * not this pass's), so a dilute scene forms few; when the last pass had at least half as many
  * pairs with overlapping bounding spheres as particles, all are formed at once (a dense bed: a
  * sequential sweep, measured 4% faster on the settled icosahedra than forming them on demand). */
 static PetscErrorCode dem_rotations_begin(Dem dem)
 {
-  const PetscInt nt = dem->n + dem->ng;
+  const PetscInt nt = dem->p.n + dem->p.ng;
 
   PetscFunctionBeginUser;
-  if (nt > dem->rot_cap) {
-    PetscCall(PetscFree2(dem->rot, dem->rot_stamp));
-    dem->rot_cap = nt + nt / 4 + 64;
-    PetscCall(PetscMalloc2(9 * (size_t)dem->rot_cap, &dem->rot, dem->rot_cap, &dem->rot_stamp));
-    dem->rot_pass = PETSC_MAX_INT - 1; /* the stamps are reset below */
+  if (nt > dem->narrow.rot_cap) {
+    PetscCall(PetscFree2(dem->narrow.rot, dem->narrow.rot_stamp));
+    dem->narrow.rot_cap = nt + nt / 4 + 64;
+    PetscCall(PetscMalloc2(9 * (size_t)dem->narrow.rot_cap, &dem->narrow.rot, dem->narrow.rot_cap, &dem->narrow.rot_stamp));
+    dem->narrow.rot_pass = PETSC_MAX_INT - 1; /* the stamps are reset below */
   }
-  if (++dem->rot_pass == PETSC_MAX_INT) {
-    for (PetscInt i = 0; i < dem->rot_cap; i++) dem->rot_stamp[i] = -1;
-    dem->rot_pass = 0;
+  if (++dem->narrow.rot_pass == PETSC_MAX_INT) {
+    for (PetscInt i = 0; i < dem->narrow.rot_cap; i++) dem->narrow.rot_stamp[i] = -1;
+    dem->narrow.rot_pass = 0;
   }
-  if (2 * dem->rot_pairs >= nt)
+  if (2 * dem->narrow.rot_pairs >= nt)
     for (PetscInt i = 0; i < nt; i++) {
-      dem_rotation(dem->q + 4 * i, dem->rot + 9 * i);
-      dem->rot_stamp[i] = dem->rot_pass;
+      dem_rotation(dem->p.q + 4 * i, dem->narrow.rot + 9 * i);
+      dem->narrow.rot_stamp[i] = dem->narrow.rot_pass;
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static inline const double *dem_rot(Dem dem, PetscInt i)
 {
-  if (dem->rot_stamp[i] != dem->rot_pass) {
-    dem_rotation(dem->q + 4 * i, dem->rot + 9 * i);
-    dem->rot_stamp[i] = dem->rot_pass;
+  if (dem->narrow.rot_stamp[i] != dem->narrow.rot_pass) {
+    dem_rotation(dem->p.q + 4 * i, dem->narrow.rot + 9 * i);
+    dem->narrow.rot_stamp[i] = dem->narrow.rot_pass;
   }
-  return dem->rot + 9 * i;
+  return dem->narrow.rot + 9 * i;
 }
 
 PetscErrorCode DemContactsPairsConvex(Dem dem)
 {
   const DemNeigh *nl = &dem->nl;
-  double         *f = dem->f, *tq = dem->tq, *hist = nl->hist, *ax;
-  DemConvexIn     in    = {.law = dem->law, .dt = dem->dt};
+  double         *f = dem->p.f, *tq = dem->p.tq, *hist = nl->hist, *ax;
+  DemConvexIn     in    = {.law = dem->contact.law, .dt = dem->clock.dt};
   PetscInt        pairs = 0; /* with overlapping bounding spheres: the next pass's choice */
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
-  if (!dem->sepax || dem->sepax_build != nl->builds) { /* a new list: a new, empty cache */
-    PetscCall(PetscFree(dem->sepax));
-    PetscCall(PetscCalloc1(4 * (size_t)nl->start[dem->n] + 4, &dem->sepax));
-    dem->sepax_build = nl->builds;
+  if (!dem->narrow.sepax || dem->narrow.sepax_build != nl->builds) { /* a new list: a new, empty cache */
+    PetscCall(PetscFree(dem->narrow.sepax));
+    PetscCall(PetscCalloc1(4 * (size_t)nl->start[dem->p.n] + 4, &dem->narrow.sepax));
+    dem->narrow.sepax_build = nl->builds;
   }
-  ax = dem->sepax;
+  ax = dem->narrow.sepax;
   PetscCall(dem_rotations_begin(dem));
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const DemShape *si = &dem->shp[dem->shape[i]];
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    const DemShape *si = &dem->shapes.shp[dem->p.shape[i]];
     DemBody         bi, bj;
     double          fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
     PetscBool       has_i = PETSC_FALSE;
-    in.xi = dem->x + 3 * i;
-    in.vi = dem->v + 3 * i;
-    in.wi = dem->w + 3 * i;
+    in.xi = dem->p.x + 3 * i;
+    in.vi = dem->p.v + 3 * i;
+    in.wi = dem->p.w + 3 * i;
     for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
       const PetscInt  j  = nl->nbr[a];
-      const DemShape *sj = &dem->shp[dem->shape[j]];
+      const DemShape *sj = &dem->shapes.shp[dem->p.shape[j]];
       const double    rs = si->r + sj->r;
-      const double    d[3] = {dem->x[3 * j] - in.xi[0], dem->x[3 * j + 1] - in.xi[1], dem->x[3 * j + 2] - in.xi[2]};
+      const double    d[3] = {dem->p.x[3 * j] - in.xi[0], dem->p.x[3 * j + 1] - in.xi[1], dem->p.x[3 * j + 2] - in.xi[2]};
       double         *xi_t = hist ? hist + 3 * a : NULL;
       ConvexContact   c;
       double          F[3], Ti[3], Tj[3];
@@ -339,17 +342,17 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      in.p  = dem->pp + dem->shape[i] * dem->nshape + dem->shape[j];
+      in.p  = dem->contact.pp + dem->p.shape[i] * dem->shapes.nshape + dem->p.shape[j];
       in.c  = &c;
-      in.xj = dem->x + 3 * j;
-      in.vj = dem->v + 3 * j;
-      in.wj = dem->w + 3 * j;
+      in.xj = dem->p.x + 3 * j;
+      in.vj = dem->p.v + 3 * j;
+      in.wj = dem->p.w + 3 * j;
       dem_convex_force(&in, xi_t, F, Ti, Tj);
       for (int k = 0; k < 3; k++) {
         fi[k] += F[k];
         ti[k] += Ti[k];
       }
-      if (!dem->full_list && j < dem->n) /* a ghost's rank (or the full list) computes j's side */
+      if (!dem->nl.full_list && j < dem->p.n) /* a ghost's rank (or the full list) computes j's side */
         for (int k = 0; k < 3; k++) {
           f[3 * j + k] -= F[k];
           tq[3 * j + k] += Tj[k];
@@ -360,7 +363,7 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
       tq[3 * i + k] += ti[k];
     }
   }
-  dem->rot_pairs = pairs;
+  dem->narrow.rot_pairs = pairs;
   PetscCall(PetscLogEventEnd(DEM_Contacts, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -368,36 +371,36 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
 PetscErrorCode DemContactsWallsConvex(Dem dem)
 {
   static const double zero[3] = {0, 0, 0};
-  DemConvexIn         in      = {.law = dem->law, .dt = dem->dt, .wj = zero};
+  DemConvexIn         in      = {.law = dem->contact.law, .dt = dem->clock.dt, .wj = zero};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
-  for (PetscInt wi = 0; wi < dem->nwall; wi++) {
-    DemWall      *w = &dem->wall[wi];
+  for (PetscInt wi = 0; wi < dem->walls.nwall; wi++) {
+    DemWall      *w = &dem->walls.wall[wi];
     DemPairParams pwl;
     in.xj = w->p;
     in.vj      = w->v;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt i    = w->idx[a];
-      double        *xi_t = dem->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
-      const double  *x    = dem->x + 3 * i;
-      ConvexPose     pose = DemPose(x, dem->q + 4 * i);
+      double        *xi_t = dem->contact.law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
+      const double  *x    = dem->p.x + 3 * i;
+      ConvexPose     pose = DemPose(x, dem->p.q + 4 * i);
       ConvexContact  c;
       double         F[3], Ti[3], Tj[3];
-      PetscCall(ConvexCollidePlane(dem->shp[dem->shape[i]].cvx, &pose, w->p, w->n, &c));
+      PetscCall(ConvexCollidePlane(dem->shapes.shp[dem->p.shape[i]].cvx, &pose, w->p, w->n, &c));
       if (!c.overlap || !DemWallCovers(w, c.point, x)) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      in.p  = DemWallParams(dem, w, dem->shape[i], &pwl);
+      in.p  = DemWallParams(&dem->contact, w, dem->p.shape[i], &pwl);
       in.c  = &c;
-      in.xi = dem->x + 3 * i;
-      in.vi = dem->v + 3 * i;
-      in.wi = dem->w + 3 * i;
+      in.xi = dem->p.x + 3 * i;
+      in.vi = dem->p.v + 3 * i;
+      in.wi = dem->p.w + 3 * i;
       dem_convex_force(&in, xi_t, F, Ti, Tj);
       for (int k = 0; k < 3; k++) {
-        dem->f[3 * i + k] += F[k];
-        dem->tq[3 * i + k] += Ti[k];
+        dem->p.f[3 * i + k] += F[k];
+        dem->p.tq[3 * i + k] += Ti[k];
       }
     }
   }

@@ -1,7 +1,7 @@
 /* Diagnostics and output of convex particles.
  * Statistics: translational energy 1/2 m v^2, rotational energy 1/2 W.(J W) with W = R^T w the
  * body-frame spin, gravity, and for every touching pair or wall contact (narrow phase as in
- * contacts_convex.c) the elastic energy of the law (linear 1/2 kn delta^2 + 1/2 kt |xi|^2, hertz
+ * convex_contacts.c) the elastic energy of the law (linear 1/2 kn delta^2 + 1/2 kt |xi|^2, hertz
  * 8/15 E* sqrt(R*) delta^(5/2)) and the overlap over the equivalent radius d_eq/2.
  * Output: besides the per-particle arrays (position, quaternion, ...), every particle's surface
  * in the world frame, x + R v for the shape's hull vertices v, as one triangle mesh that ParaView
@@ -13,8 +13,8 @@
 
 static double dem_elastic(const Dem dem, const DemPairParams *p, double delta, const double *xi)
 {
-  double e = dem->law == DEM_LAW_HERTZ ? 8.0 / 15.0 * p->es * sqrt(p->reff) * pow(delta, 2.5) : 0.5 * p->kn * delta * delta;
-  if (xi && dem->law == DEM_LAW_LINEAR) e += 0.5 * p->kt * dem_dot(xi, xi);
+  double e = dem->contact.law == DEM_LAW_HERTZ ? 8.0 / 15.0 * p->es * sqrt(p->reff) * pow(delta, 2.5) : 0.5 * p->kn * delta * delta;
+  if (xi && dem->contact.law == DEM_LAW_LINEAR) e += 0.5 * p->kt * dem_dot(xi, xi);
   return e;
 }
 
@@ -22,39 +22,39 @@ static double dem_elastic(const Dem dem, const DemPairParams *p, double delta, c
 PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax)
 {
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->n; i++) {
-    const DemShape *s = &dem->shp[dem->shape[i]];
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    const DemShape *s = &dem->shapes.shp[dem->p.shape[i]];
     double          R[9], wb[3];
-    convex_quat_to_matrix(dem->q + 4 * i, R);
-    convex_mat_tvec(R, dem->w + 3 * i, wb);
-    r[0] += 0.5 * s->m * dem_dot(dem->v + 3 * i, dem->v + 3 * i);
+    convex_quat_to_matrix(dem->p.q + 4 * i, R);
+    convex_mat_tvec(R, dem->p.w + 3 * i, wb);
+    r[0] += 0.5 * s->m * dem_dot(dem->p.v + 3 * i, dem->p.v + 3 * i);
     for (int k = 0; k < 3; k++) r[1] += 0.5 * s->J[k] * wb[k] * wb[k];
-    r[2] -= s->m * dem_dot(dem->g, dem->x + 3 * i);
-    r[4] += (double)dem->id[i];
+    r[2] -= s->m * dem_dot(dem->g, dem->p.x + 3 * i);
+    r[4] += (double)dem->p.id[i];
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
       const PetscInt  j  = dem->nl.nbr[a];
-      const DemShape *t  = &dem->shp[dem->shape[j]];
+      const DemShape *t  = &dem->shapes.shp[dem->p.shape[j]];
       ConvexContact   cc;
       PetscCall(DemConvexPairContact(dem, i, j, &cc));
       if (!cc.overlap) continue;
       /* a pair seen from both sides (full list, or a ghost partner) counts half on each */
-      const PetscBool both = (PetscBool)(dem->full_list || j >= dem->n);
-      if (!both || dem->id[i] < dem->id[j]) c[1]++;
-      r[3] += (both ? 0.5 : 1.0) * dem_elastic(dem, &dem->pp[dem->shape[i] * dem->nshape + dem->shape[j]], cc.depth, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
+      const PetscBool both = (PetscBool)(dem->nl.full_list || j >= dem->p.n);
+      if (!both || dem->p.id[i] < dem->p.id[j]) c[1]++;
+      r[3] += (both ? 0.5 : 1.0) * dem_elastic(dem, &dem->contact.pp[dem->p.shape[i] * dem->shapes.nshape + dem->p.shape[j]], cc.depth, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
       *rmax = PetscMax(*rmax, cc.depth / PetscMin(s->req, t->req));
     }
   }
-  for (PetscInt w = 0; w < dem->nwall; w++) {
-    const DemWall *wl = &dem->wall[w];
+  for (PetscInt w = 0; w < dem->walls.nwall; w++) {
+    const DemWall *wl = &dem->walls.wall[w];
     for (PetscInt a = 0; a < wl->cnt; a++) {
       const PetscInt  i = wl->idx[a];
-      const DemShape *s = &dem->shp[dem->shape[i]];
-      const ConvexPose pi = DemPose(dem->x + 3 * i, dem->q + 4 * i);
+      const DemShape *s = &dem->shapes.shp[dem->p.shape[i]];
+      const ConvexPose pi = DemPose(dem->p.x + 3 * i, dem->p.q + 4 * i);
       ConvexContact    cc;
       PetscCall(ConvexCollidePlane(s->cvx, &pi, wl->p, wl->n, &cc));
       if (!cc.overlap || !DemWallCovers(wl, cc.point, pi.x)) continue;
       c[2]++;
-      r[3] += dem_elastic(dem, &dem->pw[dem->shape[i]], cc.depth, dem->law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);
+      r[3] += dem_elastic(dem, &dem->contact.pw[dem->p.shape[i]], cc.depth, dem->contact.law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);
       *rmax = PetscMax(*rmax, cc.depth / s->req);
     }
   }
@@ -100,23 +100,23 @@ PetscErrorCode DemConvexWriteSurface(Dem dem, Io io)
   const PetscInt *f;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->n; i++) {
-    dem_draw_mesh(dem->shp[dem->shape[i]].cvx, &nv, &v, &nf, &f, cv, cf);
+  for (PetscInt i = 0; i < dem->p.n; i++) {
+    dem_draw_mesh(dem->shapes.shp[dem->p.shape[i]].cvx, &nv, &v, &nf, &f, cv, cf);
     np += nv;
     nt += nf;
   }
   PetscCall(PetscMalloc3(3 * np + 3, &xyz, np + 1, &pid, 3 * nt + 3, &tri));
   np = nt = 0;
-  for (PetscInt i = 0; i < dem->n; i++) {
+  for (PetscInt i = 0; i < dem->p.n; i++) {
     double R[9];
-    dem_draw_mesh(dem->shp[dem->shape[i]].cvx, &nv, &v, &nf, &f, cv, cf);
-    convex_quat_to_matrix(dem->q + 4 * i, R);
+    dem_draw_mesh(dem->shapes.shp[dem->p.shape[i]].cvx, &nv, &v, &nf, &f, cv, cf);
+    convex_quat_to_matrix(dem->p.q + 4 * i, R);
     for (PetscInt a = 0; a < nf; a++)
       for (int k = 0; k < 3; k++) tri[3 * (nt + a) + k] = np + f[3 * a + k];
     for (PetscInt a = 0; a < nv; a++) {
       convex_mat_vec(R, v + 3 * a, xyz + 3 * (np + a));
-      for (int k = 0; k < 3; k++) xyz[3 * (np + a) + k] += dem->x[3 * i + k];
-      pid[np + a] = dem->id[i];
+      for (int k = 0; k < 3; k++) xyz[3 * (np + a) + k] += dem->p.x[3 * i + k];
+      pid[np + a] = dem->p.id[i];
     }
     np += nv;
     nt += nf;

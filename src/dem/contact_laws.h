@@ -5,7 +5,7 @@
  *   linear:  Fn = kn delta - gn m* vn,  gn = 2 zeta sqrt(kn/m*), zeta = -ln e / sqrt(pi^2 + ln^2 e)
  *            (exact restitution e, contact time Tc = pi / sqrt(kn/m* - (gn/2)^2)).
  *   hertz:   Fn = 4/3 E* sqrt(R* delta) delta - c_h sqrt(m* S_n) vn, S_n = 2 E* sqrt(R* delta),
- *            c_h from the exact restitution map of the reduced Hertz ODE (contact_params.c).
+ *            c_h from the exact restitution map of the reduced Hertz ODE (contact_laws.c).
  * Tangential:
  *   no history (Grains3D): Ft = -min(mu |Fn|, gt m* |vt|) vt/|vt|;
  *   history (linear / Mindlin): xi projected on the tangent plane, xi += vt dt, Ft = -kt xi - gt m* vt,

@@ -1,0 +1,52 @@
+/* The rebuild: everything that changes the local particles' order and the lists at once, run by
+ * DemSetUp, by DemStep when a particle or a wall moved more than skin/2 since the last one (all
+ * ranks agree, dem.c), and by DemRedistribute after the decomposition changed:
+ *   springs saved by id pair (springs.c) -> migration of the particles that left the box, to a
+ *   neighbour (exchange.c) or, after a remap, to any rank (redistribute.c) -> re-sort of the
+ *   locals every -dem_sort_interval builds (neighbours.c) -> ghost creation (exchange.c) -> bins
+ *   and pair list (neighbours.c) -> springs restored by id pair -> wall lists (walls.c) -> the
+ *   reference positions of the rebuild check (x0, the walls' travel) reset.
+ * It sits above the files it calls; none of them calls it back. */
+#include "dem/dem_impl.h"
+
+/* Collective. Rebuilds exchange, cells, lists and springs. */
+PetscErrorCode DemRebuild(Dem dem)
+{
+  DemSpring *recs;
+  PetscInt   nrec, caprec;
+
+  PetscFunctionBeginUser;
+  dem->state++; /* migration and re-sorting change the local order */
+  PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));
+  PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
+  dem->p.ng = 0;
+  PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
+  PetscCall(DemCheckInDomain(dem));
+  if (dem->ex.remap) PetscCall(DemMigrateGlobal(dem, &recs, &nrec, &caprec));
+  else PetscCall(DemMigrate(dem, &recs, &nrec, &caprec));
+  dem->ex.remap = PETSC_FALSE;
+  PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
+  PetscCall(DemNeighSort(dem));
+  PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
+  PetscCall(DemGhostsCreate(dem));
+  PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
+  PetscCall(DemNeighBuildList(dem));
+  if (dem->contact.law != DEM_LAW_LINEAR_NOHIST) PetscCall(DemSpringsRestore(dem, recs, nrec));
+  PetscCall(DemWallsBuildLists(&dem->walls, &dem->p, &dem->shapes, dem->nl.skin, recs, nrec));
+  PetscCall(PetscArraycpy(dem->p.x0, dem->p.x, 3 * dem->p.n));
+  for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->walls.wall[w].moved = 0;
+  dem->need_build = PETSC_FALSE;
+  PetscCall(PetscFree(recs));
+  PetscCall(PetscLogEventEnd(DEM_Neighbours, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemRedistribute(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DemExchangeSetUp(dem)); /* same neighbours; re-checks the box widths */
+  PetscCall(DemNeighResetCells(dem)); /* the cell grid covers the new box */
+  dem->ex.remap = PETSC_TRUE;
+  PetscCall(DemRebuild(dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

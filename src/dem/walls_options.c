@@ -1,0 +1,85 @@
+/* The wall options, read in one block: -dem_box xlo,ylo,zlo,xhi,yhi,zhi (m), six inward-facing
+ * planes; -dem_plane_<k> px,py,pz,nx,ny,nz (m, -) and -dem_plane_<k>_velocity vx,vy,vz (m/s),
+ * k = 0..9; -dem_rect_<k> x0,y0,z0,x1,y1,z1,x2,y2,z2 (m), k = 0..9: a finite rectangle with
+ * corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0), facing the side (p1 - p0) x (p2 - p0)
+ * points to; -dem_quad_<k> (4 vertices), -dem_hopper (walls_polygon.c); -dem_cylinder,
+ * -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); -dem_<wall>_friction overrides
+ * -dem_wall_friction for that wall. The walls are added to the store (walls.c) in this order. */
+#include "dem/dem_impl.h"
+
+/* Adds the rectangle p0 + s (p1 - p0) + t (p2 - p0), s, t in [0,1], facing the side (p1 - p0) x
+ * (p2 - p0) points to; r = p0, p1, p2. */
+static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r[9])
+{
+  double   e1[3], e2[3], n[3], z[3] = {0, 0, 0};
+  DemWall *w;
+
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 3; k++) {
+    e1[k] = r[3 + k] - r[k];
+    e2[k] = r[6 + k] - r[k];
+  }
+  dem_cross(e1, e2, n);
+  const double l1 = sqrt(dem_dot(e1, e1)), l2 = sqrt(dem_dot(e2, e2));
+  PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
+  PetscCall(DemWallAdd(dem, opt, r, n, z));
+  w         = &dem->walls.wall[dem->walls.nwall - 1];
+  w->finite = PETSC_TRUE;
+  w->kind   = DEM_WALL_RECT;
+  for (int k = 0; k < 3; k++) {
+    w->e1[k] = e1[k];
+    w->e2[k] = e2[k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemWallsSetFromOptions(Dem dem)
+{
+  PetscReal box[6], pl[6], vel[3];
+  PetscBool set, vset;
+  char      opt[64], optv[80];
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
+  PetscCall(SableOptionsRealN("-dem_box", "Closed box of six inward-facing walls: xlo,ylo,zlo,xhi,yhi,zhi", "m", box, 0, 6, &set));
+  if (set) {
+    for (int k = 0; k < 3; k++) {
+      double p[3] = {0, 0, 0}, n[3] = {0, 0, 0}, z[3] = {0, 0, 0};
+      PetscCheck(box[k + 3] > box[k], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_box: upper bound %g must exceed lower bound %g on axis %d", (double)box[k + 3], (double)box[k], k);
+      PetscCheck(!dem->dom->periodic[k], dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_box puts walls across the %c axis, which is periodic (-domain_periodic_%c): nothing could cross it; close the other axes with -dem_plane_k", "xyz"[k], "xyz"[k]);
+      p[k] = box[k];
+      n[k] = 1;
+      PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_box %clo", "xyz"[k]));
+      PetscCall(DemWallAdd(dem, opt, p, n, z));
+      p[k] = box[k + 3];
+      n[k] = -1;
+      PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_box %chi", "xyz"[k]));
+      PetscCall(DemWallAdd(dem, opt, p, n, z));
+    }
+    PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, dem->walls.nwall - 6));
+  }
+  for (int k = 0; k < 10; k++) {
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_plane_%d", k));
+    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_velocity", k));
+    PetscCall(SableOptionsRealN(opt, "Infinite plane wall: point px,py,pz and normal nx,ny,nz into the granular side", "m, -", pl, 0, 6, &set));
+    vel[0] = vel[1] = vel[2] = 0;
+    PetscCall(SableOptionsRealN(optv, "Translation velocity of the plane wall", "m/s", vel, 3, 3, &vset));
+    PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
+    PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
+    if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
+    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
+    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->walls.nwall - 1));
+  }
+  for (int k = 0; k < 10; k++) {
+    PetscReal r[9];
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_rect_%d", k));
+    PetscCall(SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2; faces the side (p1-p0)x(p2-p0) points to", "m", r, 0, 9, &set));
+    if (set) PetscCall(DemWallAddRect(dem, opt, r));
+    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
+    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->walls.nwall - 1));
+  }
+  PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));  /* -dem_quad_<k>, -dem_hopper */
+  PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem)); /* -dem_cylinder (drum) */
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
