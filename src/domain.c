@@ -119,10 +119,10 @@ PetscErrorCode DomainDestroy(Domain *dom)
 
 PetscErrorCode DomainSetOwnership(Domain *dom, PetscInt *const l[3])
 {
-  DM              da;
-  DMBoundaryType  bt[3];
-  PetscInt        sw;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)dom->da);
+  DM             da;
+  DMBoundaryType bt[3];
+  PetscInt       sw;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)dom->da);
 
   PetscFunctionBeginUser;
   PetscCall(DMDAGetInfo(dom->da, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, &sw, &bt[0], &bt[1], &bt[2], NULL));
@@ -132,7 +132,7 @@ PetscErrorCode DomainSetOwnership(Domain *dom, PetscInt *const l[3])
       PetscCheck(l[k][r] >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "new ownership along %c: rank column %" PetscInt_FMT " gets %" PetscInt_FMT " cells, must be >= 1", "xyz"[k], r, l[k][r]);
       sum += l[k][r];
     }
-    PetscCheck(sum == dom->cells[k], comm, PETSC_ERR_ARG_SIZ, "new ownership along %c sums to %" PetscInt_FMT " cells, the grid has %" PetscInt_FMT, "xyz"[k], sum, dom->cells[k]);
+    PetscCheck(sum == dom->cells[k], comm, PETSC_ERR_ARG_SIZ, "new ownership along %c sums to %" PetscInt_FMT " cells, the grid has %" PetscInt_FMT, "xyz"[k], sum, dom -> cells[k]);
   }
   PetscCall(DMDACreate3d(comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, dom->cells[0], dom->cells[1], dom->cells[2], dom->nranks[0], dom->nranks[1], dom->nranks[2], 1, sw, l[0], l[1], l[2], &da));
   PetscCall(DMSetUp(da));

@@ -8,7 +8,7 @@
 
 typedef struct {
   MPI_Comm  comm;
-  PetscReal cell;                 /* -domain_cell (m), when cell_set */
+  PetscReal cell; /* -domain_cell (m), when cell_set */
   PetscBool cell_set;
   PetscReal lo[3], hi[3], len[3]; /* global box (m) */
   PetscBool periodic[3];

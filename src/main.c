@@ -51,7 +51,7 @@ static int SableNameParsedOption(const char *mess, char *buf, size_t len)
     size_t n = strlen(pre[k]), m;
     if (strncmp(mess, pre[k], n)) continue;
     snprintf(val, sizeof val, "%s", mess + n);
-    m = k ? strlen(val) : (size_t)(strstr(val, " has no") ? strstr(val, " has no") - val : 0);
+    m      = k ? strlen(val) : (size_t)(strstr(val, " has no") ? strstr(val, " has no") - val : 0);
     val[m] = 0;
     while (m && isspace((unsigned char)val[m - 1])) val[--m] = 0;
     if (!m || PetscOptionsGetAll(NULL, &all)) return 0;
@@ -92,7 +92,7 @@ static int SableEndParallel(int status)
 {
   MPI_Request req;
   int         done = 0, rank = 0;
-  double      t0   = MPI_Wtime();
+  double      t0 = MPI_Wtime();
 
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Ibarrier(sable_end_comm, &req);

@@ -159,7 +159,7 @@ PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *PetscOptionsObjec
 {
   const PetscInt cap = *n;
   PetscInt       got = cap, count = 0;
-  PetscBool      flg = PETSC_FALSE;
+  PetscBool      flg        = PETSC_FALSE;
   char           dtext[512] = "", gtext[512] = "", line[1040];
 
   PetscFunctionBeginUser;

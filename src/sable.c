@@ -18,7 +18,7 @@
  * options of Sable's that share them. */
 PetscBool SableOptionIsOwn(const char *name)
 {
-  const char *own[] = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
+  const char *own[]    = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
   const char *shared[] = {"fluid_poisson_pc_lag", "fluid_poisson_pc_lag_growth", "fluid_viscous_number_max"};
   for (size_t k = 0; k < sizeof shared / sizeof shared[0]; k++)
     if (!strcmp(name, shared[k])) return PETSC_TRUE;
@@ -32,7 +32,7 @@ PetscBool SableOptionIsOwn(const char *name)
  * source of ours names them all): the DMDA's, read by DMSetFromOptions (PETSc 3.18,
  * src/dm/impls/da/dacreate.c), and the solver ones, matched as the end of a name under Sable's
  * solver prefixes (-fluid_poisson_ksp_max_it, -fluid_poisson_mg_levels_ksp_max_it). */
-static const char *const SablePetscIntOptions[] = {"da_grid_x", "da_grid_y", "da_grid_z", "da_processors_x", "da_processors_y", "da_processors_z", "da_overlap", "da_overlap_x", "da_overlap_y", "da_overlap_z", "da_refine", "da_refine_x", "da_refine_y", "da_refine_z", "da_refine_hierarchy_x", "da_refine_hierarchy_y", "da_refine_hierarchy_z"};
+static const char *const SablePetscIntOptions[]        = {"da_grid_x", "da_grid_y", "da_grid_z", "da_processors_x", "da_processors_y", "da_processors_z", "da_overlap", "da_overlap_x", "da_overlap_y", "da_overlap_z", "da_refine", "da_refine_x", "da_refine_y", "da_refine_z", "da_refine_hierarchy_x", "da_refine_hierarchy_y", "da_refine_hierarchy_z"};
 static const char *const SablePetscSolverIntSuffixes[] = {"ksp_max_it", "ksp_gmres_restart", "pc_mg_levels", "pc_hypre_boomeramg_max_iter", "pc_hypre_boomeramg_max_levels", "pc_hypre_boomeramg_agg_nl", "pc_gamg_agg_nsmooths"};
 
 static PetscBool SableInList(const char *name, const char *const *list, size_t n)
@@ -186,9 +186,9 @@ static int SableEditDistance(const char *a, const char *b)
       c[j] = v;
     }
     int *t = p2;
-    p2 = p1;
-    p1 = c;
-    c  = t;
+    p2     = p1;
+    p1     = c;
+    c      = t;
   }
   return p1[lb];
 }
@@ -196,8 +196,8 @@ static int SableEditDistance(const char *a, const char *b)
 /* The words of a name (split at '_') sorted: "dem_kn_wall" and "dem_wall_kn" share it. */
 static void SableSortedWords(const char *name, char *key, size_t size)
 {
-  char  buf[128], *w[32], *save = NULL;
-  int   n = 0;
+  char buf[128], *w[32], *save = NULL;
+  int  n = 0;
 
   key[0] = 0;
   if (strlen(name) >= sizeof buf) return;

@@ -23,15 +23,15 @@ PetscErrorCode SableWarnOptionsUnused(MPI_Comm comm);
 PetscErrorCode SableCheckOptionValues(MPI_Comm comm);
 /* A run loop's length and cadences, as its driver's options give them. */
 typedef struct {
-  const char *prefix;    /* "dem" or "cpl": -<prefix>_t_end, -<prefix>_progress_interval */
-  const char *step;      /* what one step is called: "time step", "coupling step" */
-  const char *dt_text;   /* how the step is set: "-dem_dt", "-cpl_substeps 5 x -dem_dt 1e-05 s" */
-  const char *raise;     /* the option that lengthens the step */
-  const char *counted;   /* what the step counter counts: "steps", "DEM steps" */
-  PetscBool   end_set;   /* -<prefix>_t_end was given */
+  const char *prefix;                           /* "dem" or "cpl": -<prefix>_t_end, -<prefix>_progress_interval */
+  const char *step;                             /* what one step is called: "time step", "coupling step" */
+  const char *dt_text;                          /* how the step is set: "-dem_dt", "-cpl_substeps 5 x -dem_dt 1e-05 s" */
+  const char *raise;                            /* the option that lengthens the step */
+  const char *counted;                          /* what the step counter counts: "steps", "DEM steps" */
+  PetscBool   end_set;                          /* -<prefix>_t_end was given */
   PetscReal   t, t_end, dt, progress_dt, io_dt; /* s */
-  PetscInt    per_step;  /* counter increments per step (DEM substeps) */
-  PetscInt    counter;   /* the counter now */
+  PetscInt    per_step;                         /* counter increments per step (DEM substeps) */
+  PetscInt    counter;                          /* the counter now */
 } SableRunLength;
 /* Collective. A run must have an end; its steps must fit the step counter (PetscInt: beyond it
  * the count wraps and the run never ends); a progress or output interval must not be shorter

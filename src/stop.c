@@ -34,7 +34,7 @@
 #define SABLE_STUCK_MS 400
 
 static volatile sig_atomic_t stop_sig, temp_valid, progress_ms; /* progress_ms: 0 before the first mark */
-static int                   stop_agreed; /* the signal the ranks agreed on at a poll */
+static int                   stop_agreed;                       /* the signal the ranks agreed on at a poll */
 static char                  temp_path[PETSC_MAX_PATH_LEN];
 
 const char *SableSignalName(int sig)

@@ -61,9 +61,9 @@ static PetscErrorCode SimSetFromOptions(Sim *s, PetscBool *boxset)
 /* Box, grid and cell weights from the frame. */
 static PetscErrorCode SimLoad(Sim *s, PetscBool boxset)
 {
-  PetscReal *x, *r = NULL, rmax = 0;
-  PetscInt   nc, nr, rc, *count, N;
-  PetscBool  hasr, set;
+  PetscReal  *x, *r = NULL, rmax = 0;
+  PetscInt    nc, nr, rc, *count, N;
+  PetscBool   hasr, set;
   const char *opt[3] = {"-da_grid_x", "-da_grid_y", "-da_grid_z"};
 
   PetscFunctionBeginUser;
@@ -85,7 +85,7 @@ static PetscErrorCode SimLoad(Sim *s, PetscBool boxset)
     }
   if (s->cell == 0) s->cell = 8 * rmax;
   for (int d = 0; d < 3; d++) {
-    PetscCheck(s->hi[d] > s->lo[d], PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "box along %c is empty: [%g, %g] m (give -domain_lo, -domain_hi)", "xyz"[d], (double)s->lo[d], (double)s->hi[d]);
+    PetscCheck(s->hi[d] > s->lo[d], PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "box along %c is empty: [%g, %g] m (give -domain_lo, -domain_hi)", "xyz"[d], (double)s -> lo[d], (double)s -> hi[d]);
     PetscCheck(s->cell > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "the frame has no radii: give -bsim_cell (m) or -da_grid_x/y/z");
     s->n[d] = PetscMax(1, (PetscInt)PetscFloorReal((s->hi[d] - s->lo[d]) / s->cell));
     PetscCall(PetscOptionsGetInt(NULL, NULL, opt[d], &s->n[d], &set));
@@ -126,7 +126,7 @@ static PetscErrorCode SimRow(const Sim *s, PetscInt ranks, const PetscInt p[3])
   PetscFunctionBeginUser;
   for (int d = 0; d < 3; d++)
     if (p[d] * s->minw > s->n[d]) {
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "| %" PetscInt_FMT " | %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT " | too fine: %" PetscInt_FMT " cells along %c for %" PetscInt_FMT " ranks of >= %" PetscInt_FMT " | | | | | | | | | |\n", ranks, p[0], p[1], p[2], s->n[d], "xyz"[d], p[d], s->minw));
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "| %" PetscInt_FMT " | %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT " | too fine: %" PetscInt_FMT " cells along %c for %" PetscInt_FMT " ranks of >= %" PetscInt_FMT " | | | | | | | | | |\n", ranks, p[0], p[1], p[2], s->n[d], "xyz"[d], p[d], s -> minw));
       PetscFunctionReturn(PETSC_SUCCESS);
     }
   PetscCall(PetscMalloc4(p[0], &l[0], p[1], &l[1], p[2], &l[2], P, &load));
@@ -152,7 +152,7 @@ int main(int argc, char **argv)
 {
   Sim       s;
   PetscBool boxset = PETSC_FALSE;
-  PetscReal total = 0;
+  PetscReal total  = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "balance-sim: balanced cuts judged on a particle snapshot\n"));
   PetscCall(PetscMemzero(&s, sizeof s));

@@ -13,7 +13,10 @@
 #include "geom/convex.h"
 #include "geom/quat.h"
 
-static double urand(void) { return (double)rand() / RAND_MAX; }
+static double urand(void)
+{
+  return (double)rand() / RAND_MAX;
+}
 
 static void random_quat(double q[4])
 {

@@ -43,7 +43,7 @@ static PetscErrorCode GetById(Dem dem, PetscInt id, DemParticle *p)
 static PetscErrorCode Impact(void)
 {
   PetscReal      dt_tc = 0.02, v = 0.5, r = 0.005, tc = 0, e = 0, dt, t_in = -1, t_out = -1, dprev = -1, e_meas = 0, vrel0, eset;
-  PetscBool      wall = PETSC_FALSE;
+  PetscBool      wall  = PETSC_FALSE;
   PetscInt       steps = 0, contact_steps = 0;
   PetscLogDouble t0, t1;
   char           buf[64];
@@ -162,7 +162,7 @@ static PetscErrorCode Bed(void)
   Cpl            cpl;
   CplStats       st;
   Vec            u;
-  PetscBool      bcc = PETSC_FALSE;
+  PetscBool      bcc    = PETSC_FALSE;
   PetscInt       nsteps = 60, nz = 2, its = 0, np;
   PetscReal      probe[2] = {8.5, 15.5}, eps_ref = 1 - PETSC_PI / 6, mu = 0.1, rho = 1, umax = 0;
   PetscReal      p0, p1, e0, e1, u0, u1, z0, z1, eps, dpdl;
@@ -207,8 +207,8 @@ static PetscErrorCode Bed(void)
   PetscCall(DemGetLocalCount(dem, &np));
   dpdl = (p0 - p1) / (z1 - z0);
   {
-    const PetscReal pred = CplPackedBedGradient(CPL_DRAG_BEETSTRA, eps_ref, u0, 1, rho, mu);
-    const PetscReal grid = CplPackedBedGradient(CPL_DRAG_BEETSTRA, eps, u0, 1, rho, mu);
+    const PetscReal pred  = CplPackedBedGradient(CPL_DRAG_BEETSTRA, eps_ref, u0, 1, rho, mu);
+    const PetscReal grid  = CplPackedBedGradient(CPL_DRAG_BEETSTRA, eps, u0, 1, rho, mu);
     const PetscReal scale = pred > 0 ? pred : 1; /* empty column: relative to 1 Pa/m */
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "result: dpdl=%.10g eps_ref=%.10g eps_grid=%.10g usup=%.10g pred=%.10g pred_grid=%.10g ergun=%.10g err=%.6e err_grid=%.6e umax=%.6g particles=%" PetscInt_FMT " steps=%" PetscInt_FMT " wall_s=%.6g us_per_pstep=%.6g iterations=%" PetscInt_FMT "\n", (double)dpdl, (double)eps_ref, (double)eps, (double)u0, (double)pred, (double)grid, (double)Ergun(eps_ref, u0, mu, rho), (double)(PetscAbsReal(dpdl - pred) / scale), (double)(grid > 0 ? PetscAbsReal(dpdl / grid - 1) : PetscAbsReal(dpdl)), (double)umax, np, nsteps, t1 - t0, np ? 1e6 * (t1 - t0) / (nsteps * (double)np) : 0.0, its));
   }
@@ -221,8 +221,8 @@ static PetscErrorCode Bed(void)
 
 int main(int argc, char **argv)
 {
-  char      problem[32] = "impact";
-  PetscBool bed;
+  char           problem[32] = "impact";
+  PetscBool      bed;
   PetscErrorCode ierr;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "tradeoff_run: one run of a trade-off reference problem\n"));

@@ -10,7 +10,10 @@
 #pragma once
 #include "sable.h"
 
-typedef enum { BALANCE_WEIGHT_LINEAR, BALANCE_WEIGHT_QUADRATIC } BalanceWeightModel;
+typedef enum {
+  BALANCE_WEIGHT_LINEAR,
+  BALANCE_WEIGHT_QUADRATIC
+} BalanceWeightModel;
 /* names for PetscOptionsEnum (-lb_weight linear|quadratic) */
 extern const char *const BalanceWeightModels[];
 

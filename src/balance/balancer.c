@@ -18,20 +18,25 @@
  * ranks. */
 #include "balance/balancer.h"
 
-typedef enum { LB_NONE, LB_ONCE, LB_FREQUENT, LB_DYNAMIC } LbScheme;
+typedef enum {
+  LB_NONE,
+  LB_ONCE,
+  LB_FREQUENT,
+  LB_DYNAMIC
+} LbScheme;
 static const char *const LbSchemeNames[] = {"none", "once", "frequent", "dynamic", "LbScheme", "LB_", NULL};
 static const char *const LbWeightNames[] = {"linear", "quadratic", "measured", "LbWeight", "LB_WEIGHT_", NULL};
 
 struct _p_Balance {
-  MPI_Comm  comm;
-  Domain   *dom;
-  Dem       dem;
-  Cpl       cpl; /* NULL in a dry run */
-  LbScheme  scheme;
-  PetscInt  weight; /* 0 linear, 1 quadratic, 2 measured */
-  PetscReal alpha, beta, threshold, once_time, interval_time, next_time;
-  PetscInt  once_step, interval, max_sweeps, last_step;
-  PetscBool done_once, verbose;
+  MPI_Comm    comm;
+  Domain     *dom;
+  Dem         dem;
+  Cpl         cpl; /* NULL in a dry run */
+  LbScheme    scheme;
+  PetscInt    weight; /* 0 linear, 1 quadratic, 2 measured */
+  PetscReal   alpha, beta, threshold, once_time, interval_time, next_time;
+  PetscInt    once_step, interval, max_sweeps, last_step;
+  PetscBool   done_once, verbose;
   BalanceGrid g;
   PetscReal  *w, *load, alpha_used, beta_used;
   PetscInt   *count; /* particles per cell of the global grid */
@@ -196,7 +201,7 @@ static PetscErrorCode BalanceMeasuredWeights(Balance b, PetscReal *alpha, PetscR
 /* Cell weights over the global grid (every rank gets all of them) and the current loads. */
 static PetscErrorCode BalanceWeigh(Balance b, PetscReal *lmin, PetscReal *lmax, PetscReal *lavg)
 {
-  const PetscInt P = b->g.p[0] * b->g.p[1] * b->g.p[2], ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
+  const PetscInt  P = b->g.p[0] * b->g.p[1] * b->g.p[2], ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
   const PetscInt *l[3];
   PetscReal       alpha = b->alpha, beta = b->beta, sum = 0;
 
@@ -229,9 +234,12 @@ static PetscErrorCode BalanceWeigh(Balance b, PetscReal *lmin, PetscReal *lmax, 
 static PetscBool BalanceDue(Balance b, PetscReal t, PetscReal dt, PetscInt step)
 {
   switch (b->scheme) {
-  case LB_NONE: return PETSC_FALSE;
-  case LB_ONCE: return (PetscBool)(!b->done_once && (b->once_time >= 0 ? t >= b->once_time - 0.5 * dt : step >= b->once_step));
-  default: return (PetscBool)(b->interval_time > 0 ? t >= b->next_time - 0.5 * dt : step - b->last_step >= b->interval);
+  case LB_NONE:
+    return PETSC_FALSE;
+  case LB_ONCE:
+    return (PetscBool)(!b->done_once && (b->once_time >= 0 ? t >= b->once_time - 0.5 * dt : step >= b->once_step));
+  default:
+    return (PetscBool)(b->interval_time > 0 ? t >= b->next_time - 0.5 * dt : step - b->last_step >= b->interval);
   }
 }
 

@@ -12,9 +12,9 @@
  * DemSetUp and CplSetUp) -> BalanceCheck after every step
  * -> BalanceView -> BalanceDestroy. All collective. */
 typedef struct _p_Balance *Balance;
-PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb);
-PetscErrorCode BalanceSetFromOptions(Balance lb);
-PetscErrorCode BalanceSetUp(Balance lb);
+PetscErrorCode             BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb);
+PetscErrorCode             BalanceSetFromOptions(Balance lb);
+PetscErrorCode             BalanceSetUp(Balance lb);
 /* Checks when the scheme says so (force: now, and rebalance whatever the threshold); moved
  * tells whether the cuts changed. Prints one line per check unless -lb_verbose 0. */
 PetscErrorCode BalanceCheck(Balance lb, PetscBool force, PetscBool *moved);

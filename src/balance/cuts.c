@@ -40,8 +40,8 @@ static PetscErrorCode BalanceCheckGrid(const BalanceGrid *g, PetscBool usemin)
   PetscFunctionBegin;
   for (int d = 0; d < 3; d++) {
     const PetscInt mw = usemin ? g->minw[d] : 1;
-    PetscCheck(g->n[d] >= 1 && g->p[d] >= 1 && mw >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "axis %c: cells %" PetscInt_FMT ", ranks %" PetscInt_FMT " and minimum width %" PetscInt_FMT " must all be >= 1", "xyz"[d], g->n[d], g->p[d], mw);
-    PetscCheck(g->n[d] >= g->p[d] * mw, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "axis %c: %" PetscInt_FMT " cells cannot be cut into %" PetscInt_FMT " ranks of at least %" PetscInt_FMT " cells each (the minimum width is the halo): use fewer ranks along %c or smaller cells", "xyz"[d], g->n[d], g->p[d], mw, "xyz"[d]);
+    PetscCheck(g->n[d] >= 1 && g->p[d] >= 1 && mw >= 1, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "axis %c: cells %" PetscInt_FMT ", ranks %" PetscInt_FMT " and minimum width %" PetscInt_FMT " must all be >= 1", "xyz"[d], g -> n[d], g -> p[d], mw);
+    PetscCheck(g->n[d] >= g->p[d] * mw, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "axis %c: %" PetscInt_FMT " cells cannot be cut into %" PetscInt_FMT " ranks of at least %" PetscInt_FMT " cells each (the minimum width is the halo): use fewer ranks along %c or smaller cells", "xyz"[d], g -> n[d], g -> p[d], mw, "xyz"[d]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -132,8 +132,8 @@ static void balance_marginal_axis(PetscInt n, PetscInt p, PetscInt minw, const P
     const PetscReal t = j * F[n] / p;
     PetscInt        c;
     while (f < n && F[f] < t) f++; /* first face with F >= t */
-    c = (f > 0 && t - F[f - 1] < F[f] - t) ? f - 1 : f;
-    c = PetscMin(PetscMax(c, prev + minw), n - (p - j) * minw);
+    c        = (f > 0 && t - F[f - 1] < F[f] - t) ? f - 1 : f;
+    c        = PetscMin(PetscMax(c, prev + minw), n - (p - j) * minw);
     l[j - 1] = c - prev;
     prev     = c;
   }
@@ -178,7 +178,7 @@ typedef struct {
 static inline PetscReal balance_axis_load(const BalanceAxis *ax, PetscInt a, PetscInt b)
 {
   const PetscReal *Pa = ax->P + a * ax->q, *Pb = ax->P + b * ax->q;
-  PetscReal        m  = 0;
+  PetscReal        m = 0;
   for (PetscInt c = 0; c < ax->q; c++) m = PetscMax(m, Pb[c] - Pa[c]);
   return m;
 }
@@ -272,8 +272,8 @@ static PetscReal balance_box(const BalanceGrid *g, const PetscReal *S, const Pet
 {
   PetscReal sum = 0;
   for (int corner = 0; corner < 8; corner++) {
-    const PetscInt x[3]  = {corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]};
-    const int      upper = (corner & 1) + ((corner >> 1) & 1) + ((corner >> 2) & 1);
+    const PetscInt x[3] = {corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]};
+    const int upper = (corner & 1) + ((corner >> 1) & 1) + ((corner >> 2) & 1);
     sum += (upper % 2) ? balance_sat(g, S, x) : -balance_sat(g, S, x);
   }
   return sum;
@@ -379,7 +379,7 @@ static PetscErrorCode BalanceKick(const BalanceGrid *g, const PetscReal *S, Pets
 {
   PetscFunctionBegin;
   for (*kicks = 0; *kicks < BALANCE_KICKS; (*kicks)++) {
-    PetscInt  r = 0, rc[3];
+    PetscInt  r        = 0, rc[3];
     PetscBool improved = PETSC_FALSE;
     (void)balance_sat_lmax(g, S, l, &r);
     rc[0] = r % g->p[0], rc[1] = (r / g->p[0]) % g->p[1], rc[2] = r / (g->p[0] * g->p[1]);
@@ -407,7 +407,7 @@ static PetscErrorCode BalanceKick(const BalanceGrid *g, const PetscReal *S, Pets
 
 PetscErrorCode BalanceCuts(const BalanceGrid *g, const PetscReal *w, PetscInt *const l[3], PetscReal *lmax, PetscReal *lavg)
 {
-  const PetscInt np = g->p[0] * g->p[1] * g->p[2];
+  const PetscInt np                        = g->p[0] * g->p[1] * g->p[2];
   const int      orders[BALANCE_STARTS][3] = {{0, 1, 2}, {0, 1, 2}, {2, 1, 0}, {2, 1, 0}, {1, 2, 0}, {1, 2, 0}};
   PetscReal     *load, *S = NULL, total, best = PETSC_MAX_REAL, start = 0;
   PetscInt      *t[3], *mc[3], rounds = 0, kicks, rr;

@@ -128,7 +128,7 @@ PetscErrorCode CplSetUp(Cpl cpl)
 
 PetscErrorCode CplRedistribute(Cpl cpl)
 {
-  DM   ofda = cpl->fda;
+  DM   ofda   = cpl->fda;
   Vec *face[] = {&cpl->kv, &cpl->jf, &cpl->owed};
 
   PetscFunctionBeginUser;

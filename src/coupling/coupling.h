@@ -17,7 +17,11 @@
 
 typedef struct _p_Cpl *Cpl;
 
-typedef enum { CPL_DRAG_BEETSTRA, CPL_DRAG_DIFELICE, CPL_DRAG_GIDASPOW } CplDragLaw;
+typedef enum {
+  CPL_DRAG_BEETSTRA,
+  CPL_DRAG_DIFELICE,
+  CPL_DRAG_GIDASPOW
+} CplDragLaw;
 
 /* What one coupling step did. */
 typedef struct {
@@ -84,5 +88,3 @@ PetscReal CplDragFactor(CplDragLaw law, PetscReal eps, PetscReal re);
 /* Pressure gradient magnitude (Pa/m) the law predicts for a uniform bed of spheres of diameter d
  * at porosity eps and superficial velocity U: n K U / eps, n = (1 - eps) / (pi d^3 / 6). */
 PetscReal CplPackedBedGradient(CplDragLaw law, PetscReal eps, PetscReal usup, PetscReal d, PetscReal rho, PetscReal mu);
-
-

@@ -6,18 +6,18 @@
 #pragma once
 #include "coupling/coupling.h"
 
-typedef struct { /* cube kernel of one particle: separable 1-D overlap fractions */
+typedef struct {         /* cube kernel of one particle: separable 1-D overlap fractions */
   PetscInt c0[3], f0[3]; /* first cell, first face control volume, per axis */
   int      nc[3], nf[3];
   double   wc[3][4], wf[3][4];
 } CplStencil;
 
 struct _p_Cpl {
-  MPI_Comm   comm;
-  Domain    *dom;
-  Dem        dem;
-  Fluid      fl;
-  DM         cda, fda;
+  MPI_Comm comm;
+  Domain  *dom;
+  Dem      dem;
+  Fluid    fl;
+  DM       cda, fda;
   /* options */
   CplDragLaw law;
   PetscInt   substeps;
@@ -26,20 +26,20 @@ struct _p_Cpl {
   PetscReal *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
   PetscInt   nshape;
   /* fluid properties (the fluid's options) */
-  PetscReal  rho, mu, g[3];
+  PetscReal rho, mu, g[3];
   /* state */
-  PetscBool  frozen, correct;
-  PetscReal  dt, t, cell_vol, eps_min0;
-  PetscInt   step;
-  PetscInt   clipped_total;
-  PetscReal  solid_grid; /* last projection, before the floor */
-  Vec        cloc, floc[3];     /* work: cell local, face locals (one per field spread together) */
-  Vec        kv, jf, owed;      /* face globals: sum K W v, spread impulse, momentum owed */
-  CplStencil *stc;              /* cached kernel stencils of the local particles */
-  PetscInt   stc_n, stc_cap, stc_state; /* stc_state: DemGetState when the stencils were computed */
-  PetscBool  stc_valid;
+  PetscBool      frozen, correct;
+  PetscReal      dt, t, cell_vol, eps_min0;
+  PetscInt       step;
+  PetscInt       clipped_total;
+  PetscReal      solid_grid;                /* last projection, before the floor */
+  Vec            cloc, floc[3];             /* work: cell local, face locals (one per field spread together) */
+  Vec            kv, jf, owed;              /* face globals: sum K W v, spread impulse, momentum owed */
+  CplStencil    *stc;                       /* cached kernel stencils of the local particles */
+  PetscInt       stc_n, stc_cap, stc_state; /* stc_state: DemGetState when the stencils were computed */
+  PetscBool      stc_valid;
   PetscLogDouble t_fluid; /* wall time in fluid steps (s): the measured cell weight */
-  PetscLogEvent ev_project, ev_drag, ev_exchange, ev_dem;
+  PetscLogEvent  ev_project, ev_drag, ev_exchange, ev_dem;
 };
 
 /* Whether face point idx, component d, is shared by two cells: not on the boundary of a
@@ -60,9 +60,9 @@ PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st);
 void           CplInvalidateStencils(Cpl cpl);
 typedef struct {
-  const PetscReal *val;    /* 3 per local particle, or 1 if scalar */
+  const PetscReal *val; /* 3 per local particle, or 1 if scalar */
   PetscBool        scalar;
-  Vec              out;    /* global face Vec */
+  Vec              out; /* global face Vec */
 } CplSpread;
 PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[]);
 /* preflight.c */

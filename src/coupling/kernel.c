@@ -166,14 +166,14 @@ void CplInvalidateStencils(Cpl cpl)
  * fraction by the kernel, eps = 1 - solid, raised to -cpl_porosity_floor where below it. */
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
 {
-  DemArrays         pa;
-  CplBox            b;
-  const CplStencil *stc;
-  PetscScalar      *a, *e;
+  DemArrays          pa;
+  CplBox             b;
+  const CplStencil  *stc;
+  PetscScalar       *a, *e;
   const PetscScalar *s;
-  Vec          solid, eps;
-  PetscInt     n, clipped = 0, cnt[2];
-  PetscReal    emin = 1, sum;
+  Vec                solid, eps;
+  PetscInt           n, clipped = 0, cnt[2];
+  PetscReal          emin = 1, sum;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(cpl->ev_project, 0, 0, 0, 0));

@@ -42,9 +42,9 @@ PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce)
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
   for (PetscInt s = 0; s < cpl->nshape; s++) {
     const PetscReal K = 3 * PETSC_PI * cpl->mu * cpl->diam[s] * CplDragFactor(cpl->law, cpl->eps_min0, 0);
-    dmax = PetscMax(dmax, cpl->diam[s]);
-    smax = PetscMax(smax, cpl->side[s]);
-    tau  = PetscMin(tau, cpl->mass[s] / K);
+    dmax              = PetscMax(dmax, cpl->diam[s]);
+    smax              = PetscMax(smax, cpl->side[s]);
+    tau               = PetscMin(tau, cpl->mass[s] / K);
     PetscCall(DemGetContactFigures(cpl->dem, s, s, 1.0, &tc, &e));
     dtc = PetscMax(dtc, dtd / tc);
   }

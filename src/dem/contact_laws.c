@@ -93,7 +93,7 @@ static PetscErrorCode DemPairFill(Dem dem, const DemMaterial *a, const DemMateri
   if (b->kn_set) p->kn = b->kn;
   else {
     const double V = dem->contact.vimpact, sr = sqrt(p->reff);
-    p->kn          = 16.0 / 15.0 * sr * p->es * pow(15.0 * p->meff * V * V / (16.0 * sr * p->es), 0.2);
+    p->kn = 16.0 / 15.0 * sr * p->es * pow(15.0 * p->meff * V * V / (16.0 * sr * p->es), 0.2);
   }
   p->kt = b->kt_set ? b->kt : 2.0 / 7.0 * p->kn;
   p->gn = 2 * dem_zeta(e) * sqrt(p->kn / p->meff);
@@ -126,7 +126,7 @@ PetscErrorCode DemMaterialsSetUp(Dem dem)
 
 PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v, PetscReal *tc, PetscReal *e)
 {
-  const DemPairParams *p = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
+  const DemPairParams *p  = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
   const double         ee = t < 0 ? PetscMin(dem->contact.mat.e, dem->contact.wmat.e) : dem->contact.mat.e;
 
   PetscFunctionBeginUser;

@@ -15,20 +15,27 @@
 #pragma once
 #include <math.h>
 
-typedef enum { DEM_LAW_LINEAR_NOHIST, DEM_LAW_LINEAR, DEM_LAW_HERTZ } DemLaw;
+typedef enum {
+  DEM_LAW_LINEAR_NOHIST,
+  DEM_LAW_LINEAR,
+  DEM_LAW_HERTZ
+} DemLaw;
 
 /* Parameters of one (shape, shape) or (shape, wall) pair, precomputed at set-up. */
 typedef struct {
-  double kn, kt;      /* linear stiffness (N/m) */
-  double gn, gt;      /* damping rate per unit effective mass (1/s), linear law */
-  double es, g8;      /* hertz: effective Young's modulus E* and 8 G* (Pa) */
-  double ch;          /* hertz: damping factor c_h (dimensionless) */
-  double mu;          /* Coulomb friction coefficient */
-  double meff, reff;  /* effective mass (kg) and radius (m) */
-  double hratio;      /* hertz: gt/gn ratio applied to sqrt(m* S) damping */
+  double kn, kt;     /* linear stiffness (N/m) */
+  double gn, gt;     /* damping rate per unit effective mass (1/s), linear law */
+  double es, g8;     /* hertz: effective Young's modulus E* and 8 G* (Pa) */
+  double ch;         /* hertz: damping factor c_h (dimensionless) */
+  double mu;         /* Coulomb friction coefficient */
+  double meff, reff; /* effective mass (kg) and radius (m) */
+  double hratio;     /* hertz: gt/gn ratio applied to sqrt(m* S) damping */
 } DemPairParams;
 
-static inline double dem_dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static inline double dem_dot(const double *a, const double *b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 static inline void dem_cross(const double *a, const double *b, double *c)
 {

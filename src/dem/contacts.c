@@ -54,24 +54,24 @@ typedef struct {
 
 static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRowSum *sum)
 {
-  DemRowSum                S = *sum; /* a local copy, kept in registers */
-  const double *restrict   x = P->pt->x, *restrict v = P->pt->v, *restrict w = P->pt->w;
-  double *restrict         f = P->pt->f, *restrict tq = P->pt->tq, *restrict hist = P->nl->hist;
+  DemRowSum S              = *sum; /* a local copy, kept in registers */
+  const double *restrict x = P->pt->x, *restrict v = P->pt->v, *restrict w = P->pt->w;
+  double *restrict f = P->pt->f, *restrict tq = P->pt->tq, *restrict hist = P->nl->hist;
   const PetscInt *restrict shape = P->pt->shape, *restrict nbr = P->nl->nbr, *restrict own = P->nl->own;
-  const PetscInt           ns = P->ns, nhalf = P->nl->full_list ? 0 : P->pt->n;
-  const DemLaw             law = P->cm->law;
-  const PetscBool          rot = P->cm->rotation, mono = P->mono;
-  const double             dt = P->dt, *rad = P->rad;
-  const DemPairParams     *pp = P->cm->pp;
-  PetscInt                 m = 0, mn = 0, ta[DEM_PAIR_BLOCK], tn[DEM_PAIR_BLOCK];
-  double                   td[DEM_PAIR_BLOCK][4];
+  const PetscInt       ns = P->ns, nhalf = P->nl->full_list ? 0 : P->pt->n;
+  const DemLaw         law = P->cm->law;
+  const PetscBool      rot = P->cm->rotation, mono = P->mono;
+  const double         dt = P->dt, *rad = P->rad;
+  const DemPairParams *pp = P->cm->pp;
+  PetscInt             m = 0, mn = 0, ta[DEM_PAIR_BLOCK], tn[DEM_PAIR_BLOCK];
+  double               td[DEM_PAIR_BLOCK][4];
 
   for (PetscInt a = a0; a < a1; a++) { /* pass 1 */
     const PetscInt i = own[a], j = nbr[a];
     const double  *xi = x + 3 * i, *xj = x + 3 * j;
-    const double   rs = mono ? rad[0] + rad[0] : rad[shape[i]] + rad[shape[j]];
-    const double   d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
-    const double   d2 = dem_dot(d, d);
+    const double   rs    = mono ? rad[0] + rad[0] : rad[shape[i]] + rad[shape[j]];
+    const double   d[3]  = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+    const double   d2    = dem_dot(d, d);
     const int      touch = d2 < rs * rs;
     for (int k = 0; k < 3; k++) td[m][k] = d[k];
     td[m][3] = d2;
@@ -101,7 +101,7 @@ static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRo
     const double  dist = sqrt(d2), inv = 1.0 / dist, delta = rs - dist;
     const double  nrm[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
     const double  li = ri - 0.5 * delta, lj = rj - 0.5 * delta; /* lever arms */
-    double        vr[3], kt, gt, F[3], c[3] = {0, 0, 0}; /* c: n x ft, the torque's direction */
+    double        vr[3], kt, gt, F[3], c[3] = {0, 0, 0};        /* c: n x ft, the torque's direction */
     /* partner's contact-point velocity relative to i's: v_j - v_i + (w_j l_j + w_i l_i) x (-n)... */
     {
       double wsum[3], cw[3];

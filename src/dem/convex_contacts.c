@@ -148,8 +148,8 @@ static inline PetscBool dem_sat_axis(const DemBody *bi, const DemBody *bj, const
  * it also finds the axis the cache keeps (u = 0 if rounding left none). */
 static PetscBool dem_sat(const DemBody *bi, const DemBody *bj, const double d[3], ConvexSatMin *m, double u[3])
 {
-  const DemBody *b2[2] = {bi, bj};
-  const double  *Ri = bi->R, *Rj = bj->R;
+  const DemBody  *b2[2] = {bi, bj};
+  const double   *Ri = bi->R, *Rj = bj->R;
   const DemShape *si = bi->s, *sj = bj->s;
   double          a[3];
   m->depth = PETSC_MAX_REAL;
@@ -205,12 +205,12 @@ static inline ConvexBody dem_convex_body(const DemBody *b)
  * (convex_diag.c) both call it, so the elastic energy is that of the depth the forces used. */
 static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const DemBody *bj, const double d[3], double *u, ConvexContact *c)
 {
-  double    none[4] = {0, 0, 0, 0};
+  double       none[4] = {0, 0, 0, 0};
   ConvexSatMin m;
 
   PetscFunctionBeginUser;
   if (!u) u = none;
-  c->overlap = PETSC_FALSE;
+  c->overlap          = PETSC_FALSE;
   const PetscBool sat = dem_sat_pair(dem, bi->s, bj->s);
   if (u[3] == 0 || !sat) {
     if ((u[0] != 0 || u[1] != 0 || u[2] != 0) && dem_apart(bi, bj, d, u)) PetscFunctionReturn(PETSC_SUCCESS);
@@ -242,7 +242,7 @@ static PetscErrorCode dem_convex_narrow(const Dem dem, const DemBody *bi, const 
 PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c)
 {
   const DemShape *si = &dem->shapes.shp[dem->p.shape[i]], *sj = &dem->shapes.shp[dem->p.shape[j]];
-  const double    rs = si->r + sj->r;
+  const double    rs   = si->r + sj->r;
   const double    d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
   double          Ri[9], Rj[9];
   DemBody         bi, bj;
@@ -316,13 +316,13 @@ PetscErrorCode DemContactsPairsConvex(Dem dem)
     DemBody         bi, bj;
     double          fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
     PetscBool       has_i = PETSC_FALSE;
-    in.xi = dem->p.x + 3 * i;
-    in.vi = dem->p.v + 3 * i;
-    in.wi = dem->p.w + 3 * i;
+    in.xi                 = dem->p.x + 3 * i;
+    in.vi                 = dem->p.v + 3 * i;
+    in.wi                 = dem->p.w + 3 * i;
     for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
-      const PetscInt  j  = nl->nbr[a];
-      const DemShape *sj = &dem->shapes.shp[dem->p.shape[j]];
-      const double    rs = si->r + sj->r;
+      const PetscInt  j    = nl->nbr[a];
+      const DemShape *sj   = &dem->shapes.shp[dem->p.shape[j]];
+      const double    rs   = si->r + sj->r;
       const double    d[3] = {dem->p.x[3 * j] - in.xi[0], dem->p.x[3 * j + 1] - in.xi[1], dem->p.x[3 * j + 2] - in.xi[2]};
       double         *xi_t = hist ? hist + 3 * a : NULL;
       ConvexContact   c;
@@ -379,7 +379,7 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
     DemWall      *w = &dem->walls.wall[wi];
     DemPairParams pwl;
     in.xj = w->p;
-    in.vj      = w->v;
+    in.vj = w->v;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt i    = w->idx[a];
       double        *xi_t = dem->contact.law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;

@@ -32,8 +32,8 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
     r[2] -= s->m * dem_dot(dem->g, dem->p.x + 3 * i);
     r[4] += (double)dem->p.id[i];
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
-      const PetscInt  j  = dem->nl.nbr[a];
-      const DemShape *t  = &dem->shapes.shp[dem->p.shape[j]];
+      const PetscInt  j = dem->nl.nbr[a];
+      const DemShape *t = &dem->shapes.shp[dem->p.shape[j]];
       ConvexContact   cc;
       PetscCall(DemConvexPairContact(dem, i, j, &cc));
       if (!cc.overlap) continue;
@@ -47,8 +47,8 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
   for (PetscInt w = 0; w < dem->walls.nwall; w++) {
     const DemWall *wl = &dem->walls.wall[w];
     for (PetscInt a = 0; a < wl->cnt; a++) {
-      const PetscInt  i = wl->idx[a];
-      const DemShape *s = &dem->shapes.shp[dem->p.shape[i]];
+      const PetscInt   i  = wl->idx[a];
+      const DemShape  *s  = &dem->shapes.shp[dem->p.shape[i]];
       const ConvexPose pi = DemPose(dem->p.x + 3 * i, dem->p.q + 4 * i);
       ConvexContact    cc;
       PetscCall(ConvexCollidePlane(s->cvx, &pi, wl->p, wl->n, &cc));
@@ -93,9 +93,9 @@ static void dem_draw_mesh(const ConvexShape *c, PetscInt *nv, const double **v, 
 
 PetscErrorCode DemConvexWriteSurface(Dem dem, Io io)
 {
-  double    cv[6 * DEM_CYL_SIDES], *xyz;
-  PetscInt  cf[12 * DEM_CYL_SIDES], np = 0, nt = 0, *tri, *pid;
-  PetscInt  nv, nf;
+  double          cv[6 * DEM_CYL_SIDES], *xyz;
+  PetscInt        cf[12 * DEM_CYL_SIDES], np = 0, nt = 0, *tri, *pid;
+  PetscInt        nv, nf;
   const double   *v;
   const PetscInt *f;
 

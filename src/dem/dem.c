@@ -41,7 +41,7 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
   d->insert.seed            = 1;
   d->overlap_max            = 0.5;
   d->g[2]                   = -9.81;
-  *dem = d;
+  *dem                      = d;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -49,8 +49,7 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem)
  * option list the Makefile builds from the sources) finds them. */
 static const char *const DemMaterialNames[2][6] = {
   {"-dem_kn", "-dem_kt", "-dem_restitution", "-dem_friction", "-dem_youngs_modulus", "-dem_poisson_ratio"},
-  {"-dem_wall_kn", "-dem_wall_kt", "-dem_wall_restitution", "-dem_wall_friction", "-dem_wall_youngs_modulus", "-dem_wall_poisson_ratio"}
-};
+  {"-dem_wall_kn", "-dem_wall_kt", "-dem_wall_restitution", "-dem_wall_friction", "-dem_wall_youngs_modulus", "-dem_wall_poisson_ratio"}};
 
 static PetscErrorCode DemMaterialOptions(PetscOptionItems *PetscOptionsObject, Dem dem, const char *const o[6], DemMaterial *m, const DemMaterial *dflt)
 {
@@ -148,8 +147,8 @@ PetscErrorCode DemSetFromOptions(Dem dem)
     PetscCheck(nr >= 1, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius needs at least one value");
     for (PetscInt s = 0; s < nr; s++) {
       PetscCheck(r[s] > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_radius %g must be > 0 (m)", (double)r[s]);
-      dem->shapes.shp[s]     = dem->shapes.shp[0];
-      dem->shapes.shp[s].r   = r[s];
+      dem->shapes.shp[s]   = dem->shapes.shp[0];
+      dem->shapes.shp[s].r = r[s];
     }
     dem->shapes.nshape = nr;
   }
@@ -204,7 +203,7 @@ static PetscErrorCode DemComputeForces(Dem dem)
 {
   PetscFunctionBeginUser;
   double *restrict f = dem->p.f;
-  const double     g[3] = {dem->g[0], dem->g[1], dem->g[2]};
+  const double g[3]  = {dem->g[0], dem->g[1], dem->g[2]};
   for (PetscInt i = 0; i < dem->p.n; i++) {
     const double m = dem->shapes.shp[dem->shapes.nshape == 1 ? 0 : dem->p.shape[i]].m;
     for (int k = 0; k < 3; k++) f[3 * i + k] = m * g[k];
@@ -240,7 +239,7 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscCall(DemCheckTimeStep(dem));
   if (dem->nl.skin < 0) dem->nl.skin = 0.2 * rmax;
   PetscCheck(dem->nl.skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->nl.skin);
-  dem->nl.reach    = 2 * rmax + dem->nl.skin;
+  dem->nl.reach         = 2 * rmax + dem->nl.skin;
   dem->contact.rotation = (PetscBool)(dem->contact.mat.mu > 0 || dem->contact.wmat.mu > 0 || dem->shapes.convex);
   for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->contact.rotation = (PetscBool)(dem->contact.rotation || dem->walls.wall[w].mu > 0);
   PetscCall(DemExchangeSetUp(dem));

@@ -11,14 +11,14 @@ typedef struct _p_Dem *Dem;
 
 /* Global diagnostics (collective reductions). Energies in J. */
 typedef struct {
-  PetscInt  n;               /* particles */
-  PetscInt  contacts;        /* particle-particle contacts (overlap > 0) */
-  PetscInt  wall_contacts;   /* particle-wall contacts */
-  PetscReal ke, ke_rot;      /* translational and rotational kinetic energy */
-  PetscReal pe_grav;         /* gravitational potential energy, relative to the origin */
-  PetscReal pe_spring;       /* elastic energy stored in normal and tangential springs */
-  PetscReal max_overlap;     /* largest overlap / radius */
-  PetscReal checksum;        /* sum of ids (exact in double up to 2^53) */
+  PetscInt  n;             /* particles */
+  PetscInt  contacts;      /* particle-particle contacts (overlap > 0) */
+  PetscInt  wall_contacts; /* particle-wall contacts */
+  PetscReal ke, ke_rot;    /* translational and rotational kinetic energy */
+  PetscReal pe_grav;       /* gravitational potential energy, relative to the origin */
+  PetscReal pe_spring;     /* elastic energy stored in normal and tangential springs */
+  PetscReal max_overlap;   /* largest overlap / radius */
+  PetscReal checksum;      /* sum of ids (exact in double up to 2^53) */
 } DemStats;
 
 /* One particle as tests and insertion see it. */
@@ -88,7 +88,7 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed);
  * DemStep or DemAddParticle (a list rebuild may re-sort, a growth may move them). */
 typedef struct {
   PetscInt         nlocal, nghost;
-  const PetscReal *x, *v;      /* position (m), velocity (m/s), xyz interleaved */
+  const PetscReal *x, *v; /* position (m), velocity (m/s), xyz interleaved */
   const PetscInt  *id, *shape;
 } DemArrays;
 PetscErrorCode DemGetArrays(Dem dem, DemArrays *a);

@@ -18,23 +18,28 @@ typedef struct {
   double r, rho, m, inertia, invm, invi; /* sphere radius (m), density, mass, moment of inertia */
   /* convex shapes (shapes.c): r is the bounding radius; NULL cvx means a sphere */
   const ConvexShape *cvx;
-  double J[3], invJ[3]; /* principal moments of inertia (kg m^2), body axes */
-  double vol, req;      /* volume (m^3), equivalent radius for the contact laws (m) */
-  ConvexAxes ax;        /* a polyhedron's separating-axis candidates and box frame (geom/sat.h) */
-  PetscBool  iso;       /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
+  double             J[3], invJ[3]; /* principal moments of inertia (kg m^2), body axes */
+  double             vol, req;      /* volume (m^3), equivalent radius for the contact laws (m) */
+  ConvexAxes         ax;            /* a polyhedron's separating-axis candidates and box frame (geom/sat.h) */
+  PetscBool          iso;           /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
 } DemShape;
 
-typedef enum { DEM_WALL_PLANE, DEM_WALL_RECT, DEM_WALL_POLYGON, DEM_WALL_CYLINDER } DemWallKind;
+typedef enum {
+  DEM_WALL_PLANE,
+  DEM_WALL_RECT,
+  DEM_WALL_POLYGON,
+  DEM_WALL_CYLINDER
+} DemWallKind;
 #define DEM_POLY_MAX 8
 
 typedef struct {
   DemWallKind kind;
-  char   name[32];         /* the option that made it, for messages: -dem_plane_0, -dem_box zlo */
-  double p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity;
+  char        name[32];         /* the option that made it, for messages: -dem_plane_0, -dem_box zlo */
+  double      p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity;
                               a cylinder: a point of its axis, the unit axis, v = 0 */
-  double moved;            /* distance moved since the last list build (m) */
+  double      moved;            /* distance moved since the last list build (m) */
   /* finite rectangle p + s e1 + t e2, s,t in [0,1], touched from the front only (-dem_rect_k) */
-  PetscBool finite;        /* a rectangle or a polygon: touched from the front only */
+  PetscBool finite; /* a rectangle or a polygon: touched from the front only */
   double    e1[3], e2[3];
   /* convex polygon (walls_polygon.c): vertices, unit in-plane edge normals pointing inside, and
      whether an edge is a free rim (edge contacts) or a joint with a neighbour wall (face only) */
@@ -43,8 +48,8 @@ typedef struct {
   PetscBool rim[DEM_POLY_MAX];
   double    R; /* cylinder radius (m), particles inside (walls_cylinder.c) */
   /* rotation about an axis (drum and its end caps): surface velocity v + omega u x (x - a) */
-  double    omega, ax_p[3], ax_u[3];
-  double    mu; /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
+  double omega, ax_p[3], ax_u[3];
+  double mu; /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
   /* list of particles within reach, with their tangential springs */
   PetscInt *idx;
   double   *hist;
@@ -82,9 +87,9 @@ static inline double dem_wall_rim(const DemWall *w, const double *x, double nrm[
     const double  d[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]}, ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     if (dem_dot(d, w->en[e]) >= 0) continue;
     if (!w->rim[e]) return 1e300;
-    const double t = PetscMin(1.0, PetscMax(0.0, dem_dot(d, ab) / dem_dot(ab, ab)));
+    const double t    = PetscMin(1.0, PetscMax(0.0, dem_dot(d, ab) / dem_dot(ab, ab)));
     const double q[3] = {a[0] + t * ab[0] - x[0], a[1] + t * ab[1] - x[1], a[2] + t * ab[2] - x[2]};
-    const double l = sqrt(dem_dot(q, q));
+    const double l    = sqrt(dem_dot(q, q));
     if (l < best && l > 0) {
       best = l;
       for (int k = 0; k < 3; k++) nrm[k] = q[k] / l;
@@ -146,32 +151,32 @@ typedef struct {
 
 /* Ghost exchange with the 26 neighbours (exchange.c). Direction d = (dx+1) + 3(dy+1) + 9(dz+1). */
 typedef struct {
-  PetscMPIInt rank[27];              /* neighbour rank per direction, -1 if none */
-  double      shift[27][3];          /* periodic shift added to coordinates sent that way */
+  PetscMPIInt rank[27];                         /* neighbour rank per direction, -1 if none */
+  double      shift[27][3];                     /* periodic shift added to coordinates sent that way */
   PetscInt   *send[27], nsend[27], capsend[27]; /* local indices sent as ghosts per direction */
   PetscInt    nrecv[27], recvstart[27];         /* ghosts received per direction */
   double     *sbuf, *rbuf;
   size_t      capsbuf, caprbuf;
-  PetscBool   active;                /* any neighbour at all (else exchange is a no-op) */
-  PetscInt    migrated;              /* particles sent away at the last rebuild (diagnostic) */
-  PetscBool   remap;                 /* the decomposition changed: the next build migrates to any rank */
+  PetscBool   active;   /* any neighbour at all (else exchange is a no-op) */
+  PetscInt    migrated; /* particles sent away at the last rebuild (diagnostic) */
+  PetscBool   remap;    /* the decomposition changed: the next build migrates to any rank */
 } DemExchange;
 
 /* Neighbour search (neighbours.c): its settings, the cells and the half (or full) Verlet list. */
 typedef struct {
-  PetscReal  skin, reach; /* reach = 2 r_max + skin = halo width */
-  PetscBool  full_list;   /* -dem_deterministic: full rows summed in id order */
-  PetscInt   sort_interval;
+  PetscReal skin, reach; /* reach = 2 r_max + skin = halo width */
+  PetscBool full_list;   /* -dem_deterministic: full rows summed in id order */
+  PetscInt  sort_interval;
   /* cells over the local box (plus halo): counting sort */
-  PetscInt   nc[3], ncell;
-  double     lo[3], inv[3];
-  PetscInt  *cstart, *cof, *order;
-  PetscInt  *zrank;  /* rank of each cell along a Morton (Z-order) curve: the re-sort order */
+  PetscInt  nc[3], ncell;
+  double    lo[3], inv[3];
+  PetscInt *cstart, *cof, *order;
+  PetscInt *zrank; /* rank of each cell along a Morton (Z-order) curve: the re-sort order */
   /* half Verlet list */
-  PetscInt  *start, *nbr, cap;
-  PetscInt  *own;    /* row (local particle) of each entry: the pair loop screens entries flat */
-  double    *hist;   /* 3 per entry, NULL without history */
-  PetscInt   builds, sorts;
+  PetscInt *start, *nbr, cap;
+  PetscInt *own;  /* row (local particle) of each entry: the pair loop screens entries flat */
+  double   *hist; /* 3 per entry, NULL without history */
+  PetscInt  builds, sorts;
 } DemNeigh;
 
 /* The particles (particles.c): local 0..n-1, then ghosts n..n+ng-1, room for cap. */
@@ -204,14 +209,14 @@ typedef struct {
 
 /* The narrow phase of convex pairs (convex_contacts.c): its settings and its caches. */
 typedef struct {
-  PetscBool        convex_sat;      /* -dem_convex_sat: separating-axis narrow phase for few-axis polyhedron pairs */
-  PetscInt         convex_sat_axes; /* -dem_convex_sat_axes: the most candidate axes a pair may have for it */
-  ConvexPointModel convex_point;    /* -dem_convex_contact_point patch|support */
-  double          *sepax;           /* per Verlet-list entry: a separating axis (world), 0 = none, and
+  PetscBool        convex_sat;                   /* -dem_convex_sat: separating-axis narrow phase for few-axis polyhedron pairs */
+  PetscInt         convex_sat_axes;              /* -dem_convex_sat_axes: the most candidate axes a pair may have for it */
+  ConvexPointModel convex_point;                 /* -dem_convex_contact_point patch|support */
+  double          *sepax;                        /* per Verlet-list entry: a separating axis (world), 0 = none, and
                                        a flag: touching at the last step (4 each) */
-  PetscInt         sepax_build;     /* the list build it belongs to */
-  double          *rot;             /* rotation matrices of the particles (9 each) for the pair loop, */
-  PetscInt        *rot_stamp;       /* each valid where its stamp is the loop's pass number */
+  PetscInt         sepax_build;                  /* the list build it belongs to */
+  double          *rot;                          /* rotation matrices of the particles (9 each) for the pair loop, */
+  PetscInt        *rot_stamp;                    /* each valid where its stamp is the loop's pass number */
   PetscInt         rot_cap, rot_pass, rot_pairs; /* rot_pairs: pairs the last pass tested */
 } DemConvexNarrow;
 
@@ -266,33 +271,33 @@ struct _p_Dem {
   PetscReal      g[3];        /* gravity (m/s^2) */
   PetscReal      overlap_max; /* -dem_overlap_max: a larger overlap stops the run (DemCheckHealth) */
   PetscInt       check_every;
-  DemStats       initial;     /* count and checksum at set-up, for -dem_check_every */
+  DemStats       initial; /* count and checksum at set-up, for -dem_check_every */
   PetscBool      need_build;
-  int            stop_sig;    /* a signal any rank had caught at the last step's reduction (0: none) */
-  PetscLogDouble t_compute;   /* wall time in force computation and integration (s) */
-  PetscInt       state;       /* changes whenever positions or the local order may have (DemGetState) */
+  int            stop_sig;  /* a signal any rank had caught at the last step's reduction (0: none) */
+  PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
+  PetscInt       state;     /* changes whenever positions or the local order may have (DemGetState) */
 };
 
 /* Internal functions, by file, from the leaves up: a file calls only files listed above it
  * (the DEM's .c files form no circle of calls). */
-PetscErrorCode DemEventsRegister(void);                            /* events.c */
+PetscErrorCode       DemEventsRegister(void); /* events.c */
 extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
-PetscErrorCode DemSpringsSort(DemSpring *r, PetscInt n);           /* springs.c */
-const DemSpring *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, PetscInt partner); /* springs.c */
-PetscErrorCode DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap); /* springs.c */
-PetscErrorCode DemSpringsRestore(Dem dem, const DemSpring *recs, PetscInt nrec); /* springs.c */
-PetscErrorCode DemParticlesReserve(Dem dem, PetscInt n);           /* particles.c */
-PetscErrorCode DemParticlesPermute(Dem dem, const PetscInt *perm); /* particles.c */
-PetscErrorCode DemMaterialsSetUp(Dem dem);                         /* contact_laws.c */
-PetscErrorCode DemHertzRestitutionMap(double e, double *ch, double *tau); /* contact_laws.c */
-PetscErrorCode DemShapesSetFromOptions(Dem dem);                   /* shapes.c */
-PetscErrorCode DemShapesSetUp(Dem dem);                            /* shapes.c */
-PetscErrorCode DemShapesDestroy(Dem dem);                          /* shapes.c */
-PetscErrorCode DemExchangeSetUp(Dem dem);                          /* exchange.c */
-PetscErrorCode DemExchangeDestroy(Dem dem);                        /* exchange.c */
-PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* exchange.c */
-#define MIG_HEAD 22 /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
-#define MIG_EXT  10 /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
+PetscErrorCode       DemSpringsSort(DemSpring *r, PetscInt n);                                        /* springs.c */
+const DemSpring     *DemSpringFind(const DemSpring *r, PetscInt n, PetscInt owner, PetscInt partner); /* springs.c */
+PetscErrorCode       DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap);        /* springs.c */
+PetscErrorCode       DemSpringsRestore(Dem dem, const DemSpring *recs, PetscInt nrec);                /* springs.c */
+PetscErrorCode       DemParticlesReserve(Dem dem, PetscInt n);                                        /* particles.c */
+PetscErrorCode       DemParticlesPermute(Dem dem, const PetscInt *perm);                              /* particles.c */
+PetscErrorCode       DemMaterialsSetUp(Dem dem);                                                      /* contact_laws.c */
+PetscErrorCode       DemHertzRestitutionMap(double e, double *ch, double *tau);                       /* contact_laws.c */
+PetscErrorCode       DemShapesSetFromOptions(Dem dem);                                                /* shapes.c */
+PetscErrorCode       DemShapesSetUp(Dem dem);                                                         /* shapes.c */
+PetscErrorCode       DemShapesDestroy(Dem dem);                                                       /* shapes.c */
+PetscErrorCode       DemExchangeSetUp(Dem dem);                                                       /* exchange.c */
+PetscErrorCode       DemExchangeDestroy(Dem dem);                                                     /* exchange.c */
+PetscErrorCode       DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec);         /* exchange.c */
+#define MIG_HEAD                 22                                                                   /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
+#define MIG_EXT                  10                                                                   /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
 #define MIG_RECORD_SIZE(dem, ns) (MIG_HEAD + ((dem)->ext.on ? MIG_EXT : 0) + 4 * (size_t)(ns))
 PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n); /* exchange.c */
 /* exchange.c: the migration record of local particle i (position + shift, state, coupling
@@ -301,23 +306,23 @@ size_t         DemMigSize(Dem dem, PetscInt i, const DemSpring *recs, PetscInt n
 size_t         DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b);
 PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used);
 /* Errors when a local particle is wholly outside the domain across a non-periodic side. */
-PetscErrorCode DemCheckInDomain(Dem dem);                          /* exchange.c */
-PetscErrorCode DemGhostsCreate(Dem dem);                           /* exchange.c */
-PetscErrorCode DemGhostsUpdate(Dem dem);                           /* exchange.c */
-PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec); /* redistribute.c */
-PetscErrorCode DemNeighSort(Dem dem);                              /* neighbours.c */
-PetscErrorCode DemNeighBuildList(Dem dem);                         /* neighbours.c */
-PetscErrorCode DemNeighResetCells(Dem dem);                        /* neighbours.c */
-PetscErrorCode DemNeighDestroy(Dem dem);                           /* neighbours.c */
-PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3]); /* walls.c */
-PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first); /* walls.c */
+PetscErrorCode DemCheckInDomain(Dem dem);                                                                                                               /* exchange.c */
+PetscErrorCode DemGhostsCreate(Dem dem);                                                                                                                /* exchange.c */
+PetscErrorCode DemGhostsUpdate(Dem dem);                                                                                                                /* exchange.c */
+PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec);                                                           /* redistribute.c */
+PetscErrorCode DemNeighSort(Dem dem);                                                                                                                   /* neighbours.c */
+PetscErrorCode DemNeighBuildList(Dem dem);                                                                                                              /* neighbours.c */
+PetscErrorCode DemNeighResetCells(Dem dem);                                                                                                             /* neighbours.c */
+PetscErrorCode DemNeighDestroy(Dem dem);                                                                                                                /* neighbours.c */
+PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3]);                                          /* walls.c */
+PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first);                       /* walls.c */
 PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const DemShapeTable *st, double skin, const DemSpring *recs, PetscInt nrec); /* walls.c */
-PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt); /* walls.c */
-PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_polygon.c */
-PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_cylinder.c */
-PetscErrorCode DemWallsSetFromOptions(Dem dem);                    /* walls_options.c */
-PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const DemContactModel *cm, DemNeigh *nl, double dt); /* contacts.c */
-PetscErrorCode DemContactsPairsConvex(Dem dem);                    /* convex_contacts.c */
+PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt);                      /* walls.c */
+PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                    /* walls_polygon.c */
+PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                   /* walls_cylinder.c */
+PetscErrorCode DemWallsSetFromOptions(Dem dem);                                                                                                         /* walls_options.c */
+PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const DemContactModel *cm, DemNeigh *nl, double dt);                          /* contacts.c */
+PetscErrorCode DemContactsPairsConvex(Dem dem);                                                                                                         /* convex_contacts.c */
 /* A body in a pair test (convex_contacts.c): shape, centre, quaternion and its
  * rotation matrix (body -> world), pointing into the particle arrays. */
 typedef struct {
@@ -330,18 +335,18 @@ static inline ConvexPose DemPose(const double *x, const double *q)
   ConvexPose p = {{x[0], x[1], x[2]}, {q[0], q[1], q[2], q[3]}};
   return p;
 }
-PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c); /* convex_contacts.c: the forces' narrow phase */
-PetscErrorCode DemContactsWallsConvex(Dem dem);                    /* convex_contacts.c */
-PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax); /* convex_diag.c */
-PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);              /* convex_diag.c */
-PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);  /* rotation.c */
-PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt); /* rotation.c */
-void           DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h); /* external.c */
+PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c);                                                               /* convex_contacts.c: the forces' narrow phase */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                                                                                                       /* convex_contacts.c */
+PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax);                                                                /* convex_diag.c */
+PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);                                                                                                 /* convex_diag.c */
+PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                               /* rotation.c */
+PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                              /* rotation.c */
+void           DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h);                                              /* external.c */
 PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2); /* integrate.c */
-PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt); /* integrate.c */
-PetscErrorCode DemInsertSetFromOptions(Dem dem);                   /* insert.c */
-PetscErrorCode DemInsert(Dem dem);                                 /* insert.c */
-double         DemLatticeSpacing(Dem dem);                         /* insert.c */
-double         DemImpactOverlap(Dem dem, const DemPairParams *p);  /* diag.c */
-PetscErrorCode DemCheckPlacement(Dem dem);                         /* placement.c */
-PetscErrorCode DemRebuild(Dem dem);                                /* rebuild.c */
+PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt);                  /* integrate.c */
+PetscErrorCode DemInsertSetFromOptions(Dem dem);                                                                                                      /* insert.c */
+PetscErrorCode DemInsert(Dem dem);                                                                                                                    /* insert.c */
+double         DemLatticeSpacing(Dem dem);                                                                                                            /* insert.c */
+double         DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
+PetscErrorCode DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
+PetscErrorCode DemRebuild(Dem dem);                                                                                                                   /* rebuild.c */

@@ -26,12 +26,12 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
     r[2] -= s->m * dem_dot(dem->g, dem->p.x + 3 * i);
     r[4] += (double)dem->p.id[i];
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
-      const PetscInt j  = dem->nl.nbr[a];
+      const PetscInt j = dem->nl.nbr[a];
       /* a pair seen from both sides (full list, or a ghost partner) counts half on each */
-      const PetscBool both = (PetscBool)(dem->nl.full_list || j >= dem->p.n);
-      const double   rs = s->r + dem->shapes.shp[dem->p.shape[j]].r;
-      const double   d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
-      const double   delta = rs - sqrt(dem_dot(d, d));
+      const PetscBool both  = (PetscBool)(dem->nl.full_list || j >= dem->p.n);
+      const double    rs    = s->r + dem->shapes.shp[dem->p.shape[j]].r;
+      const double    d[3]  = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
+      const double    delta = rs - sqrt(dem_dot(d, d));
       if (delta <= 0) continue;
       if (!both || dem->p.id[i] < dem->p.id[j]) c[1]++;
       r[3] += (both ? 0.5 : 1.0) * dem_spring_energy(dem, &dem->contact.pp[dem->p.shape[i] * dem->shapes.nshape + dem->p.shape[j]], delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
@@ -68,7 +68,7 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
 
 PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord)
 {
-  const Domain *dom = dem->dom;
+  const Domain *dom  = dem->dom;
   double        dmax = 0, vol = 0, vg, hsum = 0;
   PetscInt      gx, gy;
   double       *top, *gtop;
@@ -81,7 +81,7 @@ PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord)
   PetscCall(PetscMalloc2(gx * gy, &top, gx * gy, &gtop));
   for (PetscInt c = 0; c < gx * gy; c++) top[c] = -PETSC_MAX_REAL;
   for (PetscInt i = 0; i < dem->p.n; i++) {
-    const double   r  = dem->shapes.shp[dem->p.shape[i]].r, *x = dem->p.x + 3 * i;
+    const double   r = dem->shapes.shp[dem->p.shape[i]].r, *x = dem->p.x + 3 * i;
     const PetscInt cx = PetscMin(gx - 1, PetscMax(0, (PetscInt)((x[0] - dom->lo[0]) / dom->len[0] * gx)));
     const PetscInt cy = PetscMin(gy - 1, PetscMax(0, (PetscInt)((x[1] - dom->lo[1]) / dom->len[1] * gy)));
     top[cx + gx * cy] = PetscMax(top[cx + gx * cy], x[2] + r - dom->lo[2]);
@@ -123,7 +123,7 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
     for (PetscInt t = -1; t < dem->shapes.nshape; t++) {
       PetscReal tc, e;
       PetscCall(DemGetContactFigures(dem, s, t, dem->contact.vimpact, &tc, &e));
-      const DemPairParams *p = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
+      const DemPairParams *p  = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
       const double         ov = DemImpactOverlap(dem, p);
       PetscCall(PetscViewerASCIIPrintf(v, "  contact r=%g m with %s: Tc = %.3g s, dt/Tc = %.3g (limit %g), e = %g, overlap at %g m/s <= %.3g r\n", (double)dem->shapes.shp[s].r, t < 0 ? "wall" : "particle", (double)tc, (double)(dem->clock.dt / tc), (double)dem->clock.dt_frac, (double)e, (double)dem->contact.vimpact, ov / dem->shapes.shp[s].r));
     }

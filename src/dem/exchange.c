@@ -129,7 +129,7 @@ static int dem_leave(const Dem dem, const double *x, int k)
 static const DemSpring *dem_springs_of(const DemSpring *recs, PetscInt nrec, PetscInt id, PetscInt *ns)
 {
   const DemSpring *s = DemSpringFind(recs, nrec, id, PETSC_MIN_INT), *s0 = s;
-  *ns                = 0;
+  *ns = 0;
   for (; s && s < recs + nrec && s->owner == id; s++) (*ns)++;
   return s0;
 }
@@ -233,9 +233,9 @@ PetscErrorCode DemCheckInDomain(Dem dem)
         double         s  = 0;
         if (wl->kind != DEM_WALL_PLANE || wl->finite) continue;
         for (int c = 0; c < 3; c++) s += (dem->p.x[3 * i + c] - wl->p[c]) * wl->n[c];
-        PetscCheck(s >= -r, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "t = %g s: particle %" PetscInt_FMT " went through wall %s and left the domain (%c = %g m): the run is diverging; lower -dem_dt (now %g s) or raise -dem_kn", (double)dem->clock.t, dem->p.id[i], wl->name, "xyz"[k], x, (double)dem->clock.dt);
+        PetscCheck(s >= -r, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "t = %g s: particle %" PetscInt_FMT " went through wall %s and left the domain (%c = %g m): the run is diverging; lower -dem_dt (now %g s) or raise -dem_kn", (double)dem->clock.t, dem->p.id[i], wl->name, "xyz"[k], x, (double)dem -> clock.dt);
       }
-      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "t = %g s: particle %" PetscInt_FMT " left the domain across its %s %c side (%c = %g m, domain [%g, %g] m); close that side with walls (-dem_box, -dem_plane_k) or enlarge -domain_lo/-domain_hi", (double)dem->clock.t, dem->p.id[i], x < dom->lo[k] ? "lower" : "upper", "xyz"[k], "xyz"[k], x, (double)dom->lo[k], (double)dom->hi[k]);
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "t = %g s: particle %" PetscInt_FMT " left the domain across its %s %c side (%c = %g m, domain [%g, %g] m); close that side with walls (-dem_box, -dem_plane_k) or enlarge -domain_lo/-domain_hi", (double)dem->clock.t, dem->p.id[i], x < dom->lo[k] ? "lower" : "upper", "xyz"[k], "xyz"[k], x, (double)dom -> lo[k], (double)dom -> hi[k]);
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -275,7 +275,7 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
   for (PetscInt i = 0; i < dem->p.n; i++)
     if (dir[i] != 13) pos[dir[i]] += DemMigPack(dem, i, *recs, *nrec, ex->shift[dir[i]], ex->sbuf + pos[dir[i]]);
   ex->migrated = dem->p.n - nkeep;
-  dem->p.n       = nkeep;
+  dem->p.n     = nkeep;
   PetscCall(DemParticlesPermute(dem, keep));
   PetscCall(PetscFree2(dir, keep));
   PetscCall(DemExchangeVariable(dem, soff, roff));
@@ -287,9 +287,9 @@ PetscErrorCode DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *c
 /* Collective. Ghost copies of the halo particles of every neighbour, appended after the locals. */
 PetscErrorCode DemGhostsCreate(Dem dem)
 {
-  DemExchange  *ex = &dem->ex;
+  DemExchange  *ex  = &dem->ex;
   const Domain *dom = dem->dom;
-  const double  h = dem->nl.reach;
+  const double  h   = dem->nl.reach;
   size_t        soff[28], roff[28];
 
   PetscFunctionBeginUser;
@@ -340,8 +340,8 @@ PetscErrorCode DemGhostsCreate(Dem dem)
     for (PetscInt a = 0; a < ex->nrecv[d]; a++) {
       const double  *b = ex->rbuf + roff[d] + GHOST_WIDTH * a;
       const PetscInt g = dem->p.n + dem->p.ng++;
-      dem->p.id[g]       = (PetscInt)b[0];
-      dem->p.shape[g]    = (PetscInt)b[1];
+      dem->p.id[g]     = (PetscInt)b[0];
+      dem->p.shape[g]  = (PetscInt)b[1];
       for (int k = 0; k < 3; k++) {
         dem->p.x[3 * g + k] = b[2 + k];
         dem->p.v[3 * g + k] = b[5 + k];

@@ -22,7 +22,7 @@ void DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState 
     const double den = 1.0 / (1.0 + hk * im);
     for (int k = 0; k < 3; k++) {
       const double vn = (v[3 * i + k] + h * (f[3 * i + k] + fe[3 * i + k]) * im + hk * im * u[3 * i + k]) * den;
-      v[3 * i + k] = vn;
+      v[3 * i + k]    = vn;
       j[3 * i + k] += hk * (u[3 * i + k] - vn);
     }
   }

@@ -106,7 +106,7 @@ double DemLatticeSpacing(Dem dem)
  * particles (ids stay unique). */
 static PetscErrorCode DemInsertLattice(Dem dem, PetscInt base)
 {
-  double   dmax = 0, a, gap;
+  double   dmax  = 0, a, gap;
   PetscInt nsite = dem->insert.lat_count;
 
   PetscFunctionBeginUser;
@@ -204,8 +204,10 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
     if (k == 4) PetscCall(DemCheckFileIds(dem, d, rows));
     for (PetscInt a = 0; a < nmine && k > 0; a++) {
       const PetscInt i = n0 + a, row = mine[a];
-      if (k == 1) for (int c = 0; c < 3; c++) dem->p.v[3 * i + c] = d[3 * row + c];
-      if (k == 2) for (int c = 0; c < 3; c++) dem->p.w[3 * i + c] = d[3 * row + c];
+      if (k == 1)
+        for (int c = 0; c < 3; c++) dem->p.v[3 * i + c] = d[3 * row + c];
+      if (k == 2)
+        for (int c = 0; c < 3; c++) dem->p.w[3 * i + c] = d[3 * row + c];
       if (k == 3) {
         const PetscReal *q = d + 4 * row, nq = PetscSqrtReal(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
         PetscCheck(PetscIsNormalReal(nq) && nq > 1e-12, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/quaternion, (%g, %g, %g, %g), is not a rotation (norm %g)", dem->insert.init_file, row, (double)q[0], (double)q[1], (double)q[2], (double)q[3], (double)nq);
@@ -253,7 +255,7 @@ PetscErrorCode DemInsert(Dem dem)
     if (nfile) PetscCallMPI(MPI_Allreduce(&dem->p.next_id, &dem->insert.file_end, 1, MPIU_INT, MPI_MAX, dem->comm));
   }
   if (dem->insert.lat_count > 0) {
-    n0            = dem->p.n;
+    n0 = dem->p.n;
     PetscCall(DemInsertLattice(dem, dem->insert.file_end));
     added = dem->p.n - n0;
     PetscCallMPI(MPI_Allreduce(&added, &got, 1, MPIU_INT, MPI_SUM, dem->comm));

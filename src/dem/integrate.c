@@ -19,10 +19,10 @@ static inline void dem_spin_first_half(double *restrict wi, double *restrict qi,
   double dq[4];
   for (int k = 0; k < 3; k++) wi[k] += h * ti[k] * ii;
   /* (0, w) q */
-  dq[0] = -(wi[0] * qi[1] + wi[1] * qi[2] + wi[2] * qi[3]);
-  dq[1] = wi[0] * qi[0] + wi[1] * qi[3] - wi[2] * qi[2];
-  dq[2] = wi[1] * qi[0] + wi[2] * qi[1] - wi[0] * qi[3];
-  dq[3] = wi[2] * qi[0] + wi[0] * qi[2] - wi[1] * qi[1];
+  dq[0]    = -(wi[0] * qi[1] + wi[1] * qi[2] + wi[2] * qi[3]);
+  dq[1]    = wi[0] * qi[0] + wi[1] * qi[3] - wi[2] * qi[2];
+  dq[2]    = wi[1] * qi[0] + wi[2] * qi[1] - wi[0] * qi[3];
+  dq[3]    = wi[2] * qi[0] + wi[0] * qi[2] - wi[1] * qi[1];
   double s = 0;
   for (int k = 0; k < 4; k++) {
     qi[k] += h * dq[k];
@@ -39,11 +39,11 @@ static inline void dem_spin_first_half(double *restrict wi, double *restrict qi,
  * w, q (and the coupling's impulse); reads f, tq, x0 and the shapes' masses and inertias. */
 PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2)
 {
-  const double           h = 0.5 * dt;
-  double *restrict       x = p->x, *restrict v = p->v, *restrict w = p->w, *restrict q = p->q;
+  const double h     = 0.5 * dt;
+  double *restrict x = p->x, *restrict v = p->v, *restrict w = p->w, *restrict q = p->q;
   const double *restrict f = p->f, *restrict tq = p->tq, *restrict x0 = p->x0;
-  const PetscInt         n = p->n, *restrict shape = p->shape;
-  double                 d2max = 0, d2sum = 0;
+  const PetscInt n = p->n, *restrict shape = p->shape;
+  double         d2max = 0, d2sum = 0;
 
   PetscFunctionBeginUser;
   *maxdisp2 = 0;
@@ -77,7 +77,7 @@ PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, D
       d2sum += d2; /* a NaN, which the max drops, survives a sum (one add: the loop still vectorises) */
     }
   }
-  if (d2sum != d2sum) d2max = d2sum; /* DemStep stops on a non-finite displacement */
+  if (d2sum != d2sum) d2max = d2sum;                        /* DemStep stops on a non-finite displacement */
   if (st->convex) PetscCall(DemRotateFirstHalf(p, st, dt)); /* full inertia tensor (rotation.c) */
   else if (rotation)
     for (PetscInt i = 0; i < n; i++) {
@@ -93,11 +93,11 @@ PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, D
 /* Half kicks of v and (spheres) w; with one shape a flat loop over the 3n components. */
 PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt)
 {
-  const double           h = 0.5 * dt;
-  double *restrict       v = p->v, *restrict w = p->w;
+  const double h     = 0.5 * dt;
+  double *restrict v = p->v, *restrict w = p->w;
   const double *restrict f = p->f, *restrict tq = p->tq;
-  const PetscInt         n = p->n, *restrict shape = p->shape;
-  const PetscBool        spin = (PetscBool)(rotation && !st->convex);
+  const PetscInt  n = p->n, *restrict shape = p->shape;
+  const PetscBool spin = (PetscBool)(rotation && !st->convex);
 
   PetscFunctionBeginUser;
   if (e->frozen) PetscFunctionReturn(PETSC_SUCCESS);

@@ -112,8 +112,20 @@ static PetscErrorCode DemBin(Dem dem, PetscInt m, const PetscInt *key)
 /* Stencil: the own cell, the 13 neighbours lexicographically after it (dz, dy, dx), then the 13
  * before it (searched for ghosts only in the half list). */
 static const int dem_stencil[14][3] = {
-  {0, 0, 0}, {1, 0, 0}, {-1, 1, 0}, {0, 1, 0}, {1, 1, 0}, {-1, -1, 1}, {0, -1, 1},
-  {1, -1, 1}, {-1, 0, 1}, {0, 0, 1}, {1, 0, 1}, {-1, 1, 1}, {0, 1, 1}, {1, 1, 1},
+  {0, 0, 0},
+  {1, 0, 0},
+  {-1, 1, 0},
+  {0, 1, 0},
+  {1, 1, 0},
+  {-1, -1, 1},
+  {0, -1, 1},
+  {1, -1, 1},
+  {-1, 0, 1},
+  {0, 0, 1},
+  {1, 0, 1},
+  {-1, 1, 1},
+  {0, 1, 1},
+  {1, 1, 1},
 };
 
 static int dem_nbr_id_cmp(const void *a, const void *b, const Dem dem)
@@ -139,8 +151,8 @@ static void dem_row_sort(Dem dem, PetscInt *row, PetscInt len)
 /* Pair list: row i (local) holds the partners j within r_i + r_j + skin (see file header). */
 static PetscErrorCode DemPairList(Dem dem)
 {
-  DemNeigh    *nl = &dem->nl;
-  PetscInt     m = 0;
+  DemNeigh    *nl   = &dem->nl;
+  PetscInt     m    = 0;
   const double skin = dem->nl.skin;
 
   PetscFunctionBeginUser;

@@ -72,8 +72,8 @@ PetscErrorCode DemAddParticle(Dem dem, const DemParticle *p)
   PetscCall(DemParticlesReserve(dem, i + 1));
   for (int k = 0; k < 3; k++) {
     dem->p.x[3 * i + k] = dem->p.x0[3 * i + k] = p->x[k];
-    dem->p.v[3 * i + k]                      = p->v[k];
-    dem->p.w[3 * i + k]                      = p->w[k];
+    dem->p.v[3 * i + k]                        = p->v[k];
+    dem->p.w[3 * i + k]                        = p->w[k];
     dem->p.f[3 * i + k] = dem->p.tq[3 * i + k] = 0;
   }
   for (int k = 0; k < 4; k++) dem->p.q[4 * i + k] = p->q[k];
@@ -85,7 +85,7 @@ PetscErrorCode DemAddParticle(Dem dem, const DemParticle *p)
   dem->p.id[i]    = p->id;
   dem->p.shape[i] = p->shape;
   dem->p.n++;
-  dem->p.next_id    = PetscMax(dem->p.next_id, p->id + 1);
+  dem->p.next_id  = PetscMax(dem->p.next_id, p->id + 1);
   dem->need_build = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -31,8 +31,19 @@
 #define DEM_PLACE_FILE_MIN 0.05 /* radii: the least default limit of a file's overlaps */
 #define DEM_PLACE_MSG      1024
 
-typedef enum { PLACE_OTHER, PLACE_LATTICE, PLACE_FILE } DemPlaceOrigin;
-typedef enum { FIND_LATTICE_WALL, FIND_LATTICE_LATTICE, FIND_LATTICE_FILE, FIND_FILE_WALL, FIND_FILE_FILE, FIND_NONE } DemPlaceKind;
+typedef enum {
+  PLACE_OTHER,
+  PLACE_LATTICE,
+  PLACE_FILE
+} DemPlaceOrigin;
+typedef enum {
+  FIND_LATTICE_WALL,
+  FIND_LATTICE_LATTICE,
+  FIND_LATTICE_FILE,
+  FIND_FILE_WALL,
+  FIND_FILE_FILE,
+  FIND_NONE
+} DemPlaceKind;
 
 typedef struct {
   double   key[3]; /* kind, depth (radii), smallest id: what the ranks compare */
@@ -114,7 +125,7 @@ static PetscErrorCode DemPlacePairDepth(Dem dem, PetscInt i, PetscInt j, double 
     if (c.overlap) *depth = c.depth / PetscMin(si->req, sj->req);
   } else {
     const double d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
-    *depth = PetscMax(0.0, si->r + sj->r - sqrt(dem_dot(d, d))) / PetscMin(si->r, sj->r);
+    *depth            = PetscMax(0.0, si->r + sj->r - sqrt(dem_dot(d, d))) / PetscMin(si->r, sj->r);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -155,7 +166,7 @@ static PetscErrorCode DemPlaceWallText(const DemWall *w, char *buf, size_t len)
   if (w->kind == DEM_WALL_CYLINDER) PetscCall(PetscSNPrintf(buf, len, "%s (radius %.6g)", w->name, w->R));
   else if (w->kind == DEM_WALL_PLANE)
     for (int k = 0; k < 3; k++)
-      if (PetscAbsReal(w->n[k]) > 1 - 1e-12) PetscCall(PetscSNPrintf(buf, len, "%s (%c = %.6g)", w->name, "xyz"[k], w->p[k]));
+      if (PetscAbsReal(w->n[k]) > 1 - 1e-12) PetscCall(PetscSNPrintf(buf, len, "%s (%c = %.6g)", w->name, "xyz"[k], w -> p[k]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -170,7 +181,7 @@ static PetscErrorCode DemPlaceLatticeText(Dem dem, char *buf, size_t len, double
   ext[1] = a * PetscMin(dem->insert.lat[1], (cnt + nx - 1) / nx);
   ext[2] = a * ((cnt + nxy - 1) / nxy);
   PetscCall(PetscSNPrintf(buf, len, "-dem_lattice %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT " from -dem_lattice_origin %.6g,%.6g,%.6g%s, -dem_lattice_spacing %.6g%s", dem->insert.lat[0], dem->insert.lat[1], dem->insert.lat[2], dem->insert.lat_origin[0], dem->insert.lat_origin[1], dem->insert.lat_origin[2], dem->insert.lat_origin_set ? "" : " (default: the domain's lower corner)", a,
-                         dem->insert.lat_a > 0 ? "" : " (default: 1.05 x the largest diameter)"));
+                          dem->insert.lat_a > 0 ? "" : " (default: 1.05 x the largest diameter)"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -202,7 +213,7 @@ static void dem_place_position(const Dem dem, PetscInt i, double x[3])
 /* The message of the finding f (on the rank that made it). */
 static PetscErrorCode DemPlaceMessage(Dem dem, const DemPlaceFind *f, double limit, char *msg)
 {
-  const DemPlaceKind kind = (DemPlaceKind)f->key[0];
+  const DemPlaceKind kind  = (DemPlaceKind)f->key[0];
   const double       depth = f->key[1];
   PetscInt           i = f->i, j = f->j;
   char               lat[320], wall[96], hint[128], how[160], lim[256];

@@ -44,7 +44,7 @@ PetscErrorCode DemRebuild(Dem dem)
 PetscErrorCode DemRedistribute(Dem dem)
 {
   PetscFunctionBeginUser;
-  PetscCall(DemExchangeSetUp(dem)); /* same neighbours; re-checks the box widths */
+  PetscCall(DemExchangeSetUp(dem));   /* same neighbours; re-checks the box widths */
   PetscCall(DemNeighResetCells(dem)); /* the cell grid covers the new box */
   dem->ex.remap = PETSC_TRUE;
   PetscCall(DemRebuild(dem));

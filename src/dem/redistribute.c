@@ -62,7 +62,7 @@ PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, Petsc
   for (PetscInt i = 0; i < dem->p.n; i++)
     if (owner[i] != me) rdsp[owner[i]] += (PetscMPIInt)DemMigPack(dem, i, *recs, *nrec, zero, ex->sbuf + rdsp[owner[i]]);
   ex->migrated = dem->p.n - nkeep;
-  dem->p.n       = nkeep;
+  dem->p.n     = nkeep;
   PetscCall(DemParticlesPermute(dem, keep));
   PetscCallMPI(MPI_Alltoall(scnt, 1, MPI_INT, rcnt, 1, MPI_INT, dem->comm));
   rdsp[0] = 0;

@@ -59,10 +59,10 @@ static inline void dem_rotor_iso(double dt, double hJ, const double *T, double *
   if (wn == 0) return;
   const double u = 0.25 * dt * wn, den = 1.0 / (1.0 + u * u), cb = (1.0 - u * u) * den, sb = 2.0 * u * den / wn;
   const double p[4] = {cb, sb * w[0], sb * w[1], sb * w[2]}, o[4] = {q[0], q[1], q[2], q[3]};
-  q[0] = p[0] * o[0] - p[1] * o[1] - p[2] * o[2] - p[3] * o[3];
-  q[1] = p[0] * o[1] + p[1] * o[0] + p[2] * o[3] - p[3] * o[2];
-  q[2] = p[0] * o[2] - p[1] * o[3] + p[2] * o[0] + p[3] * o[1];
-  q[3] = p[0] * o[3] + p[1] * o[2] - p[2] * o[1] + p[3] * o[0];
+  q[0]           = p[0] * o[0] - p[1] * o[1] - p[2] * o[2] - p[3] * o[3];
+  q[1]           = p[0] * o[1] + p[1] * o[0] + p[2] * o[3] - p[3] * o[2];
+  q[2]           = p[0] * o[2] - p[1] * o[3] + p[2] * o[0] + p[3] * o[1];
+  q[3]           = p[0] * o[3] + p[1] * o[2] - p[2] * o[1] + p[3] * o[0];
   const double s = 1.0 / sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
   for (int k = 0; k < 4; k++) q[k] *= s;
 }
@@ -101,7 +101,7 @@ PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, doub
     dem_rotor_axis(1, h, sh->invJ, q, L);
     dem_rotor_axis(0, h, sh->invJ, q, L);
     const double m2 = L[0] * L[0] + L[1] * L[1] + L[2] * L[2]; /* rotations keep |L|: remove */
-    if (m2 > 0) {                                                /* the rounding bias of c^2+s^2 */
+    if (m2 > 0) {                                              /* the rounding bias of c^2+s^2 */
       const double f = sqrt(l2 / m2);
       for (int k = 0; k < 3; k++) L[k] *= f;
     }

@@ -18,7 +18,15 @@
  * Reference: Rakotonirina & Wachs 2018 (Grains3D Part II) §2, the "reference particle". */
 #include "dem/dem_impl.h"
 
-typedef enum { DEM_SHAPE_SPHERE, DEM_SHAPE_CUBE, DEM_SHAPE_TETRAHEDRON, DEM_SHAPE_OCTAHEDRON, DEM_SHAPE_ICOSAHEDRON, DEM_SHAPE_CYLINDER, DEM_SHAPE_POLYHEDRON } DemShapeKind;
+typedef enum {
+  DEM_SHAPE_SPHERE,
+  DEM_SHAPE_CUBE,
+  DEM_SHAPE_TETRAHEDRON,
+  DEM_SHAPE_OCTAHEDRON,
+  DEM_SHAPE_ICOSAHEDRON,
+  DEM_SHAPE_CYLINDER,
+  DEM_SHAPE_POLYHEDRON
+} DemShapeKind;
 static const char *DemShapeKinds[] = {"sphere", "cube", "tetrahedron", "octahedron", "icosahedron", "cylinder", "polyhedron", "DemShapeKind", "DEM_SHAPE_", NULL};
 
 /* Uniform scaling of a shape about its centre of mass (lengths by s). */
@@ -48,16 +56,27 @@ static PetscErrorCode DemConvexCreate(Dem dem, const DemShapeSpec *sp, ConvexSha
 
   PetscFunctionBeginUser;
   switch (sp->kind) {
-  case DEM_SHAPE_CUBE: PetscCall(ConvexShapeCreateCube(a, c)); break;
-  case DEM_SHAPE_TETRAHEDRON: PetscCall(ConvexShapeCreateTetrahedron(a, c)); break;
-  case DEM_SHAPE_OCTAHEDRON: PetscCall(ConvexShapeCreateOctahedron(a, c)); break;
-  case DEM_SHAPE_ICOSAHEDRON: PetscCall(ConvexShapeCreateIcosahedron(a, c)); break;
-  case DEM_SHAPE_CYLINDER: PetscCall(ConvexShapeCreateCylinder(0.5 * a, sp->aspect * a, c)); break;
+  case DEM_SHAPE_CUBE:
+    PetscCall(ConvexShapeCreateCube(a, c));
+    break;
+  case DEM_SHAPE_TETRAHEDRON:
+    PetscCall(ConvexShapeCreateTetrahedron(a, c));
+    break;
+  case DEM_SHAPE_OCTAHEDRON:
+    PetscCall(ConvexShapeCreateOctahedron(a, c));
+    break;
+  case DEM_SHAPE_ICOSAHEDRON:
+    PetscCall(ConvexShapeCreateIcosahedron(a, c));
+    break;
+  case DEM_SHAPE_CYLINDER:
+    PetscCall(ConvexShapeCreateCylinder(0.5 * a, sp->aspect * a, c));
+    break;
   case DEM_SHAPE_POLYHEDRON:
     PetscCall(ConvexShapeCreateFromFile(sp->file, c));
     if (sp->size > 0) DemConvexScale(c, sp->size);
     break;
-  default: SETERRQ(dem->comm, PETSC_ERR_ARG_WRONG, "-dem_shape: not a convex kind");
+  default:
+    SETERRQ(dem->comm, PETSC_ERR_ARG_WRONG, "-dem_shape: not a convex kind");
   }
   if (sp->deq > 0) DemConvexScale(c, sp->deq / c->d_eq);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -151,7 +170,7 @@ PetscErrorCode DemShapesSetFromOptions(Dem dem)
 {
   DemShapeSpec sp[DEM_MAX_SHAPES];
   char        *files[DEM_MAX_SHAPES] = {NULL};
-  PetscInt     ns = 0;
+  PetscInt     ns                    = 0;
 
   PetscFunctionBeginUser;
   PetscCall(DemShapeSpecsRead(dem, &ns, sp, files));
@@ -191,8 +210,8 @@ PetscErrorCode DemShapesSetUp(Dem dem)
     sh->inertia = (sh->J[0] + sh->J[1] + sh->J[2]) / 3.0; /* only for reports */
     PetscCall(ConvexAxesDestroy(&sh->ax));
     PetscCall(ConvexAxesCreate(sh->cvx, &sh->ax)); /* for the separating-axis tests (convex_contacts.c) */
-    sh->iso = (PetscBool)(PetscAbsReal(sh->J[0] - sh->J[2]) <= 1e-12 * sh->J[2] && PetscAbsReal(sh->J[1] - sh->J[2]) <= 1e-12 * sh->J[2]);
-    sh->invi    = 1.0 / sh->inertia;
+    sh->iso  = (PetscBool)(PetscAbsReal(sh->J[0] - sh->J[2]) <= 1e-12 * sh->J[2] && PetscAbsReal(sh->J[1] - sh->J[2]) <= 1e-12 * sh->J[2]);
+    sh->invi = 1.0 / sh->inertia;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -96,7 +96,8 @@ PetscErrorCode DemSpringsRestore(Dem dem, const DemSpring *recs, PetscInt nrec)
       const PetscInt   j = nl->nbr[a];
       const DemSpring *r = DemSpringFind(recs, nrec, dem->p.id[i], dem->p.id[j]);
       double          *h = nl->hist + 3 * a;
-      if (r) for (int k = 0; k < 3; k++) h[k] = r->xi[k];
+      if (r)
+        for (int k = 0; k < 3; k++) h[k] = r->xi[k];
       else if (!dem->nl.full_list && (r = DemSpringFind(recs, nrec, dem->p.id[j], dem->p.id[i])))
         for (int k = 0; k < 3; k++) h[k] = -r->xi[k]; /* stored from the partner's side */
     }

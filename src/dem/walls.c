@@ -98,7 +98,7 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
     }
     for (int q = 0; q < 4; q++) {
       const double dq[3] = {c[q][0] - w->p[0], c[q][1] - w->p[1], c[q][2] - w->p[2]};
-      behind = (PetscBool)(behind && dem_dot(dq, w->n) <= tol);
+      behind             = (PetscBool)(behind && dem_dot(dq, w->n) <= tol);
       if (w->finite) spans = (PetscBool)(spans && dem_wall_spans(w, c[q], tol));
     }
     *closed = (PetscBool)(behind && spans);
@@ -115,7 +115,7 @@ PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const
     DemWall *w = &walls->wall[wi];
     w->cnt     = 0;
     for (PetscInt i = 0; i < pt->n; i++) {
-      const double d[3] = {pt->x[3 * i] - w->p[0], pt->x[3 * i + 1] - w->p[1], pt->x[3 * i + 2] - w->p[2]};
+      const double d[3]  = {pt->x[3 * i] - w->p[0], pt->x[3 * i + 1] - w->p[1], pt->x[3 * i + 2] - w->p[2]};
       const double reach = st->shp[pt->shape[i]].r + skin;
       if (w->kind == DEM_WALL_CYLINDER) { /* distance from the curved surface, inside */
         const double a = dem_dot(d, w->n), rho2 = dem_dot(d, d) - a * a;
@@ -130,7 +130,7 @@ PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const
         PetscCall(PetscRealloc(3 * sizeof(double) * (size_t)w->cap, &w->hist));
       }
       const DemSpring *r = nrec ? DemSpringFind(recs, nrec, pt->id[i], -1 - wi) : NULL;
-      w->idx[w->cnt] = i;
+      w->idx[w->cnt]     = i;
       for (int k = 0; k < 3; k++) w->hist[3 * w->cnt + k] = r ? r->xi[k] : 0;
       w->cnt++;
     }
@@ -154,7 +154,7 @@ PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt       i  = w->idx[a];
       const double        *xi = pt->x + 3 * i, *vi = pt->v + 3 * i, *wi_ = pt->w + 3 * i;
-      const double         r  = rad[pt->shape[i]];
+      const double         r = rad[pt->shape[i]];
       double               nrm[3]; /* from the particle to the wall */
       const double         delta = dem_wall_sphere(w, xi, r, nrm);
       double              *xi_t  = cm->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;

@@ -36,7 +36,7 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
   PetscCheck(PetscIsNormalReal(omega) || omega == 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder_omega %g must be finite (rad/s)", (double)omega);
   PetscCheck(!cset || caps[1] > caps[0], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder_caps: s1 %g must exceed s0 %g (m)", (double)caps[1], (double)caps[0]);
   PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_SUP, "-dem_cylinder: implemented for spheres only, not with -dem_shape");
-  const double a[3] = {cyl[0], cyl[1], cyl[2]}, un[3] = {u[0] / lu, u[1] / lu, u[2] / lu};
+  const double   a[3] = {cyl[0], cyl[1], cyl[2]}, un[3] = {u[0] / lu, u[1] / lu, u[2] / lu};
   const PetscInt first = dem->walls.nwall;
   PetscCall(DemWallAdd(dem, "-dem_cylinder", a, un, (double[3]){0, 0, 0}));
   w       = &dem->walls.wall[dem->walls.nwall - 1];

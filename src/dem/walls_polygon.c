@@ -93,8 +93,8 @@ static PetscErrorCode DemWallAddHopper(Dem dem, const PetscReal h[6])
       double x = tpl[c][0], y = tpl[c][1];
       for (int r = 0; r < q; r++) { /* (x, y) -> (-y, x) */
         const double t = x;
-        x = -y;
-        y = t;
+        x              = -y;
+        y              = t;
       }
       v[3 * c]     = cx + x;
       v[3 * c + 1] = cy + y;

@@ -156,7 +156,7 @@ static PetscErrorCode CoupledCheckRunLength(const Coupled *c)
   PetscCall(CplGetTime(c->cpl, &t, &step));
   PetscCall(CplGetTimeStep(c->cpl, &dt));
   PetscCall(CplGetSubsteps(c->cpl, &substeps));
-  len = (SableRunLength){"cpl", "coupling step", dtopt, c->frozen ? "-fluid_dt" : "-dem_dt", c->frozen ? "fluid steps" : "DEM steps", c->r->t_end_set, t, c->r->t_end, dt, c->r->progress_dt, 0, c->frozen ? 1 : substeps, step};
+  len         = (SableRunLength){"cpl", "coupling step", dtopt, c->frozen ? "-fluid_dt" : "-dem_dt", c->frozen ? "fluid steps" : "DEM steps", c->r->t_end_set, t, c->r->t_end, dt, c->r->progress_dt, 0, c->frozen ? 1 : substeps, step};
   len.counter = PetscMax(s0, step);
   if (c->frozen) PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-fluid_dt"));
   else PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-cpl_substeps %d x -dem_dt %g s", (int)substeps, (double)dtd));

@@ -12,8 +12,8 @@ PetscErrorCode DriverIsCoupled(PetscBool *on);
 
 /* The dry run: -dem_t_end (s, required), -dem_progress_interval (s, 0 = none). */
 typedef struct _p_DryRun *DryRun;
-PetscErrorCode DryRunCreate(MPI_Comm comm, DryRun *run);
-PetscErrorCode DryRunSetFromOptions(DryRun run);
+PetscErrorCode            DryRunCreate(MPI_Comm comm, DryRun *run);
+PetscErrorCode            DryRunSetFromOptions(DryRun run);
 /* Sets up the Dem (options read) and the Balance, runs, prints the summary lines. */
 PetscErrorCode DryRunCase(DryRun run, Domain *dom, Dem dem, Balance lb, Io io);
 /* The loop alone (the Dem set up): from the DEM's time to -dem_t_end; lb and io may be NULL. */
@@ -22,8 +22,8 @@ PetscErrorCode DryRunDestroy(DryRun *run);
 
 /* The coupled run: -cpl_t_end (s, required), -cpl_progress_interval (s), -cpl_probe_z z1,z2 (m). */
 typedef struct _p_CoupledRun *CoupledRun;
-PetscErrorCode CoupledRunCreate(Domain *dom, CoupledRun *run);
-PetscErrorCode CoupledRunSetFromOptions(CoupledRun run);
+PetscErrorCode                CoupledRunCreate(Domain *dom, CoupledRun *run);
+PetscErrorCode                CoupledRunSetFromOptions(CoupledRun run);
 /* Builds the Fluid and the coupling beside dem (options read, not set up), sets everything up,
  * runs and prints the summary. With help set it only reads the options (-help lists them). */
 PetscErrorCode CoupledRunCase(CoupledRun run, Dem dem, Balance lb, Io io, PetscBool help);

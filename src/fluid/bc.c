@@ -17,7 +17,7 @@ const char *const FluidBCNames[] = {"periodic", "wall", "slip", "inlet", "outlet
 /* The face options by axis and side, written out so that grep (and the option lists the Makefile
  * builds from the sources: tools/gen-options.sh) finds them; the enum is read as
  * PetscOptionsEnum(FluidBCOption[d][s], ...), which tells the lists that these take words. */
-static const char *const FluidBCOption[3][2] = {{"-fluid_bc_xlo", "-fluid_bc_xhi"}, {"-fluid_bc_ylo", "-fluid_bc_yhi"}, {"-fluid_bc_zlo", "-fluid_bc_zhi"}};
+static const char *const FluidBCOption[3][2]         = {{"-fluid_bc_xlo", "-fluid_bc_xhi"}, {"-fluid_bc_ylo", "-fluid_bc_yhi"}, {"-fluid_bc_zlo", "-fluid_bc_zhi"}};
 static const char *const FluidBCVelocityOption[3][2] = {{"-fluid_bc_xlo_velocity", "-fluid_bc_xhi_velocity"}, {"-fluid_bc_ylo_velocity", "-fluid_bc_yhi_velocity"}, {"-fluid_bc_zlo_velocity", "-fluid_bc_zhi_velocity"}};
 
 PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
@@ -30,7 +30,7 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
   PetscCall(SableOptionsReal("-fluid_outlet_pressure", "Pressure on outlet faces", "Pa", NULL, fl->p_out, &fl->p_out, NULL));
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      FluidBCType t = fl->bc[d][s].type;
+      FluidBCType t   = fl->bc[d][s].type;
       const char *opt = FluidBCOption[d][s], *optv = FluidBCVelocityOption[d][s];
       PetscCall(PetscOptionsEnum(FluidBCOption[d][s], "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", NULL, FluidBCNames, (PetscEnum)t, (PetscEnum *)&t, &set));
       PetscCheck(!set || fl->dom->periodic[d] == (t == FLUID_BC_PERIODIC), fl->comm, PETSC_ERR_ARG_WRONG, "%s %s: the %c axis is %speriodic (-domain_periodic_%c); valid values here: %s", opt, FluidBCNames[t], ax[d], fl->dom->periodic[d] ? "" : "not ", ax[d], fl->dom->periodic[d] ? "periodic" : "wall, slip, inlet, outlet");
@@ -55,7 +55,7 @@ PetscErrorCode FluidGetBC(Fluid fl, int d, int side, FluidBCType *type)
 /* Fills the ghosts of one non-periodic face of the local face array. */
 static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, int d, int s)
 {
-  const FluidGrid *g = &fl->g;
+  const FluidGrid *g  = &fl->g;
   const FluidBC   *bc = &fl->bc[d][s];
   const int        a = (d + 1) % 3, b = (d + 2) % 3;
   const PetscInt   N = g->N[d], bnd = s ? N : 0, sg = s ? 1 : -1;
@@ -63,8 +63,8 @@ static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, int d, int s)
 
   for (idx[b] = g->gfs[b]; idx[b] < g->gfs[b] + g->gfm[b]; idx[b]++)
     for (idx[a] = g->gfs[a]; idx[a] < g->gfs[a] + g->gfm[a]; idx[a]++) {
-      PetscInt q[3] = {idx[0], idx[1], idx[2]};
-      q[d]           = bnd;
+      PetscInt q[3]     = {idx[0], idx[1], idx[2]};
+      q[d]              = bnd;
       const PetscInt f0 = FluidFaceOff(g, q[0], q[1], q[2]), st = g->fs[d];
       /* normal component: boundary face value, then ghost faces bnd + sg*m */
       if (bc->type == FLUID_BC_WALL || bc->type == FLUID_BC_SLIP) u[f0 + d] = 0;
@@ -72,9 +72,15 @@ static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, int d, int s)
       for (PetscInt m = 1; m <= 2; m++) {
         PetscScalar *gh = &u[f0 + sg * m * st + d], in = u[f0 - sg * m * st + d];
         switch (bc->type) {
-        case FLUID_BC_INLET: *gh = bc->vel[d]; break;
-        case FLUID_BC_OUTLET: *gh = u[f0 + d]; break;
-        default: *gh = -in; break;
+        case FLUID_BC_INLET:
+          *gh = bc->vel[d];
+          break;
+        case FLUID_BC_OUTLET:
+          *gh = u[f0 + d];
+          break;
+        default:
+          *gh = -in;
+          break;
         }
       }
       /* tangential components: cell-centred along d; interior cell m' mirrors to ghost */
@@ -84,9 +90,15 @@ static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, int d, int s)
         for (PetscInt m = 0; m <= 1; m++) {
           PetscScalar in = u[c0 - sg * m * st + c], *gh = &u[c0 + sg * (m + 1) * st + c];
           switch (bc->type) {
-          case FLUID_BC_WALL: *gh = -in; break;
-          case FLUID_BC_INLET: *gh = 2 * bc->vel[c] - in; break;
-          default: *gh = in; break;
+          case FLUID_BC_WALL:
+            *gh = -in;
+            break;
+          case FLUID_BC_INLET:
+            *gh = 2 * bc->vel[c] - in;
+            break;
+          default:
+            *gh = in;
+            break;
           }
         }
       }
@@ -115,18 +127,18 @@ PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *v, PetscBool odd_at_ou
     const int a = (d + 1) % 3, b = (d + 2) % 3;
     if (FluidPeriodic(fl, d)) continue;
     for (int s = 0; s < 2; s++) {
-      const PetscInt  sg  = s ? 1 : -1, first = s ? g->N[d] - 1 : 0;
+      const PetscInt  sg = s ? 1 : -1, first = s ? g->N[d] - 1 : 0;
       const PetscBool odd = (PetscBool)(odd_at_outlet && fl->bc[d][s].type == FLUID_BC_OUTLET);
       PetscInt        idx[3];
       if (s == 0 && g->xs[d] != 0) continue;
       if (s == 1 && g->xs[d] + g->xm[d] != g->N[d]) continue;
       for (idx[b] = g->gcs[b]; idx[b] < g->gcs[b] + g->gcm[b]; idx[b]++)
         for (idx[a] = g->gcs[a]; idx[a] < g->gcs[a] + g->gcm[a]; idx[a]++) {
-          PetscInt q[3] = {idx[0], idx[1], idx[2]};
-          q[d]          = first;
+          PetscInt q[3]     = {idx[0], idx[1], idx[2]};
+          q[d]              = first;
           const PetscInt c0 = FluidCellOff(g, q[0], q[1], q[2]), st = g->cs[d];
           for (PetscInt m = 0; m <= 1; m++) {
-            PetscScalar in = v[c0 - sg * m * st];
+            PetscScalar in            = v[c0 - sg * m * st];
             v[c0 + sg * (m + 1) * st] = odd ? 2 * outlet_value - in : in;
           }
         }
@@ -164,7 +176,7 @@ PetscErrorCode FluidLocalCell(Fluid fl, Vec v, Vec vloc, PetscBool odd_at_outlet
 PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u)
 {
   const FluidGrid *g = &fl->g;
-  PetscScalar ****a;
+  PetscScalar  ****a;
   PetscInt         idx[3];
 
   PetscFunctionBeginUser;

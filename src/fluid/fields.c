@@ -92,7 +92,8 @@ PetscErrorCode FluidCellsToFaces(Fluid fl, Vec cell[3], Vec face)
     const PetscScalar *a;
     PetscCall(FluidLocalCell(fl, cell[d], loc, PETSC_FALSE, 0.0));
     PetscCall(VecGetArrayRead(loc, &a));
-    FLUID_FOR_OWNED_FACES(g, idx, f, c, o) out[o + d] = 0.5 * (a[c] + a[c - g->cs[d]]);
+    FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+    out[o + d] = 0.5 * (a[c] + a[c - g->cs[d]]);
     PetscCall(VecRestoreArrayRead(loc, &a));
   }
   PetscCall(VecRestoreArray(face, &out));

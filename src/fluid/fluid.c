@@ -39,15 +39,15 @@ PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&fl));
   PetscCall(PetscObjectGetComm((PetscObject)dom->da, &fl->comm));
-  fl->dom      = dom;
-  fl->rho      = 1000.0;
-  fl->mu       = 1.0e-3;
-  fl->dt       = 1.0e-3;
-  fl->p_out    = 0.0;
-  fl->adv      = FLUID_ADV_CENTRAL;
-  fl->visc     = FLUID_VISC_EXPLICIT;
-  fl->cfl_max  = 0.5;
-  fl->visc_max = 0.5;
+  fl->dom       = dom;
+  fl->rho       = 1000.0;
+  fl->mu        = 1.0e-3;
+  fl->dt        = 1.0e-3;
+  fl->p_out     = 0.0;
+  fl->adv       = FLUID_ADV_CENTRAL;
+  fl->visc      = FLUID_VISC_EXPLICIT;
+  fl->cfl_max   = 0.5;
+  fl->visc_max  = 0.5;
   fl->pc_lag    = 20;
   fl->pc_growth = 1.5;
   for (int d = 0; d < 3; d++)
@@ -243,13 +243,48 @@ PetscErrorCode FluidGetDMs(Fluid fl, DM *cda, DM *fda)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FluidGetPorosity(Fluid fl, Vec *v)        { PetscFunctionBeginUser; *v = fl->eps; PetscFunctionReturn(PETSC_SUCCESS); }
-PetscErrorCode FluidGetPorosityOld(Fluid fl, Vec *v)     { PetscFunctionBeginUser; *v = fl->eps_old; PetscFunctionReturn(PETSC_SUCCESS); }
-PetscErrorCode FluidGetDragCoefficient(Fluid fl, Vec *v) { PetscFunctionBeginUser; *v = fl->beta; PetscFunctionReturn(PETSC_SUCCESS); }
-PetscErrorCode FluidGetSolidVelocity(Fluid fl, Vec *v)   { PetscFunctionBeginUser; *v = fl->us; PetscFunctionReturn(PETSC_SUCCESS); }
-PetscErrorCode FluidGetMomentumSource(Fluid fl, Vec *v)  { PetscFunctionBeginUser; *v = fl->src; PetscFunctionReturn(PETSC_SUCCESS); }
-PetscErrorCode FluidGetVelocity(Fluid fl, Vec *v)        { PetscFunctionBeginUser; *v = fl->u; PetscFunctionReturn(PETSC_SUCCESS); }
-PetscErrorCode FluidGetPressure(Fluid fl, Vec *v)        { PetscFunctionBeginUser; *v = fl->p; PetscFunctionReturn(PETSC_SUCCESS); }
+PetscErrorCode FluidGetPorosity(Fluid fl, Vec *v)
+{
+  PetscFunctionBeginUser;
+  *v = fl->eps;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+PetscErrorCode FluidGetPorosityOld(Fluid fl, Vec *v)
+{
+  PetscFunctionBeginUser;
+  *v = fl->eps_old;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+PetscErrorCode FluidGetDragCoefficient(Fluid fl, Vec *v)
+{
+  PetscFunctionBeginUser;
+  *v = fl->beta;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+PetscErrorCode FluidGetSolidVelocity(Fluid fl, Vec *v)
+{
+  PetscFunctionBeginUser;
+  *v = fl->us;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+PetscErrorCode FluidGetMomentumSource(Fluid fl, Vec *v)
+{
+  PetscFunctionBeginUser;
+  *v = fl->src;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+PetscErrorCode FluidGetVelocity(Fluid fl, Vec *v)
+{
+  PetscFunctionBeginUser;
+  *v = fl->u;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+PetscErrorCode FluidGetPressure(Fluid fl, Vec *v)
+{
+  PetscFunctionBeginUser;
+  *v = fl->p;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode FluidGetLocalFields(Fluid fl, Vec *uloc, Vec *ploc)
 {

@@ -61,9 +61,15 @@ PetscErrorCode FluidGetViscosity(Fluid fluid, PetscReal *mu);
 PetscErrorCode FluidGetGravity(Fluid fluid, PetscReal g[3]);
 /* Boundary condition of the face side (0: lower, 1: upper) of axis d (-fluid_bc_{x,y,z}{lo,hi};
  * periodic from -domain_periodic_*); FluidBCNames gives its option value (bc.c). Not collective. */
-typedef enum { FLUID_BC_PERIODIC, FLUID_BC_WALL, FLUID_BC_SLIP, FLUID_BC_INLET, FLUID_BC_OUTLET } FluidBCType;
+typedef enum {
+  FLUID_BC_PERIODIC,
+  FLUID_BC_WALL,
+  FLUID_BC_SLIP,
+  FLUID_BC_INLET,
+  FLUID_BC_OUTLET
+} FluidBCType;
 extern const char *const FluidBCNames[];
-PetscErrorCode FluidGetBC(Fluid fluid, int d, int side, FluidBCType *type);
+PetscErrorCode           FluidGetBC(Fluid fluid, int d, int side, FluidBCType *type);
 /* Borrowed global Vecs, valid until FluidDestroy. eps: porosity eps^{n+1} (cell, set it before
  * FluidStep); eps_old: eps^n (cell, read only); beta: drag coefficient per face component
  * (kg m^-3 s^-1, face); u_s: solid velocity per face component (m/s); source: explicit momentum

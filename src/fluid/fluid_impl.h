@@ -7,8 +7,15 @@
 #pragma once
 #include "fluid/fluid.h"
 
-typedef enum { FLUID_ADV_CENTRAL, FLUID_ADV_TVD, FLUID_ADV_NONE } FluidAdvection;
-typedef enum { FLUID_VISC_EXPLICIT, FLUID_VISC_IMPLICIT } FluidViscous;
+typedef enum {
+  FLUID_ADV_CENTRAL,
+  FLUID_ADV_TVD,
+  FLUID_ADV_NONE
+} FluidAdvection;
+typedef enum {
+  FLUID_VISC_EXPLICIT,
+  FLUID_VISC_IMPLICIT
+} FluidViscous;
 
 #define FLUID_INLET_TABLE_MAX 32
 
@@ -23,12 +30,12 @@ typedef struct {
 
 /* Geometry of the ghosted local arrays of this rank. */
 typedef struct {
-  PetscInt N[3];             /* global cells per axis */
-  PetscInt xs[3], xm[3];     /* owned cells (also the owned face points, plus the extra face) */
-  PetscInt fxm[3];           /* owned face points per axis */
-  PetscInt gcs[3], gcm[3];   /* ghosted cell box */
-  PetscInt gfs[3], gfm[3];   /* ghosted face box */
-  PetscInt cs[3], fs[3];     /* strides of the cell and face local arrays */
+  PetscInt  N[3];           /* global cells per axis */
+  PetscInt  xs[3], xm[3];   /* owned cells (also the owned face points, plus the extra face) */
+  PetscInt  fxm[3];         /* owned face points per axis */
+  PetscInt  gcs[3], gcm[3]; /* ghosted cell box */
+  PetscInt  gfs[3], gfm[3]; /* ghosted face box */
+  PetscInt  cs[3], fs[3];   /* strides of the cell and face local arrays */
   PetscReal h[3], lo[3];
 } FluidGrid;
 
@@ -48,33 +55,33 @@ struct _p_Fluid {
   /* fields (global) */
   Vec u, p, eps, eps_old, beta, us, src;
   /* work: ghosted locals, AB2 history of the advection term, predictor, projection */
-  Vec uloc, ploc, epsloc, epsoldloc, uhat, advn, adv_old, vis, phi, rhs, philoc;
-  PetscReal dt_old;
-  PetscBool have_adv_old;
-  DM         pda;  /* star-stencil copy of cda for the Poisson matrix (same ownership) */
-  Vec        coef, coefloc;
-  Mat        A;
-  PetscCount   ncoo;  /* entries of A in the order FluidPoissonAssemble writes them */
-  PetscScalar *coo_v; /* their values (MatSetValuesCOO) */
-  KSP        ksp;
-  MatNullSpace nsp;
+  Vec              uloc, ploc, epsloc, epsoldloc, uhat, advn, adv_old, vis, phi, rhs, philoc;
+  PetscReal        dt_old;
+  PetscBool        have_adv_old;
+  DM               pda; /* star-stencil copy of cda for the Poisson matrix (same ownership) */
+  Vec              coef, coefloc;
+  Mat              A;
+  PetscCount       ncoo;  /* entries of A in the order FluidPoissonAssemble writes them */
+  PetscScalar     *coo_v; /* their values (MatSetValuesCOO) */
+  KSP              ksp;
+  MatNullSpace     nsp;
   PetscObjectState eps_state, beta_state;
-  PetscReal  dt_mat;
-  PetscInt   pc_lag;          /* -fluid_poisson_pc_lag: matrix changes a preconditioner may serve */
-  PetscReal  pc_growth;       /* -fluid_poisson_pc_lag_growth: rebuild when its > growth * its0 + 1 */
-  PetscInt   pc_age, pc_its0, pc_its_last, pc_builds, pc_retries; /* changes served, its after the build, last its, builds, failed solves redone */
-  PetscReal  dt_pc;
-  PetscBool  singular;
-  PetscInt   nsteps;
-  KSP        vksp; /* implicit viscous solve (only with -fluid_viscous implicit) */
-  DM         vda;  /* star-stencil copy of fda for its matrix */
-  Mat        V;
-  Vec        vbc, phiu; /* boundary part of its right-hand side; solution work vector */
+  PetscReal        dt_mat;
+  PetscInt         pc_lag;                                              /* -fluid_poisson_pc_lag: matrix changes a preconditioner may serve */
+  PetscReal        pc_growth;                                           /* -fluid_poisson_pc_lag_growth: rebuild when its > growth * its0 + 1 */
+  PetscInt         pc_age, pc_its0, pc_its_last, pc_builds, pc_retries; /* changes served, its after the build, last its, builds, failed solves redone */
+  PetscReal        dt_pc;
+  PetscBool        singular;
+  PetscInt         nsteps;
+  KSP              vksp; /* implicit viscous solve (only with -fluid_viscous implicit) */
+  DM               vda;  /* star-stencil copy of fda for its matrix */
+  Mat              V;
+  Vec              vbc, phiu; /* boundary part of its right-hand side; solution work vector */
   PetscObjectState veps_state, vbeta_state;
-  PetscReal  dt_vmat;
-  PetscLogEvent ev_predict, ev_poisson, ev_correct;
-  PetscScalar  *advbuf; /* advection (momentum.c): per ghosted face point, a flux, then a mass flux */
-  PetscInt      advbuf_n;
+  PetscReal        dt_vmat;
+  PetscLogEvent    ev_predict, ev_poisson, ev_correct;
+  PetscScalar     *advbuf; /* advection (momentum.c): per ghosted face point, a flux, then a mass flux */
+  PetscInt         advbuf_n;
 };
 
 static inline PetscInt FluidCellOff(const FluidGrid *g, PetscInt i, PetscInt j, PetscInt k)
@@ -85,7 +92,10 @@ static inline PetscInt FluidFaceOff(const FluidGrid *g, PetscInt i, PetscInt j, 
 {
   return 3 * (((k - g->gfs[2]) * g->gfm[1] + (j - g->gfs[1])) * g->gfm[0] + (i - g->gfs[0]));
 }
-static inline PetscBool FluidPeriodic(Fluid fl, int d) { return fl->bc[d][0].type == FLUID_BC_PERIODIC; }
+static inline PetscBool FluidPeriodic(Fluid fl, int d)
+{
+  return fl->bc[d][0].type == FLUID_BC_PERIODIC;
+}
 
 /* Whether component d at face point idx is an unknown of the momentum equation: not a wall or
  * inlet face (fixed), not the unused extra point of a tangential component. */

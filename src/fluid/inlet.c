@@ -9,7 +9,10 @@
  * solver tolerance from the step that crosses a row's time on. */
 #include "fluid/fluid_impl.h"
 
-typedef enum { FLUID_INLET_STEP, FLUID_INLET_LINEAR } FluidInletInterp;
+typedef enum {
+  FLUID_INLET_STEP,
+  FLUID_INLET_LINEAR
+} FluidInletInterp;
 static const char *const FluidInletInterpNames[] = {"step", "linear", "FluidInletInterp", "FLUID_INLET_", NULL};
 
 /* Collective. Reads the tables and -fluid_inlet_interpolation; call after the face types are known. */
@@ -19,8 +22,8 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
   const char *const table[3][2] = {{"-fluid_bc_xlo_velocity_table", "-fluid_bc_xhi_velocity_table"}, {"-fluid_bc_ylo_velocity_table", "-fluid_bc_yhi_velocity_table"}, {"-fluid_bc_zlo_velocity_table", "-fluid_bc_zhi_velocity_table"}};
   const char       *side[2] = {"lo", "hi"}, *ax = "xyz";
   PetscBool         set;
-  FluidInletInterp interp = fl->inlet_linear ? FLUID_INLET_LINEAR : FLUID_INLET_STEP;
-  PetscReal        buf[4 * FLUID_INLET_TABLE_MAX + 4]; /* one row more than allowed: PETSc stops silently at the array's size */
+  FluidInletInterp  interp = fl->inlet_linear ? FLUID_INLET_LINEAR : FLUID_INLET_STEP;
+  PetscReal         buf[4 * FLUID_INLET_TABLE_MAX + 4]; /* one row more than allowed: PETSc stops silently at the array's size */
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid inlet tables", NULL);
@@ -84,9 +87,9 @@ PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed_out)
   PetscFunctionBeginUser;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      FluidBC       *bc = &fl->bc[d][s];
-      PetscReal      v[3];
-      PetscInt       r;
+      FluidBC  *bc = &fl->bc[d][s];
+      PetscReal v[3];
+      PetscInt  r;
       if (!bc->ntab) continue;
       r = fluid_inlet_at(bc, fl->inlet_linear, t, v);
       if (r != bc->row && r >= 0) PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s reaches row %d of its table at t = %g s: velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)r + 1, (double)t, (double)bc->tab[4 * r + 1], (double)bc->tab[4 * r + 2], (double)bc->tab[4 * r + 3], fl->inlet_linear && r + 1 < bc->ntab ? ", ramping to the next row" : ""));

@@ -16,8 +16,15 @@
 static inline PetscScalar fluid_tvd_face(PetscScalar LL, PetscScalar L, PetscScalar R, PetscScalar RR, PetscScalar F)
 {
   PetscScalar up, dn, dd;
-  if (F >= 0) { up = L; dn = R; dd = L - LL; }
-  else { up = R; dn = L; dd = R - RR; }
+  if (F >= 0) {
+    up = L;
+    dn = R;
+    dd = L - LL;
+  } else {
+    up = R;
+    dn = L;
+    dd = R - RR;
+  }
   const PetscScalar D = dn - up;
   return up + (dd * D > 0 ? dd * D / (dd + D) : 0);
 }
@@ -29,7 +36,7 @@ static inline PetscScalar fluid_tvd_face(PetscScalar LL, PetscScalar L, PetscSca
 static inline PetscScalar fluid_advective_flux(const FluidGrid *g, PetscBool tvd, const PetscScalar *u, const PetscScalar *M, PetscInt f, int d, int e)
 {
   const PetscInt    fe = g->fs[e], fd = g->fs[d];
-  const PetscScalar Fm = 0.5 * (M[f / 3] + M[(f - fd) / 3]);
+  const PetscScalar Fm  = 0.5 * (M[f / 3] + M[(f - fd) / 3]);
   const PetscScalar um1 = u[f - fe + d], u0 = u[f + d];
   const PetscScalar vm = tvd ? fluid_tvd_face(u[f - 2 * fe + d], um1, u0, u[f + fe + d], Fm) : 0.5 * (um1 + u0);
   return Fm * vm;
@@ -37,8 +44,8 @@ static inline PetscScalar fluid_advective_flux(const FluidGrid *g, PetscBool tvd
 
 static PetscScalar FluidViscousAt(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, int d, PetscBool transpose_only)
 {
-  const FluidGrid *g   = &fl->g;
-  const PetscInt   fd  = g->fs[d], cd = g->cs[d];
+  const FluidGrid *g  = &fl->g;
+  const PetscInt   fd = g->fs[d], cd = g->cs[d];
   const PetscReal  hd  = g->h[d];
   PetscScalar      sum = 0;
 
@@ -101,7 +108,8 @@ PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscSca
           for (idx[0] = g->xs[0]; idx[0] < hi[0]; idx[0]++, f += 3) B[f / 3] = fluid_advective_flux(g, tvd, u, M, f, d, e);
         }
       /* the same sum, in the same order, as (F+ v+ - F- v-) / h_e over e = x, y, z */
-      FLUID_FOR_OWNED_FACES(g, idx, f, c, o) out[o + d] += (B[f / 3 + pe] - B[f / 3]) / g->h[e];
+      FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+      out[o + d] += (B[f / 3 + pe] - B[f / 3]) / g->h[e];
     }
   }
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)

@@ -64,9 +64,9 @@ PetscErrorCode FluidPoissonCreateKSP(Fluid fl)
  * a bounded one maps N to (N - 1)/2 + 1 (N odd), and every level keeps >= 2 cells per axis. */
 static PetscErrorCode FluidPoissonCheckMG(Fluid fl)
 {
-  PC        pc;
-  PetscBool mg;
-  PetscInt  L;
+  PC         pc;
+  PetscBool  mg;
+  PetscInt   L;
   const char ax[] = "xyz";
 
   PetscFunctionBeginUser;
@@ -78,7 +78,7 @@ static PetscErrorCode FluidPoissonCheckMG(Fluid fl)
     PetscInt n = fl->g.N[d];
     for (PetscInt l = 1; l < L; l++) {
       const PetscBool per = FluidPeriodic(fl, d), ok = (PetscBool)(per ? n % 2 == 0 : n % 2 == 1);
-      const PetscInt  nc  = per ? n / 2 : (n - 1) / 2 + 1;
+      const PetscInt  nc = per ? n / 2 : (n - 1) / 2 + 1;
       PetscCheck(ok && nc >= 2, fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_poisson_pc_mg_levels %d: the fluid grid (-da_grid_%c %d) has %d cells along the %s %c axis after %d coarsenings and cannot be coarsened again (a periodic axis needs an even count, a bounded one an odd count, and the coarsest level >= 2 cells); lower the levels or change -da_grid_%c", (int)L, ax[d], (int)fl->g.N[d], (int)n, per ? "periodic" : "bounded", ax[d], (int)(l - 1), ax[d]);
       n = nc;
     }
@@ -164,7 +164,7 @@ static PetscErrorCode FluidPoissonPattern(Fluid fl)
   PetscCall(PetscMalloc2(7 * g->xm[0] * g->xm[1] * g->xm[2], &ci, 7 * g->xm[0] * g->xm[1] * g->xm[2], &cj));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
-    const PetscInt row = ((idx[2] - gs[2]) * gm[1] + idx[1] - gs[1]) * gm[0] + idx[0] - gs[0];
+    const PetscInt row     = ((idx[2] - gs[2]) * gm[1] + idx[1] - gs[1]) * gm[0] + idx[0] - gs[0];
     const PetscInt step[3] = {1, gm[0], gm[0] * gm[1]};
     ci[n] = row, cj[n++] = row;
     for (int d = 0; d < 3; d++)
@@ -193,7 +193,7 @@ static PetscErrorCode FluidPoissonAssemble(Fluid fl, PetscReal dt, const PetscSc
   PetscCall(VecGetArrayRead(fl->coefloc, &cf));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
-    const PetscInt f    = FluidFaceOff(g, idx[0], idx[1], idx[2]);
+    const PetscInt   f  = FluidFaceOff(g, idx[0], idx[1], idx[2]);
     const PetscCount nd = n++;
     v[nd]               = 0;
     for (int d = 0; d < 3; d++) {
@@ -316,7 +316,7 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
     fl->dt_pc   = dt;
     fl->pc_builds++;
   } else if (changed) fl->pc_age++;
-  fl->pc_its_last = st->poisson_its;
+  fl->pc_its_last        = st->poisson_its;
   st->poisson_pc_builds  = fl->pc_builds;
   st->poisson_pc_retries = fl->pc_retries;
   PetscCall(PetscLogEventEnd(fl->ev_poisson, 0, 0, 0, 0));

@@ -12,7 +12,7 @@
 #include "fluid/fluid_impl.h"
 
 typedef struct {
-  PetscReal cfl, vis;  /* local maxima */
+  PetscReal cfl, vis; /* local maxima */
   PetscInt  ccell[3], vcell[3];
 } FluidLimits;
 
@@ -26,7 +26,7 @@ static void FluidLocalLimits(Fluid fl, PetscReal dt, const PetscScalar *u, const
   lim->cfl = lim->vis = -1;
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
-    const PetscInt f = FluidFaceOff(g, idx[0], idx[1], idx[2]);
+    const PetscInt f   = FluidFaceOff(g, idx[0], idx[1], idx[2]);
     PetscReal      cfl = 0, emax = eps[c], emin = eps[c];
     for (int d = 0; d < 3; d++) {
       cfl += dt * PetscMax(PetscAbsScalar(u[f + d]), PetscAbsScalar(u[f + g->fs[d] + d])) / g->h[d];
@@ -130,7 +130,7 @@ static PetscErrorCode FluidPredictorRHS(Fluid fl, PetscReal dt, const PetscScala
     }
     const PetscScalar ef0 = 0.5 * (eps0[c] + eps0[c - g->cs[d]]);
     const PetscScalar gp  = (p[c] - p[c - g->cs[d]]) / g->h[d];
-    rhs[o + d] = fl->rho * ef0 * u[o + d] / dt - (a1 * A[o + d] + a0 * A0[o + d]) + V[o + d] - gp + fl->rho * ef0 * fl->gravity[d] - fl->dpdx[d] + src[o + d] + beta[o + d] * us[o + d];
+    rhs[o + d]            = fl->rho * ef0 * u[o + d] / dt - (a1 * A[o + d] + a0 * A0[o + d]) + V[o + d] - gp + fl->rho * ef0 * fl->gravity[d] - fl->dpdx[d] + src[o + d] + beta[o + d] * us[o + d];
   }
   PetscCall(VecRestoreArray(fl->uhat, &rhs));
   PetscCall(VecRestoreArrayRead(fl->src, &src));

@@ -54,28 +54,41 @@ static void FluidGhostRelation(Fluid fl, int d, int e, int s, PetscScalar *alpha
 {
   const FluidBC *bc = &fl->bc[e][s];
   *gamma            = 0;
-  if (d == e) { *alpha = 1; return; } /* only an outlet face has a ghost normal neighbour */
+  if (d == e) {
+    *alpha = 1;
+    return;
+  } /* only an outlet face has a ghost normal neighbour */
   switch (bc->type) {
-  case FLUID_BC_WALL: *alpha = -1; break;
-  case FLUID_BC_INLET: *alpha = -1; *gamma = 2 * bc->vel[d]; break;
-  default: *alpha = 1; break;
+  case FLUID_BC_WALL:
+    *alpha = -1;
+    break;
+  case FLUID_BC_INLET:
+    *alpha = -1;
+    *gamma = 2 * bc->vel[d];
+    break;
+  default:
+    *alpha = 1;
+    break;
   }
 }
 
 /* Value of the fixed normal face of axis d on side s (wall 0, inlet U_n). */
-static PetscScalar FluidFixedValue(Fluid fl, int d, int s) { return fl->bc[d][s].type == FLUID_BC_INLET ? fl->bc[d][s].vel[d] : 0; }
+static PetscScalar FluidFixedValue(Fluid fl, int d, int s)
+{
+  return fl->bc[d][s].type == FLUID_BC_INLET ? fl->bc[d][s].vel[d] : 0;
+}
 
 /* One row of the matrix (and its boundary right-hand side) for component d at point idx. */
 static PetscErrorCode FluidViscousRow(Fluid fl, PetscReal dt, const PetscScalar *eps, const PetscScalar *beta, const PetscInt idx[3], PetscInt f, PetscInt c, PetscInt o, int d, PetscScalar *vbc)
 {
-  const FluidGrid *g = &fl->g;
+  const FluidGrid *g   = &fl->g;
   MatStencil       row = {.k = idx[2], .j = idx[1], .i = idx[0], .c = d}, col[7];
   PetscScalar      v[7];
   PetscInt         n = 1;
 
   PetscFunctionBeginUser;
   (void)f;
-  col[0] = row;
+  col[0]     = row;
   vbc[o + d] = 0;
   if (!FluidFaceActive(fl, d, idx)) {
     v[0] = 1;
@@ -90,7 +103,7 @@ static PetscErrorCode FluidViscousRow(Fluid fl, PetscReal dt, const PetscScalar 
       if (e == d) k = 2 * fl->mu * eps[s ? c : c - cd] / (g->h[d] * g->h[d]);
       else {
         const PetscInt cq = s ? c + ce : c;
-        k = fl->mu * 0.25 * (eps[cq] + eps[cq - cd] + eps[cq - ce] + eps[cq - cd - ce]) / (g->h[e] * g->h[e]);
+        k                 = fl->mu * 0.25 * (eps[cq] + eps[cq - cd] + eps[cq - ce] + eps[cq - cd - ce]) / (g->h[e] * g->h[e]);
       }
       v[0] += k;
       const PetscInt top = (e == d) ? g->N[e] : g->N[e] - 1; /* last in-domain index */

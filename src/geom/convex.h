@@ -20,7 +20,10 @@
 #pragma once
 #include <petscsys.h>
 
-typedef enum { CONVEX_POLYHEDRON, CONVEX_CYLINDER } ConvexKind;
+typedef enum {
+  CONVEX_POLYHEDRON,
+  CONVEX_CYLINDER
+} ConvexKind;
 
 typedef struct {
   ConvexKind kind;
@@ -92,7 +95,10 @@ PetscErrorCode ConvexCollidePlane(const ConvexShape *a, const ConvexPose *pa, co
  *           exact minimum penetration this is the gradient of 1/2 k depth^2 (the torque the
  *           energy gives), so the energy is conserved up to the time-step error; the point
  *           jumps when the deepest vertex changes (a face nearly parallel to the other). */
-typedef enum { CONVEX_POINT_PATCH, CONVEX_POINT_SUPPORT } ConvexPointModel;
+typedef enum {
+  CONVEX_POINT_PATCH,
+  CONVEX_POINT_SUPPORT
+} ConvexPointModel;
 extern const char *const ConvexPointModels[]; /* option names, for PetscOptionsEnum */
 
 /* ConvexCollide with the contact point of the given model (ConvexCollide itself: PATCH). */

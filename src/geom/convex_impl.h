@@ -7,7 +7,12 @@
 
 /* Outcome of the hull construction; a degenerate input is reported, not raised, so that the
  * caller can name its source (a file and its line count, or an options value). */
-typedef enum { CONVEX_HULL_OK, CONVEX_HULL_COINCIDENT, CONVEX_HULL_COLLINEAR, CONVEX_HULL_COPLANAR } ConvexHullStatus;
+typedef enum {
+  CONVEX_HULL_OK,
+  CONVEX_HULL_COINCIDENT,
+  CONVEX_HULL_COLLINEAR,
+  CONVEX_HULL_COPLANAR
+} ConvexHullStatus;
 
 typedef struct {
   ConvexHullStatus status;

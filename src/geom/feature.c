@@ -113,7 +113,7 @@ static PetscBool clip2(Poly2 *S, const Poly2 *C, PetscReal eps2)
   Poly2 out;
   for (PetscInt e = 0; e < C->k && S->k > 0; e++) {
     const PetscReal *a = C->p[e], *b = C->p[(e + 1) % C->k];
-    out.k              = 0;
+    out.k = 0;
     for (PetscInt i = 0; i < S->k; i++) {
       const PetscReal *p = S->p[i], *q = S->p[(i + 1) % S->k];
       const PetscReal  dp = cross2(a, b, p), dq = cross2(a, b, q);
@@ -121,8 +121,8 @@ static PetscBool clip2(Poly2 *S, const Poly2 *C, PetscReal eps2)
       if (dp >= -eps2) out.p[out.k][0] = p[0], out.p[out.k][1] = p[1], out.k++;
       if ((dp >= -eps2) != (dq >= -eps2)) {
         const PetscReal t = dp / (dp - dq);
-        out.p[out.k][0] = p[0] + t * (q[0] - p[0]);
-        out.p[out.k][1] = p[1] + t * (q[1] - p[1]);
+        out.p[out.k][0]   = p[0] + t * (q[0] - p[0]);
+        out.p[out.k][1]   = p[1] + t * (q[1] - p[1]);
         out.k++;
       }
     }
@@ -168,8 +168,8 @@ static void segments2(const Poly2 *A, const Poly2 *B, PetscReal eps, PetscReal c
     const PetscReal u0 = (w[0] * d1[0] + w[1] * d1[1]) / (l1 * l1), u1 = u0 + (d2[0] * d1[0] + d2[1] * d1[1]) / (l1 * l1);
     const PetscReal lo = PetscMax(0, PetscMin(u0, u1)), hi = PetscMin(1, PetscMax(u0, u1)), t = 0.5 * (lo + hi);
     const PetscReal off = (w[1] * d1[0] - w[0] * d1[1]) / (l1 * l1); /* B's line offset along the normal of d1 */
-    c[0] = A->p[0][0] + t * d1[0] - 0.5 * off * d1[1];
-    c[1] = A->p[0][1] + t * d1[1] + 0.5 * off * d1[0];
+    c[0]                = A->p[0][0] + t * d1[0] - 0.5 * off * d1[1];
+    c[1]                = A->p[0][1] + t * d1[1] + 0.5 * off * d1[0];
   }
 }
 
@@ -231,8 +231,8 @@ static PetscBool inside2(const Poly2 *P, const PetscReal c[2], PetscReal eps, Pe
   if (P->k == 1) return (PetscBool)(PetscSqr(c[0] - P->p[0][0]) + PetscSqr(c[1] - P->p[0][1]) <= eps * eps);
   if (P->k == 2) {
     const PetscReal d[2] = {P->p[1][0] - P->p[0][0], P->p[1][1] - P->p[0][1]}, l2 = d[0] * d[0] + d[1] * d[1];
-    PetscReal       t    = l2 > 0 ? ((c[0] - P->p[0][0]) * d[0] + (c[1] - P->p[0][1]) * d[1]) / l2 : 0;
-    t                    = PetscMax(0, PetscMin(1, t));
+    PetscReal       t = l2 > 0 ? ((c[0] - P->p[0][0]) * d[0] + (c[1] - P->p[0][1]) * d[1]) / l2 : 0;
+    t                 = PetscMax(0, PetscMin(1, t));
     return (PetscBool)(PetscSqr(c[0] - P->p[0][0] - t * d[0]) + PetscSqr(c[1] - P->p[0][1] - t * d[1]) <= eps * eps);
   }
   for (PetscInt i = 0; i < P->k; i++)

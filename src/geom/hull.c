@@ -85,21 +85,36 @@ static void HullSeed(PetscInt n, const PetscReal x[], PetscReal tol, PetscInt s[
     PetscReal d[3], r;
     convex_sub(&x[3 * i], &x[3 * s[0]], d);
     r = convex_norm(d);
-    if (r > best) { best = r; s[1] = i; }
+    if (r > best) {
+      best = r;
+      s[1] = i;
+    }
   }
   hull->measure = best;
-  if (best <= tol) { hull->status = CONVEX_HULL_COINCIDENT; return; }
+  if (best <= tol) {
+    hull->status = CONVEX_HULL_COINCIDENT;
+    return;
+  }
   best = -1;
   for (PetscInt i = 0; i < n; i++) {
     PetscReal r = hull_line_distance(&x[3 * s[0]], &x[3 * s[1]], &x[3 * i]);
-    if (r > best) { best = r; s[2] = i; }
+    if (r > best) {
+      best = r;
+      s[2] = i;
+    }
   }
   hull->measure = best;
-  if (best <= tol) { hull->status = CONVEX_HULL_COLLINEAR; return; }
+  if (best <= tol) {
+    hull->status = CONVEX_HULL_COLLINEAR;
+    return;
+  }
   best = -1;
   for (PetscInt i = 0; i < n; i++) {
     PetscReal r = PetscAbsReal(hull_plane_distance(&x[3 * s[0]], &x[3 * s[1]], &x[3 * s[2]], &x[3 * i]));
-    if (r > best) { best = r; s[3] = i; }
+    if (r > best) {
+      best = r;
+      s[3] = i;
+    }
   }
   hull->measure = best;
   hull->status  = best <= tol ? CONVEX_HULL_COPLANAR : CONVEX_HULL_OK;
@@ -116,7 +131,7 @@ static inline PetscBool hull_face_has_edge(const HullFace *F, PetscInt a, PetscI
 /* Add point p: replace the faces it sees by the cone from p to their horizon. */
 static PetscErrorCode HullAddPoint(HullWork *w, PetscInt p, PetscInt **vis, PetscInt *viscap)
 {
-  const PetscReal *y = &w->x[3 * p];
+  const PetscReal *y    = &w->x[3 * p];
   PetscInt         nvis = 0, nface0;
 
   PetscFunctionBegin;
@@ -160,7 +175,7 @@ const char *ConvexHullStatusText(ConvexHullStatus s)
 
 PetscErrorCode ConvexHullBuild(PetscInt n, const PetscReal x[], ConvexHull *hull)
 {
-  HullWork  w   = {x, 0, NULL, 0, 0};
+  HullWork  w    = {x, 0, NULL, 0, 0};
   PetscInt  s[4] = {0, 0, 0, 0}, *vis = NULL, viscap = 0, k = 0;
   PetscReal lo[3], hi[3], ext = 0;
 

@@ -39,7 +39,10 @@ static inline void convex_support_body(const ConvexShape *s, const PetscReal d[3
     PetscReal        bd   = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
     for (PetscInt i = 1; i < s->nv; i++) {
       const PetscReal t = v[3 * i] * d[0] + v[3 * i + 1] * d[1] + v[3 * i + 2] * d[2];
-      if (t > bd) { bd = t; best = i; }
+      if (t > bd) {
+        bd   = t;
+        best = i;
+      }
     }
     out[0] = v[3 * best];
     out[1] = v[3 * best + 1];
@@ -49,7 +52,7 @@ static inline void convex_support_body(const ConvexShape *s, const PetscReal d[3
 
 static void convex_ccd_support(const void *obj, const ccd_vec3_t *dir, ccd_vec3_t *out)
 {
-  const ConvexBody *b = (const ConvexBody *)obj;
+  const ConvexBody *b    = (const ConvexBody *)obj;
   PetscReal         d[3] = {dir->v[0], dir->v[1], dir->v[2]}, db[3], sb[3], sw[3];
 
   convex_mat_tvec(b->R, d, db);

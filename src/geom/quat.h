@@ -70,10 +70,10 @@ static inline void convex_mat_tvec(const PetscReal R[9], const PetscReal v[3], P
 static inline void convex_quat_from_axis_angle(const PetscReal axis[3], PetscReal angle, PetscReal q[4])
 {
   const PetscReal s = PetscSinReal(0.5 * angle);
-  q[0] = PetscCosReal(0.5 * angle);
-  q[1] = s * axis[0];
-  q[2] = s * axis[1];
-  q[3] = s * axis[2];
+  q[0]              = PetscCosReal(0.5 * angle);
+  q[1]              = s * axis[0];
+  q[2]              = s * axis[1];
+  q[3]              = s * axis[2];
 }
 
 /* c = a b (apply b first, then a). */

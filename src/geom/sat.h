@@ -13,11 +13,11 @@
 #include "geom/convex.h"
 
 typedef struct {
-  PetscReal *fn;    /* distinct face normals, unit, body frame (3 each) */
+  PetscReal *fn; /* distinct face normals, unit, body frame (3 each) */
   PetscInt   nfn;
-  PetscReal *en;    /* distinct edge directions, unit, body frame (3 each) */
+  PetscReal *en; /* distinct edge directions, unit, body frame (3 each) */
   PetscInt   nen;
-  PetscBool  box;   /* a box: 8 vertices at +-bh[k] along fn[0..2], a right-handed frame */
+  PetscBool  box; /* a box: 8 vertices at +-bh[k] along fn[0..2], a right-handed frame */
   PetscReal  bh[3];
 } ConvexAxes;
 

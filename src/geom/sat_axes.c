@@ -86,6 +86,6 @@ PetscErrorCode ConvexAxesDestroy(ConvexAxes *ax)
   PetscCall(PetscFree(ax->fn));
   PetscCall(PetscFree(ax->en));
   ax->nfn = ax->nen = 0;
-  ax->box = PETSC_FALSE;
+  ax->box           = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -48,8 +48,10 @@ PetscBool ConvexAxesBoxFrame(const ConvexShape *c, ConvexAxes *ax)
  * of squared length l2). */
 static inline void convex_box_unit(double A[3][3], double B[3][3], int ax, double l2, double a[3])
 {
-  if (ax < 3) for (int k = 0; k < 3; k++) a[k] = A[ax][k];
-  else if (ax < 6) for (int k = 0; k < 3; k++) a[k] = B[ax - 3][k];
+  if (ax < 3)
+    for (int k = 0; k < 3; k++) a[k] = A[ax][k];
+  else if (ax < 6)
+    for (int k = 0; k < 3; k++) a[k] = B[ax - 3][k];
   else {
     const double il = 1 / sqrt(l2);
     convex_cross(A[(ax - 6) / 3], B[(ax - 6) % 3], a);
@@ -92,18 +94,18 @@ PetscBool ConvexSatBox(const ConvexSatBody *bi, const ConvexSatBody *bj, const P
     du[a]     = t[a];
     du[3 + a] = w[a];
     l2[a] = l2[3 + a] = 1;
-    ov[a]     = h[a] + g[0] * aC[a][0] + g[1] * aC[a][1] + g[2] * aC[a][2] - PetscAbsReal(t[a]);
-    ov[3 + a] = h[0] * aC[0][a] + h[1] * aC[1][a] + h[2] * aC[2][a] + g[a] - PetscAbsReal(w[a]);
+    ov[a]             = h[a] + g[0] * aC[a][0] + g[1] * aC[a][1] + g[2] * aC[a][2] - PetscAbsReal(t[a]);
+    ov[3 + a]         = h[0] * aC[0][a] + h[1] * aC[1][a] + h[2] * aC[2][a] + g[a] - PetscAbsReal(w[a]);
   }
   for (int a = 0; a < 3; a++) {
     const int a1 = nx1[a], a2 = nx2[a];
     for (int c = 0; c < 3; c++) {
       const int    c1 = nx1[c], c2 = nx2[c], k = 6 + 3 * a + c;
-      const double q  = C[a1][c] * C[a1][c] + C[a2][c] * C[a2][c]; /* |A_a x B_c|^2, not 1 - C_ac^2: no cancellation */
+      const double q   = C[a1][c] * C[a1][c] + C[a2][c] * C[a2][c]; /* |A_a x B_c|^2, not 1 - C_ac^2: no cancellation */
       const double rij = h[a1] * aC[a2][c] + h[a2] * aC[a1][c] + g[c1] * aC[a][c2] + g[c2] * aC[a][c1];
-      du[k] = C[a1][c] * t[a2] - C[a2][c] * t[a1];
-      l2[k] = q < 1e-12 ? 1 : q; /* parallel edges: the face axes cover them (never chosen) */
-      ov[k] = q < 1e-12 ? 1e150 : rij - PetscAbsReal(du[k]);
+      du[k]            = C[a1][c] * t[a2] - C[a2][c] * t[a1];
+      l2[k]            = q < 1e-12 ? 1 : q; /* parallel edges: the face axes cover them (never chosen) */
+      ov[k]            = q < 1e-12 ? 1e150 : rij - PetscAbsReal(du[k]);
     }
   }
   for (int k = 0; k < 15; k++)

@@ -36,7 +36,7 @@ PetscErrorCode ConvexShapeCreateCube(PetscReal edge, ConvexShape *shape)
 
 PetscErrorCode ConvexShapeCreateTetrahedron(PetscReal edge, ConvexShape *shape)
 {
-  const PetscReal s    = edge / (2 * PETSC_SQRT2);
+  const PetscReal s     = edge / (2 * PETSC_SQRT2);
   PetscReal       x[12] = {s, s, s, s, -s, -s, -s, s, -s, -s, -s, s};
 
   PetscFunctionBegin;
@@ -67,7 +67,7 @@ PetscErrorCode ConvexShapeCreateIcosahedron(PetscReal edge, ConvexShape *shape)
   PetscCall(CheckSize("icosahedron", "edge", edge));
   for (int c = 0; c < 3; c++) /* cyclic permutation c of (0, +-1, +-phi) */
     for (int k = 0; k < 4; k++) {
-      PetscReal *p = &x[3 * (4 * c + k)];
+      PetscReal *p   = &x[3 * (4 * c + k)];
       p[c]           = 0;
       p[(c + 1) % 3] = (k & 1 ? -s : s);
       p[(c + 2) % 3] = (k & 2 ? -s : s) * phi;

@@ -28,7 +28,6 @@
    fluid fields and surfaces of larger frames. */
 #define IO_RESERVE (64 * 1024)
 
-
 PetscErrorCode IoCreate(MPI_Comm comm, Io *io)
 {
   PetscFunctionBeginUser;
@@ -205,7 +204,8 @@ static PetscErrorCode IoFrameAbort(Io io)
     close(io->reserve);
     io->reserve = -1;
   }
-  if (!rank && truncate(io->tmpname, 0) != 0) { /* nothing to empty: the file was not created */ }
+  if (!rank && truncate(io->tmpname, 0) != 0) { /* nothing to empty: the file was not created */
+  }
   PetscCallMPI(MPI_Barrier(io->comm));
   if (io->file >= 0) {
     ssize_t n = H5Fget_obj_count(io->file, kinds);
@@ -386,8 +386,8 @@ static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t t
 static PetscErrorCode IoWriteRows(Io io, const char *name, PetscInt nlocal, PetscInt ncomp, hid_t type, const void *data, PetscBool isint)
 {
   long long n = nlocal, off = 0, total = 0;
-  IoShape   sh  = {ncomp > 1 ? 2 : 1, {0, (hsize_t)ncomp}, {0, 0}, {(hsize_t)n, (hsize_t)ncomp}};
-  IoFrame  *fr  = &io->frames[io->nframes];
+  IoShape   sh = {ncomp > 1 ? 2 : 1, {0, (hsize_t)ncomp}, {0, 0}, {(hsize_t)n, (hsize_t)ncomp}};
+  IoFrame  *fr = &io->frames[io->nframes];
 
   PetscFunctionBeginUser;
   PetscCheck(fr->npart < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many particle datasets in one frame");

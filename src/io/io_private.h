@@ -19,18 +19,18 @@ void io_h5_last_error(char *buf, size_t len);
 /* The writer's state, shared by io.c (frames) and xdmf.c (the index). */
 #define IO_MAX_SETS 32
 typedef struct {
-  char    name[64];
-  PetscInt ncomp;
+  char      name[64];
+  PetscInt  ncomp;
   PetscBool isint;
 } IoSet;
 
 typedef struct {
   PetscReal t;
   char      file[PETSC_MAX_PATH_LEN];
-  long long np;                         /* global particle count */
+  long long np; /* global particle count */
   IoSet     part[IO_MAX_SETS], fluid[IO_MAX_SETS];
   PetscInt  npart, nfluid;
-  long long nsurfp, nsurft;             /* surface points and triangles (0: none) */
+  long long nsurfp, nsurft; /* surface points and triangles (0: none) */
 } IoFrame;
 
 struct _p_Io {

@@ -45,16 +45,26 @@ typedef struct {
 static const char *io_class_name(H5T_class_t c)
 {
   switch (c) {
-  case H5T_STRING: return "strings";
-  case H5T_COMPOUND: return "compound records";
-  case H5T_ENUM: return "enumerated values (booleans?)";
-  case H5T_ARRAY: return "arrays";
-  case H5T_VLEN: return "variable-length sequences";
-  case H5T_REFERENCE: return "references";
-  case H5T_OPAQUE: return "opaque bytes";
-  case H5T_BITFIELD: return "bit fields";
-  case H5T_TIME: return "times";
-  default: return "values of an unknown type";
+  case H5T_STRING:
+    return "strings";
+  case H5T_COMPOUND:
+    return "compound records";
+  case H5T_ENUM:
+    return "enumerated values (booleans?)";
+  case H5T_ARRAY:
+    return "arrays";
+  case H5T_VLEN:
+    return "variable-length sequences";
+  case H5T_REFERENCE:
+    return "references";
+  case H5T_OPAQUE:
+    return "opaque bytes";
+  case H5T_BITFIELD:
+    return "bit fields";
+  case H5T_TIME:
+    return "times";
+  default:
+    return "values of an unknown type";
   }
 }
 
@@ -62,8 +72,8 @@ static const char *io_class_name(H5T_class_t c)
 static void io_read_check(IoRead *r, hid_t d)
 {
   hid_t              t = H5Dget_type(d), s = H5Dget_space(d);
-  H5T_class_t        cls = t >= 0 ? H5Tget_class(t) : H5T_NO_CLASS;
-  int                nd  = s >= 0 ? H5Sget_simple_extent_ndims(s) : -1;
+  H5T_class_t        cls                = t >= 0 ? H5Tget_class(t) : H5T_NO_CLASS;
+  int                nd                 = s >= 0 ? H5Sget_simple_extent_ndims(s) : -1;
   hsize_t            dims[H5S_MAX_RANK] = {0};
   unsigned long long rows, nc, lim = (unsigned long long)PETSC_MAX_INT - 1;
   double             bytes;

@@ -77,7 +77,7 @@ static PetscErrorCode BruteForce(const BalanceGrid *g, const PetscReal *w, Petsc
     for (PetscInt b = 0; b < cnt[1]; b++)
       for (PetscInt c = 0; c < cnt[2]; c++) {
         PetscInt *const l[3] = {list[0] + a * g->p[0], list[1] + b * g->p[1], list[2] + c * g->p[2]};
-        PetscReal       m = 0;
+        PetscReal       m    = 0;
         PetscCall(MaxLoad(g, w, l, &m));
         *best = PetscMin(*best, m);
       }
@@ -89,7 +89,7 @@ static PetscErrorCode BruteForce(const BalanceGrid *g, const PetscReal *w, Petsc
  * a settled bed (particles below a random height, denser at the bottom, a random empty corner) */
 static void RandomWeights(const BalanceGrid *g, int kind, PetscReal *w)
 {
-  const PetscInt  N = g->n[0] * g->n[1] * g->n[2];
+  const PetscInt  N   = g->n[0] * g->n[1] * g->n[2];
   const PetscReal top = 0.3 + 0.5 * rng(), cx = rng(), cy = rng();
   for (PetscInt c = 0; c < N; c++) {
     const PetscReal x = ((c % g->n[0]) + 0.5) / g->n[0], y = (((c / g->n[0]) % g->n[1]) + 0.5) / g->n[1], z = ((c / (g->n[0] * g->n[1])) + 0.5) / g->n[2];
@@ -101,11 +101,11 @@ static void RandomWeights(const BalanceGrid *g, int kind, PetscReal *w)
 
 static PetscErrorCode TestBruteForce(const char *label, const BalanceGrid *g, PetscInt trials)
 {
-  const PetscInt N = g->n[0] * g->n[1] * g->n[2];
-  PetscReal     *w, worst = 0, worse_than_marginal = 0, worst_initial = 0;
-  PetscInt       lx[8], ly[8], lz[8], mx[8], my[8], mz[8], exact[3] = {0, 0, 0}, valid = 0;
+  const PetscInt  N = g->n[0] * g->n[1] * g->n[2];
+  PetscReal      *w, worst = 0, worse_than_marginal = 0, worst_initial = 0;
+  PetscInt        lx[8], ly[8], lz[8], mx[8], my[8], mz[8], exact[3] = {0, 0, 0}, valid = 0;
   PetscInt *const l[3] = {lx, ly, lz}, *const m[3] = {mx, my, mz};
-  const char     *kinds[3] = {"uniform random", "hot spots", "settled bed"};
+  const char *kinds[3] = {"uniform random", "hot spots", "settled bed"};
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(N, &w));
@@ -160,9 +160,9 @@ static PetscErrorCode TestColumn(void)
   const BalanceGrid   g  = {{4, 4, 72}, {1, 1, 4}, {1, 1, 2}, 0};
   const BalanceWeight wm = {BALANCE_WEIGHT_LINEAR, 1.0, 0.0};
   PetscInt            count[1152], lz[4], mz[4], one[2] = {4, 4}, cnt = 0, *list;
-  PetscInt *const     l[3] = {one, one + 1, lz}, *const m[3] = {one, one + 1, mz};
-  PetscReal           w[1152], lmax, lavg, marg = 0, opt = PETSC_MAX_REAL;
-  PetscInt            cur[4];
+  PetscInt *const l[3] = {one, one + 1, lz}, *const m[3] = {one, one + 1, mz};
+  PetscReal w[1152], lmax, lavg, marg = 0, opt = PETSC_MAX_REAL;
+  PetscInt  cur[4];
 
   PetscFunctionBeginUser;
   for (PetscInt c = 0; c < 1152; c++) count[c] = (c / 16 < 24) ? (PetscInt)(10 * rng()) : 0;
@@ -174,7 +174,7 @@ static PetscErrorCode TestColumn(void)
   Compositions(72, 4, 2, cur, 0, list, &cnt);
   for (PetscInt a = 0; a < cnt; a++) {
     PetscInt *const lb[3] = {one, one + 1, list + 4 * a};
-    PetscReal       mm = 0;
+    PetscReal       mm    = 0;
     PetscCall(MaxLoad(&g, w, lb, &mm));
     opt = PetscMin(opt, mm);
   }
@@ -202,7 +202,7 @@ static PetscErrorCode TestMinWidth(void)
   Compositions(30, 5, 3, cur, 0, list, &cnt);
   for (PetscInt a = 0; a < cnt; a++) {
     PetscInt *const lb[3] = {one, one + 1, list + 5 * a};
-    PetscReal       mm = 0;
+    PetscReal       mm    = 0;
     PetscCall(MaxLoad(&g, w, lb, &mm));
     opt = PetscMin(opt, mm);
   }
@@ -285,11 +285,11 @@ static PetscErrorCode TestErrors(void)
   w[5] = -1;
   ierr = BalanceCuts(&g, w, l, &lmax, &lavg);
   PetscCall(CheckEqual("negative weight rejected: error code", ierr, PETSC_ERR_ARG_OUTOFRANGE));
-  PetscCall(CheckTrue("negative weight rejected: the message names the cell", (PetscBool)!!strstr(last_msg, "cell (1, 0, 1)"), last_msg));
+  PetscCall(CheckTrue("negative weight rejected: the message names the cell", (PetscBool) !!strstr(last_msg, "cell (1, 0, 1)"), last_msg));
   w[5] = NAN;
   ierr = BalanceCuts(&g, w, l, &lmax, &lavg);
   PetscCall(CheckEqual("NaN weight rejected: error code", ierr, PETSC_ERR_ARG_OUTOFRANGE));
-  PetscCall(CheckTrue("NaN weight rejected: the message says nan", (PetscBool)!!strstr(last_msg, "nan"), last_msg));
+  PetscCall(CheckTrue("NaN weight rejected: the message says nan", (PetscBool) !!strstr(last_msg, "nan"), last_msg));
   PetscCall(PetscPopErrorHandler());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -297,9 +297,9 @@ static PetscErrorCode TestErrors(void)
 /* BalanceProcessGrid and BalanceUniformCuts against a real DMDA on this communicator */
 static PetscErrorCode TestDMDA(void)
 {
-  const PetscInt  grids[3][3] = {{20, 10, 30}, {40, 8, 8}, {9, 27, 12}};
-  PetscMPIInt     size;
-  PetscInt        bad = 0;
+  const PetscInt grids[3][3] = {{20, 10, 30}, {40, 8, 8}, {9, 27, 12}};
+  PetscMPIInt    size;
+  PetscInt       bad = 0;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));

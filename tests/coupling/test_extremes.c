@@ -48,15 +48,15 @@ typedef struct {
 
 static PetscErrorCode Extreme(const ExtremeCase *c)
 {
-  const char *name = c->name;
+  const char     *name = c->name;
   const PetscReal uin = c->uin, H = c->H, eps_want = c->eps_want;
-  TestCpl   t;
-  CplStats  st;
-  PetscReal umax = 0, vmax = 0, emin = 1, bound;
-  PetscInt  clipped = 0;
-  PetscBool finite = PETSC_TRUE;
-  DemStats  ds;
-  Vec       u;
+  TestCpl         t;
+  CplStats        st;
+  PetscReal       umax = 0, vmax = 0, emin = 1, bound;
+  PetscInt        clipped = 0;
+  PetscBool       finite  = PETSC_TRUE;
+  DemStats        ds;
+  Vec             u;
 
   PetscFunctionBeginUser;
   PetscCall(TestCplCreateScene(c->scene, c->extra, c->add, &t));
@@ -71,14 +71,14 @@ static PetscErrorCode Extreme(const ExtremeCase *c)
     if (PetscIsNanReal(vl)) vl = PETSC_INFINITY;
     PetscCall(MPIU_Allreduce(&vl, &vg, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
     finite = (PetscBool)(finite && PetscIsNormalReal(un) && !PetscIsInfOrNanReal(vg));
-    umax = PetscMax(umax, un);
-    vmax = PetscMax(vmax, vg);
-    emin = PetscMin(emin, st.eps_min);
+    umax   = PetscMax(umax, un);
+    vmax   = PetscMax(vmax, vg);
+    emin   = PetscMin(emin, st.eps_min);
     clipped += st.clipped;
   }
   PetscCall(DemGetStats(t.dem, &ds));
   finite = (PetscBool)(finite && (PetscIsNormalReal(ds.ke) || ds.ke == 0));
-  bound = 2 * PetscMax(uin / emin, PetscSqrtReal(2 * 1.0 * H)); /* g = 1 in both set-ups */
+  bound  = 2 * PetscMax(uin / emin, PetscSqrtReal(2 * 1.0 * H)); /* g = 1 in both set-ups */
   CheckDetail("particle KE %.3g", (double)ds.ke);
   PetscCall(CheckTrue(CheckName("%s: 1000 fluid steps, finite", name), finite, NULL));
   PetscCall(CheckBelow(CheckName("%s: max fluid |u_i| (bound 2 S)", name), umax, bound));

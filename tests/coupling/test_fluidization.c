@@ -60,8 +60,8 @@ int main(int argc, char **argv)
     if (3 * PETSC_PI * mu * CplDragFactor(CPL_DRAG_BEETSTRA, eps, v / mu) * v / eps > Wp) hi = v;
     else lo = v;
   }
-  umf = 0.5 * (lo + hi);
-  ar  = 1 * (2 - 1) * 1 / (mu * mu); /* Archimedes number rho_f (rho_p - rho_f) g d^3 / mu^2 */
+  umf    = 0.5 * (lo + hi);
+  ar     = 1 * (2 - 1) * 1 / (mu * mu); /* Archimedes number rho_f (rho_p - rho_f) g d^3 / mu^2 */
   umf_wy = mu * (PetscSqrtReal(33.7 * 33.7 + 0.0408 * ar) - 33.7);
   PetscCall(Run("fluidized_bed_walled.opts", 3 * umf, 100, 300, &plateau));
   PetscCall(CheckClose("U = 3 U_mf, side walls: mean pressure drop vs the buoyant weight per area", plateau, W, 0.03));

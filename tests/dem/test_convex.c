@@ -25,9 +25,9 @@ static const double A = 0.01, RHO = 2500;
 
 static PetscErrorCode DropCube(const char *label, const double q[4], double *z, double *tilt, double *bound)
 {
-  char   opts[1024];
-  Domain dom;
-  Dem    dem;
+  char         opts[1024];
+  Domain       dom;
+  Dem          dem;
   const double kn = 2e4, m = RHO * A * A * A;
 
   PetscFunctionBeginUser;
@@ -127,7 +127,7 @@ static PetscErrorCode FreeFlight(void)
   PetscCall(WriteBoxFile("test_convex_box.txt", A, 0.6 * A, 0.3 * A));
   PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.05,-0.05,-0.05 -domain_hi 0.05,0.05,0.05 -dem_shape polyhedron -dem_shape_file test_convex_box.txt -dem_density %g -dem_kn 1e4 -dem_restitution 1 -dem_friction 0 -dem_gravity 0,0,0 -dem_dt 1e-5", RHO));
   PetscCall(TestDemCreate(opts, &dom, &dem));
-  DemParticle p = {.id = 0, .shape = 0, .x = {0, 0, 0}, .v = {0.01, 0, 0}, .w = {0.3, 20, 0.2}, .q = {0.9, 0.1, 0.3, -0.2}};
+  DemParticle  p  = {.id = 0, .shape = 0, .x = {0, 0, 0}, .v = {0.01, 0, 0}, .w = {0.3, 20, 0.2}, .q = {0.9, 0.1, 0.3, -0.2}};
   const double qn = sqrt(0.81 + 0.01 + 0.09 + 0.04);
   for (int k = 0; k < 4; k++) p.q[k] /= qn;
   PetscCall(DemAddParticle(dem, &p));
@@ -318,8 +318,8 @@ static PetscErrorCode BoxPairs(void)
   char         opts[512];
   Domain       dom;
   Dem          dem;
-  const double kn = 1e4;
-  BoxSample    b = {.p0 = {.id = 0, .shape = 0, .q = {1, 0, 0, 0}}, .p1 = {.id = 1, .shape = 1, .x = {0.5 * A, 0, 0}, .q = {1, 0, 0, 0}}, .ba = {.h = {0.5 * A, 0.3 * A, 0.15 * A}}, .bb = {.h = {0.4 * A, 0.25 * A, 0.2 * A}}};
+  const double kn  = 1e4;
+  BoxSample    b   = {.p0 = {.id = 0, .shape = 0, .q = {1, 0, 0, 0}}, .p1 = {.id = 1, .shape = 1, .x = {0.5 * A, 0, 0}, .q = {1, 0, 0, 0}}, .ba = {.h = {0.5 * A, 0.3 * A, 0.15 * A}}, .bb = {.h = {0.4 * A, 0.25 * A, 0.2 * A}}};
   double       err = 0, errs = 0, nerr = 0;
   int          wrong = 0, touching = 0, nchecked = 0;
 
@@ -375,14 +375,14 @@ static PetscErrorCode Collisions(PetscBool boxes, double vs, double ws, const ch
   Domain       dom;
   Dem          dem;
   DemStats     st;
-  const int    N = 100000 * dtf; /* the same simulated time at every dt */
+  const int    N    = 100000 * dtf; /* the same simulated time at every dt */
   const char  *what = boxes ? "boxes" : "bodies";
-  const double kn = 1e4;
+  const double kn   = 1e4;
   double       P0[3], L0[3], P[3], L[3], e0 = 0, first = 0, last = 0, pmax = 0, lmax = 0, m, J[3], omax = 0;
   int          nf = 0, nl = 0;
   PetscInt     contacts = 0;
 
-  char         shapes[256];
+  char shapes[256];
 
   PetscFunctionBeginUser;
   Moments(1, J, &m);
@@ -448,8 +448,8 @@ static PetscErrorCode RectDrop(const char *shape, double rest)
   PetscCall(DemAddParticle(dem, &off));
   PetscCall(DemSetUp(dem));
   for (int s = 0; s < 30000; s++) PetscCall(DemStep(dem));
-  on  = TestGet(dem, 0);
-  off = TestGet(dem, 1);
+  on                 = TestGet(dem, 0);
+  off                = TestGet(dem, 1);
   const double bound = 2 * RHO * A * A * A * 9.81 / 2e4;
   PetscCall(CheckCloseAbs(CheckName("%s on a finite rectangle rests at z [m]", shape), on.x[2], rest, bound));
   PetscCall(CheckBelow(CheckName("%s beside a finite rectangle falls past it: z after 0.3 s [m]", shape), off.x[2], -0.3));

@@ -29,8 +29,14 @@ static PetscErrorCode Run(const char *law, double dt, double *drift_out)
       const double e = st.ke + st.ke_rot + st.pe_spring;
       if (s == 0) e0 = e;
       maxdev = PetscMax(maxdev, PetscAbsReal(e - e0) / e0);
-      if (s < N / 10) { first += e; nf++; }
-      if (s > N - N / 10) { last += e; nl++; }
+      if (s < N / 10) {
+        first += e;
+        nf++;
+      }
+      if (s > N - N / 10) {
+        last += e;
+        nl++;
+      }
     }
     if (s < N) PetscCall(DemStep(dem));
   }

@@ -65,13 +65,17 @@ static PetscErrorCode RunImpact(const Impact *c, double dt_over_tc, double *e_me
 int main(int argc, char **argv)
 {
   const Impact cases[] = {
-    {"linear", PETSC_FALSE, 0.75, 0.5}, {"linear", PETSC_TRUE, 0.75, 0.5}, {"linear_nohist", PETSC_FALSE, 0.75, 0.5},
-    {"hertz", PETSC_FALSE, 0.75, 0.5},  {"hertz", PETSC_TRUE, 0.75, 0.5},  {"hertz", PETSC_FALSE, 1.0, 0.5},
+    {"linear", PETSC_FALSE, 0.75, 0.5},
+    {"linear", PETSC_TRUE, 0.75, 0.5},
+    {"linear_nohist", PETSC_FALSE, 0.75, 0.5},
+    {"hertz", PETSC_FALSE, 0.75, 0.5},
+    {"hertz", PETSC_TRUE, 0.75, 0.5},
+    {"hertz", PETSC_FALSE, 1.0, 0.5},
   };
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-    const Impact *c = &cases[k];
+    const Impact *c  = &cases[k];
     double        em = 0, tm = 0, tr = 1;
     PetscCall(RunImpact(c, 1.0 / 50, &em, &tm, &tr));
     /* linear: the closed form, not the code's figure: x'' + 2 zeta w x' + w^2 x = 0 with
@@ -91,7 +95,7 @@ int main(int argc, char **argv)
   }
   { /* strong damping: the dashpot sees the half-step velocity, so the restitution error is
        at least first order in dt; it must fall > 3x from dt = Tc/50 to Tc/200 */
-    const Impact c = {"linear_nohist", PETSC_FALSE, 0.3, 0.5};
+    const Impact c  = {"linear_nohist", PETSC_FALSE, 0.3, 0.5};
     double       e1 = 0, e2 = 0, tm, tr;
     PetscCall(RunImpact(&c, 1.0 / 50, &e1, &tm, &tr));
     PetscCall(RunImpact(&c, 1.0 / 200, &e2, &tm, &tr));

@@ -50,7 +50,7 @@ int main(int argc, char **argv)
       const double a = (vb - va) / 0.2, ref = roll ? 5.0 / 7.0 * g * sin(th) : g * (sin(th) - mu * cos(th));
       PetscCall(CheckClose(CheckName("%s %s, tan(theta) = %.2f x 3.5 mu: a [m/s^2] vs analytic", laws[l], roll ? "rolling" : "sliding", f[k]), a, ref, 0.01));
     }
-    double       va = 0, vb = 0, v0 = 1.0, ts = 2 * v0 / (7 * mu * g);
+    double va = 0, vb = 0, v0 = 1.0, ts = 2 * v0 / (7 * mu * g);
     PetscCall(Run(laws[l], 0, v0, ts, 2 * ts, &va, &vb));
     PetscCall(CheckClose(CheckName("%s launched sliding: v(t* = 2 v0/(7 mu g)) [m/s] vs analytic 5/7 v0", laws[l]), va, 5.0 / 7.0 * v0, 0.01));
     PetscCall(CheckClose(CheckName("%s then rolls: v(2 t*) [m/s] vs analytic 5/7 v0", laws[l]), vb, 5.0 / 7.0 * v0, 0.01));

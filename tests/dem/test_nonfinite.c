@@ -18,7 +18,7 @@ int main(int argc, char **argv)
 {
   Domain         dom;
   Dem            dem;
-  PetscErrorCode ierr = 0;
+  PetscErrorCode ierr  = 0;
   PetscInt       steps = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));

@@ -82,10 +82,10 @@ static PetscErrorCode Compare(const char *name, const char *scene, PetscInt N, d
 /* Total momentum of the periodic shear box over 10^4 steps; roundoff bound relative to sum m|v|. */
 static PetscErrorCode Momentum(void)
 {
-  char     opts[2048];
-  Domain   dom;
-  Dem      dem;
-  double   p0[3] = {0, 0, 0}, scale = 0, worst = 0;
+  char        opts[2048];
+  Domain      dom;
+  Dem         dem;
+  double      p0[3] = {0, 0, 0}, scale = 0, worst = 0;
   PetscMPIInt size;
 
   PetscFunctionBeginUser;
@@ -120,12 +120,12 @@ static PetscErrorCode Momentum(void)
 /* One particle crossing periodic boundaries (and rank boundaries) diagonally. */
 static PetscErrorCode Crossing(void)
 {
-  char        opts[2048];
-  Domain      dom;
-  Dem         dem;
-  double      x[3] = {NAN, NAN, NAN}, v[3] = {NAN, NAN, NAN}; /* NaN: fails the checks if not found */
-  PetscInt    cnt;
-  PetscMPIInt size;
+  char         opts[2048];
+  Domain       dom;
+  Dem          dem;
+  double       x[3] = {NAN, NAN, NAN}, v[3] = {NAN, NAN, NAN}; /* NaN: fails the checks if not found */
+  PetscInt     cnt;
+  PetscMPIInt  size;
   const double v0[3] = {3.0, -2.0, 1.0};
 
   PetscFunctionBeginUser;

@@ -22,7 +22,10 @@
 
 static const double g = 9.81, rho = 2500;
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot3(const double *a, const double *b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 static void cross3(const double *a, const double *b, double *c)
 {

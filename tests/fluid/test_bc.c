@@ -35,18 +35,23 @@ static PetscErrorCode RunSlip(PetscReal *err)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscReal Porosity(const PetscReal x[3], void *ctx) { (void)x; (void)ctx; return 0.6; }
+static PetscReal Porosity(const PetscReal x[3], void *ctx)
+{
+  (void)x;
+  (void)ctx;
+  return 0.6;
+}
 
 static PetscErrorCode RunHydrostatic(PetscReal *umax, PetscReal *gerr)
 {
-  Domain             dom = {0};
-  Fluid              fl;
-  FluidStats         st;
-  DM                 cda;
-  Vec                u, p, ploc;
+  Domain               dom = {0};
+  Fluid                fl;
+  FluidStats           st;
+  DM                   cda;
+  Vec                  u, p, ploc;
   const PetscScalar ***a;
-  PetscInt           xs, ys, zs, xm, ym, zm;
-  PetscReal          e = 0, target = 1000 * 0.6 * -9.81;
+  PetscInt             xs, ys, zs, xm, ym, zm;
+  PetscReal            e = 0, target = 1000 * 0.6 * -9.81;
 
   PetscFunctionBeginUser;
   PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));

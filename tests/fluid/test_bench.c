@@ -40,7 +40,7 @@ static PetscErrorCode BenchRun(PetscInt N, PetscInt steps, PetscInt *maxits_out,
   Fluid       fl;
   FluidStats  st;
   PetscInt    maxits = 0;
-  PetscReal   *tstep, *its, worst = 0, t0, first = 0, h, med_t, med_its;
+  PetscReal  *tstep, *its, worst = 0, t0, first = 0, h, med_t, med_its;
   char        buf[64];
   PetscMPIInt size;
 

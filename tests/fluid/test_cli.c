@@ -10,7 +10,11 @@
 #include "fluid/fluid.h"
 #include <hdf5.h>
 
-static PetscReal StepEps(const PetscReal x[3], void *ctx) { (void)ctx; return x[0] < 0.5 ? 1.0 : 0.4; }
+static PetscReal StepEps(const PetscReal x[3], void *ctx)
+{
+  (void)ctx;
+  return x[0] < 0.5 ? 1.0 : 0.4;
+}
 
 static PetscErrorCode Default(const char *name, const char *value)
 {

@@ -70,16 +70,24 @@ static PetscErrorCode RunStiff(PetscReal *err)
   PetscCall(VecStrideMax(u, 0, NULL, &umax));
   PetscCall(VecStrideMin(u, 0, NULL, &umin));
   const PetscReal target = 0.3 + 1.0 / 1e4;
-  *err = PetscMax(PetscAbsReal(umax - target), PetscAbsReal(umin - target)) / target;
+  *err                   = PetscMax(PetscAbsReal(umax - target), PetscAbsReal(umin - target)) / target;
   PetscCall(FluidDestroy(&fl));
   PetscCall(DomainDestroy(&dom));
   PetscCall(PetscOptionsClearValue(NULL, "-domain_periodic_y"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscReal StepEps(const PetscReal x[3], void *ctx) { (void)ctx; return x[0] < 0.5 ? 1.0 : 0.4; }
+static PetscReal StepEps(const PetscReal x[3], void *ctx)
+{
+  (void)ctx;
+  return x[0] < 0.5 ? 1.0 : 0.4;
+}
 
-static PetscReal PlugBeta(const PetscReal x[3], void *ctx) { (void)ctx; return x[0] < 0.5 ? 0.0 : 1e3; }
+static PetscReal PlugBeta(const PetscReal x[3], void *ctx)
+{
+  (void)ctx;
+  return x[0] < 0.5 ? 0.0 : 1e3;
+}
 
 static PetscErrorCode RunPorousPlug(PetscReal *res)
 {

@@ -12,7 +12,11 @@
  * inlet and outlet lie on different ranks. The scene: test_inlet.opts. */
 #include "fluid_common.h"
 
-static PetscReal Band(const PetscReal x[3], void *ctx) { (void)ctx; return x[2] > 0.6 && x[2] < 1.4 ? 0.5 : 1.0; }
+static PetscReal Band(const PetscReal x[3], void *ctx)
+{
+  (void)ctx;
+  return x[2] > 0.6 && x[2] < 1.4 ? 0.5 : 1.0;
+}
 
 /* The table's value, written out independently of inlet.c. */
 static PetscReal Expected(PetscBool linear, PetscReal t)
@@ -26,11 +30,11 @@ static PetscReal Expected(PetscBool linear, PetscReal t)
 /* Volume flux through the outlet face z = L_z over its area. */
 static PetscErrorCode OutletVelocity(Fluid fl, const Domain *dom, PetscReal *U)
 {
-  DM                  cda, fda;
-  Vec                 u, eps;
+  DM                    cda, fda;
+  Vec                   u, eps;
   const PetscScalar ****a, ***e;
-  PetscInt            xs, ys, zs, xm, ym, zm, N = dom->cells[2];
-  PetscReal           q = 0;
+  PetscInt              xs, ys, zs, xm, ym, zm, N = dom->cells[2];
+  PetscReal             q = 0;
 
   PetscFunctionBeginUser;
   PetscCall(FluidGetDMs(fl, &cda, &fda));
@@ -51,9 +55,9 @@ static PetscErrorCode OutletVelocity(Fluid fl, const Domain *dom, PetscReal *U)
 
 static PetscErrorCode Run(PetscBool linear, PetscReal *err, PetscReal *Ulast)
 {
-  Domain     dom = {0};
-  Fluid      fl;
-  FluidStats st;
+  Domain      dom = {0};
+  Fluid       fl;
+  FluidStats  st;
   PetscMPIInt size;
 
   PetscFunctionBeginUser;

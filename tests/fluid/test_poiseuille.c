@@ -24,11 +24,11 @@ static PetscErrorCode SetOpt(const char *name, const char *value)
 
 static PetscErrorCode RunChannel(PetscInt N, PetscReal *err, PetscInt *steps)
 {
-  Domain     dom = {0};
-  Fluid      fl;
-  FluidStats st;
-  char       buf[32];
-  PetscReal  h = 1.0 / N, dt, t = 0, l2;
+  Domain          dom = {0};
+  Fluid           fl;
+  FluidStats      st;
+  char            buf[32];
+  PetscReal       h = 1.0 / N, dt, t = 0, l2;
   const PetscReal T = 1.6;
 
   PetscFunctionBeginUser;
@@ -36,7 +36,7 @@ static PetscErrorCode RunChannel(PetscInt N, PetscReal *err, PetscInt *steps)
   PetscCall(SetOpt("-da_grid_y", buf));
   PetscCall(TestFluidCreate(0.5, NULL, NULL, &dom, &fl));
   /* explicit viscous limit 2 dt nu sum 1/h^2 <= 0.5: hx = hz = 0.5 */
-  dt = 0.45 / (2.0 * (1.0 / (h * h) + 8.0));
+  dt     = 0.45 / (2.0 * (1.0 / (h * h) + 8.0));
   *steps = (PetscInt)PetscCeilReal(T / dt);
   dt     = T / *steps;
   for (PetscInt n = 0; n < *steps; n++, t += dt) PetscCall(FluidStep(fl, dt, &st));

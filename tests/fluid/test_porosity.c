@@ -16,8 +16,16 @@ typedef struct {
   PetscReal t, c;
 } Bump;
 
-static PetscReal Step(const PetscReal x[3], void *ctx) { (void)ctx; return x[0] < 0.5 ? 1.0 : 0.4; }
-static PetscReal Uniform(const PetscReal x[3], void *ctx) { (void)x; return *(const PetscReal *)ctx; }
+static PetscReal Step(const PetscReal x[3], void *ctx)
+{
+  (void)ctx;
+  return x[0] < 0.5 ? 1.0 : 0.4;
+}
+static PetscReal Uniform(const PetscReal x[3], void *ctx)
+{
+  (void)x;
+  return *(const PetscReal *)ctx;
+}
 static PetscReal BumpEps(const PetscReal x[3], void *ctx)
 {
   const Bump     *b  = (const Bump *)ctx;
@@ -47,11 +55,11 @@ static PetscErrorCode ChannelOptions(const char *inlet)
 /* Volume flux through every x-plane of faces; max relative deviation from the inlet flux. */
 static PetscErrorCode PlaneFluxDeviation(Fluid fl, Domain *dom, PetscReal *dev)
 {
-  DM                 cda, fda;
-  Vec                uloc, eloc, eps;
+  DM                    cda, fda;
+  Vec                   uloc, eloc, eps;
   const PetscScalar ****u, ***e;
-  PetscInt           xs, ys, zs, xm, ym, zm, N = dom->cells[0];
-  PetscReal         *q, *Q, m = 0;
+  PetscInt              xs, ys, zs, xm, ym, zm, N = dom->cells[0];
+  PetscReal            *q, *Q, m = 0;
 
   PetscFunctionBeginUser;
   PetscCall(FluidGetDMs(fl, &cda, &fda));
@@ -107,7 +115,7 @@ static PetscErrorCode RunBump(void)
   Domain     dom = {0};
   Fluid      fl;
   FluidStats st;
-  Bump       b = {0, 0.5};
+  Bump       b     = {0, 0.5};
   PetscReal  worst = 0, dt = 2e-3, rate;
   Vec        eps, eps0, de;
 

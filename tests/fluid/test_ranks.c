@@ -33,7 +33,11 @@ static void TaylorGreen3(const PetscReal x[3], PetscReal v[3], void *ctx)
   v[2] = 0.2 * PetscSinReal(2 * PETSC_PI * x[1]);
 }
 
-static PetscReal StepEps(const PetscReal x[3], void *ctx) { (void)ctx; return x[0] < 0.5 ? 1.0 : 0.4; }
+static PetscReal StepEps(const PetscReal x[3], void *ctx)
+{
+  (void)ctx;
+  return x[0] < 0.5 ? 1.0 : 0.4;
+}
 
 /* Runs the case on comm; returns u and p gathered onto every rank in natural order. */
 static PetscErrorCode RunCase(MPI_Comm comm, int which, PetscInt nsteps, Vec *U, Vec *P, PetscInt grid[3])

@@ -19,13 +19,13 @@ static void Exact(const PetscReal x[3], PetscReal v[3], void *ctx)
 
 static PetscErrorCode RunVortex(PetscInt N, const char *adv, PetscReal *linf, PetscReal *l2)
 {
-  Domain     dom = {0};
-  Fluid      fl;
-  FluidStats st;
-  char       buf[32];
-  PetscReal  h = 2 * PETSC_PI / N, F = 1, dt;
+  Domain          dom = {0};
+  Fluid           fl;
+  FluidStats      st;
+  char            buf[32];
+  PetscReal       h = 2 * PETSC_PI / N, F = 1, dt;
   const PetscReal T = 1, nu = 0.1;
-  PetscInt   steps;
+  PetscInt        steps;
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(buf, sizeof buf, "%d", (int)N));
@@ -48,7 +48,7 @@ static PetscErrorCode RunVortex(PetscInt N, const char *adv, PetscReal *linf, Pe
 
 int main(int argc, char **argv)
 {
-  PetscInt    Ns[3] = {16, 32, 64};
+  PetscInt    Ns[3]  = {16, 32, 64};
   const char *adv[2] = {"central", "tvd"};
   PetscReal   linf[3], l2[3];
   char        hi[32];

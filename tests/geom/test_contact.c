@@ -76,8 +76,10 @@ static PetscErrorCode report(const char *mode, const ConvexContact *c, const dou
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-
-static double urand(void) { return (double)rand() / RAND_MAX; }
+static double urand(void)
+{
+  return (double)rand() / RAND_MAX;
+}
 
 /* Uniform random unit quaternion (Shoemake 1992). */
 static void random_quat(double q[4])
@@ -174,7 +176,7 @@ static PetscErrorCode TestCubeCube(const ConvexShape *cube)
 
   { /* A turned 45 deg about y (top edge along y), B 45 deg about x (bottom edge along x) */
     const double  ey[3] = {0, 1, 0}, p[3] = {0, 0.2 * a, a / sqrt(2.0) - delta / 2};
-    ConvexPose    A2    = {{0, 0, 0}, {0}};
+    ConvexPose    A2 = {{0, 0, 0}, {0}};
     ConvexContact c2;
     convex_quat_from_axis_angle(ey, PETSC_PI / 4, A2.q);
     B = (ConvexPose){{0.1 * a, 0.2 * a, sqrt(2.0) * a - delta}, {0}};

@@ -44,8 +44,8 @@ static PetscErrorCode WriteFile(const char *path, const char *text)
 
 int main(int argc, char **argv)
 {
-  const PetscReal three[9]     = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-  const PetscReal coplanar[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.3, 0.4, 0};
+  const PetscReal three[9]      = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const PetscReal coplanar[15]  = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.3, 0.4, 0};
   const PetscReal collinear[12] = {0, 0, 0, 1, 1, 1, 2, 2, 2, -1, -1, -1};
   char            bad[PETSC_MAX_PATH_LEN], flat[PETSC_MAX_PATH_LEN], good[PETSC_MAX_PATH_LEN];
   ConvexShape     s;

@@ -16,7 +16,10 @@
 #include "geom/convex.h"
 #include "geom/quat.h"
 
-static double rel(double a, double b) { return fabs(a - b) / fabs(b); }
+static double rel(double a, double b)
+{
+  return fabs(a - b) / fabs(b);
+}
 
 static PetscErrorCode CheckBuiltin(const char *name, const ConvexShape *s, double V, const double Iref[3], PetscInt nf)
 {
@@ -44,31 +47,31 @@ static PetscErrorCode TestBuiltins(void)
 
   PetscFunctionBeginUser;
   PetscCall(ConvexShapeCreateCube(a, &s));
-  V    = a * a * a;
+  V       = a * a * a;
   Iref[0] = Iref[1] = Iref[2] = V * a * a / 6;
   PetscCall(CheckBuiltin("cube", &s, V, Iref, 12));
   PetscCall(CheckAtMost("cube bounding radius rel. error", rel(s.bounding_radius, sqrt(3.0) * a / 2), 1e-14));
   PetscCall(CheckAtMost("cube volume-equivalent diameter rel. error", rel(s.d_eq, a * cbrt(6 / PETSC_PI)), 1e-14));
   PetscCall(ConvexShapeDestroy(&s));
   PetscCall(ConvexShapeCreateTetrahedron(a, &s));
-  V    = a * a * a / (6 * sqrt(2.0));
+  V       = a * a * a / (6 * sqrt(2.0));
   Iref[0] = Iref[1] = Iref[2] = V * a * a / 20;
   PetscCall(CheckBuiltin("tetrahedron", &s, V, Iref, 4));
   PetscCall(ConvexShapeDestroy(&s));
   PetscCall(ConvexShapeCreateOctahedron(a, &s));
-  V    = sqrt(2.0) * a * a * a / 3;
+  V       = sqrt(2.0) * a * a * a / 3;
   Iref[0] = Iref[1] = Iref[2] = V * a * a / 10;
   PetscCall(CheckBuiltin("octahedron", &s, V, Iref, 8));
   PetscCall(ConvexShapeDestroy(&s));
   PetscCall(ConvexShapeCreateIcosahedron(a, &s));
-  V    = 5 * (3 + sqrt(5.0)) * a * a * a / 12;
+  V       = 5 * (3 + sqrt(5.0)) * a * a * a / 12;
   Iref[0] = Iref[1] = Iref[2] = V * phi * phi * a * a / 10;
   PetscCall(CheckBuiltin("icosahedron", &s, V, Iref, 20));
   PetscCall(ConvexShapeDestroy(&s));
   PetscCall(ConvexShapeCreateCylinder(r, h, &s));
-  V    = PETSC_PI * r * r * h;
+  V       = PETSC_PI * r * r * h;
   Iref[0] = Iref[1] = V * (3 * r * r + h * h) / 12;
-  Iref[2]        = V * r * r / 2;
+  Iref[2]           = V * r * r / 2;
   PetscCall(CheckBuiltin("cylinder", &s, V, Iref, 0));
   PetscCall(ConvexShapeDestroy(&s));
   PetscFunctionReturn(0);
@@ -101,8 +104,8 @@ static PetscErrorCode TestRotatedBox(void)
   Iref[2] = V * (L[0] * L[0] + L[1] * L[1]) / 12;
   for (int k = 0; k < 3; k++) {
     double m = 0;
-    e  = PetscMax(e, rel(s.inertia[k], Iref[k]));
-    ec = PetscMax(ec, fabs(s.com_input[k] - shift[k]));
+    e        = PetscMax(e, rel(s.inertia[k], Iref[k]));
+    ec       = PetscMax(ec, fabs(s.com_input[k] - shift[k]));
     for (PetscInt i = 0; i < s.nv; i++) m = PetscMax(m, fabs(s.v[3 * i + k]));
     for (PetscInt i = 0; i < s.nv; i++) ev = PetscMax(ev, fabs(fabs(s.v[3 * i + k]) - m));
     ev = PetscMax(ev, fabs(m - L[k] / 2)); /* body axis k carries side k (moments ascending) */
