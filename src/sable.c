@@ -14,15 +14,17 @@
 #include <strings.h>
 
 /* Sable's own option prefixes; fluid_poisson_ and fluid_viscous_ are PETSc solvers' prefixes
- * (their flags, such as -fluid_poisson_ksp_monitor, are PETSc's business) except for the three
- * options of Sable's that share them. */
+ * (their flags, such as -fluid_poisson_ksp_monitor, are PETSc's business) except for the options
+ * of Sable's that share them (-fluid_poisson_pc_lag, ...: read by name in src/, hence in the
+ * generated SableReadOptions). */
 PetscBool SableOptionIsOwn(const char *name)
 {
-  const char *own[]    = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
-  const char *shared[] = {"fluid_poisson_pc_lag", "fluid_poisson_pc_lag_growth", "fluid_viscous_number_max"};
-  for (size_t k = 0; k < sizeof shared / sizeof shared[0]; k++)
-    if (!strcmp(name, shared[k])) return PETSC_TRUE;
-  if (!strncmp(name, "fluid_poisson_", 14) || !strncmp(name, "fluid_viscous_", 14)) return PETSC_FALSE;
+  const char *own[] = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
+  if (!strncmp(name, "fluid_poisson_", 14) || !strncmp(name, "fluid_viscous_", 14)) {
+    for (size_t k = 0; SableReadOptions[k]; k++)
+      if (!strcmp(name, SableReadOptions[k])) return PETSC_TRUE;
+    return PETSC_FALSE;
+  }
   for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
     if (!strncmp(name, own[k], strlen(own[k]))) return PETSC_TRUE;
   return PETSC_FALSE;

@@ -12,6 +12,10 @@
 #   SableWordOptions: the options whose values are words (PetscOptionsEnum, PetscOptionsEList,
 #     PetscOptionsString, PetscOptionsStringArray, PetscOptionsEnumArray, PetscOptionsGetString,
 #     BalanceOptionName): no number check.
+#   SableReadOptions: the options Sable itself reads through an options call with a literal name
+#     (PetscOptionsReal, ..., SableOptionsReal, ...), as opposed to names only mentioned (a PETSc
+#     solver option whose raw value a check looks at): under the PETSc solver prefixes
+#     fluid_poisson_ and fluid_viscous_ these are Sable's own.
 # A flag or word option is read either under a literal name, PetscOptionsBool("-dem_frozen", ...),
 # or through a table of literal names, PetscOptionsEnum(FluidBCOption[d][s], ...), whose
 # one-line initializer in the same file ("FluidBCOption[3][2] = {{...}}") lists them.
@@ -40,6 +44,9 @@ grep -ohE '"-[a-z][a-z0-9_]*(%d[a-z0-9_]*)?"' $files | sed 's/^"-//; s/"$//' | g
 echo "  NULL};"
 echo "static const char *const SableIntOptions[] = {"
 literal '(PetscOptions(Int|IntArray|BoundedInt|RangeInt)|SableOptionsInt)\(|PetscOptionsGetInt(Array)?\(NULL, NULL, ' | sort -u | list
+echo "  NULL};"
+echo "static const char *const SableReadOptions[] = {"
+literal '(PetscOptions(Real|Int|Bool|Enum|EList|String|RealArray|IntArray|StringArray|EnumArray|BoolArray|BoundedInt|RangeInt)|SableOptions(Real|Int|RealArray|RealN))\(' | sort -u | list
 echo "  NULL};"
 echo "static const char *const SableFlagOptions[] = {"
 { literal "$flag"; tabled "$flag"; } | sort -u | list

@@ -107,8 +107,7 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscCall(DemSetExternal(cpl->dem, PETSC_TRUE));
   PetscCall(CplSetUpShapes(cpl));
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
-  PetscCall(FluidGetTimeStep(cpl->fl, &dtf));
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-fluid_dt", &fset));
+  PetscCall(FluidGetTimeStep(cpl->fl, &dtf, &fset));
   /* a frozen bed takes no DEM steps: the coupling step is the fluid's */
   PetscCheck(!cpl->frozen || !cpl->substeps_set, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_substeps %d is ignored with -dem_frozen (no DEM steps; the step is -fluid_dt): give one of them", (int)cpl->substeps);
   if (cpl->frozen) cpl->dt = dtf;

@@ -63,7 +63,7 @@ PetscErrorCode FluidSetFromOptions(Fluid fl)
   PetscOptionsBegin(fl->comm, NULL, "Fluid (porosity-averaged Navier-Stokes)", NULL);
   PetscCall(SableOptionsReal("-fluid_density", "Fluid density rho_f", "kg/m^3", "(0,inf)", fl->rho, &fl->rho, NULL));
   PetscCall(SableOptionsReal("-fluid_viscosity", "Dynamic viscosity mu", "Pa s", "(0,inf)", fl->mu, &fl->mu, NULL));
-  PetscCall(SableOptionsReal("-fluid_dt", "Fluid time step", "s", "(0,inf)", fl->dt, &fl->dt, NULL));
+  PetscCall(SableOptionsReal("-fluid_dt", "Fluid time step", "s", "(0,inf)", fl->dt, &fl->dt, &fl->dt_set));
   PetscCall(SableOptionsRealN("-fluid_gravity", "Gravity g, acts as rho eps g", "m/s^2", fl->gravity, 3, 3, NULL));
   PetscCall(SableOptionsRealN("-fluid_pressure_gradient", "Imposed mean pressure gradient G, acts as the force -G per unit volume", "Pa/m", fl->dpdx, 3, 3, NULL));
   PetscCall(PetscOptionsEnum("-fluid_advection", "Advection scheme: central (2nd order), tvd (van Leer limited upwind), none (Stokes)", NULL, FluidAdvectionNames, (PetscEnum)fl->adv, (PetscEnum *)&fl->adv, NULL));
@@ -206,10 +206,11 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FluidGetTimeStep(Fluid fl, PetscReal *dt)
+PetscErrorCode FluidGetTimeStep(Fluid fl, PetscReal *dt, PetscBool *given)
 {
   PetscFunctionBeginUser;
   *dt = fl->dt;
+  if (given) *given = fl->dt_set;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -52,8 +52,8 @@ PetscErrorCode FluidGetDMs(Fluid fluid, DM *cda, DM *fda);
  * on the new layout and moves every field bit for bit (redistribute.c). DMs and Vecs obtained
  * before are invalid afterwards. */
 PetscErrorCode FluidRedistribute(Fluid fluid);
-/* The time step given by -fluid_dt (s), for drivers and tests. */
-PetscErrorCode FluidGetTimeStep(Fluid fluid, PetscReal *dt);
+/* The time step of -fluid_dt (s), and whether the option was given (NULL: not asked). */
+PetscErrorCode FluidGetTimeStep(Fluid fluid, PetscReal *dt, PetscBool *given);
 /* Not collective. The fluid's properties as its options set them (FluidSetFromOptions):
  * -fluid_density rho (kg/m^3), -fluid_viscosity mu (Pa s), -fluid_gravity g (m/s^2). */
 PetscErrorCode FluidGetDensity(Fluid fluid, PetscReal *rho);

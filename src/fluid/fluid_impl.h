@@ -46,6 +46,7 @@ struct _p_Fluid {
   DM             cda, fda;
   FluidBC        bc[3][2];
   PetscReal      rho, mu, dt, gravity[3], dpdx[3], p_out;
+  PetscBool      dt_set; /* -fluid_dt given */
   FluidAdvection adv;
   FluidViscous   visc;
   PetscReal      cfl_max, visc_max;

@@ -90,7 +90,7 @@ int main(int argc, char **argv)
   PetscCall(FluidSetUp(fl));
   PetscCall(FluidSetPorosityFunction(fl, StepEps, NULL));
   PetscCall(FluidInitPorosity(fl));
-  PetscCall(FluidGetTimeStep(fl, &dt));
+  PetscCall(FluidGetTimeStep(fl, &dt, NULL));
   for (PetscInt n = 0; n < steps; n++) {
     PetscCall(FluidStep(fl, dt, &st));
     t += st.dt;
