@@ -89,12 +89,11 @@ PetscErrorCode DomainSetUp(Domain *dom, PetscReal default_cell, PetscInt stencil
   if (dom->cell_set) default_cell = dom->cell;
   PetscCheck(default_cell > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-domain_cell %g must be > 0 (m)", (double)default_cell);
   { /* -da_grid_x/y/z override -domain_cell axis by axis: with all three it would be ignored */
-    PetscBool cset, g[3];
-    PetscCall(PetscOptionsHasName(NULL, NULL, "-domain_cell", &cset));
+    PetscBool g[3];
     PetscCall(PetscOptionsHasName(NULL, NULL, "-da_grid_x", &g[0]));
     PetscCall(PetscOptionsHasName(NULL, NULL, "-da_grid_y", &g[1]));
     PetscCall(PetscOptionsHasName(NULL, NULL, "-da_grid_z", &g[2]));
-    PetscCheck(!cset || !(g[0] && g[1] && g[2]), comm, PETSC_ERR_ARG_INCOMP, "-domain_cell %g and -da_grid_x, -da_grid_y, -da_grid_z are all given; the grid counts override -domain_cell, which would be ignored: give one of them", (double)default_cell);
+    PetscCheck(!dom->cell_set || !(g[0] && g[1] && g[2]), comm, PETSC_ERR_ARG_INCOMP, "-domain_cell %g and -da_grid_x, -da_grid_y, -da_grid_z are all given; the grid counts override -domain_cell, which would be ignored: give one of them", (double)default_cell);
   }
   for (int k = 0; k < 3; k++) { /* a count beyond PetscInt would wrap (to 1 cell, or a negative one) */
     const PetscReal n = PetscFloorReal(dom->len[k] / default_cell);

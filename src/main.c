@@ -295,13 +295,13 @@ static PetscErrorCode SableRun(void)
   PetscCall(DemCreate(&dom, &dem));
   PetscCall(DemSetFromOptions(dem));
   PetscCall(DemExternalSetFromOptions(dem));
+  PetscCall(IoCreate(PETSC_COMM_WORLD, &io));
+  PetscCall(IoSetFromOptions(io));
   PetscCall(BalanceCreate(&dom, dem, NULL, &lb));
   PetscCall(BalanceSetFromOptions(lb));
   PetscCall(DemGetLargestRadius(dem, &rmax));
   PetscCall(BalanceIsActive(lb, &balanced));
   PetscCall(DomainSetUp(&dom, (balanced ? 2.5 : 8) * rmax + 1e-300, 1));
-  PetscCall(IoCreate(PETSC_COMM_WORLD, &io));
-  PetscCall(IoSetFromOptions(io));
   PetscCall(DriverIsCoupled(&coupled));
   if (coupled || help) { /* -help lists every driver's options */
     PetscCall(CoupledRunCreate(&dom, &wet));

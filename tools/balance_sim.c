@@ -3,7 +3,7 @@
  * particle centres on a cartesian grid over the box, turns the counts into cell weights
  * W = alpha n + beta or alpha n^2 + beta (Golshan & Blais 2022, eqs. 1-2), and for each
  * hypothetical process grid compares three decompositions with the same code the run uses
- * (src/coupling/balance_cuts.c): (a) uniform cuts, what a DMDA does by default, (b) marginal
+ * (src/balance/cuts.c): (a) uniform cuts, what a DMDA does by default, (b) marginal
  * cuts, (c) the optimised cuts of BalanceCuts. Prints a markdown table: ranks, grid, and for
  * each method L_max/L_avg, L_min/L_avg and the ideal speed-up bound S = P L_avg / L_max (the
  * parallel efficiency if time were proportional to the load), and the time BalanceCuts took.

@@ -1,4 +1,4 @@
-/* Cost of one convex narrow-phase call (not a test; figures go to src/dem/CONVEX.md).
+/* Cost of one convex narrow-phase call (not a test; figures go to doc/performance.md).
  *
  * For each shape (cube, icosahedron, cylinder; size 1) it draws N random near-contact pairs:
  * uniformly random orientations (Shoemake 1992) and direction u, B placed at distance

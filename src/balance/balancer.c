@@ -92,6 +92,8 @@ static PetscErrorCode BalanceOptionName(PetscOptionItems *PetscOptionsObject, MP
 
 PetscErrorCode BalanceSetFromOptions(Balance b)
 {
+  PetscBool set[4]; /* -lb_interval, -lb_step, -lb_interval_time, -lb_time given */
+
   PetscFunctionBeginUser;
   PetscOptionsBegin(b->comm, NULL, "Load balancing (moves the shared DMDA cuts)", NULL);
   PetscCall(BalanceOptionName(PetscOptionsObject, b->comm, "-lb_scheme", "When to rebalance: none, once, frequent, dynamic", LbSchemeNames, 4, (PetscInt *)&b->scheme));
@@ -99,21 +101,17 @@ PetscErrorCode BalanceSetFromOptions(Balance b)
   PetscCall(SableOptionsReal("-lb_alpha", "Weight of a particle in a cell", NULL, "[0,inf)", b->alpha, &b->alpha, NULL));
   PetscCall(SableOptionsReal("-lb_beta", "Weight of a cell", NULL, "[0,inf)", b->beta, &b->beta, NULL));
   PetscCall(SableOptionsReal("-lb_threshold", "dynamic: rebalance when (L_max - L_min) / L_avg exceeds it", NULL, "(0,inf)", b->threshold, &b->threshold, NULL));
-  PetscCall(SableOptionsInt("-lb_interval", "frequent/dynamic: steps between checks", NULL, "[1,inf)", b->interval, &b->interval, NULL));
-  PetscCall(SableOptionsReal("-lb_interval_time", "frequent/dynamic: simulated time between checks (replaces -lb_interval); default none: -lb_interval counts", "s", "(0,inf)", b->interval_time, &b->interval_time, NULL));
-  PetscCall(SableOptionsInt("-lb_step", "once: the step after which to rebalance", NULL, "[0,inf)", b->once_step, &b->once_step, NULL));
-  PetscCall(SableOptionsReal("-lb_time", "once: the simulated time after which to rebalance (replaces -lb_step); default none: -lb_step counts", "s", "[0,inf)", b->once_time, &b->once_time, NULL));
+  PetscCall(SableOptionsInt("-lb_interval", "frequent/dynamic: steps between checks", NULL, "[1,inf)", b->interval, &b->interval, &set[0]));
+  PetscCall(SableOptionsReal("-lb_interval_time", "frequent/dynamic: simulated time between checks (replaces -lb_interval); default none: -lb_interval counts", "s", "(0,inf)", b->interval_time, &b->interval_time, &set[2]));
+  PetscCall(SableOptionsInt("-lb_step", "once: the step after which to rebalance", NULL, "[0,inf)", b->once_step, &b->once_step, &set[1]));
+  PetscCall(SableOptionsReal("-lb_time", "once: the simulated time after which to rebalance (replaces -lb_step); default none: -lb_step counts", "s", "[0,inf)", b->once_time, &b->once_time, &set[3]));
   PetscCall(SableOptionsInt("-lb_max_sweeps", "Coordinate-descent rounds of the cut search (0: the marginal cuts only get refined by the default 20)", NULL, "[0,inf)", b->max_sweeps, &b->max_sweeps, NULL));
   PetscCall(PetscOptionsBool("-lb_verbose", "Print one line per check", NULL, b->verbose, &b->verbose, NULL));
   PetscOptionsEnd();
   { /* the time-based option replaces the step-based one: both given, one would be ignored */
     const char *steps[2] = {"-lb_interval", "-lb_step"}, *times[2] = {"-lb_interval_time", "-lb_time"};
-    for (int k = 0; k < 2; k++) {
-      PetscBool hs, ht;
-      PetscCall(PetscOptionsHasName(NULL, NULL, steps[k], &hs));
-      PetscCall(PetscOptionsHasName(NULL, NULL, times[k], &ht));
-      PetscCheck(!hs || !ht, b->comm, PETSC_ERR_ARG_INCOMP, "%s and %s are both given; %s replaces %s, which would be ignored: give one of them", steps[k], times[k], times[k], steps[k]);
-    }
+    for (int k = 0; k < 2; k++)
+      PetscCheck(!set[k] || !set[k + 2], b->comm, PETSC_ERR_ARG_INCOMP, "%s and %s are both given; %s replaces %s, which would be ignored: give one of them", steps[k], times[k], times[k], steps[k]);
   }
   PetscCheck(b->alpha > 0 || b->beta > 0, b->comm, PETSC_ERR_ARG_OUTOFRANGE, "-lb_alpha and -lb_beta are both 0: every cell would weigh nothing");
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -41,8 +41,8 @@ PetscErrorCode CoupledRunSetFromOptions(CoupledRun r)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(r->comm, NULL, "Coupled run (CFD-DEM)", NULL);
-  PetscCall(SableOptionsReal("-cpl_t_end", "Simulated time of a coupled run; a coupled run needs it", "s", "[0,inf)", r->t_end, &r->t_end, &r->t_end_set));
-  PetscCall(SableOptionsReal("-cpl_progress_interval", "Simulated time between progress lines; 0 = none", "s", "[0,inf)", r->progress_dt, &r->progress_dt, NULL));
+  PetscCall(SableOptionsReal("-cpl_t_end", "Simulated time of a coupled run; a coupled run needs it", "s", "[0,inf)", -1, &r->t_end, &r->t_end_set));
+  PetscCall(SableOptionsReal("-cpl_progress_interval", "Simulated time between progress lines", "s; 0 = no progress lines", "[0,inf)", r->progress_dt, &r->progress_dt, NULL));
   PetscCall(SableOptionsRealN("-cpl_probe_z", "Two heights z1,z2 between which the run reports dp/L, porosity and the drag law's prediction; default no report", "m", r->probe, 0, 2, &r->probe_set));
   PetscOptionsEnd();
   PetscCheck(!r->probe_set || (r->probe[0] >= dom->lo[2] && r->probe[0] < r->probe[1] && r->probe[1] <= dom->hi[2]), r->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_probe_z %g,%g: need lo <= z1 < z2 <= hi with the domain's z range [%g, %g] (m)", (double)r->probe[0], (double)r->probe[1], (double)dom->lo[2], (double)dom->hi[2]);

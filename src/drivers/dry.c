@@ -26,8 +26,8 @@ PetscErrorCode DryRunSetFromOptions(DryRun r)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(r->comm, NULL, "Dry run (DEM without fluid)", NULL);
-  PetscCall(SableOptionsReal("-dem_t_end", "Simulated time to run to; a dry run needs it", "s", "[0,inf)", r->t_end, &r->t_end, &r->t_end_set));
-  PetscCall(SableOptionsReal("-dem_progress_interval", "Simulated time between progress lines; 0 = none", "s", "[0,inf)", r->progress_dt, &r->progress_dt, NULL));
+  PetscCall(SableOptionsReal("-dem_t_end", "Simulated time to run to; a dry run needs it", "s", "[0,inf)", -1, &r->t_end, &r->t_end_set));
+  PetscCall(SableOptionsReal("-dem_progress_interval", "Simulated time between progress lines", "s; 0 = no progress lines", "[0,inf)", r->progress_dt, &r->progress_dt, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -154,17 +154,18 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
   PetscCall(DemSetUp(dem));
   PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
-  PetscCall(BalanceSetUp(lb));
+  if (lb) PetscCall(BalanceSetUp(lb));
   PetscCall(PetscTime(&t0));
   PetscCall(DryRunLoop(r, dem, lb, io));
   PetscCall(PetscTime(&t1));
-  PetscCall(BalanceView(lb, PETSC_VIEWER_STDOUT_WORLD));
+  if (lb) PetscCall(BalanceView(lb, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(DemGetTime(dem, &t, &step));
   PetscCall(DemGetBedFigures(dem, &phi, &coord));
   getrusage(RUSAGE_SELF, &ru);
   PetscCall(PetscPrintf(r->comm, "done: t = %g s, %" PetscInt_FMT " steps in %.3f s (rank 0 peak memory %.1f MB)\n", (double)t, step, t1 - t0, ru.ru_maxrss / 1024.0));
   PetscCall(PetscPrintf(r->comm, "bed: packing fraction %.4f, mean coordination number %.3f\n", (double)phi, (double)coord));
-  PetscCall(IoGetIndexPath(io, &index));
+  index = NULL;
+  if (io) PetscCall(IoGetIndexPath(io, &index));
   PetscCall(PetscPrintf(r->comm, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

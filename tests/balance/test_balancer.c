@@ -6,7 +6,7 @@
  *     velocities gathered by id before and after: max difference 0), keeps the count, the id
  *     checksum and the elastic energy of the tangential springs (the springs travel with their
  *     particles; the sum changes order, bound 1e-12 relative), and ends with L_max/L_avg < 1.15
- *     (the issue's bound) measured on the particles after the move;
+ *     (the required bound) measured on the particles after the move;
  *   - runs with a rebalance every 50 steps give the trajectories of a run without: bitwise in
  *     -dem_deterministic mode (bound 0, as the parallel equivalence tests), within 1e-10 of the
  *     box in the default mode (the default-mode bound of tests/dem/test_parallel.c).

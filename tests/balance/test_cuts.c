@@ -1,4 +1,4 @@
-/* Balanced cuts of the tensor-product decomposition (src/coupling/balance_cuts.c).
+/* Balanced cuts of the tensor-product decomposition (src/balance/cuts.c).
  *
  * The cuts must be valid (sum to n, every part >= minw), reproduce the obvious optimum on uniform
  * weights and on a column whose weight lies in its bottom third, never be worse than the

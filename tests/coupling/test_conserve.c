@@ -7,7 +7,7 @@
  *  2. particle momentum + fluid momentum + the exchange still owed to the fluid is constant to
  *     1e-10 relative to sum |m v| over 40 coupling steps, while the fluid picks up momentum
  *     (the drag is implicit on both sides; couple.c explains the bookkeeping);
- *  2b. particle + fluid momentum alone (the issue's wording) differ from their start by the owed
+ *  2b. particle + fluid momentum alone (as the requirement words it) differ from their start by the owed
  *     part, the momentum in transit (the change of drag over one step): 2.5e-4 of sum |m v| after
  *     the first step, so that sum alone is NOT constant to 1e-10 at a step's end. The check: the
  *     owed part vanishes as the box relaxes, below 1e-2 of its first-step value after 400 steps

@@ -4,7 +4,7 @@
  * e = 0.5, friction 0.3, frictionless side walls; a dry DEM run). The settled bed is then frozen
  * and fluid flows through it from below (rho_f = 1, mu = 0.1, U = 1: Re_p = 10; cells of 2 d,
  * free-slip side walls). Reference: the drag law's own prediction -dp/dz = n K U / eps at the
- * mean cell porosity between two planes inside the bed, within 5% (the issue's bound for a
+ * mean cell porosity between two planes inside the bed, within 5% (the required bound for a
  * random packing). The walls loosen the packing next to them, so the flow channels there a
  * little and the measured gradient falls below the prediction at the mean porosity (measured:
  * porosity 0.429, 0.7% below). The scenes: test_random_bed_dry.opts (the settle run) and

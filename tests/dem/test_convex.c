@@ -15,7 +15,7 @@
  *    a NOTE line (a known limitation of the patch point, not a check).
  *    Boxes only, whose pairs use the exact separating-axis narrow phase: momenta checked as above,
  *    the energy drift only reported (1.1e-3 with it and with libccd's MPR alike, above the 1e-4
- *    of the issue: the drift comes from the contact point model, see src/dem/CONVEX.md).
+ *    of 1e-4: the drift comes from the contact point model, see src/geom/README.md).
  * 4. A finite rectangle wall (-dem_rect_0, 3a x 3a): a cube (and a sphere) dropped on it rests
  *    at a/2 (r) above it; one dropped beside it falls past it. */
 #include "dem_common.h"
@@ -501,7 +501,7 @@ int main(int argc, char **argv)
   PetscCall(BoxPairs());
   { /* energy of frictionless elastic collisions (e = 1), mean over the last tenth of the run
        against the first; 1e5 steps at Tc/100, the same simulated time at smaller dt. The two
-       contact point models: CONVEX.md, "Contact point and energy" */
+       contact point models: src/geom/README.md */
     const char *exact = "-dem_convex_contact_point support -dem_convex_sat_axes 300";
     double      d0, d1, d2, d3, d4;
     PetscCall(Collisions(PETSC_FALSE, 0.03, 3, "", 1, &d0));
@@ -518,7 +518,7 @@ int main(int argc, char **argv)
        drift does not fall with dt; reported, not checked */
     PetscCall(Collisions(PETSC_FALSE, 0.1, 10, "", 1, &d3));
     PetscCall(Collisions(PETSC_FALSE, 0.1, 10, "", 4, &d4));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "NOTE fast collisions with the defaults (patch point, MPR for icosahedra): energy drift %.2e at Tc/100, %.2e at Tc/400 (not checked: this model is not an energy gradient and misses the issue's 1e-4, CONVEX.md)\n", d3, d4));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "NOTE fast collisions with the defaults (patch point, MPR for icosahedra): energy drift %.2e at Tc/100, %.2e at Tc/400 (not checked: this model is not an energy gradient and misses the 1e-4 bound, src/geom/README.md)\n", d3, d4));
     PetscCall(Collisions(PETSC_TRUE, 0.1, 10, "-dem_convex_contact_point support", 1, &d1));
     PetscCall(Collisions(PETSC_TRUE, 0.1, 10, "-dem_convex_contact_point support", 4, &d2));
     CheckDetail("%.2e at Tc/100", d1);

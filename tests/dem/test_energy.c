@@ -2,7 +2,7 @@
  * constant collision with each other and the walls. The total energy (kinetic + elastic) of a
  * symplectic integrator oscillates at O((w dt)^2) during contacts but must not drift: the drift,
  * the change of its mean between the first and the last tenth of 10^5 steps, stays below
- * 1e-4 relative (the issue's bound), at dt = Tc/200. The linear force has a kink at first touch
+ * 1e-4 relative (the required bound), at dt = Tc/200. The linear force has a kink at first touch
  * (F = kn delta switches on), which breaks the shadow energy of velocity Verlet once per contact:
  * the drift is second order in dt (measured ~7e-4 at Tc/50 for 64 spheres over 1e5 steps), and
  * that order is checked too. Linear and Hertz. */

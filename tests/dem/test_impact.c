@@ -5,7 +5,7 @@
  * E*^2 v))^(1/5) (Hertz 1882; Johnson, Contact Mechanics §11.4), and damped, the reduced Hertz
  * equation solved at fine resolution by the code (DemGetContactFigures: this checks the DEM
  * integrator against an accurate solution of the same law). dt = Tc/50 (>= 50 steps per contact).
- * Bounds from the issue: restitution within 1%, contact time within 2%. Contact start and end
+ * Bounds: restitution within 1%, contact time within 2%. Contact start and end
  * are located by linear interpolation of the overlap between steps. */
 #include "dem_common.h"
 

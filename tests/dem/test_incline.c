@@ -5,7 +5,7 @@
  *   launched at v0 without spin on a flat floor: friction decelerates at mu g and spins the
  *   sphere up until it rolls, at t* = 2 v0 / (7 mu g), with speed 5/7 v0 from then on.
  * Accelerations are measured from the velocity change between t = 0.1 s and 0.3 s (after the
- * spring transients); bound 1% (the issue's). */
+ * spring transients); bound 1%. */
 #include "dem_common.h"
 
 static PetscErrorCode Run(const char *law, double theta, double v0, double t1, double t2, double *va, double *vb)

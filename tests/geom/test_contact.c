@@ -24,7 +24,7 @@
  * Bound: 1e-9 a for MPR results on polyhedra (portal tolerance 1e-10 of the bounding radii);
  * 1e-12 a for the closed-form plane contacts. Cylinder pairs are reported, not checked: MPR's
  * normal converges slowly on the rims, so A-B and B-A stop on different portals (a limitation,
- * CONVEX.md); their figures print on NOTE lines.
+ * src/geom/README.md); their figures print on NOTE lines.
  */
 #include "check.h"
 #include "geom/convex.h"
@@ -34,7 +34,7 @@
 static PetscErrorCode CheckOrNote(const char *name, double measured, double bound)
 {
   PetscFunctionBeginUser;
-  if (bound < 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "NOTE %s: %.3e (known limitation, not checked: src/dem/CONVEX.md)\n", name, measured));
+  if (bound < 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "NOTE %s: %.3e (known limitation, not checked: src/geom/README.md)\n", name, measured));
   else PetscCall(CheckAtMost(name, measured, bound));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
