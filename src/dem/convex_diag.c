@@ -91,7 +91,7 @@ static void dem_draw_mesh(const ConvexShape *c, PetscInt *nv, const double **v, 
   *nv = 2 * m, *v = cv, *nf = t / 3, *f = cf;
 }
 
-PetscErrorCode DemConvexWriteSurface(Dem dem, Io io)
+PetscErrorCode DemConvexWriteSurface(Dem dem, const double *x, Io io)
 {
   double          cv[6 * DEM_CYL_SIDES], *xyz;
   PetscInt        cf[12 * DEM_CYL_SIDES], np = 0, nt = 0, *tri, *pid;
@@ -115,7 +115,7 @@ PetscErrorCode DemConvexWriteSurface(Dem dem, Io io)
       for (int k = 0; k < 3; k++) tri[3 * (nt + a) + k] = np + f[3 * a + k];
     for (PetscInt a = 0; a < nv; a++) {
       convex_mat_vec(R, v + 3 * a, xyz + 3 * (np + a));
-      for (int k = 0; k < 3; k++) xyz[3 * (np + a) + k] += dem->p.x[3 * i + k];
+      for (int k = 0; k < 3; k++) xyz[3 * (np + a) + k] += x[3 * i + k];
       pid[np + a] = dem->p.id[i];
     }
     np += nv;

@@ -122,6 +122,18 @@ static inline double dem_wall_sphere(const DemWall *w, const double *x, double r
   return r - h;
 }
 
+/* A position wrapped into the box along the periodic axes ([lo, hi)): between list builds a
+ * particle may be up to skin/2 past a periodic side; frames hold it wrapped, and a frame read back
+ * is wrapped again (a file written by another run). */
+static inline void DemWrapPeriodic(const Domain *dom, double *x)
+{
+  for (int k = 0; k < 3; k++) {
+    if (!dom->periodic[k]) continue;
+    x[k] -= dom->len[k] * floor((x[k] - dom->lo[k]) / dom->len[k]);
+    if (x[k] >= dom->hi[k]) x[k] = dom->lo[k]; /* round-off */
+  }
+}
+
 /* Velocity of the wall's surface at point c (m/s). */
 static inline void dem_wall_velocity(const DemWall *w, const double *c, double vw[3])
 {
@@ -338,7 +350,7 @@ static inline ConvexPose DemPose(const double *x, const double *q)
 PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c);                                                               /* convex_contacts.c: the forces' narrow phase */
 PetscErrorCode DemContactsWallsConvex(Dem dem);                                                                                                       /* convex_contacts.c */
 PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax);                                                                /* convex_diag.c */
-PetscErrorCode DemConvexWriteSurface(Dem dem, Io io);                                                                                                 /* convex_diag.c */
+PetscErrorCode DemConvexWriteSurface(Dem dem, const double *x, Io io);                                                                                /* convex_diag.c */
 PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                               /* rotation.c */
 PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                              /* rotation.c */
 void           DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h);                                              /* external.c */

@@ -132,21 +132,28 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
 
 PetscErrorCode DemWriteOutput(Dem dem, Io io)
 {
-  double *r;
+  double   *r, *x = dem->p.x;
+  PetscBool per = (PetscBool)(dem->dom->periodic[0] || dem->dom->periodic[1] || dem->dom->periodic[2]);
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Output, 0, 0, 0, 0));
   PetscCall(PetscMalloc1(dem->p.n + 1, &r));
   for (PetscInt i = 0; i < dem->p.n; i++) r[i] = dem->shapes.shp[dem->p.shape[i]].r;
-  PetscCall(IoWriteParticles(io, "position", dem->p.n, 3, dem->p.x));
+  if (per) { /* positions wrapped into the box along periodic axes, the run's own left as they are */
+    PetscCall(PetscMalloc1(3 * dem->p.n + 3, &x));
+    PetscCall(PetscArraycpy(x, dem->p.x, 3 * dem->p.n));
+    for (PetscInt i = 0; i < dem->p.n; i++) DemWrapPeriodic(dem->dom, x + 3 * i);
+  }
+  PetscCall(IoWriteParticles(io, "position", dem->p.n, 3, x));
   PetscCall(IoWriteParticles(io, "velocity", dem->p.n, 3, dem->p.v));
   PetscCall(IoWriteParticles(io, "angular_velocity", dem->p.n, 3, dem->p.w));
   PetscCall(IoWriteParticles(io, "quaternion", dem->p.n, 4, dem->p.q));
   PetscCall(IoWriteParticles(io, "radius", dem->p.n, 1, r));
   PetscCall(IoWriteParticlesInt(io, "id", dem->p.n, dem->p.id));
   PetscCall(IoWriteParticlesInt(io, "shape", dem->p.n, dem->p.shape));
-  if (dem->shapes.convex) PetscCall(DemConvexWriteSurface(dem, io)); /* convex_diag.c */
+  if (dem->shapes.convex) PetscCall(DemConvexWriteSurface(dem, x, io)); /* convex_diag.c */
   PetscCall(PetscFree(r));
+  if (per) PetscCall(PetscFree(x));
   PetscCall(PetscLogEventEnd(DEM_Output, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -83,17 +83,6 @@ static PetscBool dem_in_box(const Domain *dom, const double *x)
   return PETSC_TRUE;
 }
 
-/* A frame holds positions as the run had them, up to skin/2 past a periodic side between list
- * builds: they are wrapped into the box. */
-static void dem_wrap_periodic(const Domain *dom, double *x)
-{
-  for (int k = 0; k < 3; k++) {
-    if (!dom->periodic[k]) continue;
-    x[k] -= dom->len[k] * floor((x[k] - dom->lo[k]) / dom->len[k]);
-    if (x[k] >= dom->hi[k]) x[k] = dom->lo[k]; /* round-off */
-  }
-}
-
 /* The lattice spacing: -dem_lattice_spacing, or 1.05 x the largest diameter. */
 double DemLatticeSpacing(Dem dem)
 {
@@ -189,7 +178,7 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
       rows = r;
       PetscCall(PetscMalloc1(rows + 1, &mine));
       for (PetscInt i = 0; i < rows; i++) {
-        dem_wrap_periodic(dem->dom, d + 3 * i);
+        DemWrapPeriodic(dem->dom, d + 3 * i);
         if (dem_in_box(dem->dom, d + 3 * i)) mine[nmine++] = i;
       }
       PetscCall(DemParticlesReserve(dem, n0 + nmine));

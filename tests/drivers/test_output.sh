@@ -4,7 +4,7 @@
 # (-dem_init_file) holds the same particles (count and id checksum) with the same positions; an
 # edited frame with a repeated id or a zero quaternion is refused, and a lattice added to a
 # file continues after its ids; a run whose end is off the output grid still writes its final
-# state.
+# state; along periodic axes every frame holds its positions wrapped into the box.
 cd "$(dirname "$0")/../.." || exit 1
 D=$(mktemp -d); trap 'rm -rf "$D"' EXIT
 OPTS="-domain_lo 0,0,0 -domain_hi 0.0725,0.0725,0.1 -dem_box 0,0,0,0.0725,0.0725,0.1 -dem_radius 0.0069 -dem_kn 7.2e5 -dem_lattice 5,5,4 -dem_lattice_spacing 0.0145 -dem_lattice_speed 0.05 -dem_t_end 0.02 -io_interval 0.005 -io_dir $D/a"
@@ -85,3 +85,30 @@ t = [float(h5py.File(f, "r").attrs["time"]) for f in sorted(glob.glob(sys.argv[1
 ok = len(t) == 4 and abs(t[-1] - 0.012) < 1e-9 and abs(t[-2] - 0.010) < 1e-9
 print(("PASS" if ok else "FAIL") + " final frame: frames at t = %s s for -dem_t_end 0.012, -io_interval 0.005 (expected 0, 0.005, 0.010 and the end 0.012)" % ", ".join("%.4g" % x for x in t))
 PY
+
+# Periodic axes: every frame's positions lie in the box along them ([lo, hi)), though a particle
+# may be up to skin/2 past a periodic side between list builds; the convex surface moves with its
+# particle (every surface point within the bounding radius of its centre).
+P="-domain_lo 0,0,0 -domain_hi 0.06,0.06,0.12 -domain_periodic_x -domain_periodic_y -dem_plane_0 0,0,0,0,0,1 -dem_kn 1e4 -dem_lattice 4,4,4 -dem_lattice_spacing 0.015 -dem_lattice_origin 0,0,0.001 -dem_lattice_speed 0.5 -dem_t_end 0.1 -io_interval 0.002"
+for s in sphere cube; do
+  [ $s = sphere ] && shp="-dem_radius 0.005" || shp="-dem_shape cube -dem_shape_deq 0.01"
+  ${BIN:-bin}/sable $P $shp -io_dir "$D/per_$s" > "$D/log_per" 2>&1 || { echo "FAIL output periodic $s: exit $?"; tail -n 3 "$D/log_per"; continue; }
+  /usr/bin/python3 - "$D/per_$s" $s <<'PY' || echo "FAIL output periodic: the checking script exited with status $?"
+import sys, glob, h5py, numpy as np
+lo, hi = np.array([0.0, 0.0]), np.array([0.06, 0.06])
+frames = sorted(glob.glob(sys.argv[1] + "/*.h5"))
+out = 0
+far = 0.0
+for name in frames:
+    with h5py.File(name, "r") as f:
+        x = f["particles/position"][:, :2]
+        out += int(((x < lo) | (x >= hi)).any())
+        if "surface" in f:
+            c = dict(zip(f["particles/id"][:], f["particles/position"][:]))
+            pts, pid = f["surface/points"][:], f["surface/tag"][:]
+            far = max(far, max(np.linalg.norm(p - c[i]) for p, i in zip(pts, pid)))
+surf = "" if sys.argv[2] == "sphere" else ", farthest surface point %.5f m from its centre (bound 0.00699, the bounding radius)" % far
+ok = out == 0 and (sys.argv[2] == "sphere" or 0 < far <= 0.00699)
+print("%s output periodic %s: %d of %d frames with a position outside [lo, hi) along x or y (bound 0)%s" % ("PASS" if ok else "FAIL", sys.argv[2], out, len(frames), surf))
+PY
+done
