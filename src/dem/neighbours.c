@@ -49,10 +49,31 @@ static PetscErrorCode DemCellsZOrder(DemNeigh *nl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode DemCellsSetUp(Dem dem)
+/* The cell grid over the box plus its halo with nc[k] cells along k (a checkpoint restores the
+ * grid of the run that wrote it: the count depends on the particles at its set-up). */
+PetscErrorCode DemNeighSetCells(Dem dem, const PetscInt nc[3])
 {
   DemNeigh *nl = &dem->nl;
-  double    len[3], c = dem->nl.reach, ncell;
+  double    len[3];
+
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 3; k++) len[k] = dem->dom->subhi[k] - dem->dom->sublo[k] + 2 * dem->nl.reach;
+  PetscCall(PetscFree(nl->cstart));
+  nl->ncell = 1;
+  for (int k = 0; k < 3; k++) {
+    nl->nc[k]  = nc[k];
+    nl->lo[k]  = dem->dom->sublo[k] - dem->nl.reach;
+    nl->inv[k] = nl->nc[k] / len[k];
+    nl->ncell *= nl->nc[k];
+  }
+  PetscCall(PetscMalloc1(nl->ncell + 1, &nl->cstart));
+  PetscCall(DemCellsZOrder(nl));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DemCellsSetUp(Dem dem)
+{
+  double len[3], c = dem->nl.reach, ncell;
 
   PetscFunctionBeginUser;
   for (int k = 0; k < 3; k++) len[k] = dem->dom->subhi[k] - dem->dom->sublo[k] + 2 * dem->nl.reach;
@@ -65,16 +86,9 @@ static PetscErrorCode DemCellsSetUp(Dem dem)
     if (ncell <= 8.0 * dem->p.n + 1000) break;
     c *= 1.25;
   }
-  PetscCall(PetscFree(nl->cstart));
-  nl->ncell = 1;
-  for (int k = 0; k < 3; k++) {
-    nl->nc[k]  = (PetscInt)PetscMax(1.0, PetscFloorReal(len[k] / c));
-    nl->lo[k]  = dem->dom->sublo[k] - dem->nl.reach;
-    nl->inv[k] = nl->nc[k] / len[k];
-    nl->ncell *= nl->nc[k];
-  }
-  PetscCall(PetscMalloc1(nl->ncell + 1, &nl->cstart));
-  PetscCall(DemCellsZOrder(nl));
+  PetscInt nc[3];
+  for (int k = 0; k < 3; k++) nc[k] = (PetscInt)PetscMax(1.0, PetscFloorReal(len[k] / c));
+  PetscCall(DemNeighSetCells(dem, nc));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
