@@ -32,6 +32,16 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem);
 PetscErrorCode DemSetFromOptions(Dem dem);
 /* Builds shapes and pair tables, inserts particles, checks the time step, builds the lists. */
 PetscErrorCode DemSetUp(Dem dem);
+/* Before DemSetUp: continue from the checkpoint at path instead of inserting particles (the
+ * case's other options must be those of the run that wrote it; same rank count). */
+PetscErrorCode DemSetRestart(Dem dem, const char *path);
+/* Collective. An exact checkpoint (checkpoint.c): the whole per-rank state a step reads, so that
+ * a run continued from it on the same rank count is bitwise the uninterrupted run. Spheres, dry
+ * runs. Written to path.tmp, then renamed. */
+PetscErrorCode DemCheckpointWrite(Dem dem, const char *path);
+/* Collective. Replaces the state of a set-up Dem by a checkpoint's; refuses in one line a file of
+ * another format version or rank count, or one missing a dataset. */
+PetscErrorCode DemCheckpointRead(Dem dem, const char *path);
 PetscErrorCode DemDestroy(Dem *dem);
 /* Prints the modules, the contact pre-flight figures (Tc, dt/Tc, overlap estimate). */
 PetscErrorCode DemView(Dem dem, PetscViewer viewer);

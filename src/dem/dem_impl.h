@@ -285,9 +285,10 @@ struct _p_Dem {
   PetscInt       check_every;
   DemStats       initial; /* count and checksum at set-up, for -dem_check_every */
   PetscBool      need_build;
-  int            stop_sig;  /* a signal any rank had caught at the last step's reduction (0: none) */
-  PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
-  PetscInt       state;     /* changes whenever positions or the local order may have (DemGetState) */
+  int            stop_sig;                    /* a signal any rank had caught at the last step's reduction (0: none) */
+  PetscLogDouble t_compute;                   /* wall time in force computation and integration (s) */
+  PetscInt       state;                       /* changes whenever positions or the local order may have (DemGetState) */
+  char           restart[PETSC_MAX_PATH_LEN]; /* DemSetRestart: a checkpoint replaces the insertion */
 };
 
 /* Internal functions, by file, from the leaves up: a file calls only files listed above it
@@ -322,6 +323,8 @@ PetscErrorCode DemCheckInDomain(Dem dem);                                       
 PetscErrorCode DemGhostsCreate(Dem dem);                                                                                                                /* exchange.c */
 PetscErrorCode DemGhostsUpdate(Dem dem);                                                                                                                /* exchange.c */
 PetscErrorCode DemMigrateGlobal(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec);                                                           /* redistribute.c */
+PetscErrorCode DemNeighSetCells(Dem dem, const PetscInt nc[3]);                                                                                         /* neighbours.c */
+PetscErrorCode DemNeighSetCells(Dem dem, const PetscInt nc[3]);                                                                                         /* neighbours.c */
 PetscErrorCode DemNeighSort(Dem dem);                                                                                                                   /* neighbours.c */
 PetscErrorCode DemNeighBuildList(Dem dem);                                                                                                              /* neighbours.c */
 PetscErrorCode DemNeighResetCells(Dem dem);                                                                                                             /* neighbours.c */

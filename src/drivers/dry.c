@@ -4,21 +4,34 @@
  * the radius), writes the frames io asks for, stops cleanly on SIGTERM, SIGINT or SIGUSR1
  * (agreed in the DEM step's own reduction), and ends with the summary lines "done:" (simulated
  * time, steps, wall time, peak memory), "bed:" (packing fraction, coordination number) and
- * "output:". Never writes a frame of a diverged state (DemCheckHealth first). */
+ * "output:". Never writes a frame of a diverged state (DemCheckHealth first).
+ * Checkpoints (-io_checkpoint_interval, simulated seconds): an exact checkpoint of the DEM
+ * (dem/checkpoint.c) every interval and at the end, <io_dir>/<prefix>_checkpoint_<step>.h5, the
+ * newest -io_checkpoint_keep of this run kept; -io_restart PATH continues from one instead of
+ * inserting the case's particles (same options, same rank count). */
 #include "drivers/drivers.h"
 #include <sys/resource.h>
+
+#define DRY_KEEP_MAX 64
 
 struct _p_DryRun {
   MPI_Comm  comm;
   PetscReal t_end, progress_dt; /* s */
   PetscBool t_end_set;
+  PetscReal ckpt_dt; /* -io_checkpoint_interval (s; 0: none) */
+  PetscBool ckpt_set;
+  PetscInt  ckpt_keep, ckpt_n, ckpt_step;           /* kept, written so far, step of the last one */
+  char      ckpt[DRY_KEEP_MAX][PETSC_MAX_PATH_LEN]; /* the newest ones written, oldest first */
+  char      restart[PETSC_MAX_PATH_LEN];
 };
 
 PetscErrorCode DryRunCreate(MPI_Comm comm, DryRun *run)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscNew(run));
-  (*run)->comm = comm;
+  (*run)->comm      = comm;
+  (*run)->ckpt_keep = 2;
+  (*run)->ckpt_step = -1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -28,6 +41,11 @@ PetscErrorCode DryRunSetFromOptions(DryRun r)
   PetscOptionsBegin(r->comm, NULL, "Dry run (DEM without fluid)", NULL);
   PetscCall(SableOptionsReal("-dem_t_end", "Simulated time to run to; a dry run needs it", "s", "[0,inf)", -1, &r->t_end, &r->t_end_set));
   PetscCall(SableOptionsReal("-dem_progress_interval", "Simulated time between progress lines", "s; 0 = no progress lines", "[0,inf)", r->progress_dt, &r->progress_dt, NULL));
+  PetscOptionsEnd();
+  PetscOptionsBegin(r->comm, NULL, "Checkpoints (dry runs)", NULL);
+  PetscCall(SableOptionsReal("-io_checkpoint_interval", "Simulated time between exact checkpoints, and one at the end", "s; 0 = none", "[0,inf)", r->ckpt_dt, &r->ckpt_dt, &r->ckpt_set));
+  PetscCall(SableOptionsInt("-io_checkpoint_keep", "Newest checkpoints of this run kept (older ones removed)", "files", "[1,64]", r->ckpt_keep, &r->ckpt_keep, NULL));
+  PetscCall(PetscOptionsString("-io_restart", "Continue from this checkpoint instead of inserting particles (same options and rank count)", NULL, r->restart, r->restart, sizeof r->restart, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -52,6 +70,32 @@ static PetscErrorCode DryOutput(Dem dem, Io io)
   PetscCall(IoFrameBegin(io, t, step));
   PetscCall(DemWriteOutput(dem, io));
   PetscCall(IoFrameEnd(io));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Writes a checkpoint of the current step (once per step), announces it and removes
+ * this run's checkpoints beyond the newest -io_checkpoint_keep. */
+static PetscErrorCode DryCheckpoint(DryRun r, Dem dem, Io io)
+{
+  char        suffix[64];
+  PetscInt    step;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetTime(dem, NULL, &step));
+  if (!io || step == r->ckpt_step) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCallMPI(MPI_Comm_rank(r->comm, &rank));
+  if (r->ckpt_n == r->ckpt_keep) { /* the oldest goes */
+    if (!rank) (void)remove(r->ckpt[0]);
+    for (PetscInt k = 1; k < r->ckpt_n; k++) PetscCall(PetscStrcpy(r->ckpt[k - 1], r->ckpt[k]));
+    r->ckpt_n--;
+  }
+  PetscCall(PetscSNPrintf(suffix, sizeof suffix, "checkpoint_%06" PetscInt_FMT ".h5", step));
+  PetscCall(IoGetFilePath(io, suffix, r->ckpt[r->ckpt_n], sizeof r->ckpt[0]));
+  PetscCall(DemCheckpointWrite(dem, r->ckpt[r->ckpt_n]));
+  PetscCall(PetscPrintf(r->comm, "checkpoint: %s\n", r->ckpt[r->ckpt_n]));
+  r->ckpt_n++;
+  r->ckpt_step = step;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -96,7 +140,7 @@ static PetscErrorCode DryProgress(DryRun r, Dem dem, PetscLogDouble t0, PetscInt
 PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
 {
   PetscLogDouble t0;
-  PetscReal      t, dt, next;
+  PetscReal      t, dt, next, next_ckpt;
   PetscInt       s0;
   PetscBool      due;
   int            sig;
@@ -105,7 +149,8 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
   PetscCall(DryCheckRunLength(r, dem, io));
   PetscCall(DemGetTime(dem, &t, &s0));
   PetscCall(DemGetTimeStep(dem, &dt));
-  next = t + r->progress_dt;
+  next      = t + r->progress_dt;
+  next_ckpt = t + r->ckpt_dt;
   PetscCall(PetscTime(&t0));
   if (io) {
     PetscCall(IoDue(io, t, &due));
@@ -131,11 +176,16 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
       PetscCall(DryProgress(r, dem, t0, s0));
       next += r->progress_dt;
     }
+    if (r->ckpt_dt > 0 && t >= next_ckpt - 0.5 * dt) {
+      PetscCall(DryCheckpoint(r, dem, io));
+      next_ckpt += r->ckpt_dt;
+    }
   }
   if (io) {
     PetscCall(IoDueFinal(io, t, &due));
     if (due) PetscCall(DryOutput(dem, io));
   }
+  if (r->ckpt_set) PetscCall(DryCheckpoint(r, dem, io));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -152,7 +202,9 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(SableCheckOptionsUsed(r->comm));
   PetscCall(DemHasConvexShapes(dem, &convex));
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
+  if (r->restart[0]) PetscCall(DemSetRestart(dem, r->restart));
   PetscCall(DemSetUp(dem));
+  if (r->restart[0]) PetscCall(PetscPrintf(r->comm, "restart: %s\n", r->restart));
   PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
   if (lb) PetscCall(BalanceSetUp(lb));
   PetscCall(PetscTime(&t0));

@@ -79,6 +79,20 @@ PetscErrorCode IoGetIndexPath(Io io, const char **path)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode IoGetFilePath(Io io, const char *suffix, char *path, size_t len)
+{
+  PetscMPIInt rank;
+  int         err = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(path, len, "%s/%s_%s", io->dir, io->prefix, suffix));
+  PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
+  if (!rank && mkdir(io->dir, 0755) != 0 && errno != EEXIST) err = errno;
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, io->comm));
+  PetscCheck(!err, io->comm, PETSC_ERR_FILE_OPEN, "-io_dir %s: cannot create the directory (%s)", io->dir, strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due)
 {
   PetscFunctionBeginUser;

@@ -24,6 +24,9 @@ PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due);
 PetscErrorCode IoGetInterval(Io io, PetscReal *interval);
 /* The XDMF index path, for messages; NULL when this run wrote no frame (-io_interval 0). */
 PetscErrorCode IoGetIndexPath(Io io, const char **path);
+/* Collective. <dir>/<prefix>_<suffix> for a file of the run beside its frames (a checkpoint);
+ * creates -io_dir if needed. */
+PetscErrorCode IoGetFilePath(Io io, const char *suffix, char *path, size_t len);
 
 /* Collective. Opens <dir>/<prefix>_<frame>.h5 (under a temporary name). */
 PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step);

@@ -1,0 +1,67 @@
+#!/bin/sh
+# Exact checkpoints of a dry run: for each contact law (linear_nohist, linear, hertz) on 1 and 2
+# ranks, a run to T and a run to T/2 that writes a checkpoint then continued with -io_restart to T
+# end with bitwise the same final frame (every dataset compared by tools below). A bad checkpoint
+# (truncated, or of another rank count) is refused: exit non-zero, one error line.
+cd "$(dirname "$0")/../.." || exit 1
+S=$(pwd)/${BIN:-bin}/sable
+[ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+W=$(mktemp -d)
+trap 'rm -rf "$W"' EXIT
+# 384 glass spheres falling onto the floor of a box from a jittered lattice: at T/2 the bed is
+# forming (wall and pair contacts, rebuilds, migration between the two ranks stacked along z)
+SCENE="-domain_lo 0,0,0 -domain_hi 0.1449,0.1449,0.24633 -dem_box 0,0,0,0.1449,0.1449,0.24633 -dem_radius 0.0069 -dem_density 2500 -dem_restitution 0.75 -dem_friction 0.3 -dem_dt 1e-5 -dem_lattice 8,8,6 -dem_lattice_spacing 0.01449 -dem_lattice_speed 0.05 -dem_progress_interval 0"
+T=0.3
+H=0.15
+cat >"$W/cmp.py" <<'PY'
+#!/usr/bin/python3
+import sys, h5py
+a, b = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
+names = []
+a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) else None)
+diff = [n for n in names if n not in b or a[n].shape != b[n].shape or a[n].dtype != b[n].dtype or a[n][()].tobytes() != b[n][()].tobytes()]
+print(len(names), len(diff), " ".join(diff))
+PY
+chmod +x "$W/cmp.py"
+run() { # np, dir, args...
+  rnp=$1; rd=$2; shift 2
+  mkdir -p "$rd"
+  (cd "$rd" && mpiexec -n "$rnp" "$S" $SCENE -io_dir out "$@" >log 2>&1)
+}
+for law in linear_nohist linear hertz; do
+  case $law in hertz) M="-dem_contact_law hertz -dem_youngs_modulus 5e6" ;; *) M="-dem_contact_law $law -dem_kn 7.2e5" ;; esac
+  for np in 1 2; do
+    d=$W/$law.$np
+    run "$np" "$d/full" $M -dem_t_end $T -io_interval $T
+    run "$np" "$d/half" $M -dem_t_end $H -io_interval 0 -io_checkpoint_interval $H
+    ck=$(sed -n 's/^checkpoint: //p' "$d/half/log" | tail -n 1)
+    run "$np" "$d/rest" $M -dem_t_end $T -io_interval $T -io_restart "../half/$ck"
+    a=$(ls "$d/full/out/"sable_*.h5 2>/dev/null | tail -n 1); b=$(ls "$d/rest/out/"sable_*.h5 2>/dev/null | tail -n 1)
+    if [ -z "$ck" ] || [ -z "$a" ] || [ -z "$b" ]; then
+      echo "FAIL checkpoint $law np=$np: a run failed; $(cat "$d"/*/log | grep 'error' | head -n 2)"
+      continue
+    fi
+    set -- $("$W/cmp.py" "$a" "$b")
+    if [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then
+      echo "PASS checkpoint $law np=$np: final frames at t=$T bitwise equal, $1 datasets compared, 0 differing (restart from $ck)"
+    else
+      echo "FAIL checkpoint $law np=$np: $1 datasets compared, $2 differing: $3 $4 $5"
+    fi
+  done
+done
+expect() { # name, pattern, np, checkpoint
+  out=$(cd "$W/linear.1/rest" && mpiexec -n "$3" "$S" $SCENE -dem_contact_law linear -dem_kn 7.2e5 -dem_t_end $T -io_interval 0 -io_restart "$4" 2>&1 >/dev/null); rc=$?
+  lines=$(printf '%s\n' "$out" | grep -c 'sable: error')
+  if [ "$rc" -ne 0 ] && [ "$lines" -eq 1 ] && printf '%s' "$out" | grep -q -- "$2"; then
+    echo "PASS bad checkpoint, $1: exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""
+  else
+    echo "FAIL bad checkpoint, $1: exit $rc, $lines error lines, expected /$2/; got: $out"
+  fi
+}
+ck1=$(ls "$W"/linear.1/half/out/*checkpoint*.h5 | tail -n 1)
+ck2=$(ls "$W"/linear.2/half/out/*checkpoint*.h5 | tail -n 1)
+head -c 20000 "$ck1" >"$W/truncated.h5"
+expect "truncated" "truncated" 1 "$W/truncated.h5"
+expect "other rank count" "attribute ranks 2, this run has 1 ranks" 1 "$ck2"
+expect "missing file" "not a readable HDF5 file" 1 "$W/none.h5"
