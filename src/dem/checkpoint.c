@@ -297,7 +297,7 @@ static PetscErrorCode DemCkptReadList(Dem dem, hid_t file, const char *path, hid
   PetscCall(PetscFree(nl->own));
   PetscCall(PetscFree(nl->hist));
   PetscCall(DemCkptRead(dem, file, path, "nl_start", it, sizeof(PetscInt), &n, (void **)&nl->start));
-  PetscCheck(n == (dem->p.n ? dem->p.n + 1 : 0), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset nl_start has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, dem->p.n + 1);
+  PetscCheck(n == (dem->p.n ? dem->p.n + 1 : 0), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset nl_start has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, dem->p.n ? dem->p.n + 1 : 0);
   if (!dem->p.n) nl->start[0] = 0;
   m = nl->start[dem->p.n];
   PetscCall(DemCkptRead(dem, file, path, "nl_nbr", it, sizeof(PetscInt), &n, (void **)&nl->nbr));
