@@ -301,6 +301,7 @@ static int SableHelpGroup(const char *name)
   const char *pre[] = {"domain_", "dem_", "fluid_", "cpl_", "lb_", "io_", "sable_"};
 
   if (!SableOptionIsOwn(name) && strncmp(name, "sable_", 6)) return -1;
+  if (!strcmp(name, "restart")) return 5; /* with the output options (-io_) */
   for (int k = 0; k < (int)(sizeof pre / sizeof pre[0]); k++)
     if (!strncmp(name, pre[k], strlen(pre[k]))) return k;
   return -1;

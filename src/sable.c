@@ -20,6 +20,7 @@
 PetscBool SableOptionIsOwn(const char *name)
 {
   const char *own[] = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
+  if (!strcmp(name, "restart")) return PETSC_TRUE; /* -restart PATH: the one unprefixed option */
   if (!strncmp(name, "fluid_poisson_", 14) || !strncmp(name, "fluid_viscous_", 14)) {
     for (size_t k = 0; SableReadOptions[k]; k++)
       if (!strcmp(name, SableReadOptions[k])) return PETSC_TRUE;

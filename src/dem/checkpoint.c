@@ -82,13 +82,13 @@ static PetscErrorCode DemCkptRead(Dem dem, hid_t file, const char *path, const c
   PetscCall(PetscSNPrintf(cname, sizeof cname, "%s_n", name));
   for (int k = 0; k < 2; k++) {
     const char *dn = k ? cname : name;
-    PetscCheck(H5Lexists(file, dn, H5P_DEFAULT) > 0, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset %s is missing (not a complete Sable checkpoint)", path, dn);
+    PetscCheck(H5Lexists(file, dn, H5P_DEFAULT) > 0, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset %s is missing (not a complete Sable checkpoint)", path, dn);
   }
   PetscCall(PetscMalloc1(size, &cnt));
   SableCallH5(ds = H5Dopen2(file, cname, H5P_DEFAULT));
   SableCallH5(fs = H5Dget_space(ds));
   ok = H5Sget_simple_extent_ndims(fs) == 1 && H5Sget_simple_extent_dims(fs, &dims, NULL) == 1 && dims == (hsize_t)size;
-  PetscCheck(ok, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset %s has %llu entries, expected %d (one per rank)", path, cname, (unsigned long long)dims, size);
+  PetscCheck(ok, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset %s has %llu entries, expected %d (one per rank)", path, cname, (unsigned long long)dims, size);
   SableCallH5(H5Dread(ds, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, cnt));
   SableCallH5(H5Sclose(fs));
   SableCallH5(H5Dclose(ds));
@@ -101,7 +101,7 @@ static PetscErrorCode DemCkptRead(Dem dem, hid_t file, const char *path, const c
   SableCallH5(ds = H5Dopen2(file, name, H5P_DEFAULT));
   SableCallH5(fs = H5Dget_space(ds));
   ok = H5Sget_simple_extent_ndims(fs) == 1 && H5Sget_simple_extent_dims(fs, &dims, NULL) == 1 && dims == (hsize_t)tot;
-  PetscCheck(ok, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset %s has %llu entries, its counts %s say %lld", path, name, (unsigned long long)dims, cname, tot);
+  PetscCheck(ok, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset %s has %llu entries, its counts %s say %lld", path, name, (unsigned long long)dims, cname, tot);
   PetscCall(PetscMalloc(esize * ((size_t)*n + 1), data));
   start = (hsize_t)off;
   count = (hsize_t)*n;
@@ -254,20 +254,20 @@ static PetscErrorCode DemCkptOpen(Dem dem, const char *path, hid_t *file)
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(dem->comm, &size));
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  PetscCheck(H5Fis_hdf5(path) > 0, dem->comm, PETSC_ERR_FILE_OPEN, "-io_restart %s: not a readable HDF5 file (missing or truncated)", path);
+  PetscCheck(H5Fis_hdf5(path) > 0, dem->comm, PETSC_ERR_FILE_OPEN, "-restart %s: not a readable HDF5 file (missing or truncated)", path);
   SableCallH5(fapl = H5Pcreate(H5P_FILE_ACCESS));
   SableCallH5(H5Pset_fapl_mpio(fapl, dem->comm, MPI_INFO_NULL));
   *file = H5Fopen(path, H5F_ACC_RDONLY, fapl);
   H5Pclose(fapl);
-  PetscCheck(*file >= 0, dem->comm, PETSC_ERR_FILE_OPEN, "-io_restart %s: HDF5 cannot open the file (truncated?)", path);
+  PetscCheck(*file >= 0, dem->comm, PETSC_ERR_FILE_OPEN, "-restart %s: HDF5 cannot open the file (truncated?)", path);
   for (int k = 0; k < 2; k++) {
-    PetscCheck(H5Aexists(*file, attr[k]) > 0, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the attribute %s is missing (not a Sable checkpoint)", path, attr[k]);
+    PetscCheck(H5Aexists(*file, attr[k]) > 0, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the attribute %s is missing (not a Sable checkpoint)", path, attr[k]);
     SableCallH5(at = H5Aopen(*file, attr[k], H5P_DEFAULT));
     SableCallH5(H5Aread(at, H5T_NATIVE_INT, &v[k]));
     SableCallH5(H5Aclose(at));
   }
-  PetscCheck(v[0] == DEM_CKPT_VERSION, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: attribute sable_checkpoint_version %d, this Sable reads version %d", path, v[0], DEM_CKPT_VERSION);
-  PetscCheck(v[1] == size, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: attribute ranks %d, this run has %d ranks (a checkpoint continues on the rank count that wrote it)", path, v[1], size);
+  PetscCheck(v[0] == DEM_CKPT_VERSION, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: attribute sable_checkpoint_version %d, this Sable reads version %d", path, v[0], DEM_CKPT_VERSION);
+  PetscCheck(v[1] == size, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: attribute ranks %d, this run has %d ranks (a checkpoint continues on the rank count that wrote it)", path, v[1], size);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -279,7 +279,7 @@ static PetscErrorCode DemCkptReadInto(Dem dem, hid_t file, const char *path, con
 
   PetscFunctionBeginUser;
   PetscCall(DemCkptRead(dem, file, path, name, type, esize, &n, &buf));
-  PetscCheck(n == want, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset %s has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, name, n, want);
+  PetscCheck(n == want, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset %s has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, name, n, want);
   if (n) PetscCall(PetscMemcpy(dst, buf, esize * (size_t)n));
   PetscCall(PetscFree(buf));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -297,14 +297,14 @@ static PetscErrorCode DemCkptReadList(Dem dem, hid_t file, const char *path, hid
   PetscCall(PetscFree(nl->own));
   PetscCall(PetscFree(nl->hist));
   PetscCall(DemCkptRead(dem, file, path, "nl_start", it, sizeof(PetscInt), &n, (void **)&nl->start));
-  PetscCheck(n == (dem->p.n ? dem->p.n + 1 : 0), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset nl_start has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, dem->p.n ? dem->p.n + 1 : 0);
+  PetscCheck(n == (dem->p.n ? dem->p.n + 1 : 0), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset nl_start has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, dem->p.n ? dem->p.n + 1 : 0);
   if (!dem->p.n) nl->start[0] = 0;
   m = nl->start[dem->p.n];
   PetscCall(DemCkptRead(dem, file, path, "nl_nbr", it, sizeof(PetscInt), &n, (void **)&nl->nbr));
-  PetscCheck(n == m, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset nl_nbr has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, m);
+  PetscCheck(n == m, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset nl_nbr has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, m);
   nl->cap = m + 1;
   PetscCall(DemCkptRead(dem, file, path, "nl_own", it, sizeof(PetscInt), &n, (void **)&nl->own));
-  PetscCheck(n == m, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset nl_own has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, m);
+  PetscCheck(n == m, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset nl_own has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, m);
   if (dem->contact.law != DEM_LAW_LINEAR_NOHIST) {
     PetscCall(PetscCalloc1(3 * (size_t)m + 3, &nl->hist));
     PetscCall(DemCkptReadInto(dem, file, path, "nl_hist", H5T_NATIVE_DOUBLE, sizeof(double), 3 * m, nl->hist));
@@ -330,7 +330,7 @@ static PetscErrorCode DemCkptReadLists(Dem dem, hid_t file, const char *path, hi
       PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)ex[d], &dem->ex.send[d]));
       dem->ex.capsend[d] = ex[d];
     }
-    PetscCheck(ns + ex[d] <= n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the dataset ex_send is shorter than ex_counts say", path);
+    PetscCheck(ns + ex[d] <= n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset ex_send is shorter than ex_counts say", path);
     for (PetscInt a = 0; a < ex[d]; a++) dem->ex.send[d][a] = send[ns++];
   }
   PetscCall(PetscFree(send));
@@ -345,7 +345,7 @@ static PetscErrorCode DemCkptReadLists(Dem dem, hid_t file, const char *path, hi
     for (int k = 0; k < 3; k++) wl->p[k] = wd[4 * w + k];
     wl->moved = wd[4 * w + 3];
     wl->cnt   = wcnt[w];
-    PetscCheck(nw + wl->cnt <= n && 3 * (nw + wl->cnt) <= ns, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the datasets wall_idx, wall_hist are shorter than wall_cnt says", path);
+    PetscCheck(nw + wl->cnt <= n && 3 * (nw + wl->cnt) <= ns, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the datasets wall_idx, wall_hist are shorter than wall_cnt says", path);
     if (wl->cnt > wl->cap) {
       wl->cap = wl->cnt;
       PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)wl->cap, &wl->idx));
@@ -370,11 +370,11 @@ PetscErrorCode DemCheckpointRead(Dem dem, const char *path)
   double   clk[3];
 
   PetscFunctionBeginUser;
-  PetscCall(DemCkptSupported(dem, "-io_restart", path));
+  PetscCall(DemCkptSupported(dem, "-restart", path));
   PetscCall(DemCkptOpen(dem, path, &file));
   PetscCall(DemCkptReadInto(dem, file, path, "counters", it, sizeof(PetscInt), DEM_CKPT_NCOUNT, c));
   PetscCall(DemCkptReadInto(dem, file, path, "clock", H5T_NATIVE_DOUBLE, sizeof(double), 3, clk));
-  PetscCheck(c[8] == nwall, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-io_restart %s: the checkpoint has %" PetscInt_FMT " walls, the case's options make %" PetscInt_FMT, path, c[8], nwall);
+  PetscCheck(c[8] == nwall, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint has %" PetscInt_FMT " walls, the case's options make %" PetscInt_FMT, path, c[8], nwall);
   DemCkptCounters(dem, c, PETSC_FALSE);
   PetscCall(DemNeighSetCells(dem, dem->nl.nc)); /* the grid's cell count depends on the particles at its set-up */
   dem->clock.t          = clk[0];

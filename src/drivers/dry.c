@@ -7,7 +7,7 @@
  * "output:". Never writes a frame of a diverged state (DemCheckHealth first).
  * Checkpoints (-io_checkpoint_interval, simulated seconds): an exact checkpoint of the DEM
  * (dem/checkpoint.c) every interval and at the end, <io_dir>/<prefix>_checkpoint_<step>.h5, the
- * newest -io_checkpoint_keep of this run kept; -io_restart PATH continues from one instead of
+ * newest -io_checkpoint_keep of this run kept; -restart PATH continues from one instead of
  * inserting the case's particles (same options, same rank count). */
 #include "drivers/drivers.h"
 #include <sys/resource.h>
@@ -45,7 +45,7 @@ PetscErrorCode DryRunSetFromOptions(DryRun r)
   PetscOptionsBegin(r->comm, NULL, "Checkpoints (dry runs)", NULL);
   PetscCall(SableOptionsReal("-io_checkpoint_interval", "Simulated time between exact checkpoints, and one at the end", "s; 0 = none", "[0,inf)", r->ckpt_dt, &r->ckpt_dt, &r->ckpt_set));
   PetscCall(SableOptionsInt("-io_checkpoint_keep", "Newest checkpoints of this run kept (older ones removed)", "files", "[1,64]", r->ckpt_keep, &r->ckpt_keep, NULL));
-  PetscCall(PetscOptionsString("-io_restart", "Continue from this checkpoint instead of inserting particles (same options and rank count)", NULL, r->restart, r->restart, sizeof r->restart, NULL));
+  PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint instead of inserting particles (same options and rank count)", NULL, r->restart, r->restart, sizeof r->restart, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -201,7 +201,7 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscFunctionBeginUser;
   PetscCall(SableCheckOptionsUsed(r->comm));
   PetscCall(DemHasConvexShapes(dem, &convex));
-  PetscCheck(!convex || (!r->ckpt_set && !r->restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt_set ? "-io_checkpoint_interval" : "-io_restart");
+  PetscCheck(!convex || (!r->ckpt_set && !r->restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt_set ? "-io_checkpoint_interval" : "-restart");
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
   if (r->restart[0]) PetscCall(DemSetRestart(dem, r->restart));
   PetscCall(DemSetUp(dem));

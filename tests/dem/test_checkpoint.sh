@@ -1,6 +1,6 @@
 #!/bin/sh
 # Exact checkpoints of a dry run: for each contact law (linear_nohist, linear, hertz) on 1 and 2
-# ranks, a run to T and a run to T/2 that writes a checkpoint then continued with -io_restart to T
+# ranks, a run to T and a run to T/2 that writes a checkpoint then continued with -restart to T
 # end with bitwise the same final frame (every dataset compared with h5py). A bad checkpoint
 # (truncated, of another rank count, missing, without a dataset) and checkpoints of convex shapes
 # are refused: exit non-zero, one error line.
@@ -37,7 +37,7 @@ for law in linear_nohist linear hertz; do
     run "$np" "$d/full" $M -dem_t_end $T -io_interval $T
     run "$np" "$d/half" $M -dem_t_end $H -io_interval 0 -io_checkpoint_interval $H
     ck=$(sed -n 's/^checkpoint: //p' "$d/half/log" | tail -n 1)
-    run "$np" "$d/rest" $M -dem_t_end $T -io_interval $T -io_restart "../half/$ck"
+    run "$np" "$d/rest" $M -dem_t_end $T -io_interval $T -restart "../half/$ck"
     a=$(ls "$d/full/out/"sable_*.h5 2>/dev/null | tail -n 1); b=$(ls "$d/rest/out/"sable_*.h5 2>/dev/null | tail -n 1)
     if [ -z "$ck" ] || [ -z "$a" ] || [ -z "$b" ]; then
       echo "FAIL checkpoint $law np=$np: a run failed; $(cat "$d"/*/log | grep 'error' | head -n 2)"
@@ -52,7 +52,7 @@ for law in linear_nohist linear hertz; do
   done
 done
 expect() { # name, pattern, np, checkpoint
-  out=$(cd "$W/linear.1/rest" && mpiexec -n "$3" "$S" $SCENE -dem_contact_law linear -dem_kn 7.2e5 -dem_t_end $T -io_interval 0 -io_restart "$4" 2>&1 >/dev/null); rc=$?
+  out=$(cd "$W/linear.1/rest" && mpiexec -n "$3" "$S" $SCENE -dem_contact_law linear -dem_kn 7.2e5 -dem_t_end $T -io_interval 0 -restart "$4" 2>&1 >/dev/null); rc=$?
   lines=$(printf '%s\n' "$out" | grep -c 'sable: error')
   if [ "$rc" -ne 0 ] && [ "$lines" -eq 1 ] && printf '%s' "$out" | grep -q -- "$2"; then
     echo "PASS bad checkpoint, $1: exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""

@@ -44,12 +44,13 @@ done
 
 # (b) Sable's first, grouped by prefix
 for c in none bed settle; do
-  awk 'function own(n) { return n ~ /^-(domain|dem|fluid|cpl|lb|io|sable)_/ && (n !~ /^-fluid_(poisson|viscous)_/ || n ~ /^-fluid_(poisson_pc_lag|poisson_pc_lag_growth|viscous_number_max)$/) }
+  awk 'function own(n) { return n == "-restart" || n ~ /^-(domain|dem|fluid|cpl|lb|io|sable)_/ && (n !~ /^-fluid_(poisson|viscous)_/ || n ~ /^-fluid_(poisson_pc_lag|poisson_pc_lag_growth|viscous_number_max)$/) }
     /^ *-[a-zA-Z]/ {
       n = $1; sub(/[:<].*/, "", n)
       if (own(n)) {
         last = NR; split("domain dem fluid cpl lb io sable", p, " ")
         for (k = 1; k <= 7; k++) if (index(n, "-" p[k] "_") == 1) g = k
+        if (n == "-restart") g = 6
         if (g < prev) back++
         prev = g; nown++
       } else if (!first) first = NR
