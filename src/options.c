@@ -294,19 +294,6 @@ void SableHelpBegin(void)
   PetscVFPrintf      = SableHelpVFPrintf;
 }
 
-/* The group of a section by the name of its first option (no dash): the rank of its prefix
- * among Sable's, or -1 for PETSc's. */
-static int SableHelpGroup(const char *name)
-{
-  const char *pre[] = {"domain_", "dem_", "fluid_", "cpl_", "lb_", "io_", "sable_"};
-
-  if (!SableOptionIsOwn(name) && strncmp(name, "sable_", 6)) return -1;
-  if (!strcmp(name, "restart")) return 5; /* with the output options (-io_) */
-  for (int k = 0; k < (int)(sizeof pre / sizeof pre[0]); k++)
-    if (!strncmp(name, pre[k], strlen(pre[k]))) return k;
-  return -1;
-}
-
 /* A section of the kept text: its lines, split at PETSc's separator lines. */
 typedef struct {
   char    **line;
@@ -356,7 +343,7 @@ static int SableHelpSections(char *text, SableHelpSection *sec, int max, char **
     sec[ns - 1].n++;
     SableHelpLineOption(l, name, sizeof name);
     if (name[0] && !sec[ns - 1].named) {
-      sec[ns - 1].group = SableHelpGroup(name);
+      sec[ns - 1].group = SableOptionGroup(name);
       sec[ns - 1].named = PETSC_TRUE;
     }
   }

@@ -13,22 +13,31 @@
 #include <stdlib.h>
 #include <strings.h>
 
-/* Sable's own option prefixes; fluid_poisson_ and fluid_viscous_ are PETSc solvers' prefixes
- * (their flags, such as -fluid_poisson_ksp_monitor, are PETSc's business) except for the options
- * of Sable's that share them (-fluid_poisson_pc_lag, ...: read by name in src/, hence in the
- * generated SableReadOptions). */
-PetscBool SableOptionIsOwn(const char *name)
+/* Sable's option groups, in the order -help lists them: a name's prefix, or the one unprefixed
+ * option, -restart, listed with the output options. fluid_poisson_ and fluid_viscous_ are PETSc
+ * solvers' prefixes (their options, such as -fluid_poisson_ksp_monitor, are PETSc's business)
+ * except for the options of Sable's that share them (-fluid_poisson_pc_lag, ...: read by name in
+ * src/, hence in the generated SableReadOptions). Returns -1 for PETSc's. */
+int SableOptionGroup(const char *name)
 {
-  const char *own[] = {"dem_", "fluid_", "cpl_", "domain_", "io_", "lb_"};
-  if (!strcmp(name, "restart")) return PETSC_TRUE; /* -restart PATH: the one unprefixed option */
+  const char *pre[] = {"domain_", "dem_", "fluid_", "cpl_", "lb_", "io_", "sable_"};
+
+  if (!strcmp(name, "restart")) return 5;
   if (!strncmp(name, "fluid_poisson_", 14) || !strncmp(name, "fluid_viscous_", 14)) {
     for (size_t k = 0; SableReadOptions[k]; k++)
-      if (!strcmp(name, SableReadOptions[k])) return PETSC_TRUE;
-    return PETSC_FALSE;
+      if (!strcmp(name, SableReadOptions[k])) return 2;
+    return -1;
   }
-  for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
-    if (!strncmp(name, own[k], strlen(own[k]))) return PETSC_TRUE;
-  return PETSC_FALSE;
+  for (int k = 0; k < (int)(sizeof pre / sizeof pre[0]); k++)
+    if (!strncmp(name, pre[k], strlen(pre[k]))) return k;
+  return -1;
+}
+
+/* One of the options whose values Sable checks (every group but the driver's -sable_ flags). */
+PetscBool SableOptionIsOwn(const char *name)
+{
+  const int g = SableOptionGroup(name);
+  return (PetscBool)(g >= 0 && g != 6);
 }
 
 /* PETSc's integer options that Sable's cases and tools give (PETSc reads them, not Sable, so no

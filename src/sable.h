@@ -75,6 +75,9 @@ void SableTempRemove(void);
  * -cpl_, -domain_, -io_, -lb_, except the PETSc solvers' options under -fluid_poisson_ and
  * -fluid_viscous_ (sable.c). */
 PetscBool SableOptionIsOwn(const char *name);
+/* The -help group of an option name without its dash (0 -domain_, 1 -dem_, 2 -fluid_, 3 -cpl_,
+ * 4 -lb_, 5 -io_ and -restart, 6 -sable_), -1 for PETSc's. */
+int SableOptionGroup(const char *name);
 
 /* Readers of numeric options (options.c), inside the PetscOptionsBegin block of the object that
  * owns the option, called with its literal name ("-dem_kn": grep finds it). Each prints its own
