@@ -225,7 +225,7 @@ PetscErrorCode DemSetUp(Dem dem)
 
   PetscFunctionBeginUser;
   dem->state++;
-  if (!dem->restart[0]) PetscCall(DemInsert(dem)); /* a restart reads its particles below */
+  if (!dem->restart) PetscCall(DemInsert(dem)); /* a restart reads its particles below */
   for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
     DemShape *sh = &dem->shapes.shp[s];
     sh->m        = sh->rho * 4.0 / 3.0 * PETSC_PI * sh->r * sh->r * sh->r;
@@ -248,14 +248,14 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscCall(DemGetStats(dem, &dem->initial));
   PetscCall(DemComputeForces(dem));
   /* after the forces: computing them again would advance the springs a second time */
-  if (dem->restart[0]) PetscCall(DemCheckpointRead(dem, dem->restart));
+  if (dem->restart) PetscCall(DemCheckpointRead(dem, dem->restart));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemSetRestart(Dem dem, const char *path)
+PetscErrorCode DemSetRestart(Dem dem, IoCkpt ck)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscStrncpy(dem->restart, path ? path : "", sizeof dem->restart));
+  dem->restart = ck;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

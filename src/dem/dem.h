@@ -32,16 +32,17 @@ PetscErrorCode DemCreate(Domain *dom, Dem *dem);
 PetscErrorCode DemSetFromOptions(Dem dem);
 /* Builds shapes and pair tables, inserts particles, checks the time step, builds the lists. */
 PetscErrorCode DemSetUp(Dem dem);
-/* Before DemSetUp: continue from the checkpoint at path instead of inserting particles (the
- * case's other options must be those of the run that wrote it; same rank count). */
-PetscErrorCode DemSetRestart(Dem dem, const char *path);
-/* Collective. An exact checkpoint (checkpoint.c): the whole per-rank state a step reads, so that
- * a run continued from it on the same rank count is bitwise the uninterrupted run. Spheres, dry
- * runs. Written to path.tmp, then renamed. */
-PetscErrorCode DemCheckpointWrite(Dem dem, const char *path);
+/* Before DemSetUp: continue from the open checkpoint ck (read at the end of DemSetUp, kept open
+ * by the caller until then) instead of inserting particles (the case's other options must be
+ * those of the run that wrote it). NULL: insert. */
+PetscErrorCode DemSetRestart(Dem dem, IoCkpt ck);
+/* Collective. The DEM's part of an exact checkpoint (checkpoint.c, datasets dem/...): the whole
+ * per-rank state a step reads, so that a run continued from it on the same rank count is bitwise
+ * the uninterrupted run. */
+PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck);
 /* Collective. Replaces the state of a set-up Dem by a checkpoint's; refuses in one line a file of
- * another format version or rank count, or one missing a dataset. */
-PetscErrorCode DemCheckpointRead(Dem dem, const char *path);
+ * another rank count, or one missing a dataset. */
+PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck);
 PetscErrorCode DemDestroy(Dem *dem);
 /* Prints the modules, the contact pre-flight figures (Tc, dt/Tc, overlap estimate). */
 PetscErrorCode DemView(Dem dem, PetscViewer viewer);

@@ -285,10 +285,10 @@ struct _p_Dem {
   PetscInt       check_every;
   DemStats       initial; /* count and checksum at set-up, for -dem_check_every */
   PetscBool      need_build;
-  int            stop_sig;                    /* a signal any rank had caught at the last step's reduction (0: none) */
-  PetscLogDouble t_compute;                   /* wall time in force computation and integration (s) */
-  PetscInt       state;                       /* changes whenever positions or the local order may have (DemGetState) */
-  char           restart[PETSC_MAX_PATH_LEN]; /* DemSetRestart: a checkpoint replaces the insertion */
+  int            stop_sig;  /* a signal any rank had caught at the last step's reduction (0: none) */
+  PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
+  PetscInt       state;     /* changes whenever positions or the local order may have (DemGetState) */
+  IoCkpt         restart;   /* DemSetRestart: a checkpoint replaces the insertion */
 };
 
 /* Internal functions, by file, from the leaves up: a file calls only files listed above it

@@ -10,6 +10,24 @@
  * defaults for all its properties, so one fluid option is enough to ask for it). */
 PetscErrorCode DriverIsCoupled(PetscBool *on);
 
+/* Checkpoints, shared by both drivers (checkpoint.c): -io_checkpoint_interval (s, 0 = none; one
+ * also at the end), -io_checkpoint_keep (newest kept), -restart PATH. */
+#define DRIVER_KEEP_MAX 64
+typedef struct {
+  MPI_Comm  comm;
+  PetscReal dt; /* -io_checkpoint_interval (s; 0: none) */
+  PetscBool set;
+  PetscInt  keep, n, step;                              /* kept, written so far, step of the last one */
+  char      files[DRIVER_KEEP_MAX][PETSC_MAX_PATH_LEN]; /* the newest ones written, oldest first */
+  char      restart[PETSC_MAX_PATH_LEN];                /* -restart ("" for none) */
+} DriverCkpt;
+typedef PetscErrorCode (*DriverCkptWriter)(void *ctx, IoCkpt ck);
+PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm);
+/* Collective. Writes <io_dir>/<prefix>_checkpoint_<step>.h5 through write (once per step; not
+ * without io), announces it ("checkpoint: PATH") and removes this run's checkpoints beyond the
+ * newest -io_checkpoint_keep. */
+PetscErrorCode DriverCkptWrite(DriverCkpt *c, Io io, PetscInt step, DriverCkptWriter write, void *ctx);
+
 /* The dry run: -dem_t_end (s, required), -dem_progress_interval (s, 0 = none). */
 typedef struct _p_DryRun *DryRun;
 PetscErrorCode            DryRunCreate(MPI_Comm comm, DryRun *run);

@@ -12,26 +12,18 @@
 #include "drivers/drivers.h"
 #include <sys/resource.h>
 
-#define DRY_KEEP_MAX 64
-
 struct _p_DryRun {
-  MPI_Comm  comm;
-  PetscReal t_end, progress_dt; /* s */
-  PetscBool t_end_set;
-  PetscReal ckpt_dt; /* -io_checkpoint_interval (s; 0: none) */
-  PetscBool ckpt_set;
-  PetscInt  ckpt_keep, ckpt_n, ckpt_step;           /* kept, written so far, step of the last one */
-  char      ckpt[DRY_KEEP_MAX][PETSC_MAX_PATH_LEN]; /* the newest ones written, oldest first */
-  char      restart[PETSC_MAX_PATH_LEN];
+  MPI_Comm   comm;
+  PetscReal  t_end, progress_dt; /* s */
+  PetscBool  t_end_set;
+  DriverCkpt ckpt;
 };
 
 PetscErrorCode DryRunCreate(MPI_Comm comm, DryRun *run)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscNew(run));
-  (*run)->comm      = comm;
-  (*run)->ckpt_keep = 2;
-  (*run)->ckpt_step = -1;
+  (*run)->comm = comm;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -42,11 +34,7 @@ PetscErrorCode DryRunSetFromOptions(DryRun r)
   PetscCall(SableOptionsReal("-dem_t_end", "Simulated time to run to; a dry run needs it", "s", "[0,inf)", -1, &r->t_end, &r->t_end_set));
   PetscCall(SableOptionsReal("-dem_progress_interval", "Simulated time between progress lines", "s; 0 = no progress lines", "[0,inf)", r->progress_dt, &r->progress_dt, NULL));
   PetscOptionsEnd();
-  PetscOptionsBegin(r->comm, NULL, "Checkpoints (dry runs)", NULL);
-  PetscCall(SableOptionsReal("-io_checkpoint_interval", "Simulated time between exact checkpoints, and one at the end", "s; 0 = none", "[0,inf)", r->ckpt_dt, &r->ckpt_dt, &r->ckpt_set));
-  PetscCall(SableOptionsInt("-io_checkpoint_keep", "Newest checkpoints of this run kept (older ones removed)", "files", "[1,64]", r->ckpt_keep, &r->ckpt_keep, NULL));
-  PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint instead of inserting particles (same options and rank count)", NULL, r->restart, r->restart, sizeof r->restart, NULL));
-  PetscOptionsEnd();
+  PetscCall(DriverCkptSetFromOptions(&r->ckpt, r->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -73,29 +61,20 @@ static PetscErrorCode DryOutput(Dem dem, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective. Writes a checkpoint of the current step (once per step), announces it and removes
- * this run's checkpoints beyond the newest -io_checkpoint_keep. */
+static PetscErrorCode DryCheckpointWrite(void *ctx, IoCkpt ck)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DemCheckpointWrite((Dem)ctx, ck));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode DryCheckpoint(DryRun r, Dem dem, Io io)
 {
-  char        suffix[64];
-  PetscInt    step;
-  PetscMPIInt rank;
+  PetscInt step;
 
   PetscFunctionBeginUser;
   PetscCall(DemGetTime(dem, NULL, &step));
-  if (!io || step == r->ckpt_step) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCallMPI(MPI_Comm_rank(r->comm, &rank));
-  if (r->ckpt_n == r->ckpt_keep) { /* the oldest goes */
-    if (!rank) (void)remove(r->ckpt[0]);
-    for (PetscInt k = 1; k < r->ckpt_n; k++) PetscCall(PetscStrcpy(r->ckpt[k - 1], r->ckpt[k]));
-    r->ckpt_n--;
-  }
-  PetscCall(PetscSNPrintf(suffix, sizeof suffix, "checkpoint_%06" PetscInt_FMT ".h5", step));
-  PetscCall(IoGetFilePath(io, suffix, r->ckpt[r->ckpt_n], sizeof r->ckpt[0]));
-  PetscCall(DemCheckpointWrite(dem, r->ckpt[r->ckpt_n]));
-  PetscCall(PetscPrintf(r->comm, "checkpoint: %s\n", r->ckpt[r->ckpt_n]));
-  r->ckpt_n++;
-  r->ckpt_step = step;
+  PetscCall(DriverCkptWrite(&r->ckpt, io, step, DryCheckpointWrite, dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -150,7 +129,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
   PetscCall(DemGetTime(dem, &t, &s0));
   PetscCall(DemGetTimeStep(dem, &dt));
   next      = t + r->progress_dt;
-  next_ckpt = t + r->ckpt_dt;
+  next_ckpt = t + r->ckpt.dt;
   PetscCall(PetscTime(&t0));
   if (io) {
     PetscCall(IoDue(io, t, &due));
@@ -176,16 +155,16 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
       PetscCall(DryProgress(r, dem, t0, s0));
       next += r->progress_dt;
     }
-    if (r->ckpt_dt > 0 && t >= next_ckpt - 0.5 * dt) {
+    if (r->ckpt.dt > 0 && t >= next_ckpt - 0.5 * dt) {
       PetscCall(DryCheckpoint(r, dem, io));
-      next_ckpt += r->ckpt_dt;
+      next_ckpt += r->ckpt.dt;
     }
   }
   if (io) {
     PetscCall(IoDueFinal(io, t, &due));
     if (due) PetscCall(DryOutput(dem, io));
   }
-  if (r->ckpt_set) PetscCall(DryCheckpoint(r, dem, io));
+  if (r->ckpt.set) PetscCall(DryCheckpoint(r, dem, io));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -197,15 +176,23 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscLogDouble t0, t1;
   const char    *index;
   struct rusage  ru;
+  IoCkpt         ck = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(SableCheckOptionsUsed(r->comm));
   PetscCall(DemHasConvexShapes(dem, &convex));
-  PetscCheck(!convex || (!r->ckpt_set && !r->restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt_set ? "-io_checkpoint_interval" : "-restart");
+  PetscCheck(!convex || (!r->ckpt.set && !r->ckpt.restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt.set ? "-io_checkpoint_interval" : "-restart");
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
-  if (r->restart[0]) PetscCall(DemSetRestart(dem, r->restart));
+  if (r->ckpt.restart[0]) {
+    PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
+    PetscCall(DemSetRestart(dem, ck));
+  }
   PetscCall(DemSetUp(dem));
-  if (r->restart[0]) PetscCall(PetscPrintf(r->comm, "restart: %s\n", r->restart));
+  if (ck) {
+    PetscCall(DemSetRestart(dem, NULL));
+    PetscCall(IoCkptClose(&ck));
+    PetscCall(PetscPrintf(r->comm, "restart: %s\n", r->ckpt.restart));
+  }
   PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
   if (lb) PetscCall(BalanceSetUp(lb));
   PetscCall(PetscTime(&t0));

@@ -61,3 +61,47 @@ PetscErrorCode IoReadDatasetAll(MPI_Comm comm, const char *file, const char *nam
 PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has);
 /* Collective on comm. Errors, naming the option opt, unless file can be opened as HDF5. */
 PetscErrorCode IoCheckReadable(MPI_Comm comm, const char *opt, const char *file);
+
+/* Checkpoint files (checkpoint.c): one HDF5 file per checkpoint, written and read collectively
+ * through MPI-IO. A quantity is a 1-D dataset of the ranks' rows in rank order, with <name>_n
+ * holding every rank's row count; a shared quantity is one dataset written by rank 0. Names may
+ * hold groups ("dem/x"). Root attributes: sable_checkpoint_version (IO_CKPT_VERSION) and ranks
+ * (the rank count that wrote it). Written under PATH.tmp and renamed by IoCkptClose; every read
+ * failure stops the run with one line "-restart PATH: ... dataset NAME ...". */
+#define IO_CKPT_VERSION 2
+typedef struct _p_IoCkpt *IoCkpt;
+typedef enum {
+  IO_CKPT_REAL,
+  IO_CKPT_INT, /* PetscInt */
+  IO_CKPT_LLONG,
+  IO_CKPT_BYTE
+} IoCkptType;
+size_t IoCkptTypeSize(IoCkptType type);
+/* Collective. A new checkpoint, written to path.tmp until IoCkptClose renames it. */
+PetscErrorCode IoCkptCreate(MPI_Comm comm, const char *path, IoCkpt *ck);
+/* Collective. Opens a checkpoint for reading; refuses a file that is not HDF5, lacks the
+ * attributes or has another format version. */
+PetscErrorCode IoCkptOpen(MPI_Comm comm, const char *path, IoCkpt *ck);
+/* Collective. Closes; a checkpoint being written is renamed into place. */
+PetscErrorCode IoCkptClose(IoCkpt *ck);
+/* Not collective. The rank count of the run that wrote it; the path given at open. */
+PetscErrorCode IoCkptGetRanks(IoCkpt ck, int *ranks);
+PetscErrorCode IoCkptGetPath(IoCkpt ck, const char **path);
+/* Not collective. Whether the checkpoint holds dataset name. */
+PetscErrorCode IoCkptHas(IoCkpt ck, const char *name, PetscBool *has);
+/* Collective. This rank's n values as its rows of dataset name (and n into name_n). */
+PetscErrorCode IoCkptWriteRows(IoCkpt ck, const char *name, IoCkptType type, PetscInt n, const void *data);
+/* Collective. n values the same on every rank, written once (rank 0's). */
+PetscErrorCode IoCkptWriteShared(IoCkpt ck, const char *name, IoCkptType type, PetscInt n, const void *data);
+/* Collective, same rank count as the writer. This rank's rows of dataset name: *data allocated
+ * (PetscFree it; room for one entry more than *n). */
+PetscErrorCode IoCkptReadRows(IoCkpt ck, const char *name, IoCkptType type, PetscInt *n, void **data);
+/* Collective, same rank count. As IoCkptReadRows into dst, which must receive exactly want. */
+PetscErrorCode IoCkptReadRowsInto(IoCkpt ck, const char *name, IoCkptType type, PetscInt want, void *dst);
+/* Collective. A shared dataset, which must hold exactly want values, into dst on every rank. */
+PetscErrorCode IoCkptReadShared(IoCkpt ck, const char *name, IoCkptType type, PetscInt want, void *dst);
+/* Collective, any rank count. The total length of dataset name; the row counts of the ranks
+ * that wrote it (an array of IoCkptGetRanks entries, PetscFree it); count values from start. */
+PetscErrorCode IoCkptGetSize(IoCkpt ck, const char *name, long long *total);
+PetscErrorCode IoCkptReadCounts(IoCkpt ck, const char *name, long long **counts);
+PetscErrorCode IoCkptReadSlabAll(IoCkpt ck, const char *name, IoCkptType type, long long start, long long count, void *buf);
