@@ -19,3 +19,16 @@ def run_frames(outdir, prefix="sable"):
         if name not in files:
             files.append(name)
     return [os.path.join(outdir, f) for f in files]
+
+
+def fluid_mesh(outdir, prefix="sable"):
+    """The fluid grid of the run's index: (origin, spacing), each (x, y, z) in metres, or None when
+    the run wrote no fluid. The frames store cell fields as [z, y, x] arrays; the index's
+    ORIGIN_DXDYDZ geometry lists z, y, x as well."""
+    index = os.path.join(outdir, prefix + ".xmf")
+    for geo in xml.dom.minidom.parse(index).getElementsByTagName("Geometry"):
+        if geo.getAttribute("GeometryType") != "ORIGIN_DXDYDZ":
+            continue
+        items = [[float(v) for v in d.firstChild.data.split()] for d in geo.getElementsByTagName("DataItem")]
+        return tuple(items[0][::-1]), tuple(items[1][::-1])
+    return None
