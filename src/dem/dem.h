@@ -67,6 +67,12 @@ PetscErrorCode DemCheckHealth(Dem dem, const DemStats *s);
  * being the mean of the highest sphere top per column of one diameter) and mean coordination
  * number (particle-particle contacts per particle). Collective. */
 PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord);
+/* Collective (monitor.c). Along gravity: the centre coordinate below which the fraction frac of
+ * the solids mass lies (exactly a particle's coordinate; 0.95 is the monitor's bed height), and
+ * the centre of mass coordinate (m). 0, 0 without particles. */
+PetscErrorCode DemGetBedHeights(Dem dem, PetscReal frac, PetscReal *h, PetscReal *mean);
+/* Collective (monitor.c). Solids mass (kg) and particle count with centres in [lo, hi) (m). */
+PetscErrorCode DemGetMassInBox(Dem dem, const PetscReal lo[3], const PetscReal hi[3], PetscReal *mass, PetscInt *count);
 PetscErrorCode DemWriteOutput(Dem dem, Io io);
 /* Whether the scene has non-spherical (convex) shapes, known after DemSetFromOptions. */
 PetscErrorCode DemHasConvexShapes(Dem dem, PetscBool *convex);

@@ -28,6 +28,34 @@ PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm);
  * newest -io_checkpoint_keep. */
 PetscErrorCode DriverCkptWrite(DriverCkpt *c, Io io, PetscInt step, DriverCkptWriter write, void *ctx);
 
+/* The monitor file's contents, shared by both drivers (monitor.c): -mon_interval, -mon_file
+ * (io/monitor.c), -mon_box_<k>, and for coupled runs -mon_probe_<k>, -mon_dp_<k>. */
+typedef struct {
+  MPI_Comm       comm;
+  Mon            mon;
+  PetscBool      coupled;
+  PetscInt       nbox, boxid[8], ndp, dpid[8], dp[8][2];
+  PetscReal      box[8][6], probe[8][3];
+  PetscBool      probe_set[8];
+  PetscLogDouble wall0, wall_last;
+  PetscInt       step_last;
+} DriverMon;
+/* What a row is made of: the time and step counter, the DEM, and for a coupled run the fluid and
+ * the last coupling step's statistics (NULL before the first). */
+typedef struct {
+  PetscReal       t;
+  PetscInt        step;
+  Dem             dem;
+  Fluid           fluid;
+  const CplStats *cst;
+} DriverMonInput;
+PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, Io io, PetscBool coupled);
+/* Collective. Declares the columns; the loop's wall clock starts. */
+PetscErrorCode DriverMonSetUp(DriverMon *m);
+/* Collective. A row when one is due at in->t. */
+PetscErrorCode DriverMonRow(DriverMon *m, const DriverMonInput *in);
+PetscErrorCode DriverMonDestroy(DriverMon *m);
+
 /* The dry run: -dem_t_end (s, required), -dem_progress_interval (s, 0 = none). */
 typedef struct _p_DryRun *DryRun;
 PetscErrorCode            DryRunCreate(MPI_Comm comm, DryRun *run);

@@ -85,6 +85,9 @@ PetscErrorCode FluidGetPressure(Fluid fluid, Vec *p);
  * filled from the boundary conditions (two layers), and the pressure with its ghosts. Borrowed,
  * valid until the next FluidStep. */
 PetscErrorCode FluidGetLocalFields(Fluid fluid, Vec *uloc, Vec *ploc);
+/* Collective (probe.c). The pressure at point x (m), trilinear between the cell centres around
+ * it; within half a cell of a non-periodic boundary, the nearest centre row's value (Pa). */
+PetscErrorCode FluidProbePressure(Fluid fluid, const PetscReal x[3], PetscReal *p);
 /* Collective. Call after changing the velocity Vec by hand (initial conditions): applies the
  * boundary values to the boundary faces. */
 PetscErrorCode FluidApplyBoundaryValues(Fluid fluid);

@@ -105,3 +105,28 @@ PetscErrorCode IoCkptReadShared(IoCkpt ck, const char *name, IoCkptType type, Pe
 PetscErrorCode IoCkptGetSize(IoCkpt ck, const char *name, long long *total);
 PetscErrorCode IoCkptReadCounts(IoCkpt ck, const char *name, long long **counts);
 PetscErrorCode IoCkptReadSlabAll(IoCkpt ck, const char *name, IoCkptType type, long long start, long long count, void *buf);
+
+/* The monitor file (monitor.c): a CSV time series, header "name [unit]" per column, one row per
+ * -mon_interval of simulated time, written by rank 0 and flushed row by row; announced by the log
+ * line "monitor: PATH" at its first row. Life cycle: MonCreate -> MonSetFromOptions ->
+ * MonAddColumn (all columns, before the first row) -> MonDue / MonWriteRow -> MonDestroy. */
+typedef struct _p_Mon *Mon;
+PetscErrorCode         MonCreate(MPI_Comm comm, Mon *mon);
+/* Reads -mon_interval (s, 0 = none) and -mon_file (default <io_dir>/<io_prefix>_monitor.csv). */
+PetscErrorCode MonSetFromOptions(Mon mon, Io io);
+/* Not collective. Whether a monitor file is asked for (NULL: no). */
+PetscErrorCode MonIsActive(Mon mon, PetscBool *on);
+PetscErrorCode MonAddColumn(Mon mon, const char *name, const char *unit);
+PetscErrorCode MonGetColumnCount(Mon mon, PetscInt *n);
+/* Not collective (the same on every rank). Whether a row is due at simulated time t (the first
+ * call: always). */
+PetscErrorCode MonDue(Mon mon, PetscReal t, PetscBool *due);
+/* Collective. One row: a value per column (rank 0's are written). */
+PetscErrorCode MonWriteRow(Mon mon, const PetscReal *values);
+/* The file's path, NULL when there is none. */
+PetscErrorCode MonGetPath(Mon mon, const char **path);
+/* Collective. The monitor's place in a checkpoint (mon/state: next time, rows, file length), and
+ * at a restart the file cut back to it and continued. */
+PetscErrorCode MonCheckpointWrite(Mon mon, IoCkpt ck);
+PetscErrorCode MonCheckpointRead(Mon mon, IoCkpt ck);
+PetscErrorCode MonDestroy(Mon *mon);
