@@ -15,7 +15,8 @@
  * whether it rebalanced and the wall time the check and the move cost.
  * The per-cell particle counts are reduced onto every rank (one integer per cell), which bounds the
  * method to grids of a few million cells; the cut search itself is serial and identical on all
- * ranks. */
+ * ranks. A checkpoint holds the cuts, the schedule and the counters (BalanceCheckpointWrite/Read),
+ * so a restart continues on the run's decomposition and checks when the run would have. */
 #include "balance/balancer.h"
 
 typedef enum {
@@ -47,6 +48,10 @@ struct _p_Balance {
   /* totals for the summary */
   PetscInt       checks, rebalances;
   PetscLogDouble t_total;
+  /* restored from a checkpoint (BalanceCheckpointRead): the schedule is kept by BalanceSetUp,
+     and the compute time since the last check carried over (dem, fluid) */
+  PetscBool      restored;
+  PetscLogDouble t_since[2];
 };
 
 PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb)
@@ -149,11 +154,15 @@ PetscErrorCode BalanceSetUp(Balance b)
   ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
   PetscCall(PetscMalloc3(ncell, &b->count, ncell, &b->w, b->g.p[0] * b->g.p[1] * b->g.p[2], &b->load));
   for (int k = 0; k < 3; k++) PetscCall(PetscMalloc1(b->g.p[k], &b->l[k]));
-  /* frequent and dynamic check after the first step (a start or a restart may be imbalanced),
-     then at their cadence */
-  PetscCall(DemGetTime(b->dem, &b->next_time, &b->last_step));
-  b->last_step -= b->interval;
+  /* frequent and dynamic check after the first step (a start, or a restart on another rank
+     count, may be imbalanced), then at their cadence; a restart keeps the run's schedule */
+  if (!b->restored) {
+    PetscCall(DemGetTime(b->dem, &b->next_time, &b->last_step));
+    b->last_step -= b->interval;
+  }
   PetscCall(DemGetComputeTime(b->dem, &b->t_dem0));
+  b->t_dem0 -= b->t_since[0];
+  b->t_fluid0 -= b->t_since[1];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -312,5 +321,122 @@ PetscErrorCode BalanceIsActive(Balance b, PetscBool *on)
 {
   PetscFunctionBeginUser;
   *on = (PetscBool)(b->scheme != LB_NONE);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Checkpoints. The cuts are part of the decomposition a checkpoint's per-rank state belongs to,
+ * so a restart on the same rank count puts them back before anything is set up on the Domain;
+ * the schedule (last check, next check time, once done) and the counters continue, so the
+ * restarted run checks and moves exactly when the uninterrupted one does. Datasets (shared, one
+ * copy): lb/grid (cells and process grid), lb/cuts (l[0], l[1], l[2]), lb/state (last check
+ * step, once done, checks, rebalances, coupling step of the last check), lb/clock (next check
+ * time, time in checks and moves, last measured alpha and beta); per rank: lb/measured (compute
+ * time since the last check, DEM and fluid, for -lb_weight measured). */
+#define LB_CKPT_NSTATE 5
+#define LB_CKPT_NCLOCK 4
+
+PetscErrorCode BalanceCheckpointWrite(Balance b, IoCkpt ck)
+{
+  const PetscInt *l[3];
+  PetscInt        grid[6], *cuts, np = 0, st[LB_CKPT_NSTATE];
+  PetscReal       clk[LB_CKPT_NCLOCK], since[2];
+  PetscLogDouble  td, tf = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetOwnershipRanges(b->dom->da, &l[0], &l[1], &l[2]));
+  for (int k = 0; k < 3; k++) {
+    grid[k]     = b->dom->cells[k];
+    grid[3 + k] = b->dom->nranks[k];
+  }
+  PetscCall(PetscMalloc1(b->dom->nranks[0] + b->dom->nranks[1] + b->dom->nranks[2], &cuts));
+  for (int k = 0; k < 3; k++)
+    for (PetscInt r = 0; r < b->dom->nranks[k]; r++) cuts[np++] = l[k][r];
+  st[0]  = b->last_step;
+  st[1]  = b->done_once;
+  st[2]  = b->checks;
+  st[3]  = b->rebalances;
+  st[4]  = b->cstep0;
+  clk[0] = b->next_time;
+  clk[1] = b->t_total;
+  clk[2] = b->alpha_used;
+  clk[3] = b->beta_used;
+  PetscCall(DemGetComputeTime(b->dem, &td));
+  if (b->cpl) PetscCall(CplGetFluidTime(b->cpl, &tf));
+  since[0] = td - b->t_dem0;
+  since[1] = tf - b->t_fluid0;
+  PetscCall(IoCkptWriteShared(ck, "lb/grid", IO_CKPT_INT, 6, grid));
+  PetscCall(IoCkptWriteShared(ck, "lb/cuts", IO_CKPT_INT, np, cuts));
+  PetscCall(IoCkptWriteShared(ck, "lb/state", IO_CKPT_INT, LB_CKPT_NSTATE, st));
+  PetscCall(IoCkptWriteShared(ck, "lb/clock", IO_CKPT_REAL, LB_CKPT_NCLOCK, clk));
+  PetscCall(IoCkptWriteRows(ck, "lb/measured", IO_CKPT_REAL, 2, since));
+  PetscCall(PetscFree(cuts));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The checkpoint's cuts onto the Domain, after checking that they belong to this
+ * run's grid and process grid. */
+static PetscErrorCode BalanceCkptReadCuts(Balance b, IoCkpt ck, const char *path)
+{
+  Domain  *dom = b->dom;
+  PetscInt grid[6], np = dom->nranks[0] + dom->nranks[1] + dom->nranks[2], *cuts, *l[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(IoCkptReadShared(ck, "lb/grid", IO_CKPT_INT, 6, grid));
+  PetscCheck(grid[0] == dom->cells[0] && grid[1] == dom->cells[1] && grid[2] == dom->cells[2] && grid[3] == dom->nranks[0] && grid[4] == dom->nranks[1] && grid[5] == dom->nranks[2], b->comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: the dataset lb/grid holds %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells on %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, this run has %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " on %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT
+             " (continue with the options that wrote it: -domain_cell, -da_grid_x/y/z, -da_processors_x/y/z, -lb_scheme)",
+             path, grid[0], grid[1], grid[2], grid[3], grid[4], grid[5], dom->cells[0], dom->cells[1], dom->cells[2], dom->nranks[0], dom->nranks[1], dom->nranks[2]);
+  PetscCall(PetscMalloc1(np, &cuts));
+  PetscCall(IoCkptReadShared(ck, "lb/cuts", IO_CKPT_INT, np, cuts));
+  l[0] = cuts;
+  l[1] = l[0] + dom->nranks[0];
+  l[2] = l[1] + dom->nranks[1];
+  PetscCall(DomainSetOwnership(dom, l));
+  PetscCall(PetscFree(cuts));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BalanceCheckpointRead(Balance b, IoCkpt ck)
+{
+  const char *path;
+  PetscInt    st[LB_CKPT_NSTATE];
+  PetscReal   clk[LB_CKPT_NCLOCK], since[2];
+  int         ranks;
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  PetscCall(IoCkptGetPath(ck, &path));
+  PetscCall(IoCkptGetRanks(ck, &ranks));
+  PetscCallMPI(MPI_Comm_size(b->comm, &size));
+  PetscCall(IoCkptReadShared(ck, "lb/state", IO_CKPT_INT, LB_CKPT_NSTATE, st));
+  PetscCall(IoCkptReadShared(ck, "lb/clock", IO_CKPT_REAL, LB_CKPT_NCLOCK, clk));
+  b->checks     = st[2];
+  b->rebalances = st[3];
+  b->t_total    = clk[1];
+  b->alpha_used = clk[2];
+  b->beta_used  = clk[3];
+  if (ranks != size) { /* the cuts belong to another process grid: the DMDA's, and a check soon */
+    PetscCall(PetscPrintf(b->comm, "lb: restart on %d ranks from a checkpoint of %d ranks: default cuts, not the checkpoint's%s\n", (int)size, ranks, b->scheme == LB_NONE ? "" : "; the balancer checks after the first step"));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(BalanceCkptReadCuts(b, ck, path));
+  PetscCall(IoCkptReadRowsInto(ck, "lb/measured", IO_CKPT_REAL, 2, since));
+  b->last_step  = st[0];
+  b->done_once  = (PetscBool)(st[1] != 0);
+  b->cstep0     = st[4];
+  b->next_time  = clk[0];
+  b->t_since[0] = since[0];
+  b->t_since[1] = since[1];
+  b->restored   = PETSC_TRUE;
+  if (b->verbose && b->scheme != LB_NONE) {
+    const PetscInt *l[3];
+    PetscCall(DMDAGetOwnershipRanges(b->dom->da, &l[0], &l[1], &l[2]));
+    PetscCall(PetscPrintf(b->comm, "lb: restart: the checkpoint's cuts (cells per rank)"));
+    for (int k = 0; k < 3; k++) {
+      PetscCall(PetscPrintf(b->comm, "%s %c", k ? ";" : "", "xyz"[k]));
+      for (PetscInt r = 0; r < b->dom->nranks[k]; r++) PetscCall(PetscPrintf(b->comm, "%s%" PetscInt_FMT, r ? "," : " ", l[k][r]));
+    }
+    PetscCall(PetscPrintf(b->comm, "; last check at step %" PetscInt_FMT ", %" PetscInt_FMT " checks, %" PetscInt_FMT " rebalances so far\n", b->last_step, b->checks, b->rebalances));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

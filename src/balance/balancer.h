@@ -8,8 +8,8 @@
  * per-axis cuts of the shared DMDA, fluid and particles moved onto them. cpl NULL: a dry run.
  * Life cycle: BalanceCreate -> BalanceSetFromOptions (-lb_scheme none|once|frequent|dynamic,
  * -lb_weight linear|quadratic|measured, -lb_alpha, -lb_beta, -lb_threshold, -lb_interval,
- * -lb_interval_time, -lb_step, -lb_time, -lb_max_sweeps, -lb_verbose) -> BalanceSetUp (after
- * DemSetUp and CplSetUp) -> BalanceCheck after every step
+ * -lb_interval_time, -lb_step, -lb_time, -lb_max_sweeps, -lb_verbose) [-> BalanceCheckpointRead
+ * on -restart] -> BalanceSetUp (after DemSetUp and CplSetUp) -> BalanceCheck after every step
  * -> BalanceView -> BalanceDestroy. All collective. */
 typedef struct _p_Balance *Balance;
 PetscErrorCode             BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb);
@@ -25,4 +25,17 @@ PetscErrorCode BalanceSetCoupling(Balance lb, Cpl cpl);
 /* Whether -lb_scheme is other than none (known after BalanceSetFromOptions). */
 PetscErrorCode BalanceIsActive(Balance lb, PetscBool *on);
 PetscErrorCode BalanceView(Balance lb, PetscViewer viewer);
+/* Checkpoints (datasets lb/...): the cuts of every axis with the grid and process grid they
+ * belong to, the schedule (last check step, next check time, once done), the counters of
+ * BalanceView and the measured weights. Write: collective, after BalanceSetUp (always, also with
+ * -lb_scheme none: the cuts are the decomposition the DEM's per-rank state lives on). Read:
+ * collective, on -restart right after the checkpoint is opened and BEFORE the DEM, the fluid and
+ * the coupling are set up (it replaces the Domain's DMDA by one with the checkpoint's cuts; they
+ * build their layouts from it), and before BalanceSetUp (which then keeps the schedule). On
+ * another rank count the checkpoint's cuts belong to another process grid: the Domain keeps the
+ * default cuts, the counters continue, the schedule starts afresh (a check after the first step)
+ * and a log line says so. Errors name the file and the dataset (lb/grid: another grid or process
+ * grid on the same rank count). */
+PetscErrorCode BalanceCheckpointWrite(Balance lb, IoCkpt ck);
+PetscErrorCode BalanceCheckpointRead(Balance lb, IoCkpt ck);
 PetscErrorCode BalanceDestroy(Balance *lb);

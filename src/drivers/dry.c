@@ -7,8 +7,9 @@
  * "output:". Never writes a frame of a diverged state (DemCheckHealth first).
  * Checkpoints (-io_checkpoint_interval, simulated seconds): an exact checkpoint of the DEM
  * (dem/checkpoint.c) every interval and at the end, <io_dir>/<prefix>_checkpoint_<step>.h5, the
- * newest -io_checkpoint_keep of this run kept; -restart PATH continues from one instead of
- * inserting the case's particles (same options, same rank count). */
+ * newest -io_checkpoint_keep of this run kept, with the balancer's cuts and schedule;
+ * -restart PATH continues from one instead of inserting the case's particles (same options,
+ * same rank count), the cuts restored before the DEM is set up. */
 #include "drivers/drivers.h"
 #include <sys/resource.h>
 
@@ -61,20 +62,29 @@ static PetscErrorCode DryOutput(Dem dem, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+typedef struct {
+  Dem     dem;
+  Balance lb; /* may be NULL */
+} DryCkptCtx;
+
 static PetscErrorCode DryCheckpointWrite(void *ctx, IoCkpt ck)
 {
+  const DryCkptCtx *c = (const DryCkptCtx *)ctx;
+
   PetscFunctionBeginUser;
-  PetscCall(DemCheckpointWrite((Dem)ctx, ck));
+  PetscCall(DemCheckpointWrite(c->dem, ck));
+  if (c->lb) PetscCall(BalanceCheckpointWrite(c->lb, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode DryCheckpoint(DryRun r, Dem dem, Io io)
+static PetscErrorCode DryCheckpoint(DryRun r, Dem dem, Balance lb, Io io)
 {
-  PetscInt step;
+  DryCkptCtx c = {dem, lb};
+  PetscInt   step;
 
   PetscFunctionBeginUser;
   PetscCall(DemGetTime(dem, NULL, &step));
-  PetscCall(DriverCkptWrite(&r->ckpt, io, step, DryCheckpointWrite, dem));
+  PetscCall(DriverCkptWrite(&r->ckpt, io, step, DryCheckpointWrite, &c));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -156,7 +166,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
       next += r->progress_dt;
     }
     if (r->ckpt.dt > 0 && t >= next_ckpt - 0.5 * dt) {
-      PetscCall(DryCheckpoint(r, dem, io));
+      PetscCall(DryCheckpoint(r, dem, lb, io));
       next_ckpt += r->ckpt.dt;
     }
   }
@@ -164,7 +174,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
     PetscCall(IoDueFinal(io, t, &due));
     if (due) PetscCall(DryOutput(dem, io));
   }
-  if (r->ckpt.set) PetscCall(DryCheckpoint(r, dem, io));
+  if (r->ckpt.set) PetscCall(DryCheckpoint(r, dem, lb, io));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -185,6 +195,8 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
   if (r->ckpt.restart[0]) {
     PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
+    /* the checkpoint's cuts first: the DEM's per-rank state lives on them */
+    if (lb) PetscCall(BalanceCheckpointRead(lb, ck));
     PetscCall(DemSetRestart(dem, ck));
   }
   PetscCall(DemSetUp(dem));
