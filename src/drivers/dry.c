@@ -2,13 +2,15 @@
  * -dem_progress_interval: simulated seconds), sets the DEM and the balancer up, steps to the end
  * with a progress line (time, step, steps/s, ETA, kinetic energy, contacts, largest overlap over
  * the radius), writes the frames io asks for, stops cleanly on SIGTERM, SIGINT or SIGUSR1
- * (agreed in the DEM step's own reduction), and ends with the summary lines "done:" (simulated
+ * (agreed in the DEM step's own reduction; a checkpoint of that step is written first, also
+ * without -io_checkpoint_interval, when the scene can be saved), and ends with the summary lines "done:" (simulated
  * time, steps, wall time, peak memory), "bed:" (packing fraction, coordination number) and
  * "output:". Never writes a frame of a diverged state (DemCheckHealth first).
  * Checkpoints (-io_checkpoint_interval, simulated seconds): an exact checkpoint of the DEM
  * (dem/checkpoint.c) every interval and at the end, <io_dir>/<prefix>_checkpoint_<step>.h5, the
- * newest -io_checkpoint_keep of this run kept; -restart PATH continues from one instead of
- * inserting the case's particles (same options, same rank count). */
+ * newest -io_checkpoint_keep of this run kept, with the output's continuation and the options
+ * (DriverCkptWriteRun); -restart PATH continues from one instead of inserting the case's
+ * particles (same options, same rank count), its frames numbered on and its index grown. */
 #include "drivers/drivers.h"
 #include <sys/resource.h>
 
@@ -17,6 +19,9 @@ struct _p_DryRun {
   PetscReal  t_end, progress_dt; /* s */
   PetscBool  t_end_set;
   DriverCkpt ckpt;
+  PetscBool  ckpt_able; /* the DEM's state can be saved (spheres only): also on a stop signal */
+  Dem        dem;       /* what a checkpoint holds: the DEM's state and the run's (io, options) */
+  Io         io;
 };
 
 PetscErrorCode DryRunCreate(MPI_Comm comm, DryRun *run)
@@ -63,8 +68,11 @@ static PetscErrorCode DryOutput(Dem dem, Io io)
 
 static PetscErrorCode DryCheckpointWrite(void *ctx, IoCkpt ck)
 {
+  DryRun r = (DryRun)ctx;
+
   PetscFunctionBeginUser;
-  PetscCall(DemCheckpointWrite((Dem)ctx, ck));
+  PetscCall(DemCheckpointWrite(r->dem, ck));
+  PetscCall(DriverCkptWriteRun(r->io, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -74,7 +82,9 @@ static PetscErrorCode DryCheckpoint(DryRun r, Dem dem, Io io)
 
   PetscFunctionBeginUser;
   PetscCall(DemGetTime(dem, NULL, &step));
-  PetscCall(DriverCkptWrite(&r->ckpt, io, step, DryCheckpointWrite, dem));
+  r->dem = dem;
+  r->io  = io;
+  PetscCall(DriverCkptWrite(&r->ckpt, io, step, DryCheckpointWrite, r));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -137,12 +147,12 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
   }
   while (t < r->t_end - 0.5 * dt) {
     PetscCall(DemGetStopSignal(dem, &sig)); /* agreed in the last step's reduction */
-    if (sig) {
-      const char *index = NULL;
-      PetscInt    step;
-      if (io) PetscCall(IoGetIndexPath(io, &index));
+    if (sig) {                              /* a checkpoint of this step, then the stop */
+      PetscInt step;
       PetscCall(DemGetTime(dem, NULL, &step));
-      PetscCall(SableStopError(r->comm, sig, t, step, index));
+      r->dem = dem;
+      r->io  = io;
+      PetscCall(DriverCkptStop(&r->ckpt, io, sig, t, step, r->ckpt_able ? DryCheckpointWrite : NULL, r));
     }
     PetscCall(DemStep(dem));
     if (lb) PetscCall(BalanceCheck(lb, PETSC_FALSE, NULL));
@@ -182,9 +192,11 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(SableCheckOptionsUsed(r->comm));
   PetscCall(DemHasConvexShapes(dem, &convex));
   PetscCheck(!convex || (!r->ckpt.set && !r->ckpt.restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt.set ? "-io_checkpoint_interval" : "-restart");
+  r->ckpt_able = (PetscBool)!convex;
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
   if (r->ckpt.restart[0]) {
     PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
+    PetscCall(DriverCkptReadRun(r->comm, io, ck)); /* refuses another run's frames before running */
     PetscCall(DemSetRestart(dem, ck));
   }
   PetscCall(DemSetUp(dem));
