@@ -196,11 +196,11 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
   if (r->ckpt.restart[0]) {
     PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
-    PetscCall(DriverCkptReadRun(r->comm, io, ck)); /* refuses another run's frames before running */
     PetscCall(DemSetRestart(dem, ck));
   }
-  PetscCall(DemSetUp(dem));
+  PetscCall(DemSetUp(dem)); /* a checkpoint of another rank count or format is refused here */
   if (ck) {
+    PetscCall(DriverCkptReadRun(r->comm, io, ck)); /* refuses another run's frames before running */
     PetscCall(DemSetRestart(dem, NULL));
     PetscCall(IoCkptClose(&ck));
     PetscCall(PetscPrintf(r->comm, "restart: %s\n", r->ckpt.restart));
