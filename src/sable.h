@@ -54,10 +54,14 @@ PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig);
 /* Not collective. Records the signal the ranks agreed on by another reduction (the DEM step's),
  * for the exit status of ranks that did not catch it themselves. */
 void SableStopAgreed(int sig);
+/* Not collective. The stop is being acted on at a step boundary: the grace alarm is cancelled,
+ * so that a checkpoint written before stopping is not cut by it (a second signal still ends the
+ * process at once). */
+void SableStopGraceCancel(void);
 /* Collective. Ends a run loop on the agreed signal sig at time t, step step: the error of code
- * PETSC_ERR_SIG that main reports as "sable: stopped: ...", naming the index of the frames
- * written (NULL: none). */
-PetscErrorCode SableStopError(MPI_Comm comm, int sig, PetscReal t, PetscInt step, const char *index);
+ * PETSC_ERR_SIG that main reports as "sable: stopped: ...", naming the checkpoint written at that
+ * step (NULL: none) and the index of the frames written (NULL: none). */
+PetscErrorCode SableStopError(MPI_Comm comm, int sig, PetscReal t, PetscInt step, const char *ckpt, const char *index);
 /* Not collective, cheap (a clock read): marks progress (a step, a dataset written). A signal that
  * finds no progress for a while takes the process as blocked for good and ends it at once. */
 void SableProgress(void);

@@ -4,8 +4,9 @@
  * the handler only records the signal. Every rank must learn of it at the same step: the dry loop
  * reads it from the DEM step's own reduction (no extra message), the coupled loop polls
  * SableStopPoll once a fluid step (one small reduction beside a Poisson solve's dozens); the loop
- * then ends the run (SableStopError) with an error
- * of code PETSC_ERR_SIG, after the output being written, if any, is complete. A second signal, or
+ * then writes a checkpoint where it can (drivers/checkpoint.c: DriverCkptStop cancels the grace
+ * alarm first, SableStopGraceCancel) and ends the run (SableStopError) with an error of code
+ * PETSC_ERR_SIG naming it, after the output being written, if any, is complete. A second signal, or
  * a first one not acted on within SABLE_STOP_GRACE seconds (a rank stuck in a collective whose
  * partner died), ends the process at once: the handler removes the temporary file this process
  * is writing and exits with status 128 + signal.
@@ -148,10 +149,18 @@ PetscErrorCode SableStopPoll(MPI_Comm comm, int *sig)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SableStopError(MPI_Comm comm, int sig, PetscReal t, PetscInt step, const char *index)
+void SableStopGraceCancel(void)
 {
+  alarm(0);
+}
+
+PetscErrorCode SableStopError(MPI_Comm comm, int sig, PetscReal t, PetscInt step, const char *ckpt, const char *index)
+{
+  char said[PETSC_MAX_PATH_LEN + 64] = "";
+
   PetscFunctionBeginUser;
   SableStopAgreed(sig);
   alarm(0); /* the stop is being acted on: no forced exit */
-  SETERRQ(comm, PETSC_ERR_SIG, "%s received at t = %g s, step %" PetscInt_FMT "; %s%s", SableSignalName(sig), (double)t, step, index ? "the frames written are complete: " : "no output was written", index ? index : "");
+  if (ckpt) PetscCall(PetscSNPrintf(said, sizeof said, "checkpoint %s (continue with -restart %s); ", ckpt, ckpt));
+  SETERRQ(comm, PETSC_ERR_SIG, "%s received at t = %g s, step %" PetscInt_FMT "; %s%s%s", SableSignalName(sig), (double)t, step, said, index ? "the frames written are complete: " : "no output was written", index ? index : "");
 }

@@ -204,11 +204,7 @@ static PetscErrorCode CoupledRunLoop(const Coupled *c)
   while (t < r->t_end - 0.5 * dt) {
     int sig;
     PetscCall(SableStopPoll(r->comm, &sig));
-    if (sig) {
-      const char *index;
-      PetscCall(IoGetIndexPath(c->io, &index));
-      PetscCall(SableStopError(r->comm, sig, t, step, index));
-    }
+    if (sig) PetscCall(DriverCkptStop(NULL, c->io, sig, t, step, NULL, NULL)); /* no checkpoint of a coupled run yet: the stop alone */
     PetscCall(CplStep(c->cpl, &st));
     PetscCall(CplGetTime(c->cpl, &t, &step));
     PetscCall(BalanceCheck(c->lb, PETSC_FALSE, NULL));

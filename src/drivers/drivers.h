@@ -27,6 +27,19 @@ PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm);
  * without io), announces it ("checkpoint: PATH") and removes this run's checkpoints beyond the
  * newest -io_checkpoint_keep. */
 PetscErrorCode DriverCkptWrite(DriverCkpt *c, Io io, PetscInt step, DriverCkptWriter write, void *ctx);
+/* Collective. A run loop's stop on the agreed signal sig at time t, step step: writes this
+ * step's checkpoint through write (when c, io and write are given: the grace alarm cancelled
+ * first) and ends with SableStopError naming it and the index. Never returns success. */
+PetscErrorCode DriverCkptStop(DriverCkpt *c, Io io, int sig, PetscReal t, PetscInt step, DriverCkptWriter write, void *ctx);
+/* Collective. The parts of a checkpoint that are the run's, not the physics': the output's
+ * continuation (io/, IoCheckpointWrite) and the options given (run/options). A driver's write
+ * callback calls DriverCkptWriteRun; its restart calls DriverCkptReadRun (io may be NULL there),
+ * which restores the output (refusing another run's frames) and prints one warning line per
+ * physics option changed, added or removed since the checkpoint's run ("restart: -dem_friction
+ * was 0.5 in the checkpoint's run, now 0.3: ..."); the run's length, output, checkpoint,
+ * progress and logging options may change silently. */
+PetscErrorCode DriverCkptWriteRun(Io io, IoCkpt ck);
+PetscErrorCode DriverCkptReadRun(MPI_Comm comm, Io io, IoCkpt ck);
 
 /* The monitor file's contents, shared by both drivers (monitor.c): -mon_interval, -mon_file
  * (io/monitor.c), -mon_box_<k>, and for coupled runs -mon_probe_<k>, -mon_dp_<k>. */

@@ -2,14 +2,16 @@
  * -dem_progress_interval: simulated seconds), sets the DEM and the balancer up, steps to the end
  * with a progress line (time, step, steps/s, ETA, kinetic energy, contacts, largest overlap over
  * the radius), writes the frames io asks for, stops cleanly on SIGTERM, SIGINT or SIGUSR1
- * (agreed in the DEM step's own reduction), and ends with the summary lines "done:" (simulated
+ * (agreed in the DEM step's own reduction; a checkpoint of that step is written first, also
+ * without -io_checkpoint_interval, when the scene can be saved), and ends with the summary lines "done:" (simulated
  * time, steps, wall time, peak memory), "bed:" (packing fraction, coordination number) and
  * "output:". Never writes a frame of a diverged state (DemCheckHealth first).
  * Checkpoints (-io_checkpoint_interval, simulated seconds): an exact checkpoint of the DEM
  * (dem/checkpoint.c) every interval and at the end, <io_dir>/<prefix>_checkpoint_<step>.h5, the
- * newest -io_checkpoint_keep of this run kept, with the balancer's cuts and schedule;
- * -restart PATH continues from one instead of inserting the case's particles (same options,
- * same rank count), the cuts restored before the DEM is set up. */
+ * newest -io_checkpoint_keep of this run kept, with the balancer's cuts and schedule, the
+ * output's continuation and the options (DriverCkptWriteRun); -restart PATH continues from one
+ * instead of inserting the case's particles (same options), the cuts restored before the DEM is
+ * set up, its frames numbered on and its index grown. */
 #include "drivers/drivers.h"
 #include <sys/resource.h>
 
@@ -18,6 +20,10 @@ struct _p_DryRun {
   PetscReal  t_end, progress_dt; /* s */
   PetscBool  t_end_set;
   DriverCkpt ckpt;
+  PetscBool  ckpt_able; /* the DEM's state can be saved (spheres only): also on a stop signal */
+  Dem        dem;       /* what a checkpoint holds: the DEM's state, the balancer's and the run's (io, options) */
+  Balance    lb;        /* may be NULL */
+  Io         io;
 };
 
 PetscErrorCode DryRunCreate(MPI_Comm comm, DryRun *run)
@@ -62,29 +68,27 @@ static PetscErrorCode DryOutput(Dem dem, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-typedef struct {
-  Dem     dem;
-  Balance lb; /* may be NULL */
-} DryCkptCtx;
-
 static PetscErrorCode DryCheckpointWrite(void *ctx, IoCkpt ck)
 {
-  const DryCkptCtx *c = (const DryCkptCtx *)ctx;
+  DryRun r = (DryRun)ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(DemCheckpointWrite(c->dem, ck));
-  if (c->lb) PetscCall(BalanceCheckpointWrite(c->lb, ck));
+  PetscCall(DemCheckpointWrite(r->dem, ck));
+  if (r->lb) PetscCall(BalanceCheckpointWrite(r->lb, ck));
+  PetscCall(DriverCkptWriteRun(r->io, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode DryCheckpoint(DryRun r, Dem dem, Balance lb, Io io)
 {
-  DryCkptCtx c = {dem, lb};
-  PetscInt   step;
+  PetscInt step;
 
   PetscFunctionBeginUser;
   PetscCall(DemGetTime(dem, NULL, &step));
-  PetscCall(DriverCkptWrite(&r->ckpt, io, step, DryCheckpointWrite, &c));
+  r->dem = dem;
+  r->lb  = lb;
+  r->io  = io;
+  PetscCall(DriverCkptWrite(&r->ckpt, io, step, DryCheckpointWrite, r));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -147,12 +151,12 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
   }
   while (t < r->t_end - 0.5 * dt) {
     PetscCall(DemGetStopSignal(dem, &sig)); /* agreed in the last step's reduction */
-    if (sig) {
-      const char *index = NULL;
-      PetscInt    step;
-      if (io) PetscCall(IoGetIndexPath(io, &index));
+    if (sig) {                              /* a checkpoint of this step, then the stop */
+      PetscInt step;
       PetscCall(DemGetTime(dem, NULL, &step));
-      PetscCall(SableStopError(r->comm, sig, t, step, index));
+      r->dem = dem;
+      r->io  = io;
+      PetscCall(DriverCkptStop(&r->ckpt, io, sig, t, step, r->ckpt_able ? DryCheckpointWrite : NULL, r));
     }
     PetscCall(DemStep(dem));
     if (lb) PetscCall(BalanceCheck(lb, PETSC_FALSE, NULL));
@@ -192,6 +196,7 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(SableCheckOptionsUsed(r->comm));
   PetscCall(DemHasConvexShapes(dem, &convex));
   PetscCheck(!convex || (!r->ckpt.set && !r->ckpt.restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt.set ? "-io_checkpoint_interval" : "-restart");
+  r->ckpt_able = (PetscBool)!convex;
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
   if (r->ckpt.restart[0]) {
     PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
@@ -199,8 +204,9 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
     if (lb) PetscCall(BalanceCheckpointRead(lb, ck));
     PetscCall(DemSetRestart(dem, ck));
   }
-  PetscCall(DemSetUp(dem));
+  PetscCall(DemSetUp(dem)); /* a checkpoint of another rank count or format is refused here */
   if (ck) {
+    PetscCall(DriverCkptReadRun(r->comm, io, ck)); /* refuses another run's frames before running */
     PetscCall(DemSetRestart(dem, NULL));
     PetscCall(IoCkptClose(&ck));
     PetscCall(PetscPrintf(r->comm, "restart: %s\n", r->ckpt.restart));

@@ -1,7 +1,7 @@
 /* HDF5 + XDMF output (see io.h). Layout of a frame file:
  *   /particles/<name>  [N] or [N, ncomp], rows in rank order (ids identify particles)
  *   /fluid/<name>      [nz, ny, nx] or [nz, ny, nx, ncomp], cell centred
- *   attribute "time" on the root group.
+ *   attributes "time" and "run_id" (the run's identity, see continue.c) on the root group.
  *   /surface/points [P, 3], /surface/tag [P], /surface/triangles [T, 3] (global point indices)
  *   /particles/vertex [N]: 0..N-1, the Polyvertex connectivity (for the Xdmf3 readers).
  * The XDMF index that lists the frames is written by xdmf.c.
@@ -62,6 +62,7 @@ PetscErrorCode IoSetFromOptions(Io io)
   }
   PetscCall(PetscSNPrintf(io->index, sizeof io->index, "%s/%s.xmf", io->dir, io->prefix));
   io->next = 0;
+  PetscCall(IoDrawRunId(io)); /* a restart replaces it with its run's (IoCheckpointRead) */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -319,7 +320,8 @@ PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
   PetscFunctionBeginUser;
   io_quiet();
   (void)step;
-  if (!io->nframes) PetscCall(IoMakeDir(io));
+  if (!io->dirmade) PetscCall(IoMakeDir(io));
+  io->dirmade = PETSC_TRUE;
   if (io->nframes == io->capframes) {
     IoFrame *nf;
     io->capframes = 2 * io->capframes + 16;
@@ -344,6 +346,7 @@ PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
   IoTry(&st, H5Awrite(attr, H5T_NATIVE_DOUBLE, &t), "writing the attribute time");
   if (attr >= 0) IoClose(&st, H5Aclose(attr), "closing the attribute time");
   if (space >= 0) IoClose(&st, H5Sclose(space), "closing the attribute time");
+  IoTry(&st, io_write_run_id(io->file, io->run_id), "writing the attribute run_id");
   PetscCall(IoFrameAgree(io, &st));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

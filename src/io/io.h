@@ -62,6 +62,16 @@ PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has);
 /* Collective on comm. Errors, naming the option opt, unless file can be opened as HDF5. */
 PetscErrorCode IoCheckReadable(MPI_Comm comm, const char *opt, const char *file);
 
+/* The output's continuation (continue.c), under io/ of a checkpoint: the frame count, the next
+ * output time, the frames written (a restarted run's index lists them, then its own) and the
+ * run identity (run_id: drawn at a fresh start, kept by restarts, written as the attribute
+ * "run_id" of every frame file and into the index). Collective. IoCheckpointRead refuses, in one
+ * line naming the file and -io_dir, a directory holding a frame numbered from the next one on
+ * that is not of this run (another run_id or none); this run's own frames may be overwritten. */
+typedef struct _p_IoCkpt *IoCkpt;
+PetscErrorCode            IoCheckpointWrite(Io io, IoCkpt ck);
+PetscErrorCode            IoCheckpointRead(Io io, IoCkpt ck);
+
 /* Checkpoint files (checkpoint.c): one HDF5 file per checkpoint, written and read collectively
  * through MPI-IO. A quantity is a 1-D dataset of the ranks' rows in rank order, with <name>_n
  * holding every rank's row count; a shared quantity is one dataset written by rank 0. Names may

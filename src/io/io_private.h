@@ -33,6 +33,8 @@ typedef struct {
   long long nsurfp, nsurft; /* surface points and triangles (0: none) */
 } IoFrame;
 
+typedef unsigned long long IoRunId; /* a run's identity (continue.c) */
+
 struct _p_Io {
   MPI_Comm  comm;
   char      dir[PETSC_MAX_PATH_LEN], prefix[64], index[PETSC_MAX_PATH_LEN];
@@ -44,8 +46,15 @@ struct _p_Io {
   PetscInt  nframes, capframes;
   hid_t     file, gpart, gfluid;
   char      tmpname[PETSC_MAX_PATH_LEN];
+  PetscBool dirmade; /* -io_dir made (and the reserve taken) before the first frame of this process */
   int       reserve; /* rank 0: the descriptor of the reserve (an unlinked file), or -1 */
+  IoRunId   run_id;  /* drawn at a fresh start, kept across restarts (continue.c) */
 };
+
+/* Collective. A fresh run's identity: rank 0 mixes the clock and its pid (continue.c). */
+PetscErrorCode IoDrawRunId(Io io);
+/* Writes the root attribute "run_id" (unsigned 64 bits) of an open HDF5 file; < 0 on failure. */
+herr_t io_write_run_id(hid_t file, IoRunId id);
 
 /* Rank 0. Rewrites the XDMF index listing io's frames (xdmf.c): written to <index>.tmp and
  * renamed into place; *err is the errno of the first failure (0: none), after which the

@@ -1,6 +1,7 @@
 /* The XDMF index of a run's frames (see io.h): one temporal collection per kind, a Polyvertex
  * grid per frame for the particles, a Triangle grid for the surface (when written), a
- * 3DCoRectMesh for the fluid, each pointing into the frame files. Rank 0 rewrites it after every
+ * 3DCoRectMesh for the fluid, each pointing into the frame files, and an Information element
+ * "run_id" (the run's identity, as in every frame file). Rank 0 rewrites it after every
  * frame, under a temporary name renamed into place. */
 #include "io/io_private.h"
 #include <errno.h>
@@ -84,6 +85,7 @@ PetscErrorCode IoWriteIndex(Io io, int *err)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   io_printf(&w, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n");
+  io_printf(&w, "    <Information Name=\"run_id\" Value=\"%llu\"/>\n", io->run_id);
   for (int k = 0; k < 3; k++) {
     PetscInt n = 0;
     for (PetscInt i = 0; i < io->nframes; i++) n += k == 0 ? io->frames[i].npart > 0 : (k == 1 ? io->frames[i].nsurft > 0 : io->frames[i].nfluid > 0);
