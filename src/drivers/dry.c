@@ -79,16 +79,14 @@ static PetscErrorCode DryCheckpointWrite(void *ctx, IoCkpt ck)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode DryCheckpoint(DryRun r, Dem dem, Balance lb, Io io)
+/* Collective. A checkpoint of the loop's objects (r->dem, r->lb, r->io) at the current step. */
+static PetscErrorCode DryCheckpoint(DryRun r)
 {
   PetscInt step;
 
   PetscFunctionBeginUser;
-  PetscCall(DemGetTime(dem, NULL, &step));
-  r->dem = dem;
-  r->lb  = lb;
-  r->io  = io;
-  PetscCall(DriverCkptWrite(&r->ckpt, io, step, DryCheckpointWrite, r));
+  PetscCall(DemGetTime(r->dem, NULL, &step));
+  PetscCall(DriverCkptWrite(&r->ckpt, r->io, step, DryCheckpointWrite, r));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -140,6 +138,9 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
 
   PetscFunctionBeginUser;
   PetscCall(DryCheckRunLength(r, dem, io));
+  r->dem = dem; /* what a checkpoint of this loop holds */
+  r->lb  = lb;
+  r->io  = io;
   PetscCall(DemGetTime(dem, &t, &s0));
   PetscCall(DemGetTimeStep(dem, &dt));
   next      = t + r->progress_dt;
@@ -154,8 +155,6 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
     if (sig) {                              /* a checkpoint of this step, then the stop */
       PetscInt step;
       PetscCall(DemGetTime(dem, NULL, &step));
-      r->dem = dem;
-      r->io  = io;
       PetscCall(DriverCkptStop(&r->ckpt, io, sig, t, step, r->ckpt_able ? DryCheckpointWrite : NULL, r));
     }
     PetscCall(DemStep(dem));
@@ -170,7 +169,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
       next += r->progress_dt;
     }
     if (r->ckpt.dt > 0 && t >= next_ckpt - 0.5 * dt) {
-      PetscCall(DryCheckpoint(r, dem, lb, io));
+      PetscCall(DryCheckpoint(r));
       next_ckpt += r->ckpt.dt;
     }
   }
@@ -178,7 +177,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
     PetscCall(IoDueFinal(io, t, &due));
     if (due) PetscCall(DryOutput(dem, io));
   }
-  if (r->ckpt.set) PetscCall(DryCheckpoint(r, dem, lb, io));
+  if (r->ckpt.set) PetscCall(DryCheckpoint(r));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
