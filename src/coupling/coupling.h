@@ -42,6 +42,11 @@ PetscErrorCode CplSetFromOptions(Cpl cpl);
 /* Collective. After DemSetUp and FluidSetUp: attaches the drag arrays to the DEM, projects
  * the initial porosity, runs the pre-flight checks (a hard violation is an error). */
 PetscErrorCode CplSetUp(Cpl cpl);
+/* Collective. The coupling's part of an exact checkpoint (checkpoint.c, datasets cpl/...): the
+ * momentum owed to the fluid, the clock and the counters. Read after CplSetUp (and after
+ * FluidCheckpointRead); the per-particle drag arrays are the DEM's (dem/ext_...). */
+PetscErrorCode CplCheckpointWrite(Cpl cpl, IoCkpt ck);
+PetscErrorCode CplCheckpointRead(Cpl cpl, IoCkpt ck);
 /* Prints the pre-flight figures: dt_dem / contact time, coupling step / particle relaxation
  * time, cell size / diameter, kernel side / cell size. */
 PetscErrorCode CplView(Cpl cpl, PetscViewer viewer);

@@ -8,8 +8,8 @@
  * the counters (time, step, list builds and sorts, the rebuild flag, the next id, the state
  * stamp, the particle count and id checksum of -dem_check_every) and the cell grid's size.
  * Datasets dem/<name> of a checkpoint file (io/checkpoint.c: rank-major rows with per-rank
- * counts). Spheres only, without a coupling (the convex caches and the coupling arrays are not
- * saved). */
+ * counts); with a coupling also its per-particle arrays (external.c). Spheres only (the convex
+ * caches are not saved). */
 #include "dem/dem_impl.h"
 
 #define DEM_CKPT_NCOUNT 14 /* per-rank counters, see DemCkptCounters */
@@ -30,7 +30,6 @@ static PetscErrorCode DemCkptSupported(Dem dem, const char *what, const char *pa
 {
   PetscFunctionBeginUser;
   PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_SUP, "%s %s: checkpoints hold spheres only (the convex caches are not saved)", what, path);
-  PetscCheck(!dem->ext.on, dem->comm, PETSC_ERR_SUP, "%s %s: checkpoints hold dry runs only (the coupling's arrays are not saved)", what, path);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -104,6 +103,7 @@ PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
   PetscCall(IoCkptWriteRows(ck, "dem/nl_own", IO_CKPT_INT, m, dem->nl.own));
   PetscCall(IoCkptWriteRows(ck, "dem/nl_hist", IO_CKPT_REAL, dem->nl.hist ? 3 * m : 0, dem->nl.hist));
   PetscCall(DemCkptWriteLists(dem, ck));
+  PetscCall(DemExternalCheckpointWrite(dem, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -221,5 +221,6 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscCall(IoCkptReadRowsInto(ck, "dem/shape", IO_CKPT_INT, N, dem->p.shape));
   PetscCall(DemCkptReadList(dem, ck, path));
   PetscCall(DemCkptReadLists(dem, ck, path));
+  PetscCall(DemExternalCheckpointRead(dem, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -129,7 +129,8 @@ typedef struct {
   PetscReal *u;    /* fluid velocity the drag pulls towards (m/s), 3 per particle */
   PetscReal *j;    /* drag impulse received (N s), 3 per particle */
 } DemExternal;
-/* Not collective. Allocates (zeroed) or frees the arrays above. */
+/* Not collective. Allocates (zeroed) or frees the arrays above. A coupled run's restart switches
+ * them on before DemSetUp, so that the checkpoint's arrays (dem/ext_...) are read back. */
 PetscErrorCode DemSetExternal(Dem dem, PetscBool on);
 PetscErrorCode DemGetExternal(Dem dem, DemExternal *e);
 /* A frozen DEM integrates nothing (a packed bed). Option -dem_frozen, read by

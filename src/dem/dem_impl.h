@@ -356,6 +356,8 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
 PetscErrorCode DemConvexWriteSurface(Dem dem, const double *x, Io io);                                                                                /* convex_diag.c */
 PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                               /* rotation.c */
 PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                              /* rotation.c */
+PetscErrorCode DemExternalCheckpointWrite(Dem dem, IoCkpt ck);                                                                                        /* external.c */
+PetscErrorCode DemExternalCheckpointRead(Dem dem, IoCkpt ck);                                                                                         /* external.c */
 void           DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h);                                              /* external.c */
 PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2); /* integrate.c */
 PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt);                  /* integrate.c */

@@ -6,7 +6,9 @@
  *   v' = (v + h ((F + fext)/m + k u/m)) / (1 + h k/m),
  * and adds the impulse actually received, h k (u - v'), to j. The arrays live beside the other
  * per-particle arrays (particles.c permutes them on re-sorts) and exist only while switched on.
- * A frozen DEM (-dem_frozen) integrates nothing: its particles are fixed obstacles. */
+ * A frozen DEM (-dem_frozen) integrates nothing: its particles are fixed obstacles. A checkpoint
+ * holds the arrays of the local particles (dem/ext_fext, ext_k, ext_u, ext_j: the first rows of
+ * the particle arrays, in the same local order). */
 #include "dem/dem_impl.h"
 
 /* The translational half kick of length h with the coupling's forces: writes the local
@@ -40,6 +42,41 @@ PetscErrorCode DemSetExternal(Dem dem, PetscBool on)
     else PetscCall(PetscFree(*a[k]));
   }
   dem->ext.on = on;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The coupling's arrays of the local particles, when switched on. */
+PetscErrorCode DemExternalCheckpointWrite(Dem dem, IoCkpt ck)
+{
+  const PetscInt n = dem->p.n;
+
+  PetscFunctionBeginUser;
+  if (!dem->ext.on) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(IoCkptWriteRows(ck, "dem/ext_fext", IO_CKPT_REAL, 3 * n, dem->ext.fext));
+  PetscCall(IoCkptWriteRows(ck, "dem/ext_k", IO_CKPT_REAL, n, dem->ext.kdrag));
+  PetscCall(IoCkptWriteRows(ck, "dem/ext_u", IO_CKPT_REAL, 3 * n, dem->ext.udrag));
+  PetscCall(IoCkptWriteRows(ck, "dem/ext_j", IO_CKPT_REAL, 3 * n, dem->ext.jdrag));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. After the particles are read (dem->p.n set, arrays reserved): the coupling's
+ * arrays; a coupled run's checkpoint and a dry one are not interchangeable. */
+PetscErrorCode DemExternalCheckpointRead(Dem dem, IoCkpt ck)
+{
+  const PetscInt n = dem->p.n;
+  const char    *path;
+  PetscBool      has;
+
+  PetscFunctionBeginUser;
+  PetscCall(IoCkptGetPath(ck, &path));
+  PetscCall(IoCkptHas(ck, "dem/ext_k", &has));
+  PetscCheck(has || !dem->ext.on, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/ext_k is missing: a dry run's checkpoint cannot continue a coupled run (this case has -fluid_ or -cpl_ options)", path);
+  PetscCheck(!has || dem->ext.on, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/ext_k shows a coupled run's checkpoint; this case is dry (give the coupled case's -fluid_ and -cpl_ options)", path);
+  if (!has) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(IoCkptReadRowsInto(ck, "dem/ext_fext", IO_CKPT_REAL, 3 * n, dem->ext.fext));
+  PetscCall(IoCkptReadRowsInto(ck, "dem/ext_k", IO_CKPT_REAL, n, dem->ext.kdrag));
+  PetscCall(IoCkptReadRowsInto(ck, "dem/ext_u", IO_CKPT_REAL, 3 * n, dem->ext.udrag));
+  PetscCall(IoCkptReadRowsInto(ck, "dem/ext_j", IO_CKPT_REAL, 3 * n, dem->ext.jdrag));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -5,14 +5,20 @@
  * weight per cross-section area (the fluidization check) and the drag on the particles against
  * the same weight, averaged over the second half of the run; with -cpl_probe_z, the packed-bed
  * figures (dp/L between two heights, the porosity there and the drag law's own prediction).
- * A run is coupled when any -cpl_ or -fluid_ option is given (DriverIsCoupled). */
+ * A run is coupled when any -cpl_ or -fluid_ option is given (DriverIsCoupled).
+ * Checkpoints (-io_checkpoint_interval, simulated seconds; drivers/checkpoint.c): the DEM's, the
+ * fluid's and the coupling's exact state, and the driver's own (run/coupled: the sums of the
+ * column figures and the next progress and checkpoint times), every interval and at the end;
+ * -restart PATH continues from one, so the restarted run's frames and summary are those of the
+ * uninterrupted run. */
 #include "drivers/drivers.h"
 
 struct _p_CoupledRun {
-  MPI_Comm  comm;
-  Domain   *dom;
-  PetscReal t_end, progress_dt, probe[2]; /* s, s, m */
-  PetscBool t_end_set, probe_set;
+  MPI_Comm   comm;
+  Domain    *dom;
+  PetscReal  t_end, progress_dt, probe[2]; /* s, s, m */
+  PetscBool  t_end_set, probe_set;
+  DriverCkpt ckpt;
 };
 
 PetscErrorCode DriverIsCoupled(PetscBool *on)
@@ -110,7 +116,7 @@ static PetscErrorCode CoupledProbeReport(CoupledRun r, Cpl cpl)
   PetscCall(PetscPrintf(r->comm, "packed bed: dp/L %.15g Pa/m, porosity %.15f, superficial velocity %.6g m/s, drag law predicts %.6g Pa/m (ratio %.5f)\n", (double)dpdl, (double)eps, (double)u0, (double)pred, (double)(dpdl / pred)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
-/* The objects of one coupled run. */
+/* The objects of one coupled run, and what its loop carries from step to step. */
 typedef struct {
   CoupledRun r;
   Dem        dem;
@@ -120,7 +126,35 @@ typedef struct {
   Io         io;
   PetscBool  frozen; /* -dem_frozen: no DEM steps, the step is the fluid's */
   Column     col;
+  PetscReal  avg, davg, navg; /* sums over the second half of the run: pressure drop, drag, steps */
+  PetscReal  next, next_ckpt; /* simulated times of the next progress line and checkpoint */
+  PetscInt   s0;              /* the step the loop started from (the progress line's rate) */
 } Coupled;
+
+#define COUPLED_CKPT_NRUN 6 /* run/coupled: avg, davg, navg, next, next_ckpt, the window's start */
+
+static PetscErrorCode CoupledCheckpointWrite(void *ctx, IoCkpt ck)
+{
+  const Coupled  *c                    = (const Coupled *)ctx;
+  const PetscReal v[COUPLED_CKPT_NRUN] = {c->avg, c->davg, c->navg, c->next, c->next_ckpt, 0.5 * c->r->t_end};
+
+  PetscFunctionBeginUser;
+  PetscCall(DemCheckpointWrite(c->dem, ck));
+  PetscCall(FluidCheckpointWrite(c->fl, ck));
+  PetscCall(CplCheckpointWrite(c->cpl, ck));
+  PetscCall(IoCkptWriteShared(ck, "run/coupled", IO_CKPT_REAL, COUPLED_CKPT_NRUN, v));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CoupledCheckpoint(Coupled *c)
+{
+  PetscInt step;
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetTime(c->cpl, NULL, &step));
+  PetscCall(DriverCkptWrite(&c->r->ckpt, c->io, step, CoupledCheckpointWrite, c));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 static PetscErrorCode CoupledOutput(const Coupled *c)
 {
@@ -178,25 +212,26 @@ static PetscErrorCode CoupledProgress(const Coupled *c, const CplStats *st, Pets
   PetscCall(CplGetTimeStep(c->cpl, &dt));
   PetscCall(CplGetClippedCount(c->cpl, &clipped));
   PetscCall(PetscTime(&now));
-  const double rate = step / PetscMax(now - t0, 1e-9);
+  const double rate = (step - c->s0) / PetscMax(now - t0, 1e-9);
   PetscCall(PetscPrintf(c->r->comm, "t %.5g  step %" PetscInt_FMT "  %.1f steps/s  ETA %.0f s  KE %.4g  contacts %" PetscInt_FMT "  eps_min %.3f  clipped %" PetscInt_FMT "  Poisson its %" PetscInt_FMT "  dp/W %.4f  drag/W %.4f  |owed| %.3g\n", (double)t, step, rate, PetscMax(0.0, (c->r->t_end - t) / dt / rate), (double)ds.ke, ds.contacts + ds.wall_contacts, (double)st->eps_min, clipped, st->fluid.poisson_its, (double)(dp / w), (double)(-c->col.down * st->drag[c->col.d] / (w * c->col.area)), (double)st->owed_norm));
   if (!c->frozen) PetscCall(DemCheckHealth(c->dem, &ds));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode CoupledRunLoop(const Coupled *c)
+static PetscErrorCode CoupledRunLoop(Coupled *c)
 {
   const CoupledRun r = c->r;
   PetscLogDouble   t0;
-  PetscReal        next = r->progress_dt, w = 0, dp = 0, avg = 0, davg = 0, t, dt;
-  PetscInt         navg = 0, step, clipped;
+  PetscReal        w = 0, dp = 0, t, dt;
+  PetscInt         step, clipped;
   PetscBool        due;
   CplStats         st;
 
   PetscFunctionBeginUser;
   PetscCall(CoupledCheckRunLength(c));
   PetscCall(CoupledBedWeight(c->cpl, &c->col, &w));
-  PetscCall(CplGetTime(c->cpl, &t, &step));
+  PetscCall(CplGetTime(c->cpl, &t, &c->s0));
+  step = c->s0;
   PetscCall(CplGetTimeStep(c->cpl, &dt));
   PetscCall(PetscTime(&t0));
   PetscCall(IoDue(c->io, t, &due));
@@ -212,19 +247,24 @@ static PetscErrorCode CoupledRunLoop(const Coupled *c)
     if (due) PetscCall(CoupledOutput(c));
     PetscCall(CoupledColumnDrop(c->cpl, r->dom, &c->col, &dp));
     if (t > 0.5 * r->t_end) {
-      avg += dp;
-      davg += -c->col.down * st.drag[c->col.d];
-      navg++;
+      c->avg += dp;
+      c->davg += -c->col.down * st.drag[c->col.d];
+      c->navg++;
     }
-    if (r->progress_dt > 0 && t >= next - 0.5 * dt) {
+    if (r->progress_dt > 0 && t >= c->next - 0.5 * dt) {
       PetscCall(CoupledProgress(c, &st, t0, dp, w));
-      next += r->progress_dt;
+      c->next += r->progress_dt;
+    }
+    if (r->ckpt.dt > 0 && t >= c->next_ckpt - 0.5 * dt) {
+      c->next_ckpt += r->ckpt.dt;
+      PetscCall(CoupledCheckpoint(c));
     }
   }
   PetscCall(IoDueFinal(c->io, t, &due));
   if (due) PetscCall(CoupledOutput(c));
+  if (r->ckpt.set) PetscCall(CoupledCheckpoint(c));
   PetscCall(CplGetClippedCount(c->cpl, &clipped));
-  PetscCall(PetscPrintf(r->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", navg ? (double)(avg / navg / w) : 0.0, navg ? (double)(davg / navg / (w * c->col.area)) : 0.0, (double)w, clipped));
+  PetscCall(PetscPrintf(r->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", c->navg > 0 ? (double)(c->avg / c->navg / w) : 0.0, c->navg > 0 ? (double)(c->davg / c->navg / (w * c->col.area)) : 0.0, (double)w, clipped));
   if (r->probe_set) PetscCall(CoupledProbeReport(r, c->cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -244,10 +284,64 @@ static PetscErrorCode CoupledCheckDryOptions(MPI_Comm comm)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The driver's carried state from a checkpoint's run/coupled (after the coupling's clock). The
+ * column sums cover the steps after 0.5 -cpl_t_end: when the checkpoint comes before this run's
+ * window they are zero whatever the writer's end; inside it, they are the writer's only when
+ * its window started at the same time (otherwise a warning: the means start at the restart). */
+static PetscErrorCode CoupledRestoreColumn(Coupled *c, const PetscReal v[COUPLED_CKPT_NRUN])
+{
+  const PetscReal half = 0.5 * c->r->t_end;
+  PetscReal       t;
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetTime(c->cpl, &t, NULL));
+  c->next      = v[3];
+  c->next_ckpt = v[4];
+  if (t > half && v[5] == half) {
+    c->avg  = v[0];
+    c->davg = v[1];
+    c->navg = v[2];
+  } else if (t > half) PetscCall(PetscPrintf(c->r->comm, "warning: -restart %s: the checkpoint's run averaged the column figures from t = %g, this one from %g (half of -cpl_t_end), before the checkpoint's t = %g: the means of the \"column:\" line cover t > %g only\n", c->r->ckpt.restart, (double)v[5], (double)half, (double)t, (double)t));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Sets the Dem, the Fluid and the coupling up, from the checkpoint of -restart if
+ * given (the DEM reads its part in DemSetUp, with the coupling's particle arrays switched on
+ * first; the fluid and the coupling after the coupling's set-up, which sets the porosity). */
+static PetscErrorCode CoupledSetUp(Coupled *c)
+{
+  DriverCkpt *ck = &c->r->ckpt;
+  IoCkpt      f  = NULL;
+
+  PetscFunctionBeginUser;
+  c->next      = c->r->progress_dt;
+  c->next_ckpt = ck->dt;
+  if (ck->restart[0]) {
+    PetscCall(IoCkptOpen(c->r->comm, ck->restart, &f));
+    PetscCall(DemSetRestart(c->dem, f));
+    PetscCall(DemSetExternal(c->dem, PETSC_TRUE));
+  }
+  PetscCall(DemSetUp(c->dem));
+  PetscCall(DemSetRestart(c->dem, NULL));
+  PetscCall(FluidSetCheckpointing(c->fl, ck->set));
+  PetscCall(FluidSetUp(c->fl));
+  PetscCall(CplSetUp(c->cpl));
+  if (f) {
+    PetscReal v[COUPLED_CKPT_NRUN];
+    PetscCall(FluidCheckpointRead(c->fl, f));
+    PetscCall(CplCheckpointRead(c->cpl, f));
+    PetscCall(IoCkptReadShared(f, "run/coupled", IO_CKPT_REAL, COUPLED_CKPT_NRUN, v));
+    PetscCall(CoupledRestoreColumn(c, v));
+    PetscCall(IoCkptClose(&f));
+    PetscCall(PetscPrintf(c->r->comm, "restart: %s\n", ck->restart));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBool help)
 {
   Domain        *dom = r->dom;
-  Coupled        c   = {r, dem, NULL, NULL, lb, io, PETSC_FALSE, {2, -1, 0}};
+  Coupled        c   = {r, dem, NULL, NULL, lb, io, PETSC_FALSE, {2, -1, 0}, 0, 0, 0, 0, 0, 0};
   PetscBool      convex;
   PetscReal      g[3], t;
   PetscInt       step;
@@ -262,13 +356,13 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
   PetscCall(BalanceSetCoupling(lb, c.cpl));
   if (!help) {
     PetscCall(CoupledCheckDryOptions(r->comm));
+    PetscCall(DriverCkptSetFromOptions(&r->ckpt, r->comm)); /* here, not with the run's options: -help lists them once, with the dry run's */
     PetscCall(SableCheckOptionsUsed(r->comm));
     PetscCall(DemGetFrozen(dem, &c.frozen));
     PetscCall(DemHasConvexShapes(dem, &convex));
+    PetscCheck(!convex || (!r->ckpt.set && !r->ckpt.restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt.set ? "-io_checkpoint_interval" : "-restart");
     PetscCall(PetscPrintf(r->comm, "modules: DEM on%s; fluid on; coupling on; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", fluid grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", c.frozen ? " (frozen: no particle integration)" : "", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2], dom->cells[0], dom->cells[1], dom->cells[2]));
-    PetscCall(DemSetUp(dem));
-    PetscCall(FluidSetUp(c.fl));
-    PetscCall(CplSetUp(c.cpl));
+    PetscCall(CoupledSetUp(&c));
     PetscCall(DemGetGravity(dem, g));
     c.col = ColumnFromGravity(dom, g);
     PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));

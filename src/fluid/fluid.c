@@ -179,6 +179,10 @@ PetscErrorCode FluidSetUp(Fluid fl)
   PetscCall(VecDuplicate(fl->u, &fl->adv_old));
   PetscCall(VecDuplicate(fl->u, &fl->advn));
   PetscCall(VecDuplicate(fl->u, &fl->vis));
+  if (fl->ckpt) {
+    PetscCall(VecDuplicate(fl->p, &fl->eps_pc));
+    PetscCall(VecDuplicate(fl->u, &fl->beta_pc));
+  }
   PetscCall(FluidCreateLocals(fl));
   PetscCall(FluidBoundaryFaceValues(fl, fl->u));
   PetscCheck(fl->ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
@@ -194,7 +198,7 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
 
   PetscFunctionBeginUser;
   if (!fl) PetscFunctionReturn(PETSC_SUCCESS);
-  Vec *v[] = {&fl->u, &fl->p, &fl->eps, &fl->eps_old, &fl->beta, &fl->us, &fl->src, &fl->uloc, &fl->ploc, &fl->epsloc, &fl->epsoldloc, &fl->uhat, &fl->advn, &fl->adv_old, &fl->vis, &fl->coef, &fl->coefloc, &fl->vbc, &fl->phiu, &fl->phi, &fl->rhs, &fl->philoc};
+  Vec *v[] = {&fl->u, &fl->p, &fl->eps, &fl->eps_old, &fl->beta, &fl->us, &fl->src, &fl->uloc, &fl->ploc, &fl->epsloc, &fl->epsoldloc, &fl->uhat, &fl->advn, &fl->adv_old, &fl->vis, &fl->coef, &fl->coefloc, &fl->vbc, &fl->phiu, &fl->phi, &fl->rhs, &fl->philoc, &fl->eps_pc, &fl->beta_pc};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) PetscCall(VecDestroy(v[i]));
   PetscCall(FluidSolversDestroy(fl));
   PetscCall(KSPDestroy(&fl->ksp));
@@ -203,6 +207,14 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
   PetscCall(DMDestroy(&fl->fda));
   PetscCall(PetscFree(fl->advbuf));
   PetscCall(PetscFree(*fluid));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidSetCheckpointing(Fluid fl, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetCheckpointing before FluidSetUp");
+  fl->ckpt = on;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -38,6 +38,24 @@ PetscErrorCode FluidSetFromOptions(Fluid fluid);
 PetscErrorCode FluidSetUp(Fluid fluid);
 PetscErrorCode FluidDestroy(Fluid *fluid);
 
+/* Before FluidSetUp: the run writes exact checkpoints, so the fluid keeps what one needs beyond
+ * its fields (the porosity and drag coefficient of the matrix the kept Poisson preconditioner
+ * was built from: two more Vecs, copied at each rebuild). */
+PetscErrorCode FluidSetCheckpointing(Fluid fluid, PetscBool on);
+/* Collective. The fluid's part of an exact checkpoint (checkpoint.c, datasets fluid/...): every
+ * field and counter a step reads from the previous one, fields in the natural ordering of the
+ * grid, so that any rank count reads them back. Write needs FluidSetCheckpointing. Read after
+ * FluidSetUp (and after CplSetUp in a coupled run, whose set-up sets the porosity): replaces the
+ * state by the checkpoint's; refuses in one line naming the file and the dataset a checkpoint
+ * of another grid. */
+PetscErrorCode FluidCheckpointWrite(Fluid fluid, IoCkpt ck);
+PetscErrorCode FluidCheckpointRead(Fluid fluid, IoCkpt ck);
+/* Collective. One global Vec of the fluid's cell or face grid (a Vec of its DMs, or duplicated
+ * from one) as dataset name in the grid's natural ordering, and back on any rank count (the
+ * coupling's face fields use them too). */
+PetscErrorCode FluidCheckpointWriteVec(IoCkpt ck, const char *name, Vec v);
+PetscErrorCode FluidCheckpointReadVec(IoCkpt ck, const char *name, Vec v);
+
 /* Collective. Advances by dt (s): predictor with the implicit sink, projection so that
  * div(eps u) = -(eps^{n+1} - eps^n)/dt to solver tolerance, then eps^n <- eps^{n+1}.
  * Errors (naming dt, the limit and the cell) when dt exceeds the CFL or viscous limit, unless

@@ -72,6 +72,8 @@ struct _p_Fluid {
   PetscReal        pc_growth;                                           /* -fluid_poisson_pc_lag_growth: rebuild when its > growth * its0 + 1 */
   PetscInt         pc_age, pc_its0, pc_its_last, pc_builds, pc_retries; /* changes served, its after the build, last its, builds, failed solves redone */
   PetscReal        dt_pc;
+  Vec              eps_pc, beta_pc; /* with FluidSetCheckpointing: the eps and beta of the matrix the preconditioner was built from */
+  PetscBool        ckpt;            /* FluidSetCheckpointing */
   PetscBool        singular;
   PetscInt         nsteps;
   KSP              vksp; /* implicit viscous solve (only with -fluid_viscous implicit) */
@@ -159,3 +161,4 @@ PetscErrorCode FluidPoissonCreateKSP(Fluid fl);
 PetscErrorCode FluidPoissonSetUp(Fluid fl);
 PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st);
 PetscErrorCode FluidDivergenceMax(Fluid fl, PetscReal dt, PetscReal *dmax);
+PetscErrorCode FluidPoissonRestore(Fluid fl, PetscBool current);

@@ -121,7 +121,7 @@ PetscErrorCode FluidPoissonSetUp(Fluid fl)
 }
 
 /* Face coefficients c (0 on fixed faces) into fl->coef and its ghosted copy. */
-static PetscErrorCode FluidPoissonCoefficients(Fluid fl, PetscReal dt, const PetscScalar *eps)
+static PetscErrorCode FluidPoissonCoefficients(Fluid fl, PetscReal dt, const PetscScalar *eps, Vec vbeta)
 {
   const FluidGrid   *g = &fl->g;
   PetscInt           idx[3], f, c, o;
@@ -130,13 +130,13 @@ static PetscErrorCode FluidPoissonCoefficients(Fluid fl, PetscReal dt, const Pet
 
   PetscFunctionBeginUser;
   PetscCall(VecGetArray(fl->coef, &cf));
-  PetscCall(VecGetArrayRead(fl->beta, &beta));
+  PetscCall(VecGetArrayRead(vbeta, &beta));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
     const PetscScalar ef = 0.5 * (eps[c] + eps[c - g->cs[d]]);
     cf[o + d]            = FluidFaceActive(fl, d, idx) ? ef / (fl->rho * ef / dt + beta[o + d]) : 0;
   }
-  PetscCall(VecRestoreArrayRead(fl->beta, &beta));
+  PetscCall(VecRestoreArrayRead(vbeta, &beta));
   PetscCall(VecRestoreArray(fl->coef, &cf));
   PetscCall(DMGlobalToLocal(fl->fda, fl->coef, INSERT_VALUES, fl->coefloc));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -179,8 +179,9 @@ static PetscErrorCode FluidPoissonPattern(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The values of -div(c grad) in the pattern's order, set in one call (no search per entry). */
-static PetscErrorCode FluidPoissonAssemble(Fluid fl, PetscReal dt, const PetscScalar *eps)
+/* The values of -div(c grad) in the pattern's order, set in one call (no search per entry);
+ * c from eps (ghosted local array) and the face Vec beta. */
+static PetscErrorCode FluidPoissonAssemble(Fluid fl, PetscReal dt, const PetscScalar *eps, Vec beta)
 {
   const FluidGrid   *g = &fl->g;
   const PetscScalar *cf;
@@ -189,7 +190,7 @@ static PetscErrorCode FluidPoissonAssemble(Fluid fl, PetscReal dt, const PetscSc
   PetscCount         n = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(FluidPoissonCoefficients(fl, dt, eps));
+  PetscCall(FluidPoissonCoefficients(fl, dt, eps, beta));
   PetscCall(VecGetArrayRead(fl->coefloc, &cf));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
@@ -292,7 +293,7 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
   PetscCall(PetscObjectStateGet((PetscObject)fl->eps, &se));
   PetscCall(PetscObjectStateGet((PetscObject)fl->beta, &sb));
   if (se != fl->eps_state || sb != fl->beta_state || dt != fl->dt_mat) {
-    PetscCall(FluidPoissonAssemble(fl, dt, eps));
+    PetscCall(FluidPoissonAssemble(fl, dt, eps, fl->beta));
     fl->eps_state  = se;
     fl->beta_state = sb;
     fl->dt_mat     = dt;
@@ -315,6 +316,10 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
     fl->pc_age  = 0;
     fl->dt_pc   = dt;
     fl->pc_builds++;
+    if (fl->ckpt) { /* what a checkpoint needs to build this preconditioner again */
+      PetscCall(VecCopy(fl->eps, fl->eps_pc));
+      PetscCall(VecCopy(fl->beta, fl->beta_pc));
+    }
   } else if (changed) fl->pc_age++;
   fl->pc_its_last        = st->poisson_its;
   st->poisson_pc_builds  = fl->pc_builds;
@@ -324,6 +329,37 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
   PetscCall(FluidCorrect(fl, eps));
   PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
   PetscCall(PetscLogEventEnd(fl->ev_correct, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. After a checkpoint restored the fields and the preconditioner's counters
+ * (fluid/checkpoint.c): builds the kept preconditioner again from the matrix it was built from
+ * (eps_pc, beta_pc at dt_pc), the same operator hence the same preconditioner as in the
+ * interrupted run, then, when the checkpoint's matrix was current, assembles the matrix of the
+ * current eps and beta at dt_mat and marks it current. */
+PetscErrorCode FluidPoissonRestore(Fluid fl, PetscBool current)
+{
+  const PetscScalar *eps;
+
+  PetscFunctionBeginUser;
+  if (fl->pc_its0 >= 0) {
+    PetscCall(FluidLocalCell(fl, fl->eps_pc, fl->epsloc, PETSC_FALSE, 0.0));
+    PetscCall(VecGetArrayRead(fl->epsloc, &eps));
+    PetscCall(FluidPoissonAssemble(fl, fl->dt_pc, eps, fl->beta_pc));
+    PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
+    PetscCall(KSPSetReusePreconditioner(fl->ksp, PETSC_FALSE));
+    PetscCall(KSPSetUp(fl->ksp));
+  }
+  if (!current) {
+    fl->dt_mat = -1;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
+  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
+  PetscCall(FluidPoissonAssemble(fl, fl->dt_mat, eps, fl->beta));
+  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->eps, &fl->eps_state));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->beta, &fl->beta_state));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -2,7 +2,8 @@
  * per-axis ownership ranges; the fluid rebuilds its cell and face DMDAs from them and moves
  * every field it keeps from one step to the next (velocity, pressure, porosity and its previous
  * value, drag coefficient, solid velocity, momentum source, the Adams-Bashforth history of the
- * advection term, the last pressure increment) through the natural ordering, so each value lands
+ * advection term, the last pressure increment; with checkpoints the fields the Poisson
+ * preconditioner was built from) through the natural ordering, so each value lands
  * bit for bit on the same grid point (DomainMoveVec). Work vectors are moved as well (cheaper to
  * move than to reason about which hold state). Matrices and the star-stencil DMDAs of the
  * Poisson and viscous solves are rebuilt on the new layout at their next use; the KSPs keep
@@ -24,6 +25,10 @@ PetscErrorCode FluidRedistribute(Fluid fl)
   PetscCall(FluidCreateDMs(fl));
   for (size_t i = 0; i < sizeof cell / sizeof cell[0]; i++) PetscCall(DomainMoveVec(ocda, fl->cda, cell[i]));
   for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) PetscCall(DomainMoveVec(ofda, fl->fda, face[i]));
+  if (fl->ckpt) {
+    PetscCall(DomainMoveVec(ocda, fl->cda, &fl->eps_pc));
+    PetscCall(DomainMoveVec(ofda, fl->fda, &fl->beta_pc));
+  }
   PetscCall(DMDestroy(&ocda));
   PetscCall(DMDestroy(&ofda));
   PetscCall(FluidCreateLocals(fl));

@@ -1,0 +1,70 @@
+#!/bin/sh
+# Exact checkpoints of a coupled run: a small fluidized bed (the make-run case, 384 spheres,
+# 4 x 2 x 24 cells) whose inlet table switches from 2 U_mf to 3 U_mf at t = 3, after the restart
+# point. On 1 and 2 ranks, a run to T = 4 without checkpoints and a run to T/2 = 2 that writes a
+# checkpoint, continued with -restart to T, end with bitwise the same final frame (every dataset,
+# particles and fluid, compared with h5py) and the same "column:" summary line (means over the
+# second half of the run); the restarted run must be the one that switches the inlet. A
+# checkpoint given to a run whose fluid grid differs is refused: exit non-zero, one error line
+# naming the file and the dataset.
+cd "$(dirname "$0")/../.." || exit 1
+S=$(pwd)/${BIN:-bin}/sable
+[ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+W=$(mktemp -d)
+trap 'rm -rf "$W"' EXIT
+SCENE="-options_file $(pwd)/cases/fluidized_bed/small.opts -fluid_bc_zlo_velocity 0,0,0.2036 -fluid_bc_zlo_velocity_table 3,0,0,0.3054 -cpl_progress_interval 0"
+T=4
+H=2
+cat >"$W/cmp.py" <<'PY'
+#!/usr/bin/python3
+import sys, h5py
+a, b = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
+names = []
+a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) else None)
+diff = [n for n in names if n not in b or a[n].shape != b[n].shape or a[n].dtype != b[n].dtype or a[n][()].tobytes() != b[n][()].tobytes()]
+print(len(names), len(diff), " ".join(diff))
+PY
+chmod +x "$W/cmp.py"
+run() { # np, dir, args...
+  rnp=$1; rd=$2; shift 2
+  mkdir -p "$rd"
+  (cd "$rd" && mpiexec -n "$rnp" "$S" $SCENE -io_dir out "$@" >log 2>&1)
+}
+for np in 1 2; do
+  d=$W/bed.$np
+  run "$np" "$d/full" -cpl_t_end $T -io_interval $T
+  run "$np" "$d/half" -cpl_t_end $H -io_interval 0 -io_checkpoint_interval $H
+  ck=$(sed -n 's/^checkpoint: //p' "$d/half/log" | tail -n 1)
+  run "$np" "$d/rest" -cpl_t_end $T -io_interval $T -restart "../half/$ck"
+  a=$(ls "$d/full/out/"sable_*.h5 2>/dev/null | grep -v checkpoint | tail -n 1); b=$(ls "$d/rest/out/"sable_*.h5 2>/dev/null | grep -v checkpoint | tail -n 1)
+  if [ -z "$ck" ] || [ -z "$a" ] || [ -z "$b" ]; then
+    echo "FAIL coupled checkpoint np=$np: a run failed; $(cat "$d"/*/log | grep 'error' | head -n 2)"
+    continue
+  fi
+  set -- $("$W/cmp.py" "$a" "$b")
+  if [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then
+    echo "PASS coupled checkpoint np=$np: final frames at t=$T bitwise equal, $1 datasets compared (particles and fluid), 0 differing (restart from $ck at t=$H)"
+  else
+    echo "FAIL coupled checkpoint np=$np: $1 datasets compared, $2 differing: $3 $4 $5 $6"
+  fi
+  cf=$(grep '^column:' "$d/full/log"); cr=$(grep '^column:' "$d/rest/log")
+  if [ -n "$cf" ] && [ "$cf" = "$cr" ]; then
+    echo "PASS coupled checkpoint summary np=$np: the restarted run's \"column:\" line is the uninterrupted run's (${cf#column: pressure drop / bed buoyant weight per area })"
+  else
+    echo "FAIL coupled checkpoint summary np=$np: uninterrupted \"$cf\", restarted \"$cr\""
+  fi
+  if grep -q 'inlet zlo reaches row 1' "$d/rest/log" && ! grep -q 'inlet zlo reaches row' "$d/half/log"; then
+    echo "PASS coupled checkpoint inlet np=$np: the inlet table switches in the restarted run ($(grep -o 'reaches row 1 .* s:' "$d/rest/log")), not before the checkpoint"
+  else
+    echo "FAIL coupled checkpoint inlet np=$np: the inlet switch is not after the restart point"
+  fi
+done
+ck=$(ls "$W"/bed.1/half/out/*checkpoint*.h5 | tail -n 1)
+out=$(cd "$W" && "$S" $SCENE -da_grid_z 20 -cpl_t_end $T -io_interval 0 -io_dir grid -restart "$ck" 2>&1 >/dev/null); rc=$?
+lines=$(printf '%s\n' "$out" | grep -c 'sable: error')
+if [ "$rc" -ne 0 ] && [ "$lines" -eq 1 ] && printf '%s' "$out" | grep -q -- "-restart $ck: the dataset fluid/p has 192 values, this grid needs 160 (the fluid grid differs)"; then
+  echo "PASS bad coupled checkpoint, other fluid grid: exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""
+else
+  echo "FAIL bad coupled checkpoint, other fluid grid: exit $rc, $lines error lines; got: $out"
+fi
