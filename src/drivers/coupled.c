@@ -142,7 +142,9 @@ static PetscErrorCode CoupledCheckpointWrite(void *ctx, IoCkpt ck)
   PetscCall(DemCheckpointWrite(c->dem, ck));
   PetscCall(FluidCheckpointWrite(c->fl, ck));
   PetscCall(CplCheckpointWrite(c->cpl, ck));
+  PetscCall(BalanceCheckpointWrite(c->lb, ck));
   PetscCall(IoCkptWriteShared(ck, "run/coupled", IO_CKPT_REAL, COUPLED_CKPT_NRUN, v));
+  PetscCall(DriverCkptWriteRun(c->io, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -239,7 +241,7 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
   while (t < r->t_end - 0.5 * dt) {
     int sig;
     PetscCall(SableStopPoll(r->comm, &sig));
-    if (sig) PetscCall(DriverCkptStop(NULL, c->io, sig, t, step, NULL, NULL)); /* no checkpoint of a coupled run yet: the stop alone */
+    if (sig) PetscCall(DriverCkptStop(&r->ckpt, c->io, sig, t, step, CoupledCheckpointWrite, c)); /* a checkpoint of this step, then the stop */
     PetscCall(CplStep(c->cpl, &st));
     PetscCall(CplGetTime(c->cpl, &t, &step));
     PetscCall(BalanceCheck(c->lb, PETSC_FALSE, NULL));
@@ -318,12 +320,13 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
   c->next_ckpt = ck->dt;
   if (ck->restart[0]) {
     PetscCall(IoCkptOpen(c->r->comm, ck->restart, &f));
+    PetscCall(BalanceCheckpointRead(c->lb, f)); /* the checkpoint's cuts first: the per-rank state lives on them */
     PetscCall(DemSetRestart(c->dem, f));
     PetscCall(DemSetExternal(c->dem, PETSC_TRUE));
   }
   PetscCall(DemSetUp(c->dem));
   PetscCall(DemSetRestart(c->dem, NULL));
-  PetscCall(FluidSetCheckpointing(c->fl, ck->set));
+  PetscCall(FluidSetCheckpointing(c->fl, PETSC_TRUE)); /* also a stop signal writes a checkpoint */
   PetscCall(FluidSetUp(c->fl));
   PetscCall(CplSetUp(c->cpl));
   if (f) {
@@ -332,6 +335,7 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
     PetscCall(CplCheckpointRead(c->cpl, f));
     PetscCall(IoCkptReadShared(f, "run/coupled", IO_CKPT_REAL, COUPLED_CKPT_NRUN, v));
     PetscCall(CoupledRestoreColumn(c, v));
+    PetscCall(DriverCkptReadRun(c->r->comm, c->io, f)); /* refuses another run's frames before running */
     PetscCall(IoCkptClose(&f));
     PetscCall(PetscPrintf(c->r->comm, "restart: %s\n", ck->restart));
   }
