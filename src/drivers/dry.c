@@ -181,7 +181,6 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscFunctionBeginUser;
   PetscCall(SableCheckOptionsUsed(r->comm));
   PetscCall(DemHasConvexShapes(dem, &convex));
-  PetscCheck(!convex || (!r->ckpt.set && !r->ckpt.restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt.set ? "-io_checkpoint_interval" : "-restart");
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
   if (r->ckpt.restart[0]) {
     PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
