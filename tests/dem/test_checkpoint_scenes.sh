@@ -15,12 +15,12 @@ trap 'rm -rf "$W"' EXIT
 CUBES="-domain_lo 0,0,0 -domain_hi 0.14,0.14,0.2 -dem_box 0,0,0,0.14,0.14,0.2 -dem_shape cube -dem_shape_deq 0.0138 -dem_density 2500 -dem_contact_law linear -dem_kn 2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_dt 2e-5 -dem_lattice 6,6,5 -dem_lattice_spacing 0.02 -dem_lattice_origin 0.02,0.02,0.02 -dem_lattice_random_orientation -dem_lattice_speed 0.3"
 # 288 spheres on a plate at z = 0.1 m sinking at 0.1 m/s, removed at t = 0.2 s (after the
 # restart point 0.15 s): the bed then falls onto the box's floor
-PLATE="-domain_lo 0,0,0 -domain_hi 0.1449,0.1449,0.3 -dem_box 0,0,0,0.1449,0.1449,0.3 -dem_plane_0 0,0,0.1,0,0,1 -dem_plane_0_velocity 0,0,-0.1 -dem_plane_0_remove_time 0.2 -dem_radius 0.0069 -dem_density 2500 -dem_contact_law linear -dem_kn 7.2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_dt 1e-5 -dem_lattice 8,8,4 -dem_lattice_spacing 0.01449 -dem_lattice_origin 0.0145,0.0145,0.12 -dem_lattice_speed 0.05"
+PLATE="-domain_lo 0,0,0 -domain_hi 0.1449,0.1449,0.3 -dem_box 0,0,0,0.1449,0.1449,0.3 -dem_plane_0 0,0,0.1,0,0,1 -dem_plane_0_velocity 0,0,-0.1 -dem_plane_0_remove_time 0.2 -dem_radius 0.0069 -dem_density 2500 -dem_contact_law linear -dem_kn 2e5 -dem_restitution 0.75 -dem_friction 0.3 -dem_dt 2e-5 -dem_lattice 8,8,4 -dem_lattice_spacing 0.01449 -dem_lattice_origin 0.0145,0.0145,0.12 -dem_lattice_speed 0.05"
 # 256 beads falling in a drum (radius 0.05 m, axis y, 3 rad/s) between co-rotating caps
 DRUM="-domain_lo -0.052,0,-0.052 -domain_hi 0.052,0.03,0.052 -dem_cylinder 0,0,0,0,1,0,0.05 -dem_cylinder_omega 3 -dem_cylinder_caps 0,0.03 -dem_radius 0.003 -dem_density 2500 -dem_contact_law hertz -dem_youngs_modulus 1e7 -dem_poisson_ratio 0.24 -dem_restitution 0.9 -dem_friction 0.3 -dem_dt 4e-5 -dem_lattice 8,4,8 -dem_lattice_spacing 0.0065 -dem_lattice_origin -0.026,0.002,-0.026 -dem_lattice_speed 0.1"
 # 216 spheres thrown about in a column periodic along x and y, on a floor (2 ranks: split along x,
 # so the periodic images cross ranks)
-COLUMN="-domain_lo 0,0,0 -domain_hi 0.0828,0.0828,0.207 -domain_cell 0.0207 -domain_periodic_x -domain_periodic_y -dem_plane_0 0,0,0,0,0,1 -dem_radius 0.0069 -dem_density 2500 -dem_contact_law linear -dem_kn 7.2e5 -dem_restitution 0.8 -dem_friction 0.5 -dem_dt 1e-5 -dem_lattice 6,6,6 -dem_lattice_spacing 0.0138 -dem_lattice_origin 0.0069,0.0069,0.01 -dem_lattice_speed 0.5"
+COLUMN="-domain_lo 0,0,0 -domain_hi 0.0828,0.0828,0.207 -domain_cell 0.0207 -domain_periodic_x -domain_periodic_y -dem_plane_0 0,0,0,0,0,1 -dem_radius 0.0069 -dem_density 2500 -dem_contact_law linear -dem_kn 2e5 -dem_restitution 0.8 -dem_friction 0.5 -dem_dt 2e-5 -dem_lattice 6,6,6 -dem_lattice_spacing 0.0138 -dem_lattice_origin 0.0069,0.0069,0.01 -dem_lattice_speed 0.5"
 cat >"$W/cmp.py" <<'PY'
 #!/usr/bin/python3
 import sys, h5py
