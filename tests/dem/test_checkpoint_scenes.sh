@@ -1,9 +1,9 @@
 #!/bin/sh
 # Exact checkpoints of the dry scenes beyond spheres in a box, on 1 and 2 ranks: cubes (the convex
-# narrow phase and its separating-axis cache), a translating plate removed after the restart point,
-# a turning drum with co-rotating caps, and a bi-periodic column. For each, a run to T and a run
-# to T/2 that writes a checkpoint then continued with -restart to T end with bitwise the same final
-# frame (every dataset compared with h5py). The column's frames hold positions wrapped into the
+# narrow phase and its separating-axis cache), a sinking plate removed after the restart point (and,
+# on 2 ranks, one removed before it), a turning drum with co-rotating caps, and a bi-periodic
+# column. For each, a run to T and a run to T/2 that writes a checkpoint then continued with
+# -restart to T end with bitwise the same final frame (every dataset compared with h5py). The column's frames hold positions wrapped into the
 # box along the periodic axes.
 cd "$(dirname "$0")/../.." || exit 1
 S=$(pwd)/${BIN:-bin}/sable
@@ -77,6 +77,8 @@ for np in 1 2; do
     if /usr/bin/python3 -c "import sys; sys.exit(not float(sys.argv[1]) < 0.06)" "$z"; then echo "PASS plate removal np=$np: the lowest sphere is at z = $z m at t = 0.3 s, below the plate's place (< 0.06 m): the plate was gone"
     else echo "FAIL plate removal np=$np: the lowest sphere is at z = $z m at t = 0.3 s, expected < 0.06 m (the plate removed at 0.2 s)"; fi
   fi
+  # removed before the restart point (0.1 s): the checkpoint holds the removed flag
+  [ "$np" -eq 2 ] && SC=$(printf '%s' "$PLATE" | sed 's/remove_time 0.2/remove_time 0.1/') && scene plate_removed_before 0.3 0.15 2 "-da_processors_x 1 -da_processors_y 1 -da_processors_z 2"
   SC=$DRUM
   scene drum 0.2 0.1 "$np" "-da_processors_x 2 -da_processors_y 1 -da_processors_z 1"
   SC=$COLUMN
