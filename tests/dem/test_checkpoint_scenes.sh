@@ -3,8 +3,8 @@
 # narrow phase and its separating-axis cache), a sinking plate removed after the restart point (and,
 # on 2 ranks, one removed before it), a turning drum with co-rotating caps, and a bi-periodic
 # column. For each, a run to T and a run to T/2 that writes a checkpoint then continued with
-# -restart to T end with bitwise the same final frame (every dataset compared with h5py). The column's frames hold positions wrapped into the
-# box along the periodic axes.
+# -restart to T end with bitwise the same final frame (every dataset compared with h5py). The
+# column's frames hold positions wrapped into the box along the periodic axes.
 cd "$(dirname "$0")/../.." || exit 1
 S=$(pwd)/${BIN:-bin}/sable
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
