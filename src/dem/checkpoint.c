@@ -8,8 +8,15 @@
  * the counters (time, step, list builds and sorts, the rebuild flag, the next id, the state
  * stamp, the particle count and id checksum of -dem_check_every) and the cell grid's size.
  * Datasets dem/<name> of a checkpoint file (io/checkpoint.c: rank-major rows with per-rank
- * counts); with a coupling also its per-particle arrays (external.c). Spheres only (the convex
- * caches are not saved). */
+ * counts); with a coupling also its per-particle arrays (external.c). Convex
+ * shapes (DemCkptWriteConvex): the narrow phase's separating-axis cache (per Verlet entry
+ * an axis and a touched flag; it decides which test runs, and a test near contact can round
+ * differently) is saved as dem/convex_sepax, valid for the saved list build. The rotation matrices
+ * of the pair loop (narrow.rot) are formed from q in every pass before they are read, whichever
+ * of the eager or lazy ways rot_pairs picks, and libccd and geom/ keep nothing between calls.
+ * Wall motion (DemCkptWriteWalls): a translating plane's position and travel are in wall_state; a
+ * removed plane's flag is dem/wall_removed. A drum (cylinder and caps turning at omega) has no
+ * angle: its geometry is invariant under its rotation and its surface velocity is given. */
 #include "dem/dem_impl.h"
 
 #define DEM_CKPT_NCOUNT 14 /* per-rank counters, see DemCkptCounters */
@@ -24,13 +31,6 @@ static void DemCkptCounters(Dem dem, PetscInt c[DEM_CKPT_NCOUNT], PetscBool get)
   }
   if (get) c[DEM_CKPT_NCOUNT - 1] = dem->need_build;
   else dem->need_build = (PetscBool)(c[DEM_CKPT_NCOUNT - 1] != 0);
-}
-
-static PetscErrorCode DemCkptSupported(Dem dem, const char *what, const char *path)
-{
-  PetscFunctionBeginUser;
-  PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_SUP, "%s %s: checkpoints hold spheres only (the convex caches are not saved)", what, path);
-  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Collective. The per-rank variable-length lists: ghost send lists, wall lists and springs. */
@@ -72,6 +72,35 @@ static PetscErrorCode DemCkptWriteLists(Dem dem, IoCkpt ck)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. Convex shapes: the separating-axis cache of the Verlet list's entries (zeros, as
+ * the next pass would start it, if it belongs to an older list). */
+static PetscErrorCode DemCkptWriteConvex(Dem dem, IoCkpt ck)
+{
+  const PetscInt m     = dem->p.n ? dem->nl.start[dem->p.n] : 0;
+  double        *sepax = dem->narrow.sepax, *zero = NULL;
+
+  PetscFunctionBeginUser;
+  if (!dem->shapes.convex) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!sepax || dem->narrow.sepax_build != dem->nl.builds) {
+    PetscCall(PetscCalloc1(4 * (size_t)m + 4, &zero));
+    sepax = zero;
+  }
+  PetscCall(IoCkptWriteRows(ck, "dem/convex_sepax", IO_CKPT_REAL, 4 * m, sepax));
+  PetscCall(PetscFree(zero));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The walls' removal flags (the positions and travel are in dem/wall_state). */
+static PetscErrorCode DemCkptWriteWalls(Dem dem, IoCkpt ck)
+{
+  PetscInt removed[DEM_MAX_WALLS];
+
+  PetscFunctionBeginUser;
+  for (PetscInt w = 0; w < dem->walls.nwall; w++) removed[w] = dem->walls.wall[w].removed;
+  PetscCall(IoCkptWriteShared(ck, "dem/wall_removed", IO_CKPT_INT, dem->walls.nwall, removed));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
 {
   const char *path;
@@ -80,7 +109,6 @@ PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptGetPath(ck, &path));
-  PetscCall(DemCkptSupported(dem, "checkpoint", path));
   DemCkptCounters(dem, c, PETSC_TRUE);
   clk[0] = dem->clock.t;
   clk[1] = dem->initial.checksum;
@@ -104,6 +132,8 @@ PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
   PetscCall(IoCkptWriteRows(ck, "dem/nl_hist", IO_CKPT_REAL, dem->nl.hist ? 3 * m : 0, dem->nl.hist));
   PetscCall(DemCkptWriteLists(dem, ck));
   PetscCall(DemExternalCheckpointWrite(dem, ck));
+  PetscCall(DemCkptWriteConvex(dem, ck));
+  PetscCall(DemCkptWriteWalls(dem, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -185,6 +215,36 @@ static PetscErrorCode DemCkptReadLists(Dem dem, IoCkpt ck, const char *path)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. Convex shapes: the separating-axis cache, for the restored list build (after
+ * DemCkptReadList: the list's length). */
+static PetscErrorCode DemCkptReadConvex(Dem dem, IoCkpt ck)
+{
+  const PetscInt m = dem->p.n ? dem->nl.start[dem->p.n] : 0;
+
+  PetscFunctionBeginUser;
+  if (!dem->shapes.convex) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscFree(dem->narrow.sepax));
+  PetscCall(PetscCalloc1(4 * (size_t)m + 4, &dem->narrow.sepax));
+  PetscCall(IoCkptReadRowsInto(ck, "dem/convex_sepax", IO_CKPT_REAL, 4 * m, dem->narrow.sepax));
+  dem->narrow.sepax_build = dem->nl.builds;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The walls' removal flags. */
+static PetscErrorCode DemCkptReadWalls(Dem dem, IoCkpt ck)
+{
+  PetscInt removed[DEM_MAX_WALLS];
+
+  PetscFunctionBeginUser;
+  PetscCall(IoCkptReadShared(ck, "dem/wall_removed", IO_CKPT_INT, dem->walls.nwall, removed));
+  for (PetscInt w = 0; w < dem->walls.nwall; w++) {
+    DemWall *wl = &dem->walls.wall[w];
+    wl->removed = (PetscBool)(removed[w] != 0);
+    if (wl->removed) wl->cnt = 0;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
 {
   const char *path;
@@ -195,7 +255,6 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptGetPath(ck, &path));
-  PetscCall(DemCkptSupported(dem, "-restart", path));
   PetscCall(IoCkptGetRanks(ck, &ranks));
   PetscCallMPI(MPI_Comm_size(dem->comm, &size));
   PetscCheck(ranks == size, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: attribute ranks %d, this run has %d ranks (a checkpoint continues on the rank count that wrote it)", path, ranks, size);
@@ -222,5 +281,7 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscCall(DemCkptReadList(dem, ck, path));
   PetscCall(DemCkptReadLists(dem, ck, path));
   PetscCall(DemExternalCheckpointRead(dem, ck));
+  PetscCall(DemCkptReadConvex(dem, ck));
+  PetscCall(DemCkptReadWalls(dem, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -269,6 +269,11 @@ PetscErrorCode DemStep(Dem dem)
   PetscCheck(PetscIsNormalReal(d2) || d2 == 0, PETSC_COMM_SELF, PETSC_ERR_FP, "step %" PetscInt_FMT ": a particle position became non-finite; lower -dem_dt (now %g s)", dem->clock.step, (double)dem->clock.dt);
   for (PetscInt w = 0; w < dem->walls.nwall; w++) {
     DemWall *wl = &dem->walls.wall[w];
+    if (!wl->removed && dem->clock.t + dem->clock.dt >= wl->t_remove) { /* -dem_plane_<k>_remove_time */
+      wl->removed = PETSC_TRUE;
+      wl->cnt     = 0;
+    }
+    if (wl->removed) continue;
     for (int k = 0; k < 3; k++) wl->p[k] += wl->v[k] * dem->clock.dt;
     wl->moved += sqrt(dem_dot(wl->v, wl->v)) * dem->clock.dt;
     wmax = PetscMax(wmax, wl->moved);

@@ -50,6 +50,10 @@ typedef struct {
   /* rotation about an axis (drum and its end caps): surface velocity v + omega u x (x - a) */
   double omega, ax_p[3], ax_u[3];
   double mu; /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
+  /* removal (-dem_plane_<k>_remove_time): from the first step whose forces act at t >= t_remove the
+     wall is gone (no list, no contacts, no travel); removed says it went */
+  double    t_remove;
+  PetscBool removed;
   /* list of particles within reach, with their tangential springs */
   PetscInt *idx;
   double   *hist;

@@ -9,7 +9,9 @@
  * surface velocity at the contact point c is v + omega u x (c - a) (dem_wall_velocity: a
  * translating plane, a rotating drum), so a moving wall drags particles by friction. Each wall
  * keeps a list of the particles within r + skin, rebuilt with the Verlet list, and their
- * tangential springs.
+ * tangential springs. A plane may be removed at a time (-dem_plane_<k>_remove_time: a silo's
+ * plate under the orifice): from the step whose forces act at that time on (dem.c, DemStep) it
+ * has no list, no contacts and no travel (removed).
  * Edges: a rectangle or a polygon is touched only where the sphere's centre (the contact point)
  * projects inside it and lies in front of it; a sphere overhanging a joint edge feels no force
  * from that face (the neighbouring face takes over, as in a box corner or a hopper's corners).
@@ -28,7 +30,8 @@ PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const do
   PetscCheck(nn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "wall %" PetscInt_FMT ": the normal must be non-zero", dem->walls.nwall);
   w = &dem->walls.wall[dem->walls.nwall++];
   PetscCall(PetscMemzero(w, sizeof *w));
-  w->mu = -1; /* the wall material's friction */
+  w->mu       = -1;             /* the wall material's friction */
+  w->t_remove = PETSC_MAX_REAL; /* never removed */
   PetscCall(PetscStrncpy(w->name, name, sizeof w->name));
   for (int k = 0; k < 3; k++) {
     w->p[k] = p[k];
@@ -92,7 +95,8 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
   for (PetscInt wi = 0; wi < dem->walls.nwall && !*closed; wi++) {
     const DemWall *w      = &dem->walls.wall[wi];
     PetscBool      behind = PETSC_TRUE, spans = PETSC_TRUE;
-    if (w->kind == DEM_WALL_CYLINDER) { /* parallel to the face and wholly inside of it */
+    if (w->t_remove < PETSC_MAX_REAL) continue; /* a gate that opens closes nothing */
+    if (w->kind == DEM_WALL_CYLINDER) {         /* parallel to the face and wholly inside of it */
       if (PetscAbsReal(w->n[d]) < 1e-12) *closed = (PetscBool)(side ? w->p[d] + w->R <= dom->hi[d] + tol : w->p[d] - w->R >= dom->lo[d] - tol);
       continue;
     }
@@ -114,7 +118,7 @@ PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const
   for (PetscInt wi = 0; wi < walls->nwall; wi++) {
     DemWall *w = &walls->wall[wi];
     w->cnt     = 0;
-    for (PetscInt i = 0; i < pt->n; i++) {
+    for (PetscInt i = 0; i < pt->n && !w->removed; i++) {
       const double d[3]  = {pt->x[3 * i] - w->p[0], pt->x[3 * i + 1] - w->p[1], pt->x[3 * i + 2] - w->p[2]};
       const double reach = st->shp[pt->shape[i]].r + skin;
       if (w->kind == DEM_WALL_CYLINDER) { /* distance from the curved surface, inside */

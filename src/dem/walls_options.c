@@ -1,6 +1,7 @@
 /* The wall options, read in one block: -dem_box xlo,ylo,zlo,xhi,yhi,zhi (m), six inward-facing
- * planes; -dem_plane_<k> px,py,pz,nx,ny,nz (m, -) and -dem_plane_<k>_velocity vx,vy,vz (m/s),
- * k = 0..9; -dem_rect_<k> x0,y0,z0,x1,y1,z1,x2,y2,z2 (m), k = 0..9: a finite rectangle with
+ * planes; -dem_plane_<k> px,py,pz,nx,ny,nz (m, -), -dem_plane_<k>_velocity vx,vy,vz (m/s) and
+ * -dem_plane_<k>_remove_time t (s: the plane is gone from t on, a gate opened; 0: never), k = 0..9;
+ * -dem_rect_<k> x0,y0,z0,x1,y1,z1,x2,y2,z2 (m), k = 0..9: a finite rectangle with
  * corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0), facing the side (p1 - p0) x (p2 - p0)
  * points to; -dem_quad_<k> (4 vertices), -dem_hopper (walls_polygon.c); -dem_cylinder,
  * -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); -dem_<wall>_friction overrides
@@ -35,8 +36,8 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
 
 PetscErrorCode DemWallsSetFromOptions(Dem dem)
 {
-  PetscReal box[6], pl[6], vel[3];
-  PetscBool set, vset;
+  PetscReal box[6], pl[6], vel[3], trm;
+  PetscBool set, vset, rset;
   char      opt[64], optv[80];
 
   PetscFunctionBeginUser;
@@ -63,10 +64,16 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_velocity", k));
     PetscCall(SableOptionsRealN(opt, "Infinite plane wall: point px,py,pz and normal nx,ny,nz into the granular side", "m, -", pl, 0, 6, &set));
     vel[0] = vel[1] = vel[2] = 0;
+    trm                      = 0; /* never */
     PetscCall(SableOptionsRealN(optv, "Translation velocity of the plane wall", "m/s", vel, 3, 3, &vset));
     PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
     PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
     if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
+    PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_remove_time", k));
+    PetscCall(PetscOptionsReal(optv, "Time at which the plane wall is removed (a gate opening, as a silo's plate); 0: never", "s", trm, &trm, &rset));
+    PetscCheck(set || !rset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
+    PetscCheck(!rset || (trm >= 0 && !PetscIsInfOrNanReal(trm)), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be finite and >= 0 (s)", optv, (double)trm);
+    if (rset && trm > 0) dem->walls.wall[dem->walls.nwall - 1].t_remove = trm;
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
     if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->walls.nwall - 1));
   }

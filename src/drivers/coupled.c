@@ -364,7 +364,6 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
     PetscCall(SableCheckOptionsUsed(r->comm));
     PetscCall(DemGetFrozen(dem, &c.frozen));
     PetscCall(DemHasConvexShapes(dem, &convex));
-    PetscCheck(!convex || (!r->ckpt.set && !r->ckpt.restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt.set ? "-io_checkpoint_interval" : "-restart");
     PetscCall(PetscPrintf(r->comm, "modules: DEM on%s; fluid on; coupling on; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", fluid grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", c.frozen ? " (frozen: no particle integration)" : "", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2], dom->cells[0], dom->cells[1], dom->cells[2]));
     PetscCall(CoupledSetUp(&c));
     PetscCall(DemGetGravity(dem, g));

@@ -20,9 +20,8 @@ struct _p_DryRun {
   PetscReal  t_end, progress_dt; /* s */
   PetscBool  t_end_set;
   DriverCkpt ckpt;
-  PetscBool  ckpt_able; /* the DEM's state can be saved (spheres only): also on a stop signal */
-  Dem        dem;       /* what a checkpoint holds: the DEM's state, the balancer's and the run's (io, options) */
-  Balance    lb;        /* may be NULL */
+  Dem        dem; /* what a checkpoint holds: the DEM's state, the balancer's and the run's (io, options) */
+  Balance    lb;  /* may be NULL */
   Io         io;
 };
 
@@ -155,7 +154,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
     if (sig) {                              /* a checkpoint of this step, then the stop */
       PetscInt step;
       PetscCall(DemGetTime(dem, NULL, &step));
-      PetscCall(DriverCkptStop(&r->ckpt, io, sig, t, step, r->ckpt_able ? DryCheckpointWrite : NULL, r));
+      PetscCall(DriverCkptStop(&r->ckpt, io, sig, t, step, DryCheckpointWrite, r));
     }
     PetscCall(DemStep(dem));
     if (lb) PetscCall(BalanceCheck(lb, PETSC_FALSE, NULL));
@@ -194,8 +193,6 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscFunctionBeginUser;
   PetscCall(SableCheckOptionsUsed(r->comm));
   PetscCall(DemHasConvexShapes(dem, &convex));
-  PetscCheck(!convex || (!r->ckpt.set && !r->ckpt.restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt.set ? "-io_checkpoint_interval" : "-restart");
-  r->ckpt_able = (PetscBool)!convex;
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
   if (r->ckpt.restart[0]) {
     PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
