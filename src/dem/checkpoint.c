@@ -103,12 +103,10 @@ static PetscErrorCode DemCkptWriteWalls(Dem dem, IoCkpt ck)
 
 PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
 {
-  const char *path;
-  PetscInt    c[DEM_CKPT_NCOUNT], N, m;
-  double      clk[3];
+  PetscInt c[DEM_CKPT_NCOUNT], N, m;
+  double   clk[3];
 
   PetscFunctionBeginUser;
-  PetscCall(IoCkptGetPath(ck, &path));
   DemCkptCounters(dem, c, PETSC_TRUE);
   clk[0] = dem->clock.t;
   clk[1] = dem->initial.checksum;
