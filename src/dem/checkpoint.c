@@ -9,7 +9,7 @@
  * stamp, the particle count and id checksum of -dem_check_every) and the cell grid's size.
  * Datasets dem/<name> of a checkpoint file (io/checkpoint.c: rank-major rows with per-rank
  * counts). Spheres only, without a coupling (the convex caches and the coupling arrays are not
- * saved). */
+ * saved). Read on another rank count, the state is redistributed (checkpoint_remap.c). */
 #include "dem/dem_impl.h"
 
 #define DEM_CKPT_NCOUNT 14 /* per-rank counters, see DemCkptCounters */
@@ -198,7 +198,10 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscCall(DemCkptSupported(dem, "-restart", path));
   PetscCall(IoCkptGetRanks(ck, &ranks));
   PetscCallMPI(MPI_Comm_size(dem->comm, &size));
-  PetscCheck(ranks == size, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: attribute ranks %d, this run has %d ranks (a checkpoint continues on the rank count that wrote it)", path, ranks, size);
+  if (ranks != size) { /* another rank count: the state is redistributed (checkpoint_remap.c) */
+    PetscCall(DemCheckpointReadRemap(dem, ck));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(IoCkptReadRowsInto(ck, "dem/counters", IO_CKPT_INT, DEM_CKPT_NCOUNT, c));
   PetscCall(IoCkptReadRowsInto(ck, "dem/clock", IO_CKPT_REAL, 3, clk));
   PetscCheck(c[8] == nwall, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint has %" PetscInt_FMT " walls, the case's options make %" PetscInt_FMT, path, c[8], nwall);

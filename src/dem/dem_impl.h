@@ -365,3 +365,5 @@ double         DemLatticeSpacing(Dem dem);                                      
 double         DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
 PetscErrorCode DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
 PetscErrorCode DemRebuild(Dem dem);                                                                                                                   /* rebuild.c */
+PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt caprec);                                                              /* rebuild.c */
+PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck);                                                                                            /* checkpoint_remap.c: another rank count */
