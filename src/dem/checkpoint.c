@@ -9,7 +9,8 @@
  * stamp, the particle count and id checksum of -dem_check_every) and the cell grid's size.
  * Datasets dem/<name> of a checkpoint file (io/checkpoint.c: rank-major rows with per-rank
  * counts). Spheres only, without a coupling (the convex caches and the coupling arrays are not
- * saved). Read on another rank count, the state is redistributed (checkpoint_remap.c). */
+ * saved). Read on another rank count or process grid, the state is redistributed
+ * (checkpoint_remap.c). */
 #include "dem/dem_impl.h"
 
 #define DEM_CKPT_NCOUNT 14 /* per-rank counters, see DemCkptCounters */
@@ -190,15 +191,13 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   const char *path;
   PetscInt    c[DEM_CKPT_NCOUNT], N, nwall = dem->walls.nwall;
   double      clk[3];
-  int         ranks;
-  PetscMPIInt size;
+  PetscBool   remap;
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptGetPath(ck, &path));
   PetscCall(DemCkptSupported(dem, "-restart", path));
-  PetscCall(IoCkptGetRanks(ck, &ranks));
-  PetscCallMPI(MPI_Comm_size(dem->comm, &size));
-  if (ranks != size) { /* another rank count: the state is redistributed (checkpoint_remap.c) */
+  PetscCall(DemCheckpointNeedsRemap(dem, ck, &remap));
+  if (remap) { /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
     PetscCall(DemCheckpointReadRemap(dem, ck));
     PetscFunctionReturn(PETSC_SUCCESS);
   }

@@ -13,6 +13,9 @@
  * and torques of the last step travel with the particles (velocity Verlet's first half step
  * reads them); the scalars (time, step, next id, list builds, particle count, id checksum) are
  * the file's; afterwards the count and the id checksum must be the file's (every id once).
+ * The same rank count with other boxes (another process grid, other cuts) takes this way too:
+ * its ranks' particles, each in its writer's box at the last list build (x0), are not all in
+ * this run's boxes (DemCheckpointNeedsRemap).
  * Memory: a rank holds its block's rows of one dataset at a time, their ids and their lists,
  * about ceil(R/P) writing ranks' state (all of it on one rank for a 1-rank checkpoint). */
 #include "dem/dem_impl.h"
@@ -283,6 +286,34 @@ static PetscErrorCode DemRemapCheckMap(Dem dem, const DemRemap *b)
   SETERRQ(dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/x puts particle %" PetscInt_FMT " at (%g, %g, %g) m, outside this run's domain along %c ([%g, %g] m): the checkpoint cannot be mapped onto the ranks' boxes", b->path, gbad, gwhere[0], gwhere[1], gwhere[2], "xyz"[k], (double)dom -> lo[k], (double)dom -> hi[k]);
 }
 
+PetscErrorCode DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap)
+{
+  const Domain *dom = dem->dom;
+  const char   *path;
+  PetscInt      c[DEM_CKPT_NCOUNT], n;
+  double       *x0;
+  int           R, out = 0, any;
+  PetscMPIInt   size;
+
+  PetscFunctionBeginUser;
+  PetscCall(IoCkptGetRanks(ck, &R));
+  PetscCallMPI(MPI_Comm_size(dem->comm, &size));
+  *remap = (PetscBool)(R != size);
+  if (*remap) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(IoCkptGetPath(ck, &path));
+  PetscCall(IoCkptReadRowsInto(ck, "dem/counters", IO_CKPT_INT, DEM_CKPT_NCOUNT, c));
+  PetscCall(IoCkptReadRows(ck, "dem/x0", IO_CKPT_REAL, &n, (void **)&x0));
+  PetscCheck(n == 3 * c[0], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/x0 has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, 3 * c[0]);
+  for (int k = 0; k < 3; k++) { /* the box as the migration sees it (exchange.c): open towards the domain's closed sides */
+    const PetscBool first = (PetscBool)(dom->cstart[k] == 0 && !dom->periodic[k]), last = (PetscBool)(dom->cstart[k] + dom->ccount[k] == dom->cells[k] && !dom->periodic[k]);
+    for (PetscInt i = 0; i < c[0]; i++) out |= (x0[3 * i + k] < dom->sublo[k] && !first) || (x0[3 * i + k] >= dom->subhi[k] && !last);
+  }
+  PetscCall(PetscFree(x0));
+  PetscCallMPI(MPI_Allreduce(&out, &any, 1, MPI_INT, MPI_LOR, dem->comm));
+  *remap = (PetscBool)any;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck)
 {
   DemRemap   b = {ck, NULL, 0, 0, 0, NULL, 0, NULL, NULL};
@@ -320,6 +351,7 @@ PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck)
   PetscCall(DemRebuildFrom(dem, recs, nrec, cap));
   PetscCall(PetscLogEventEnd(DEM_Neighbours, 0, 0, 0, 0));
   dem->stop_sig = 0;
+  PetscCall(PetscPrintf(dem->comm, "restart: the particles of the checkpoint's %" PetscInt_FMT " rank(s) redistributed over this run's boxes (the run continues to round-off, bitwise with -dem_deterministic)\n", b.R));
   PetscCall(DemGetStats(dem, &st));
   PetscCheck(st.n == dem->initial.n && st.checksum == dem->initial.checksum, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/id gives %" PetscInt_FMT " particles with id checksum %.17g after the redistribution, the run had %" PetscInt_FMT " and %.17g: an id is missing or repeated", b.path, st.n, st.checksum, dem->initial.n, dem->initial.checksum);
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -366,4 +366,5 @@ double         DemImpactOverlap(Dem dem, const DemPairParams *p);               
 PetscErrorCode DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
 PetscErrorCode DemRebuild(Dem dem);                                                                                                                   /* rebuild.c */
 PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt caprec);                                                              /* rebuild.c */
-PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck);                                                                                            /* checkpoint_remap.c: another rank count */
+PetscErrorCode DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap);                                                                         /* checkpoint_remap.c: another rank count or other boxes */
+PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck);                                                                                            /* checkpoint_remap.c */

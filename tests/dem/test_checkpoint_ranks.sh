@@ -11,6 +11,8 @@
 #   acceleration by at least ~g (the bed's contact forces are of the order of the weight and
 #   more), that is g dt^2 = 1e-9 m = 7e-8 d within one step (measured: a lost pair or wall spring
 #   2e-3 d, dropped forces 1e-3 d, springs of pairs cut by the new rank boundary 4e-3 d).
+# - The same rank count on another process grid (boxes cut along z instead of x) is remapped too
+#   (reading it as the writer's own boxes would be wrong), within the same bound.
 # - Every id is present once after the remap (-dem_check_every, and the final frame's ids).
 # - A checkpoint that cannot be mapped (a position outside the domain, an id repeated) stops
 #   with one error line naming the file and the dataset.
@@ -52,9 +54,10 @@ dx = np.abs(a["particles/position"][()][oa] - b["particles/position"][()][ob]).m
 print(n, 1, "%.3e" % dx, len(diff), " ".join(diff) if diff else "-")
 PY
 chmod +x "$W/cmp.py"
-run() { # np, dir, args...
+CUT2="-da_processors_x 2"
+run() { # np, dir, args... (the 2-rank runs with the process grid CUT2)
   rnp=$1; rd=$2; shift 2
-  cut=""; [ "$rnp" -eq 2 ] && cut="-da_processors_x 2"
+  cut=""; [ "$rnp" -eq 2 ] && cut=$CUT2
   mkdir -p "$rd"
   (cd "$rd" && mpiexec -n "$rnp" "$S" $SCENE $cut -io_dir out "$@" >log 2>&1)
 }
@@ -90,6 +93,15 @@ for law in linear hertz; do
       echo "FAIL remap $law $1 ranks: largest position difference $4 d (bound $BOUND d), ids each once: $3"
     fi
   done
+  [ "$law" = linear ] || continue
+  # the same rank count on another process grid: the ranks' boxes differ, the state is remapped
+  CUT2="-da_processors_z 2"
+  run 2 "$W/$law/rest22" $M -dem_t_end 0.16 -io_interval 0.16 -restart "$ck2"
+  CUT2="-da_processors_x 2"
+  set -- $("$W/cmp.py" "$F2" "$(frame "$W/$law/rest22")")
+  if [ "$2" -eq 1 ] && awk "BEGIN { exit !($3 < $BOUND) }"; then
+    echo "PASS remap $law 2 ranks cut along x -> 2 ranks stacked along z: largest position difference at t=0.16 s vs the writer's uninterrupted run $3 d (bound $BOUND d); $1 ids, each once"
+  else echo "FAIL remap $law 2 ranks cut along x -> 2 ranks stacked along z: largest position difference $3 d (bound $BOUND d), ids each once: $2; $(grep -h 'error' "$W/$law/rest22/log" | head -n 1)"; fi
 done
 # bitwise with -dem_deterministic
 if scene deterministic "-dem_contact_law linear -dem_kn 7.2e5 -dem_deterministic" 0.3; then
