@@ -43,8 +43,19 @@ static const DemCkptField dem_ckpt_fields[] = {
   {"dem/tq", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.tq)},
 };
 
-#define DEM_CKPT_NCOUNT 14 /* per-rank counters, in the order of DemCkptCounters (checkpoint.c) */
-#define CNT(b, r, k)    ((b)->cnt[DEM_CKPT_NCOUNT * (r) + (k)])
+#define DEM_CKPT_NCOUNT 14 /* per-rank counters, in the order of DemCkptCounters (checkpoint.c): */
+enum {
+  CK_N,
+  CK_NG,
+  CK_NEXT_ID,
+  CK_BUILDS,
+  CK_SORTS,
+  CK_STEP,
+  CK_STATE,
+  CK_INITIAL_N,
+  CK_NWALL
+};
+#define CNT(b, r, k) ((b)->cnt[DEM_CKPT_NCOUNT * (r) + (k)])
 
 /* What this rank reads: the writing ranks [r0, r1) of R. */
 typedef struct {
@@ -57,7 +68,7 @@ typedef struct {
   PetscInt   *goff; /* start of writer r's rows in gid, r - r0 */
 } DemRemap;
 
-/* The block's rows of a dataset: v, and off[r - r0] where writer r's start (r1 - r0 + 1). */
+/* The block's rows of a dataset: v, and off[r - r0] where writer r's rows start (r1 - r0 + 1). */
 typedef struct {
   void     *v;
   PetscInt *off;
@@ -118,19 +129,19 @@ static PetscErrorCode DemRemapCounters(Dem dem, DemRemap *b)
   PetscCall(PetscFree(s.off));
   PetscCall(PetscFree(rows));
   for (PetscInt r = 0; r < R; r++) {
-    PetscCheck(CNT(b, r, 8) == dem->walls.nwall, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters gives %" PetscInt_FMT " walls, the case's options make %" PetscInt_FMT, b->path, CNT(b, r, 8), dem->walls.nwall);
-    PetscCheck(CNT(b, r, 5) == CNT(b, 0, 5) && CNT(b, r, 7) == CNT(b, 0, 7) && CNT(b, r, 0) >= 0 && CNT(b, r, 1) >= 0, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters of rank %" PetscInt_FMT " disagrees with rank 0's (step, particle count) or has a negative count", b->path, r);
-    nsum += CNT(b, r, 0);
-    dem->p.next_id = PetscMax(dem->p.next_id, CNT(b, r, 2));
+    PetscCheck(CNT(b, r, CK_NWALL) == dem->walls.nwall, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters gives %" PetscInt_FMT " walls, the case's options make %" PetscInt_FMT, b->path, CNT(b, r, CK_NWALL), dem->walls.nwall);
+    PetscCheck(CNT(b, r, CK_STEP) == CNT(b, 0, CK_STEP) && CNT(b, r, CK_INITIAL_N) == CNT(b, 0, CK_INITIAL_N) && CNT(b, r, CK_N) >= 0 && CNT(b, r, CK_NG) >= 0, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters of rank %" PetscInt_FMT " disagrees with rank 0's (step, particle count) or has a negative count", b->path, r);
+    nsum += CNT(b, r, CK_N);
+    dem->p.next_id = PetscMax(dem->p.next_id, CNT(b, r, CK_NEXT_ID));
   }
-  PetscCheck(nsum == CNT(b, 0, 7), dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters gives %" PetscInt_FMT " particles owned by the ranks that wrote it, and a run of %" PetscInt_FMT, b->path, nsum, CNT(b, 0, 7));
+  PetscCheck(nsum == CNT(b, 0, CK_INITIAL_N), dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters gives %" PetscInt_FMT " particles owned by the ranks that wrote it, and a run of %" PetscInt_FMT, b->path, nsum, CNT(b, 0, CK_INITIAL_N));
   b->nown = 0;
-  for (PetscInt r = b->r0; r < b->r1; r++) b->nown += CNT(b, r, 0);
-  dem->nl.builds   = CNT(b, 0, 3);
-  dem->nl.sorts    = CNT(b, 0, 4);
-  dem->clock.step  = CNT(b, 0, 5);
-  dem->state       = CNT(b, 0, 6);
-  dem->initial.n   = CNT(b, 0, 7);
+  for (PetscInt r = b->r0; r < b->r1; r++) b->nown += CNT(b, r, CK_N);
+  dem->nl.builds   = CNT(b, 0, CK_BUILDS);
+  dem->nl.sorts    = CNT(b, 0, CK_SORTS);
+  dem->clock.step  = CNT(b, 0, CK_STEP);
+  dem->state       = CNT(b, 0, CK_STATE);
+  dem->initial.n   = CNT(b, 0, CK_INITIAL_N);
   dem->ex.migrated = 0;
   PetscCall(IoCkptReadSlabAll(b->ck, "dem/clock", IO_CKPT_REAL, 0, 3, clk));
   dem->clock.t          = clk[0];
@@ -151,7 +162,7 @@ static PetscErrorCode DemRemapParticles(Dem dem, DemRemap *b)
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(b->R, &rows));
-  for (PetscInt r = 0; r < b->R; r++) rows[r] = CNT(b, r, 0) + CNT(b, r, 1);
+  for (PetscInt r = 0; r < b->R; r++) rows[r] = CNT(b, r, CK_N) + CNT(b, r, CK_NG);
   PetscCall(DemRemapSlab(b, "dem/id", IO_CKPT_INT, rows, PETSC_FALSE, &s));
   b->gid  = (PetscInt *)s.v;
   b->goff = s.off;
@@ -162,17 +173,17 @@ static PetscErrorCode DemRemapParticles(Dem dem, DemRemap *b)
     const DemCkptField *fd  = &dem_ckpt_fields[f];
     const size_t        sz  = IoCkptTypeSize(fd->type) * (size_t)fd->ncomp;
     char               *dst = *(char **)((char *)dem + fd->at), *o = dst;
-    for (PetscInt r = 0; r < b->R; r++) rows[r] = fd->ncomp * (CNT(b, r, 0) + (fd->ghosts ? CNT(b, r, 1) : 0));
+    for (PetscInt r = 0; r < b->R; r++) rows[r] = fd->ncomp * (CNT(b, r, CK_N) + (fd->ghosts ? CNT(b, r, CK_NG) : 0));
     PetscCall(DemRemapSlab(b, fd->name, fd->type, rows, PETSC_FALSE, &s));
     for (PetscInt r = b->r0; r < b->r1; r++) { /* the owned rows come first */
-      PetscCall(PetscMemcpy(o, (char *)s.v + IoCkptTypeSize(fd->type) * (size_t)s.off[r - b->r0], sz * (size_t)CNT(b, r, 0)));
-      o += sz * (size_t)CNT(b, r, 0);
+      PetscCall(PetscMemcpy(o, (char *)s.v + IoCkptTypeSize(fd->type) * (size_t)s.off[r - b->r0], sz * (size_t)CNT(b, r, CK_N)));
+      o += sz * (size_t)CNT(b, r, CK_N);
     }
     PetscCall(DemSlabFree(&s));
   }
   PetscCall(PetscFree(rows));
   for (PetscInt r = b->r0, i = 0; r < b->r1; r++) /* the owned ids, in the particles' order */
-    for (PetscInt a = 0; a < CNT(b, r, 0); a++) dem->p.id[i++] = b->gid[b->goff[r - b->r0] + a];
+    for (PetscInt a = 0; a < CNT(b, r, CK_N); a++) dem->p.id[i++] = b->gid[b->goff[r - b->r0] + a];
   for (PetscInt i = 0; i < dem->p.n; i++) PetscCheck(dem->p.shape[i] >= 0 && dem->p.shape[i] < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/shape gives particle %" PetscInt_FMT " shape %" PetscInt_FMT ", the case has shapes [0, %" PetscInt_FMT ")", b->path, dem->p.id[i], dem->p.shape[i], dem->shapes.nshape);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -198,13 +209,13 @@ static PetscErrorCode DemRemapPairSprings(Dem dem, const DemRemap *b, DemSpring 
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(b->R, &rows));
-  for (PetscInt r = 0; r < b->R; r++) rows[r] = CNT(b, r, 0) ? CNT(b, r, 0) + 1 : 0;
+  for (PetscInt r = 0; r < b->R; r++) rows[r] = CNT(b, r, CK_N) ? CNT(b, r, CK_N) + 1 : 0;
   PetscCall(DemRemapSlab(b, "dem/nl_start", IO_CKPT_INT, rows, PETSC_FALSE, &st));
   PetscCall(PetscFree(rows));
   PetscCall(DemRemapSlab(b, "dem/nl_nbr", IO_CKPT_INT, NULL, PETSC_FALSE, &nb));
   PetscCall(DemRemapSlab(b, "dem/nl_hist", IO_CKPT_REAL, NULL, PETSC_FALSE, &hs));
   for (PetscInt r = b->r0; r < b->r1; r++) {
-    const PetscInt  k = r - b->r0, nr = CNT(b, r, 0), Nr = nr + CNT(b, r, 1);
+    const PetscInt  k = r - b->r0, nr = CNT(b, r, CK_N), Nr = nr + CNT(b, r, CK_NG);
     const PetscInt *start = (PetscInt *)st.v + st.off[k], *nbr = (PetscInt *)nb.v + nb.off[k], *id = b->gid + b->goff[k];
     const double   *hist = (double *)hs.v + hs.off[k];
     const PetscInt  m    = nr ? start[nr] : 0;
@@ -240,7 +251,7 @@ static PetscErrorCode DemRemapWallSprings(Dem dem, const DemRemap *b, DemSpring 
   PetscCall(DemRemapSlab(b, "dem/wall_idx", IO_CKPT_INT, NULL, PETSC_FALSE, &wi));
   PetscCall(DemRemapSlab(b, "dem/wall_hist", IO_CKPT_REAL, NULL, PETSC_FALSE, &wh));
   for (PetscInt r = b->r0; r < b->r1; r++) {
-    const PetscInt  k = r - b->r0, nr = CNT(b, r, 0), *cnt = (PetscInt *)wc.v + wc.off[k], *idx = (PetscInt *)wi.v + wi.off[k];
+    const PetscInt  k = r - b->r0, nr = CNT(b, r, CK_N), *cnt = (PetscInt *)wc.v + wc.off[k], *idx = (PetscInt *)wi.v + wi.off[k];
     const PetscInt *id   = b->gid + b->goff[k];
     const double   *hist = (double *)wh.v + wh.off[k];
     PetscInt        e    = 0;
@@ -303,10 +314,10 @@ PetscErrorCode DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap)
   PetscCall(IoCkptGetPath(ck, &path));
   PetscCall(IoCkptReadRowsInto(ck, "dem/counters", IO_CKPT_INT, DEM_CKPT_NCOUNT, c));
   PetscCall(IoCkptReadRows(ck, "dem/x0", IO_CKPT_REAL, &n, (void **)&x0));
-  PetscCheck(n == 3 * c[0], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/x0 has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, 3 * c[0]);
+  PetscCheck(n == 3 * c[CK_N], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/x0 has %" PetscInt_FMT " entries on this rank, expected %" PetscInt_FMT, path, n, 3 * c[CK_N]);
   for (int k = 0; k < 3; k++) { /* the box as the migration sees it (exchange.c): open towards the domain's closed sides */
     const PetscBool first = (PetscBool)(dom->cstart[k] == 0 && !dom->periodic[k]), last = (PetscBool)(dom->cstart[k] + dom->ccount[k] == dom->cells[k] && !dom->periodic[k]);
-    for (PetscInt i = 0; i < c[0]; i++) out |= (x0[3 * i + k] < dom->sublo[k] && !first) || (x0[3 * i + k] >= dom->subhi[k] && !last);
+    for (PetscInt i = 0; i < c[CK_N]; i++) out |= (x0[3 * i + k] < dom->sublo[k] && !first) || (x0[3 * i + k] >= dom->subhi[k] && !last);
   }
   PetscCall(PetscFree(x0));
   PetscCallMPI(MPI_Allreduce(&out, &any, 1, MPI_INT, MPI_LOR, dem->comm));
