@@ -16,7 +16,8 @@
  * of the eager or lazy ways rot_pairs picks, and libccd and geom/ keep nothing between calls.
  * Wall motion (DemCkptWriteWalls): a translating plane's position and travel are in wall_state; a
  * removed plane's flag is dem/wall_removed. A drum (cylinder and caps turning at omega) has no
- * angle: its geometry is invariant under its rotation and its surface velocity is given. */
+ *  angle: its geometry is invariant under its rotation and its surface velocity is given.
+ * Read on another rank count or process grid, the state is redistributed (checkpoint_remap.c). */
 #include "dem/dem_impl.h"
 
 #define DEM_CKPT_NCOUNT 14 /* per-rank counters, see DemCkptCounters */
@@ -248,14 +249,17 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   const char *path;
   PetscInt    c[DEM_CKPT_NCOUNT], N, nwall = dem->walls.nwall;
   double      clk[3];
-  int         ranks;
-  PetscMPIInt size;
+  PetscBool   remap;
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptGetPath(ck, &path));
-  PetscCall(IoCkptGetRanks(ck, &ranks));
-  PetscCallMPI(MPI_Comm_size(dem->comm, &size));
-  PetscCheck(ranks == size, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: attribute ranks %d, this run has %d ranks (a checkpoint continues on the rank count that wrote it)", path, ranks, size);
+  PetscCall(DemCheckpointNeedsRemap(dem, ck, &remap));
+  if (remap) { /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
+    PetscCall(DemExternalCheckpointCheck(dem, ck));
+    PetscCall(DemCheckpointReadRemap(dem, ck));
+    PetscCall(DemCkptReadWalls(dem, ck));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(IoCkptReadRowsInto(ck, "dem/counters", IO_CKPT_INT, DEM_CKPT_NCOUNT, c));
   PetscCall(IoCkptReadRowsInto(ck, "dem/clock", IO_CKPT_REAL, 3, clk));
   PetscCheck(c[8] == nwall, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint has %" PetscInt_FMT " walls, the case's options make %" PetscInt_FMT, path, c[8], nwall);

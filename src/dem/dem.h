@@ -40,8 +40,10 @@ PetscErrorCode DemSetRestart(Dem dem, IoCkpt ck);
  * per-rank state a step reads, so that a run continued from it on the same rank count is bitwise
  * the uninterrupted run. */
 PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck);
-/* Collective. Replaces the state of a set-up Dem by a checkpoint's; refuses in one line a file of
- * another rank count, or one missing a dataset. */
+/* Collective. Replaces the state of a set-up Dem by a checkpoint's; one of another rank count is
+ * redistributed by position (the run continues as the uninterrupted one to round-off, bitwise
+ * with -dem_deterministic); refuses in one line a file missing a dataset or whose particles
+ * cannot be mapped onto the domain. */
 PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck);
 PetscErrorCode DemDestroy(Dem *dem);
 /* Prints the modules, the contact pre-flight figures (Tc, dt/Tc, overlap estimate). */

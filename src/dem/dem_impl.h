@@ -362,6 +362,7 @@ PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, doub
 PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                              /* rotation.c */
 PetscErrorCode DemExternalCheckpointWrite(Dem dem, IoCkpt ck);                                                                                        /* external.c */
 PetscErrorCode DemExternalCheckpointRead(Dem dem, IoCkpt ck);                                                                                         /* external.c */
+PetscErrorCode DemExternalCheckpointCheck(Dem dem, IoCkpt ck);                                                                                        /* external.c: a coupled checkpoint for a coupled case, a dry one for a dry case */
 void           DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h);                                              /* external.c */
 PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2); /* integrate.c */
 PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt);                  /* integrate.c */
@@ -371,3 +372,6 @@ double         DemLatticeSpacing(Dem dem);                                      
 double         DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
 PetscErrorCode DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
 PetscErrorCode DemRebuild(Dem dem);                                                                                                                   /* rebuild.c */
+PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt caprec);                                                              /* rebuild.c */
+PetscErrorCode DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap);                                                                         /* checkpoint_remap.c: another rank count or other boxes */
+PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck);                                                                                            /* checkpoint_remap.c */

@@ -61,18 +61,26 @@ PetscErrorCode DemExternalCheckpointWrite(Dem dem, IoCkpt ck)
 
 /* Collective. After the particles are read (dem->p.n set, arrays reserved): the coupling's
  * arrays; a coupled run's checkpoint and a dry one are not interchangeable. */
-PetscErrorCode DemExternalCheckpointRead(Dem dem, IoCkpt ck)
+PetscErrorCode DemExternalCheckpointCheck(Dem dem, IoCkpt ck)
 {
-  const PetscInt n = dem->p.n;
-  const char    *path;
-  PetscBool      has;
+  const char *path;
+  PetscBool   has;
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptGetPath(ck, &path));
   PetscCall(IoCkptHas(ck, "dem/ext_k", &has));
   PetscCheck(has || !dem->ext.on, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/ext_k is missing: a dry run's checkpoint cannot continue a coupled run (this case has -fluid_ or -cpl_ options)", path);
   PetscCheck(!has || dem->ext.on, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/ext_k shows a coupled run's checkpoint; this case is dry (give the coupled case's -fluid_ and -cpl_ options)", path);
-  if (!has) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemExternalCheckpointRead(Dem dem, IoCkpt ck)
+{
+  const PetscInt n = dem->p.n;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemExternalCheckpointCheck(dem, ck));
+  if (!dem->ext.on) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(IoCkptReadRowsInto(ck, "dem/ext_fext", IO_CKPT_REAL, 3 * n, dem->ext.fext));
   PetscCall(IoCkptReadRowsInto(ck, "dem/ext_k", IO_CKPT_REAL, n, dem->ext.kdrag));
   PetscCall(IoCkptReadRowsInto(ck, "dem/ext_u", IO_CKPT_REAL, 3 * n, dem->ext.udrag));

@@ -9,16 +9,12 @@
  * It sits above the files it calls; none of them calls it back. */
 #include "dem/dem_impl.h"
 
-/* Collective. Rebuilds exchange, cells, lists and springs. */
-PetscErrorCode DemRebuild(Dem dem)
+/* Collective. The rebuild from the migration on, with the springs as id-keyed records (sorted;
+ * freed here): DemRebuild's after it saved them, a checkpoint's read on another rank count. */
+PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt caprec)
 {
-  DemSpring *recs;
-  PetscInt   nrec, caprec;
-
   PetscFunctionBeginUser;
   dem->state++; /* migration and re-sorting change the local order */
-  PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));
-  PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
   dem->p.ng = 0;
   PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
   PetscCall(DemCheckInDomain(dem));
@@ -37,6 +33,19 @@ PetscErrorCode DemRebuild(Dem dem)
   for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->walls.wall[w].moved = 0;
   dem->need_build = PETSC_FALSE;
   PetscCall(PetscFree(recs));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Rebuilds exchange, cells, lists and springs. */
+PetscErrorCode DemRebuild(Dem dem)
+{
+  DemSpring *recs;
+  PetscInt   nrec, caprec;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));
+  PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
+  PetscCall(DemRebuildFrom(dem, recs, nrec, caprec));
   PetscCall(PetscLogEventEnd(DEM_Neighbours, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
