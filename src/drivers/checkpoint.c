@@ -1,7 +1,17 @@
 /* The drivers' checkpoints (see drivers.h): the options, the cadence, the file names and the
  * rotation that keeps the newest -io_checkpoint_keep; what goes into a checkpoint is the
- * driver's (its write callback). Files: <io_dir>/<prefix>_checkpoint_<step>.h5. */
+ * driver's (its write callback). Files: <io_dir>/<prefix>_checkpoint_<step>.h5. Each write is
+ * announced by "checkpoint: PATH" and a line with its size and wall time (tools/bench_checkpoint.sh
+ * reads it). */
+#include <sys/stat.h>
 #include "drivers/drivers.h"
+
+/* The size of file path in MB (0 when it cannot be read). */
+static double DriverFileMB(const char *path)
+{
+  struct stat st;
+  return stat(path, &st) ? 0.0 : (double)st.st_size / 1048576.0;
+}
 
 PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm)
 {
@@ -19,9 +29,10 @@ PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm)
 
 PetscErrorCode DriverCkptWrite(DriverCkpt *c, Io io, PetscInt step, DriverCkptWriter write, void *ctx)
 {
-  char        suffix[64];
-  PetscMPIInt rank;
-  IoCkpt      ck;
+  char           suffix[64];
+  PetscMPIInt    rank;
+  IoCkpt         ck;
+  PetscLogDouble t0, t1;
 
   PetscFunctionBeginUser;
   if (!io || step == c->step) PetscFunctionReturn(PETSC_SUCCESS);
@@ -33,11 +44,28 @@ PetscErrorCode DriverCkptWrite(DriverCkpt *c, Io io, PetscInt step, DriverCkptWr
   }
   PetscCall(PetscSNPrintf(suffix, sizeof suffix, "checkpoint_%06" PetscInt_FMT ".h5", step));
   PetscCall(IoGetFilePath(io, suffix, c->files[c->n], sizeof c->files[0]));
+  PetscCallMPI(MPI_Barrier(c->comm)); /* the write's time, not the slowest rank's step */
+  PetscCall(PetscTime(&t0));
   PetscCall(IoCkptCreate(c->comm, c->files[c->n], &ck));
   PetscCall(write(ctx, ck));
   PetscCall(IoCkptClose(&ck));
+  PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(c->comm, "checkpoint: %s\n", c->files[c->n]));
+  PetscCall(PetscPrintf(c->comm, "  written in %.3f s, %.1f MB\n", t1 - t0, rank ? 0.0 : DriverFileMB(c->files[c->n])));
   c->n++;
   c->step = step;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DriverCkptRestarted(DriverCkpt *c, PetscLogDouble t0)
+{
+  PetscLogDouble t1;
+  PetscMPIInt    rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(c->comm, &rank));
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscPrintf(c->comm, "restart: %s\n", c->restart));
+  PetscCall(PetscPrintf(c->comm, "  read and set up in %.3f s, %.1f MB\n", t1 - t0, rank ? 0.0 : DriverFileMB(c->restart)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -183,6 +183,7 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(DemHasConvexShapes(dem, &convex));
   PetscCheck(!convex || (!r->ckpt.set && !r->ckpt.restart[0]), r->comm, PETSC_ERR_SUP, "%s: checkpoints hold spheres only (the convex narrow phase's caches are not saved)", r->ckpt.set ? "-io_checkpoint_interval" : "-restart");
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
+  PetscCall(PetscTime(&t0));
   if (r->ckpt.restart[0]) {
     PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
     PetscCall(DemSetRestart(dem, ck));
@@ -191,7 +192,7 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   if (ck) {
     PetscCall(DemSetRestart(dem, NULL));
     PetscCall(IoCkptClose(&ck));
-    PetscCall(PetscPrintf(r->comm, "restart: %s\n", r->ckpt.restart));
+    PetscCall(DriverCkptRestarted(&r->ckpt, t0));
   }
   PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
   if (lb) PetscCall(BalanceSetUp(lb));
