@@ -34,7 +34,8 @@ if [ ! -f $tile ] || [ bin/sable -nt $tile ]; then
 fi
 cat > $O/tile.py <<'PY'
 #!/usr/bin/python3
-# tile.py IN OUT TX TY LX LY: the particles of frame IN repeated TX x TY times along x and y
+# tile.py IN OUT TX TY LX LY: the particles of frame IN repeated TX x TY times along x and y,
+# every other tile mirrored
 import sys, h5py, numpy as np
 src, dst, tx, ty, lx, ly = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), float(sys.argv[5]), float(sys.argv[6])
 with h5py.File(src, "r") as f, h5py.File(dst, "w") as g:
@@ -46,9 +47,17 @@ with h5py.File(src, "r") as f, h5py.File(dst, "w") as g:
         for j in range(ty):
             for i in range(tx):
                 b = a.copy()
-                if name == "position":
-                    b[:, 0] += i * lx
-                    b[:, 1] += j * ly
+                if name == "position":  # odd tiles mirrored: each seam is a plane of symmetry
+                    b[:, 0] = i * lx + (lx - b[:, 0] if i % 2 else b[:, 0])
+                    b[:, 1] = j * ly + (ly - b[:, 1] if j % 2 else b[:, 1])
+                if name == "velocity":
+                    b[:, 0] *= -1 if i % 2 else 1
+                    b[:, 1] *= -1 if j % 2 else 1
+                if name == "angular_velocity":  # a pseudo-vector: the mirrored axis keeps its sign
+                    b[:, 1] *= -1 if i % 2 else 1
+                    b[:, 2] *= -1 if i % 2 else 1
+                    b[:, 0] *= -1 if j % 2 else 1
+                    b[:, 2] *= -1 if j % 2 else 1
                 if name == "id":
                     b = b + (j * tx + i) * idmax
                 out.append(b)
