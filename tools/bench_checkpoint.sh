@@ -65,8 +65,10 @@ with h5py.File(src, "r") as f, h5py.File(dst, "w") as g:
     g.attrs["time"] = 0.0
 PY
 chmod +x $O/tile.py
-echo "| N | ranks | write (s) | write (us / particle) | read + set-up (s) | read (us / particle) | size (MB) | bytes / particle | step (s) | write / 100 steps |"
+echo "checkpoint bench, $(date -u '+%Y-%m-%d %H:%M UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
+echo "| N | ranks | write (s) | write (us / particle) | read + set-up (s) | read + set-up (us / particle) | size (MB) | bytes / particle | step (s) | write / 100 steps |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
+: > $O/table.md
 for s in $SIZES; do
   case $s in
     100k) TX=5 TY=2 RANKS=$RANKS_100K ;;
@@ -96,6 +98,8 @@ for s in $SIZES; do
       echo "($lp - $wk) / $STEPS" | bc -l
     done | median)
     awk -v n=$N -v r=$r -v w=$w -v rd=$rd -v mb=$mb -v st=$st 'BEGIN {
-      printf "| %d | %d | %.3f | %.2f | %.3f | %.2f | %.1f | %.0f | %.4f | %.3f |\n", n, r, w, 1e6 * w / n, rd, 1e6 * rd / n, mb, mb * 1048576 / n, st, w / (100 * st) }'
+      printf "| %d | %d | %.3f | %.2f | %.3f | %.2f | %.1f | %.0f | %.4f | %.3f |\n", n, r, w, 1e6 * w / n, rd, 1e6 * rd / n, mb, mb * 1048576 / n, st, w / (100 * st) }' | tee -a $O/table.md
   done
 done
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
+awk -F'|' '$2 + 0 == 1000000 && $3 + 0 == 1 {r = $11 + 0; printf "at 10^6 spheres a checkpoint costs %.3f x 100 steps (target < 1: %s)\n", r, r < 1 ? "met" : "NOT met"}' $O/table.md
