@@ -1,8 +1,9 @@
 /* The drivers' checkpoints (see drivers.h): the options, the cadence, the file names and the
  * rotation that keeps the newest -io_checkpoint_keep; what goes into a checkpoint is the
  * driver's (its write callback). Files: <io_dir>/<prefix>_checkpoint_<step>.h5. Each write is
- * announced by "checkpoint: PATH" and a line with its size and wall time (tools/bench_checkpoint.sh
- * reads it). */
+ * announced by "checkpoint: PATH" and a line with its wall time and size, a restart by
+ * "restart: PATH" and the time of reading it with the set-up (tools/bench_checkpoint.sh reads
+ * both). */
 #include <sys/stat.h>
 #include "drivers/drivers.h"
 
