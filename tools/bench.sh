@@ -4,7 +4,8 @@
 # the falling phase (the first 2,000 steps from the lattice) and for the settled bed (2,000 steps
 # from the state at 0.8 s simulated), median of 3 runs, and the peak memory per particle
 # (marginal: the difference of peak RSS between the two sizes over the difference in count);
-# then the fluid (tools/bench_fluid.sh) and the coupled fluidized bed (tools/bench_fluidized.sh).
+# then the fluid (tools/bench_fluid.sh), the coupled fluidized bed (tools/bench_fluidized.sh) and
+# the checkpoints of 10^5 and 10^6 settled spheres (tools/bench_checkpoint.sh).
 # Usage: tools/bench.sh [sizes], sizes among 10k 100k (default both). Output in bench-out/.
 set -eu
 cd "$(dirname "$0")/.."
@@ -41,3 +42,4 @@ if [ "$(grep -c . $O/results.txt)" -ge 2 ]; then
 fi
 [ -x build/tools/bench_fluid ] || [ ! -x tools/bench_fluid.sh ] || tools/bench_fluid.sh
 tools/bench_fluidized.sh
+tools/bench_checkpoint.sh

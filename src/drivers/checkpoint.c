@@ -6,10 +6,22 @@
  * ones: a physics option changed, added or removed is one warning line naming it; options of the
  * run's length, output, checkpoints, progress and logging may change silently (a longer
  * -dem_t_end or -cpl_t_end extends a run). On a stop signal the drivers write a checkpoint at the
- * step the ranks agreed on before ending (DriverCkptStop). Files: <io_dir>/<prefix>_checkpoint_<step>.h5. */
+ * step the ranks agreed on before ending (DriverCkptStop). Files: <io_dir>/<prefix>_checkpoint_<step>.h5.
+ * Each write is announced by "checkpoint: PATH" and a line with its wall time and size, a
+ * restart by "restart: PATH" and the time of reading it with the set-up (tools/bench_checkpoint.sh
+ * reads both). */
+#include <sys/stat.h>
+
 #include "drivers/drivers.h"
 #include <ctype.h>
 #include <strings.h>
+
+/* The size of file path in MB (0 when it cannot be read). */
+static double DriverFileMB(const char *path)
+{
+  struct stat st;
+  return stat(path, &st) ? 0.0 : (double)st.st_size / 1048576.0;
+}
 
 PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm)
 {
@@ -27,9 +39,10 @@ PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm)
 
 PetscErrorCode DriverCkptWrite(DriverCkpt *c, Io io, PetscInt step, DriverCkptWriter write, void *ctx)
 {
-  char        suffix[64];
-  PetscMPIInt rank;
-  IoCkpt      ck;
+  char           suffix[64];
+  PetscMPIInt    rank;
+  IoCkpt         ck;
+  PetscLogDouble t0, t1;
 
   PetscFunctionBeginUser;
   if (!io || step == c->step) PetscFunctionReturn(PETSC_SUCCESS);
@@ -41,10 +54,14 @@ PetscErrorCode DriverCkptWrite(DriverCkpt *c, Io io, PetscInt step, DriverCkptWr
   }
   PetscCall(PetscSNPrintf(suffix, sizeof suffix, "checkpoint_%06" PetscInt_FMT ".h5", step));
   PetscCall(IoGetFilePath(io, suffix, c->files[c->n], sizeof c->files[0]));
+  PetscCallMPI(MPI_Barrier(c->comm)); /* the write's time, not the slowest rank's step */
+  PetscCall(PetscTime(&t0));
   PetscCall(IoCkptCreate(c->comm, c->files[c->n], &ck));
   PetscCall(write(ctx, ck));
   PetscCall(IoCkptClose(&ck));
+  PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(c->comm, "checkpoint: %s\n", c->files[c->n]));
+  PetscCall(PetscPrintf(c->comm, "  written in %.3f s, %.1f MB\n", t1 - t0, rank ? 0.0 : DriverFileMB(c->files[c->n])));
   c->n++;
   c->step = step;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -186,5 +203,18 @@ PetscErrorCode DriverCkptReadRun(MPI_Comm comm, Io io, IoCkpt ck)
   PetscCall(IoCkptReadShared(ck, "run/options", IO_CKPT_BYTE, (PetscInt)n, old));
   PetscCall(DriverCompareOptions(comm, old));
   PetscCall(PetscFree(old));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DriverCkptRestarted(DriverCkpt *c, PetscLogDouble t0)
+{
+  PetscLogDouble t1;
+  PetscMPIInt    rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(c->comm, &rank));
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscPrintf(c->comm, "restart: %s\n", c->restart));
+  PetscCall(PetscPrintf(c->comm, "  read and set up in %.3f s, %.1f MB\n", t1 - t0, rank ? 0.0 : DriverFileMB(c->restart)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -312,12 +312,14 @@ static PetscErrorCode CoupledRestoreColumn(Coupled *c, const PetscReal v[COUPLED
  * first; the fluid and the coupling after the coupling's set-up, which sets the porosity). */
 static PetscErrorCode CoupledSetUp(Coupled *c)
 {
-  DriverCkpt *ck = &c->r->ckpt;
-  IoCkpt      f  = NULL;
+  DriverCkpt    *ck = &c->r->ckpt;
+  IoCkpt         f  = NULL;
+  PetscLogDouble t0;
 
   PetscFunctionBeginUser;
   c->next      = c->r->progress_dt;
   c->next_ckpt = ck->dt;
+  PetscCall(PetscTime(&t0));
   if (ck->restart[0]) {
     PetscCall(IoCkptOpen(c->r->comm, ck->restart, &f));
     PetscCall(BalanceCheckpointRead(c->lb, f)); /* the checkpoint's cuts first: the per-rank state lives on them */
@@ -337,7 +339,7 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
     PetscCall(CoupledRestoreColumn(c, v));
     PetscCall(DriverCkptReadRun(c->r->comm, c->io, f)); /* refuses another run's frames before running */
     PetscCall(IoCkptClose(&f));
-    PetscCall(PetscPrintf(c->r->comm, "restart: %s\n", ck->restart));
+    PetscCall(DriverCkptRestarted(ck, t0));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

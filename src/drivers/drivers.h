@@ -27,6 +27,9 @@ PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm);
  * without io), announces it ("checkpoint: PATH") and removes this run's checkpoints beyond the
  * newest -io_checkpoint_keep. */
 PetscErrorCode DriverCkptWrite(DriverCkpt *c, Io io, PetscInt step, DriverCkptWriter write, void *ctx);
+/* Collective. Announces the restart ("restart: PATH") and its wall time since t0 (PetscTime
+ * before the checkpoint was opened) with the file's size. */
+PetscErrorCode DriverCkptRestarted(DriverCkpt *c, PetscLogDouble t0);
 /* Collective. A run loop's stop on the agreed signal sig at time t, step step: writes this
  * step's checkpoint through write (when c, io and write are given: the grace alarm cancelled
  * first) and ends with SableStopError naming it and the index. Never returns success. */

@@ -194,6 +194,7 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(SableCheckOptionsUsed(r->comm));
   PetscCall(DemHasConvexShapes(dem, &convex));
   PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
+  PetscCall(PetscTime(&t0));
   if (r->ckpt.restart[0]) {
     PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
     /* the checkpoint's cuts first: the DEM's per-rank state lives on them */
@@ -205,7 +206,7 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
     PetscCall(DriverCkptReadRun(r->comm, io, ck)); /* refuses another run's frames before running */
     PetscCall(DemSetRestart(dem, NULL));
     PetscCall(IoCkptClose(&ck));
-    PetscCall(PetscPrintf(r->comm, "restart: %s\n", r->ckpt.restart));
+    PetscCall(DriverCkptRestarted(&r->ckpt, t0));
   }
   PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
   if (lb) PetscCall(BalanceSetUp(lb));
