@@ -375,17 +375,24 @@ PetscErrorCode BalanceCheckpointWrite(Balance b, IoCkpt ck)
 
 /* Collective. The checkpoint's cuts onto the Domain, after checking that they belong to this
  * run's grid and process grid. */
-static PetscErrorCode BalanceCkptReadCuts(Balance b, IoCkpt ck, const char *path)
+/* Collective. Whether the checkpoint's grid and process grid are this run's (then its cuts apply). */
+static PetscErrorCode BalanceCkptSameGrid(Balance b, IoCkpt ck, PetscBool *same)
 {
   Domain  *dom = b->dom;
-  PetscInt grid[6], np = dom->nranks[0] + dom->nranks[1] + dom->nranks[2], *cuts, *l[3];
+  PetscInt grid[6];
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptReadShared(ck, "lb/grid", IO_CKPT_INT, 6, grid));
-  PetscCheck(grid[0] == dom->cells[0] && grid[1] == dom->cells[1] && grid[2] == dom->cells[2] && grid[3] == dom->nranks[0] && grid[4] == dom->nranks[1] && grid[5] == dom->nranks[2], b->comm, PETSC_ERR_FILE_UNEXPECTED,
-             "-restart %s: the dataset lb/grid holds %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells on %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, this run has %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " on %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT
-             " (continue with the options that wrote it: -domain_cell, -da_grid_x/y/z, -da_processors_x/y/z, -lb_scheme)",
-             path, grid[0], grid[1], grid[2], grid[3], grid[4], grid[5], dom->cells[0], dom->cells[1], dom->cells[2], dom->nranks[0], dom->nranks[1], dom->nranks[2]);
+  *same = (PetscBool)(grid[0] == dom->cells[0] && grid[1] == dom->cells[1] && grid[2] == dom->cells[2] && grid[3] == dom->nranks[0] && grid[4] == dom->nranks[1] && grid[5] == dom->nranks[2]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode BalanceCkptReadCuts(Balance b, IoCkpt ck)
+{
+  Domain  *dom = b->dom;
+  PetscInt np  = dom->nranks[0] + dom->nranks[1] + dom->nranks[2], *cuts, *l[3];
+
+  PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(np, &cuts));
   PetscCall(IoCkptReadShared(ck, "lb/cuts", IO_CKPT_INT, np, cuts));
   l[0] = cuts;
@@ -403,6 +410,7 @@ PetscErrorCode BalanceCheckpointRead(Balance b, IoCkpt ck)
   PetscReal   clk[LB_CKPT_NCLOCK], since[2];
   int         ranks;
   PetscMPIInt size;
+  PetscBool   same = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptGetPath(ck, &path));
@@ -415,11 +423,12 @@ PetscErrorCode BalanceCheckpointRead(Balance b, IoCkpt ck)
   b->t_total    = clk[1];
   b->alpha_used = clk[2];
   b->beta_used  = clk[3];
-  if (ranks != size) { /* the cuts belong to another process grid: the DMDA's, and a check soon */
-    PetscCall(PetscPrintf(b->comm, "lb: restart on %d ranks from a checkpoint of %d ranks: default cuts, not the checkpoint's%s\n", (int)size, ranks, b->scheme == LB_NONE ? "" : "; the balancer checks after the first step"));
+  if (ranks == size) PetscCall(BalanceCkptSameGrid(b, ck, &same));
+  if (!same) { /* the cuts belong to another grid or process grid: the DMDA's, and a check soon */
+    PetscCall(PetscPrintf(b->comm, "lb: restart on %d ranks (process grid %d x %d x %d) from a checkpoint of %d ranks%s: default cuts, not the checkpoint's%s\n", (int)size, (int)b->dom->nranks[0], (int)b->dom->nranks[1], (int)b->dom->nranks[2], ranks, ranks == size ? " on another grid or process grid (lb/grid)" : "", b->scheme == LB_NONE ? "" : "; the balancer checks after the first step"));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(BalanceCkptReadCuts(b, ck, path));
+  PetscCall(BalanceCkptReadCuts(b, ck));
   PetscCall(IoCkptReadRowsInto(ck, "lb/measured", IO_CKPT_REAL, 2, since));
   b->last_step  = st[0];
   b->done_once  = (PetscBool)(st[1] != 0);

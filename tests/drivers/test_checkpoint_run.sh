@@ -49,11 +49,15 @@ for np in 1 2; do
   [ $np -eq 1 ] && L="" # one process without the launcher: its lines reach the log at once
   mkdir -p "$d/full" "$d/sig"
   (cd "$d/full" && $L "$S" $SCENE $RUN -io_dir out >log 2>&1)
-  (cd "$d/sig" && exec $L "$S" $SCENE $RUN -io_dir out >log 2>&1) &
+  # the stopped run would go on far beyond T (a run to T takes under a second here, less than
+  # the launcher's start); its continuation ends at T like the uninterrupted one
+  (cd "$d/sig" && exec $L "$S" $SCENE $RUN -dem_t_end 30 -io_dir out >log 2>&1) &
   pid=$!
   i=0 # the run is under way once its second frame is in place (mpiexec may hold the log's lines back)
   while [ ! -f "$d/sig/out/sable_000001.h5" ] && [ $i -lt 1200 ] && kill -0 $pid 2>/dev/null; do sleep 0.05; i=$((i + 1)); done
-  kill -TERM $pid 2>/dev/null
+  # every rank gets the signal, as a batch system sends it to every task (mpiexec passes one on
+  # late: the run is then past T)
+  if [ $np -eq 1 ]; then kill -TERM $pid 2>/dev/null; else pkill -TERM -P $pid 2>/dev/null; fi
   wait $pid
   rc=$?
   ck=$(sed -n 's/^checkpoint: //p' "$d/sig/log" | tail -n 1)
