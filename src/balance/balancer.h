@@ -32,10 +32,10 @@ PetscErrorCode BalanceView(Balance lb, PetscViewer viewer);
  * collective, on -restart right after the checkpoint is opened and BEFORE the DEM, the fluid and
  * the coupling are set up (it replaces the Domain's DMDA by one with the checkpoint's cuts; they
  * build their layouts from it), and before BalanceSetUp (which then keeps the schedule). On
- * another rank count the checkpoint's cuts belong to another process grid: the Domain keeps the
- * default cuts, the counters continue, the schedule starts afresh (a check after the first step)
- * and a log line says so. Errors name the file and the dataset (lb/grid: another grid or process
- * grid on the same rank count). */
+ * another rank count, grid or process grid the checkpoint's cuts do not apply: the Domain keeps
+ * the default cuts (the DEM redistributes its particles), the counters continue, the schedule
+ * starts afresh (a check after the first step) and a log line says so. Errors name the file and
+ * the dataset. */
 PetscErrorCode BalanceCheckpointWrite(Balance lb, IoCkpt ck);
 PetscErrorCode BalanceCheckpointRead(Balance lb, IoCkpt ck);
 PetscErrorCode BalanceDestroy(Balance *lb);
