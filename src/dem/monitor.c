@@ -2,7 +2,8 @@
  * user can compute it again from a frame (position, id and the shapes' masses):
  *   bed height h95: along gravity, the centre coordinate of the particle at which the solids mass
  *     counted from the bottom first reaches 95% (the smallest particle coordinate c with
- *     m(x <= c) >= 0.95 M, "bottom" and "<=" in the sense of gravity); exact, found by bisection
+ *     m(x <= c) >= 0.95 M (1 - 1e-12), "bottom" and "<=" in the sense of gravity; the slack keeps
+ *     the round-off of the mass sums from choosing between two particles); exact, found by bisection
  *     on the ordered bit patterns of the coordinates (64 reductions, no gather);
  *   mean height: the mass-weighted mean centre coordinate along gravity (the centre of mass);
  *   mass and count of the particles whose centres (wrapped into periodic boxes, as the frames
@@ -74,7 +75,7 @@ PetscErrorCode DemGetBedHeights(Dem dem, PetscReal frac, PetscReal *h, PetscReal
     for (PetscInt i = 0; i < dem->p.n; i++)
       if (dem_order_key(up * dem->p.x[3 * i + axis]) <= mid) below += dem_mass_of(dem, i);
     PetscCallMPI(MPI_Allreduce(&below, &all, 1, MPI_DOUBLE, MPI_SUM, dem->comm));
-    if (all >= frac * tot[0]) ghi = mid;
+    if (all >= frac * tot[0] * (1 - 1e-12)) ghi = mid; /* slack: with equal masses the count reaching frac M is exact, not its round-off */
     else glo = mid + 1;
   }
   *h = up * dem_key_value(glo);

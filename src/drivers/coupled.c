@@ -19,6 +19,7 @@ struct _p_CoupledRun {
   PetscReal  t_end, progress_dt, probe[2]; /* s, s, m */
   PetscBool  t_end_set, probe_set;
   DriverCkpt ckpt;
+  DriverMon  mon;
 };
 
 PetscErrorCode DriverIsCoupled(PetscBool *on)
@@ -58,6 +59,7 @@ PetscErrorCode CoupledRunSetFromOptions(CoupledRun r)
 PetscErrorCode CoupledRunDestroy(CoupledRun *r)
 {
   PetscFunctionBeginUser;
+  if (*r) PetscCall(DriverMonDestroy(&(*r)->mon));
   PetscCall(PetscFree(*r));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -145,6 +147,7 @@ static PetscErrorCode CoupledCheckpointWrite(void *ctx, IoCkpt ck)
   PetscCall(BalanceCheckpointWrite(c->lb, ck));
   PetscCall(IoCkptWriteShared(ck, "run/coupled", IO_CKPT_REAL, COUPLED_CKPT_NRUN, v));
   PetscCall(DriverCkptWriteRun(c->io, ck));
+  PetscCall(MonCheckpointWrite(c->r->mon.mon, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -155,6 +158,17 @@ static PetscErrorCode CoupledCheckpoint(Coupled *c)
   PetscFunctionBeginUser;
   PetscCall(CplGetTime(c->cpl, NULL, &step));
   PetscCall(DriverCkptWrite(&c->r->ckpt, c->io, step, CoupledCheckpointWrite, c));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. A monitor row when one is due (st: the last coupling step's, NULL before the first). */
+static PetscErrorCode CoupledMonitor(const Coupled *c, const CplStats *st)
+{
+  DriverMonInput in = {0, 0, c->dem, c->fl, st};
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetTime(c->cpl, &in.t, &in.step));
+  PetscCall(DriverMonRow(&c->r->mon, &in));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -238,6 +252,7 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
   PetscCall(PetscTime(&t0));
   PetscCall(IoDue(c->io, t, &due));
   if (due) PetscCall(CoupledOutput(c));
+  PetscCall(CoupledMonitor(c, NULL));
   while (t < r->t_end - 0.5 * dt) {
     int sig;
     PetscCall(SableStopPoll(r->comm, &sig));
@@ -247,6 +262,7 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
     PetscCall(BalanceCheck(c->lb, PETSC_FALSE, NULL));
     PetscCall(IoDue(c->io, t, &due));
     if (due) PetscCall(CoupledOutput(c));
+    PetscCall(CoupledMonitor(c, &st));
     PetscCall(CoupledColumnDrop(c->cpl, r->dom, &c->col, &dp));
     if (t > 0.5 * r->t_end) {
       c->avg += dp;
@@ -331,6 +347,7 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
   PetscCall(FluidSetCheckpointing(c->fl, PETSC_TRUE)); /* also a stop signal writes a checkpoint */
   PetscCall(FluidSetUp(c->fl));
   PetscCall(CplSetUp(c->cpl));
+  PetscCall(DriverMonSetUp(&c->r->mon, c->io));
   if (f) {
     PetscReal v[COUPLED_CKPT_NRUN];
     PetscCall(FluidCheckpointRead(c->fl, f));
@@ -338,6 +355,7 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
     PetscCall(IoCkptReadShared(f, "run/coupled", IO_CKPT_REAL, COUPLED_CKPT_NRUN, v));
     PetscCall(CoupledRestoreColumn(c, v));
     PetscCall(DriverCkptReadRun(c->r->comm, c->io, f)); /* refuses another run's frames before running */
+    PetscCall(MonCheckpointRead(c->r->mon.mon, f));
     PetscCall(IoCkptClose(&f));
     PetscCall(DriverCkptRestarted(ck, t0));
   }
@@ -363,6 +381,7 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
   if (!help) {
     PetscCall(CoupledCheckDryOptions(r->comm));
     PetscCall(DriverCkptSetFromOptions(&r->ckpt, r->comm)); /* here, not with the run's options: -help lists them once, with the dry run's */
+    PetscCall(DriverMonSetFromOptions(&r->mon, r->comm, PETSC_TRUE));
     PetscCall(SableCheckOptionsUsed(r->comm));
     PetscCall(DemGetFrozen(dem, &c.frozen));
     PetscCall(DemHasConvexShapes(dem, &convex));

@@ -49,7 +49,7 @@ PetscErrorCode DriverCkptReadRun(MPI_Comm comm, Io io, IoCkpt ck);
 typedef struct {
   MPI_Comm       comm;
   Mon            mon;
-  PetscBool      coupled;
+  PetscBool      coupled, ready; /* ready: columns declared (DriverMonSetUp with a monitor file) */
   PetscInt       nbox, boxid[8], ndp, dpid[8], dp[8][2];
   PetscReal      box[8][6], probe[8][3];
   PetscBool      probe_set[8];
@@ -65,9 +65,10 @@ typedef struct {
   Fluid           fluid;
   const CplStats *cst;
 } DriverMonInput;
-PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, Io io, PetscBool coupled);
-/* Collective. Declares the columns; the loop's wall clock starts. */
-PetscErrorCode DriverMonSetUp(DriverMon *m);
+PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool coupled);
+/* Collective. The file's default name from io; declares the columns; the loop's wall clock
+ * starts. */
+PetscErrorCode DriverMonSetUp(DriverMon *m, Io io);
 /* Collective. A row when one is due at in->t. */
 PetscErrorCode DriverMonRow(DriverMon *m, const DriverMonInput *in);
 PetscErrorCode DriverMonDestroy(DriverMon *m);

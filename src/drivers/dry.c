@@ -20,6 +20,7 @@ struct _p_DryRun {
   PetscReal  t_end, progress_dt; /* s */
   PetscBool  t_end_set;
   DriverCkpt ckpt;
+  DriverMon  mon;
   Dem        dem; /* what a checkpoint holds: the DEM's state, the balancer's and the run's (io, options) */
   Balance    lb;  /* may be NULL */
   Io         io;
@@ -41,12 +42,14 @@ PetscErrorCode DryRunSetFromOptions(DryRun r)
   PetscCall(SableOptionsReal("-dem_progress_interval", "Simulated time between progress lines", "s; 0 = no progress lines", "[0,inf)", r->progress_dt, &r->progress_dt, NULL));
   PetscOptionsEnd();
   PetscCall(DriverCkptSetFromOptions(&r->ckpt, r->comm));
+  PetscCall(DriverMonSetFromOptions(&r->mon, r->comm, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DryRunDestroy(DryRun *r)
 {
   PetscFunctionBeginUser;
+  if (*r) PetscCall(DriverMonDestroy(&(*r)->mon));
   PetscCall(PetscFree(*r));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -75,6 +78,7 @@ static PetscErrorCode DryCheckpointWrite(void *ctx, IoCkpt ck)
   PetscCall(DemCheckpointWrite(r->dem, ck));
   if (r->lb) PetscCall(BalanceCheckpointWrite(r->lb, ck));
   PetscCall(DriverCkptWriteRun(r->io, ck));
+  PetscCall(MonCheckpointWrite(r->mon.mon, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -86,6 +90,17 @@ static PetscErrorCode DryCheckpoint(DryRun r)
   PetscFunctionBeginUser;
   PetscCall(DemGetTime(r->dem, NULL, &step));
   PetscCall(DriverCkptWrite(&r->ckpt, r->io, step, DryCheckpointWrite, r));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. A monitor row when one is due. */
+static PetscErrorCode DryMonitor(DryRun r, Dem dem)
+{
+  DriverMonInput in = {0, 0, dem, NULL, NULL};
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetTime(dem, &in.t, &in.step));
+  PetscCall(DriverMonRow(&r->mon, &in));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -149,6 +164,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
     PetscCall(IoDue(io, t, &due));
     if (due) PetscCall(DryOutput(dem, io));
   }
+  PetscCall(DryMonitor(r, dem));
   while (t < r->t_end - 0.5 * dt) {
     PetscCall(DemGetStopSignal(dem, &sig)); /* agreed in the last step's reduction */
     if (sig) {                              /* a checkpoint of this step, then the stop */
@@ -163,6 +179,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
       PetscCall(IoDue(io, t, &due));
       if (due) PetscCall(DryOutput(dem, io));
     }
+    PetscCall(DryMonitor(r, dem));
     if (r->progress_dt > 0 && t >= next - 0.5 * dt) {
       PetscCall(DryProgress(r, dem, t0, s0));
       next += r->progress_dt;
@@ -202,8 +219,10 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
     PetscCall(DemSetRestart(dem, ck));
   }
   PetscCall(DemSetUp(dem)); /* a checkpoint of another rank count or format is refused here */
+  PetscCall(DriverMonSetUp(&r->mon, io));
   if (ck) {
     PetscCall(DriverCkptReadRun(r->comm, io, ck)); /* refuses another run's frames before running */
+    PetscCall(MonCheckpointRead(r->mon.mon, ck));
     PetscCall(DemSetRestart(dem, NULL));
     PetscCall(IoCkptClose(&ck));
     PetscCall(DriverCkptRestarted(&r->ckpt, t0));

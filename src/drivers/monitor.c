@@ -13,7 +13,7 @@
 
 #define DRIVER_MON_MAX 8
 
-PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, Io io, PetscBool coupled)
+PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool coupled)
 {
   char      opt[64];
   PetscReal v[6];
@@ -23,7 +23,7 @@ PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, Io io, Petsc
   m->comm    = comm;
   m->coupled = coupled;
   PetscCall(MonCreate(comm, &m->mon));
-  PetscCall(MonSetFromOptions(m->mon, io));
+  PetscCall(MonSetFromOptions(m->mon));
   PetscOptionsBegin(comm, NULL, "Monitor contents", NULL);
   for (int k = 0; k < DRIVER_MON_MAX; k++) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_box_%d", k));
@@ -33,10 +33,11 @@ PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, Io io, Petsc
     m->boxid[m->nbox] = k;
     PetscCall(PetscArraycpy(m->box[m->nbox++], v, 6));
   }
-  if (coupled) {
+  { /* read in every run (-help lists them once); a dry run has no fluid to probe */
     for (int k = 0; k < DRIVER_MON_MAX; k++) {
       PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_probe_%d", k));
-      PetscCall(SableOptionsRealN(opt, "A point whose fluid pressure the monitor reports: x,y,z", "m", v, 0, 3, &set));
+      PetscCall(SableOptionsRealN(opt, "A point whose fluid pressure the monitor reports (coupled runs): x,y,z", "m", v, 0, 3, &set));
+      PetscCheck(!set || coupled, comm, PETSC_ERR_ARG_INCOMP, "%s: a probe of the fluid pressure; this run is dry (no -fluid_ or -cpl_ options)", opt);
       m->probe_set[k] = set;
       if (set) PetscCall(PetscArraycpy(m->probe[k], v, 3));
     }
@@ -87,13 +88,15 @@ static PetscErrorCode DriverMonColumns(DriverMon *m)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DriverMonSetUp(DriverMon *m)
+PetscErrorCode DriverMonSetUp(DriverMon *m, Io io)
 {
   PetscBool on;
 
   PetscFunctionBeginUser;
+  PetscCall(MonSetUp(m->mon, io));
   PetscCall(MonIsActive(m->mon, &on));
   if (on) PetscCall(DriverMonColumns(m));
+  m->ready = on;
   PetscCall(PetscTime(&m->wall0));
   m->wall_last = m->wall0;
   m->step_last = -1;
@@ -109,6 +112,7 @@ PetscErrorCode DriverMonRow(DriverMon *m, const DriverMonInput *in)
   PetscLogDouble now;
 
   PetscFunctionBeginUser;
+  if (!m->ready) PetscFunctionReturn(PETSC_SUCCESS); /* no monitor, or a loop run without DriverMonSetUp */
   PetscCall(MonDue(m->mon, in->t, &due));
   if (!due) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(MonGetColumnCount(m->mon, &ncol));

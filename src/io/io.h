@@ -118,12 +118,14 @@ PetscErrorCode IoCkptReadSlabAll(IoCkpt ck, const char *name, IoCkptType type, l
 
 /* The monitor file (monitor.c): a CSV time series, header "name [unit]" per column, one row per
  * -mon_interval of simulated time, written by rank 0 and flushed row by row; announced by the log
- * line "monitor: PATH" at its first row. Life cycle: MonCreate -> MonSetFromOptions ->
+ * line "monitor: PATH" at its first row. Life cycle: MonCreate -> MonSetFromOptions -> MonSetUp ->
  * MonAddColumn (all columns, before the first row) -> MonDue / MonWriteRow -> MonDestroy. */
 typedef struct _p_Mon *Mon;
 PetscErrorCode         MonCreate(MPI_Comm comm, Mon *mon);
 /* Reads -mon_interval (s, 0 = none) and -mon_file (default <io_dir>/<io_prefix>_monitor.csv). */
-PetscErrorCode MonSetFromOptions(Mon mon, Io io);
+PetscErrorCode MonSetFromOptions(Mon mon);
+/* Collective. The default file name from io (its directory made). */
+PetscErrorCode MonSetUp(Mon mon, Io io);
 /* Not collective. Whether a monitor file is asked for (NULL: no). */
 PetscErrorCode MonIsActive(Mon mon, PetscBool *on);
 PetscErrorCode MonAddColumn(Mon mon, const char *name, const char *unit);

@@ -31,15 +31,21 @@ PetscErrorCode MonCreate(MPI_Comm comm, Mon *mon)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode MonSetFromOptions(Mon mon, Io io)
+PetscErrorCode MonSetFromOptions(Mon mon)
 {
-  char dflt[PETSC_MAX_PATH_LEN];
-
   PetscFunctionBeginUser;
   PetscOptionsBegin(mon->comm, NULL, "Monitor (a CSV time series)", NULL);
   PetscCall(SableOptionsReal("-mon_interval", "Simulated time between monitor rows", "s; 0 = no monitor file", "[0,inf)", mon->interval, &mon->interval, NULL));
   PetscCall(PetscOptionsString("-mon_file", "Monitor file (CSV); default <io_dir>/<io_prefix>_monitor.csv", NULL, mon->path, mon->path, sizeof mon->path, NULL));
   PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MonSetUp(Mon mon, Io io)
+{
+  char dflt[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBeginUser;
   if (mon->interval > 0 && !mon->path[0]) {
     PetscCall(IoGetFilePath(io, "monitor.csv", dflt, sizeof dflt));
     PetscCall(PetscStrncpy(mon->path, dflt, sizeof mon->path));
