@@ -2,9 +2,9 @@
 # Exact checkpoints of a dry run: for each contact law (linear_nohist, linear, hertz) on 1 and 2
 # ranks, a run to T and a run to T/2 that writes a checkpoint then continued with -restart to T
 # end with bitwise the same final frame (every dataset compared with h5py). A bad checkpoint
-# (truncated, missing, without a dataset) is refused: exit non-zero, one error line. Convex
-# shapes, moving walls and periodic boxes: test_checkpoint_scenes.sh; another rank count:
-# test_checkpoint_ranks.sh.
+# (truncated, of another format version, missing, without a dataset) is refused: exit non-zero,
+# one error line. Convex shapes, moving walls and periodic boxes: test_checkpoint_scenes.sh;
+# another rank count: test_checkpoint_ranks.sh.
 cd "$(dirname "$0")/../.." || exit 1
 S=$(pwd)/${BIN:-bin}/sable
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -67,3 +67,5 @@ expect "truncated" "truncated" 1 "$W/truncated.h5"
 expect "missing file" "not a readable HDF5 file" 1 "$W/none.h5"
 cp "$ck1" "$W/missing.h5" && /usr/bin/python3 -c "import h5py, sys; f = h5py.File(sys.argv[1], 'a'); del f['dem/nl_hist']; f.close()" "$W/missing.h5"
 expect "missing dataset" "the dataset dem/nl_hist is missing" 1 "$W/missing.h5"
+cp "$ck1" "$W/version.h5" && /usr/bin/python3 -c "import h5py, sys, numpy; f = h5py.File(sys.argv[1], 'a'); f.attrs['sable_checkpoint_version'] = numpy.int32(1); f.close()" "$W/version.h5"
+expect "another version" "attribute sable_checkpoint_version 1, this Sable reads version 2" 1 "$W/version.h5"
