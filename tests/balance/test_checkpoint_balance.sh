@@ -19,16 +19,6 @@ SCENE="-domain_lo 0,0,0 -domain_hi 0.1449,0.1449,0.24633 -dem_box 0,0,0,0.1449,0
 GRID="-da_processors_x 1 -da_processors_y 1 -da_processors_z 2"
 T=0.02
 H=0.01
-cat >"$W/cmp.py" <<'PY'
-#!/usr/bin/python3
-import sys, h5py
-a, b = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
-names = []
-a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) else None)
-diff = [n for n in names if n not in b or a[n].shape != b[n].shape or a[n].dtype != b[n].dtype or a[n][()].tobytes() != b[n][()].tobytes()]
-print(len(names), len(diff), " ".join(diff))
-PY
-chmod +x "$W/cmp.py"
 run() { # np, dir, args...
   rnp=$1; rd=$2; shift 2
   mkdir -p "$rd"
@@ -56,7 +46,7 @@ for scheme in frequent dynamic once; do
   fi
   step=$(echo "$ck" | sed 's/.*checkpoint_0*\([0-9][0-9]*\)\.h5$/\1/')
   moved=$(sed -n '/^checkpoint: /q; /-> rebalanced/p' "$d/half/log" | wc -l)
-  set -- $("$W/cmp.py" "$a" "$b")
+  set -- $(tests/common/frames_equal.py "$a" "$b")
   if [ "$moved" -gt 0 ] && [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then
     echo "PASS checkpoint $scheme: cuts moved $moved times before the checkpoint at step $step; final frames at t=$T bitwise equal, $1 datasets compared, 0 differing"
   else

@@ -18,16 +18,6 @@ trap 'rm -rf "$W"' EXIT
 SCENE="-options_file $(pwd)/cases/fluidized_bed/small.opts -fluid_bc_zlo_velocity 0,0,0.2036 -fluid_bc_zlo_velocity_table 3,0,0,0.3054 -cpl_progress_interval 0"
 T=4
 H=2
-cat >"$W/cmp.py" <<'PY'
-#!/usr/bin/python3
-import sys, h5py
-a, b = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
-names = []
-a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) else None)
-diff = [n for n in names if n not in b or a[n].shape != b[n].shape or a[n].dtype != b[n].dtype or a[n][()].tobytes() != b[n][()].tobytes()]
-print(len(names), len(diff), " ".join(diff))
-PY
-chmod +x "$W/cmp.py"
 run() { # np, dir, args...
   rnp=$1; rd=$2; shift 2
   mkdir -p "$rd"
@@ -44,7 +34,7 @@ for np in 1 2; do
     echo "FAIL coupled checkpoint np=$np: a run failed; $(cat "$d"/*/log | grep 'error' | head -n 2)"
     continue
   fi
-  set -- $("$W/cmp.py" "$a" "$b")
+  set -- $(tests/common/frames_equal.py "$a" "$b")
   if [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then
     echo "PASS coupled checkpoint np=$np: final frames at t=$T bitwise equal, $1 datasets compared (particles and fluid), 0 differing (restart from $ck at t=$H)"
   else
@@ -105,7 +95,7 @@ ck=$(sed -n 's/^checkpoint: //p' "$d/log" | tail -n 1)
 [ -n "$ck" ] && (cd "$d" && "$S" $SCENE -cpl_t_end $T -io_interval $T -io_dir out2 -restart "$ck" >log2 2>&1)
 b=$(ls "$d/out2/"sable_*.h5 2>/dev/null | grep -v checkpoint | tail -n 1)
 a=$(ls "$W/bed.1/full/out/"sable_*.h5 | grep -v checkpoint | tail -n 1) # the final frames, both at T
-set -- $([ -n "$b" ] && "$W/cmp.py" "$a" "$b")
+set -- $([ -n "$b" ] && tests/common/frames_equal.py "$a" "$b")
 tmp=$(find "$d" -name '*.tmp' | wc -l)
 if [ "$rc" -eq 143 ] && [ "$tmp" -eq 0 ] && [ "$#" -ge 2 ] && [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then
   echo "PASS coupled signal: SIGTERM at $(grep -o 't = [0-9.]* s' "$d/log" | head -n 1) left $ck (0 .tmp); continued to t=$T, $1 datasets bitwise equal to the uninterrupted run's"

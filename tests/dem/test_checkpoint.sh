@@ -16,16 +16,6 @@ trap 'rm -rf "$W"' EXIT
 SCENE="-domain_lo 0,0,0 -domain_hi 0.1449,0.1449,0.24633 -dem_box 0,0,0,0.1449,0.1449,0.24633 -dem_radius 0.0069 -dem_density 2500 -dem_restitution 0.75 -dem_friction 0.3 -dem_dt 1e-5 -dem_lattice 8,8,6 -dem_lattice_spacing 0.01449 -dem_lattice_speed 0.05 -dem_progress_interval 0"
 T=0.3
 H=0.15
-cat >"$W/cmp.py" <<'PY'
-#!/usr/bin/python3
-import sys, h5py
-a, b = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
-names = []
-a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) else None)
-diff = [n for n in names if n not in b or a[n].shape != b[n].shape or a[n].dtype != b[n].dtype or a[n][()].tobytes() != b[n][()].tobytes()]
-print(len(names), len(diff), " ".join(diff))
-PY
-chmod +x "$W/cmp.py"
 run() { # np, dir, args...
   rnp=$1; rd=$2; shift 2
   mkdir -p "$rd"
@@ -44,7 +34,7 @@ for law in linear_nohist linear hertz; do
       echo "FAIL checkpoint $law np=$np: a run failed; $(cat "$d"/*/log | grep 'error' | head -n 2)"
       continue
     fi
-    set -- $("$W/cmp.py" "$a" "$b")
+    set -- $(tests/common/frames_equal.py "$a" "$b")
     if [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then
       echo "PASS checkpoint $law np=$np: final frames at t=$T bitwise equal, $1 datasets compared, 0 differing (restart from $ck)"
     else

@@ -21,15 +21,6 @@ DRUM="-domain_lo -0.052,0,-0.052 -domain_hi 0.052,0.03,0.052 -dem_cylinder 0,0,0
 # 216 spheres thrown about in a column periodic along x and y, on a floor (2 ranks: split along x,
 # so the periodic images cross ranks)
 COLUMN="-domain_lo 0,0,0 -domain_hi 0.0828,0.0828,0.207 -domain_cell 0.0207 -domain_periodic_x -domain_periodic_y -dem_plane_0 0,0,0,0,0,1 -dem_radius 0.0069 -dem_density 2500 -dem_contact_law linear -dem_kn 2e5 -dem_restitution 0.8 -dem_friction 0.5 -dem_dt 2e-5 -dem_lattice 6,6,6 -dem_lattice_spacing 0.0138 -dem_lattice_origin 0.0069,0.0069,0.01 -dem_lattice_speed 0.5"
-cat >"$W/cmp.py" <<'PY'
-#!/usr/bin/python3
-import sys, h5py
-a, b = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
-names = []
-a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) else None)
-diff = [n for n in names if n not in b or a[n].shape != b[n].shape or a[n].dtype != b[n].dtype or a[n][()].tobytes() != b[n][()].tobytes()]
-print(len(names), len(diff), " ".join(diff))
-PY
 cat >"$W/wrapped.py" <<'PY'
 #!/usr/bin/python3
 import sys, h5py
@@ -38,7 +29,7 @@ lo, hi = [float(v) for v in sys.argv[2].split(",")], [float(v) for v in sys.argv
 out = sum(int(((x[:, k] < lo[k]) | (x[:, k] >= hi[k])).sum()) for k in (0, 1))
 print(len(x), out)
 PY
-chmod +x "$W/cmp.py" "$W/wrapped.py"
+chmod +x "$W/wrapped.py"
 run() { # np, dir, args...
   rnp=$1; rd=$2; shift 2
   mkdir -p "$rd"
@@ -57,7 +48,7 @@ scene() { # name, T, T/2, np, extra args for 2 ranks
     echo "FAIL checkpoint $name np=$np: a run failed; $(cat "$d"/*/log | grep 'error' | head -n 2)"
     return
   fi
-  set -- $("$W/cmp.py" "$a" "$b")
+  set -- $(tests/common/frames_equal.py "$a" "$b")
   if [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then
     echo "PASS checkpoint $name np=$np: final frames at t=$T bitwise equal, $1 datasets compared, 0 differing (restart from $ck)"
   else
