@@ -69,6 +69,13 @@ PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3]);
 /* The run's drag law's packed-bed pressure gradient (Pa/m) at porosity eps and superficial
  * velocity usup (m/s) for the first shape's diameter and the fluid's properties. */
 PetscErrorCode CplGetPackedBedGradient(Cpl cpl, PetscReal eps, PetscReal usup, PetscReal *dpdl);
+/* Minimum fluidization of the first shape's bed (not collective): umf, the run's drag law's
+ * superficial velocity (m/s) at which a packed bed of porosity eps carries its buoyant weight
+ * (0 when nothing is to carry); Wen & Yu's ar (Archimedes number), re_wy and umf_wy (m/s). */
+typedef struct {
+  PetscReal umf, ar, re_wy, umf_wy;
+} CplFluidization;
+PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, CplFluidization *f);
 /* Wall time spent in the fluid solver so far (s), for the measured load-balance weights. */
 PetscErrorCode CplGetFluidTime(Cpl cpl, PetscLogDouble *t);
 

@@ -1,5 +1,10 @@
 /* Coupling diagnostics for tests and progress lines: momentum of both phases and the exchange
- * owed, solid volume on the grid against the particles', layer averages for pressure drops. */
+ * owed, solid volume on the grid against the particles', layer averages for pressure drops, and
+ * the minimum fluidization velocity: the run's drag law's (the superficial velocity at which a
+ * packed bed's pressure gradient n K U / eps carries its buoyant weight per volume,
+ * (1 - eps)(rho_p - rho_f)|g|) and Wen & Yu's correlation (AIChE J. 12, 1966, 610-612, doi
+ * 10.1002/aic.690120343): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7, Ar = rho_f (rho_p - rho_f)
+ * |g| d^3 / mu^2, made from beds at eps_mf near 0.4. */
 #include "coupling/coupling_impl.h"
 
 typedef struct {
@@ -157,5 +162,28 @@ PetscErrorCode CplGetPackedBedGradient(Cpl cpl, PetscReal eps, PetscReal usup, P
 {
   PetscFunctionBeginUser;
   *dpdl = CplPackedBedGradient(cpl->law, eps, usup, cpl->diam[0], cpl->rho, cpl->mu);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, CplFluidization *f)
+{
+  const PetscReal d = cpl->diam[0], rhop = cpl->mass[0] / cpl->vol[0];
+  const PetscReal g    = PetscSqrtReal(cpl->g[0] * cpl->g[0] + cpl->g[1] * cpl->g[1] + cpl->g[2] * cpl->g[2]);
+  const PetscReal load = (1 - eps) * (rhop - cpl->rho) * g; /* Pa/m */
+  PetscReal       lo = 0, hi = 1;
+
+  PetscFunctionBeginUser;
+  f->ar     = cpl->rho * (rhop - cpl->rho) * g * d * d * d / (cpl->mu * cpl->mu);
+  f->re_wy  = PetscSqrtReal(33.7 * 33.7 + 0.0408 * f->ar) - 33.7;
+  f->umf_wy = f->re_wy * cpl->mu / (cpl->rho * d);
+  f->umf    = 0;
+  if (!(load > 0 && eps > 0 && eps < 1)) PetscFunctionReturn(PETSC_SUCCESS); /* no packed bed to carry */
+  while (CplPackedBedGradient(cpl->law, eps, hi, d, cpl->rho, cpl->mu) < load && hi < 1e12) hi *= 2;
+  for (int it = 0; it < 200 && hi - lo > 1e-14 * hi; it++) { /* the gradient grows with U */
+    const PetscReal m = 0.5 * (lo + hi);
+    if (CplPackedBedGradient(cpl->law, eps, m, d, cpl->rho, cpl->mu) < load) lo = m;
+    else hi = m;
+  }
+  f->umf = 0.5 * (lo + hi);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

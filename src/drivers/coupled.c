@@ -5,6 +5,10 @@
  * weight per cross-section area (the fluidization check) and the drag on the particles against
  * the same weight, averaged over the second half of the run; with -cpl_probe_z, the packed-bed
  * figures (dp/L between two heights, the porosity there and the drag law's own prediction).
+ * The bed: at the start, its height (95% of the solids mass below, the monitor's bed_height_95),
+ * its porosity between the 5% and 95% heights, the minimum fluidization velocity of the drag law
+ * at that porosity and of Wen & Yu, and the inlet's superficial velocity over them; at the end,
+ * the height at the start, its mean over the progress lines of the second half, and at the end.
  * A run is coupled when any -cpl_ or -fluid_ option is given (DriverIsCoupled).
  * Checkpoints (-io_checkpoint_interval, simulated seconds; drivers/checkpoint.c): the DEM's, the
  * fluid's and the coupling's exact state, and the driver's own (run/coupled: the sums of the
@@ -128,17 +132,18 @@ typedef struct {
   Io         io;
   PetscBool  frozen; /* -dem_frozen: no DEM steps, the step is the fluid's */
   Column     col;
-  PetscReal  avg, davg, navg; /* sums over the second half of the run: pressure drop, drag, steps */
-  PetscReal  next, next_ckpt; /* simulated times of the next progress line and checkpoint */
-  PetscInt   s0;              /* the step the loop started from (the progress line's rate) */
+  PetscReal  avg, davg, navg;    /* sums over the second half of the run: pressure drop, drag, steps */
+  PetscReal  h0, eps0, hsum, hn; /* bed at the start: height (m), porosity; height sum (m) and count over the second half's progress lines */
+  PetscReal  next, next_ckpt;    /* simulated times of the next progress line and checkpoint */
+  PetscInt   s0;                 /* the step the loop started from (the progress line's rate) */
 } Coupled;
 
-#define COUPLED_CKPT_NRUN 6 /* run/coupled: avg, davg, navg, next, next_ckpt, the window's start */
+#define COUPLED_CKPT_NRUN 10 /* run/coupled: avg, davg, navg, next, next_ckpt, the window's start, h0, eps0, hsum, hn */
 
 static PetscErrorCode CoupledCheckpointWrite(void *ctx, IoCkpt ck)
 {
   const Coupled  *c                    = (const Coupled *)ctx;
-  const PetscReal v[COUPLED_CKPT_NRUN] = {c->avg, c->davg, c->navg, c->next, c->next_ckpt, 0.5 * c->r->t_end};
+  const PetscReal v[COUPLED_CKPT_NRUN] = {c->avg, c->davg, c->navg, c->next, c->next_ckpt, 0.5 * c->r->t_end, c->h0, c->eps0, c->hsum, c->hn};
 
   PetscFunctionBeginUser;
   PetscCall(DemCheckpointWrite(c->dem, ck));
@@ -234,6 +239,58 @@ static PetscErrorCode CoupledProgress(const Coupled *c, const CplStats *st, Pets
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. The inlet's superficial velocity (m/s: the mean through the column's bottom face
+ * layer) and the minimum fluidization velocities at the start's bed porosity. */
+static PetscErrorCode CoupledBedFluidization(const Coupled *c, PetscReal *u, CplFluidization *f)
+{
+  const Domain *dom = c->r->dom;
+  PetscReal     p, e;
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetLayer(c->cpl, c->col.d, c->col.down < 0 ? dom->lo[c->col.d] : dom->hi[c->col.d], NULL, &p, &e, u));
+  *u = PetscAbsReal(*u);
+  PetscCall(CplGetMinFluidization(c->cpl, c->eps0, f));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The bed line at the start; a restarted run keeps the first run's start figures. */
+static PetscErrorCode CoupledBedStart(Coupled *c)
+{
+  CplFluidization f;
+  PetscReal       h5, h95, mean, u;
+  char            inlet[128] = "";
+
+  PetscFunctionBeginUser;
+  if (!c->r->ckpt.restart[0]) {
+    PetscCall(DemGetBedHeights(c->dem, 0.05, &h5, &mean));
+    PetscCall(DemGetBedHeights(c->dem, 0.95, &h95, &mean));
+    if (h5 == 0 && h95 == 0) PetscFunctionReturn(PETSC_SUCCESS); /* no particles */
+    c->h0 = h95;
+    PetscCall(CplMeanPorosity(c->cpl, c->col.d, PetscMin(h5, h95), PetscMax(h5, h95), &c->eps0));
+  }
+  if (c->h0 == 0 && c->eps0 == 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(CoupledBedFluidization(c, &u, &f));
+  if (u > 0 && f.umf > 0) PetscCall(PetscSNPrintf(inlet, sizeof inlet, "; inlet superficial velocity %.4g m/s = %.3g U_mf (%.3g Wen-Yu)", (double)u, (double)(u / f.umf), (double)(u / f.umf_wy)));
+  PetscCall(PetscPrintf(c->r->comm, "bed: 95%% of the solids mass below %c = %.5g m, porosity %.4f between the 5%% and 95%% heights; U_mf %.4g m/s (the drag law at that porosity), Wen-Yu %.4g m/s (Ar %.4g, Re_mf %.4g)%s\n", "xyz"[c->col.d], (double)c -> h0, (double)c -> eps0, (double)f.umf, (double)f.umf_wy, (double)f.ar, (double)f.re_wy, inlet));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The bed line at the end: its height at the start, over the second half, now. */
+static PetscErrorCode CoupledBedEnd(const Coupled *c)
+{
+  CplFluidization f;
+  PetscReal       h, mean, u;
+  char            half[96] = "";
+
+  PetscFunctionBeginUser;
+  if (c->h0 == 0 && c->eps0 == 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DemGetBedHeights(c->dem, 0.95, &h, &mean));
+  PetscCall(CoupledBedFluidization(c, &u, &f));
+  if (c->hn > 0) PetscCall(PetscSNPrintf(half, sizeof half, ", %.5g m mean over the second half (%.0f progress lines)", (double)(c->hsum / c->hn), (double)c->hn));
+  PetscCall(PetscPrintf(c->r->comm, "bed: 95%% of the solids mass below %c = %.5g m at the start%s, %.5g m at the end; U_mf %.4g m/s (drag law), %.4g m/s (Wen-Yu); inlet %.4g m/s\n", "xyz"[c->col.d], (double)c -> h0, half, (double)h, (double)f.umf, (double)f.umf_wy, (double)u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode CoupledRunLoop(Coupled *c)
 {
   const CoupledRun r = c->r;
@@ -272,6 +329,12 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
     if (r->progress_dt > 0 && t >= c->next - 0.5 * dt) {
       PetscCall(CoupledProgress(c, &st, t0, dp, w));
       c->next += r->progress_dt;
+      if (t > 0.5 * r->t_end) {
+        PetscReal h, mean;
+        PetscCall(DemGetBedHeights(c->dem, 0.95, &h, &mean));
+        c->hsum += h;
+        c->hn++;
+      }
     }
     if (r->ckpt.dt > 0 && t >= c->next_ckpt - 0.5 * dt) {
       c->next_ckpt += r->ckpt.dt;
@@ -284,6 +347,7 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
   PetscCall(CplGetClippedCount(c->cpl, &clipped));
   PetscCall(PetscPrintf(r->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", c->navg > 0 ? (double)(c->avg / c->navg / w) : 0.0, c->navg > 0 ? (double)(c->davg / c->navg / (w * c->col.area)) : 0.0, (double)w, clipped));
   if (r->probe_set) PetscCall(CoupledProbeReport(r, c->cpl));
+  PetscCall(CoupledBedEnd(c));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -315,10 +379,14 @@ static PetscErrorCode CoupledRestoreColumn(Coupled *c, const PetscReal v[COUPLED
   PetscCall(CplGetTime(c->cpl, &t, NULL));
   c->next      = v[3];
   c->next_ckpt = v[4];
+  c->h0        = v[6];
+  c->eps0      = v[7];
   if (t > half && v[5] == half) {
     c->avg  = v[0];
     c->davg = v[1];
     c->navg = v[2];
+    c->hsum = v[8];
+    c->hn   = v[9];
   } else if (t > half) PetscCall(PetscPrintf(c->r->comm, "warning: -restart %s: the checkpoint's run averaged the column figures from t = %g, this one from %g (half of -cpl_t_end), before the checkpoint's t = %g: the means of the \"column:\" line cover t > %g only\n", c->r->ckpt.restart, (double)v[5], (double)half, (double)t, (double)t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -365,7 +433,7 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
 PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBool help)
 {
   Domain        *dom = r->dom;
-  Coupled        c   = {r, dem, NULL, NULL, lb, io, PETSC_FALSE, {2, -1, 0}, 0, 0, 0, 0, 0, 0};
+  Coupled        c   = {r, dem, NULL, NULL, lb, io, PETSC_FALSE, {2, -1, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   PetscBool      convex;
   PetscReal      g[3], t;
   PetscInt       step;
@@ -391,6 +459,7 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
     c.col = ColumnFromGravity(dom, g);
     PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(CplView(c.cpl, PETSC_VIEWER_STDOUT_WORLD));
+    PetscCall(CoupledBedStart(&c));
     PetscCall(BalanceSetUp(lb));
     PetscCall(PetscTime(&t0));
     PetscCall(CoupledRunLoop(&c));

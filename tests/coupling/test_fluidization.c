@@ -1,4 +1,4 @@
-/* Fluidization of a small bed (the `make run` case, cases/fluidized_bed/small.opts, shortened):
+/* Fluidization of a small bed (cases/fluidized_bed/small.opts, dimensionless, shortened):
  * dimensionless d = 1, rho_f = 1, rho_p = 2, g = 1, mu = 0.01; 384 spheres in a touching cubic
  * lattice (porosity 1 - pi/6) on a distributor one cell above the inlet; frictionless side walls
  * (the walls keep the simple cubic lattice standing below U_mf; with bi-periodic sides it
