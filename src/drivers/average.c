@@ -58,7 +58,7 @@ PetscErrorCode DriverAvgSetFromOptions(DriverAvg a)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(a->comm, NULL, "Time averages", NULL);
-  PetscCall(SableOptionsReal("-avg_start", "Simulated time from which every frame carries running means and RMS fluctuations per cell of the solids fraction, fluid and particle velocity (avg_*, rms_*); default none", "s", "[0,inf)", -1, &a->start, &a->on));
+  PetscCall(SableOptionsReal("-avg_start", "Simulated time from which every frame carries running means and RMS fluctuations per cell of the solids fraction, fluid and particle velocity (avg_*, rms_*)", "s", "[0,inf)", -1, &a->start, &a->on));
   PetscCall(SableOptionsReal("-avg_interval", "Simulated time between samples of the time averages", "s; 0 = every step (a dry run's DEM step, a coupled run's coupling step)", "[0,inf)", 0, &a->interval, &iset));
   PetscOptionsEnd();
   PetscCheck(!iset || a->on, a->comm, PETSC_ERR_ARG_INCOMP, "-avg_interval %g: time averages need -avg_start (s)", (double)a->interval);
@@ -122,33 +122,51 @@ PetscErrorCode DriverAvgSetUp(DriverAvg a, Domain *dom, Dem dem, Fluid fl, Io io
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The particle mass, volume and momentum per cell (dep, on the owners). */
+/* The particle mass, volume and momentum per cell (dep, on the owners). Summed in registers over
+ * each run of consecutive particles in one cell, then added to the cell: the loop is not bound
+ * by the latency of adding into the same few cells again and again. */
 static PetscErrorCode AvgDeposit(DriverAvg a)
 {
-  const Domain   *dom = a->dom;
-  DemArrays       p;
-  PetscScalar ****d;
-  PetscInt        gs[3], gm[3];
+  const Domain    *dom  = a->dom;
+  const PetscReal *mass = a->mass, *vol = a->vol;
+  DemArrays        p;
+  PetscScalar     *d;
+  PetscInt         gs[3], gm[3], lo[3], hi[3];
+  PetscReal        x0[3], h[3], run[AVG_NDEP] = {0};
 
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(a->deploc));
   PetscCall(DMDAGetGhostCorners(a->dda, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
-  PetscCall(DMDAVecGetArrayDOF(a->dda, a->deploc, &d));
-  PetscCall(DemGetArrays(a->dem, &p));
-  for (PetscInt i = 0; i < p.nlocal; i++) {
-    const PetscInt s = p.shape[i];
-    PetscInt       c[3];
-    for (int k = 0; k < 3; k++) {
-      c[k] = (PetscInt)PetscFloorReal((p.x[3 * i + k] - dom->lo[k]) / dom->h[k]);
-      if (!dom->periodic[k]) c[k] = PetscMin(PetscMax(c[k], 0), dom->cells[k] - 1);
-      c[k] = PetscMin(PetscMax(c[k], gs[k]), gs[k] + gm[k] - 1); /* defensive: the halo is a cell */
-    }
-    PetscScalar *q = d[c[2]][c[1]][c[0]];
-    q[0] += a->mass[s];
-    q[1] += a->vol[s];
-    for (int k = 0; k < 3; k++) q[2 + k] += a->mass[s] * p.v[3 * i + k];
+  for (int k = 0; k < 3; k++) { /* the cells a particle may land in: the ghosted box, and the grid along a wall */
+    lo[k] = dom->periodic[k] ? gs[k] : PetscMax(gs[k], 0);
+    hi[k] = dom->periodic[k] ? gs[k] + gm[k] - 1 : PetscMin(gs[k] + gm[k], dom->cells[k]) - 1;
+    x0[k] = dom->lo[k];
+    h[k]  = dom->h[k];
   }
-  PetscCall(DMDAVecRestoreArrayDOF(a->dda, a->deploc, &d));
+  PetscCall(VecZeroEntries(a->deploc));
+  PetscCall(VecGetArray(a->deploc, &d));
+  PetscCall(DemGetArrays(a->dem, &p));
+  for (PetscInt i = 0, cur = -1; i <= p.nlocal; i++) {
+    PetscInt cell = -1;
+    if (i < p.nlocal) {
+      PetscInt c[3];
+      for (int k = 0; k < 3; k++) c[k] = PetscMin(PetscMax((PetscInt)PetscFloorReal((p.x[3 * i + k] - x0[k]) / h[k]), lo[k]), hi[k]) - gs[k];
+      cell = c[0] + gm[0] * (c[1] + gm[1] * c[2]);
+    }
+    if (cell != cur) { /* a run of particles in one cell (the DEM keeps them sorted by space) ends */
+      if (cur >= 0)
+        for (int k = 0; k < AVG_NDEP; k++) d[AVG_NDEP * cur + k] += run[k];
+      for (int k = 0; k < AVG_NDEP; k++) run[k] = 0;
+      cur = cell;
+    }
+    if (i < p.nlocal) {
+      const PetscInt   s = p.shape[i];
+      const PetscReal *v = p.v + 3 * i;
+      run[0] += mass[s];
+      run[1] += vol[s];
+      for (int k = 0; k < 3; k++) run[2 + k] += mass[s] * v[k];
+    }
+  }
+  PetscCall(VecRestoreArray(a->deploc, &d));
   PetscCall(VecZeroEntries(a->dep));
   PetscCall(DMLocalToGlobal(a->dda, a->deploc, ADD_VALUES, a->dep));
   PetscFunctionReturn(PETSC_SUCCESS);
