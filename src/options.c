@@ -10,7 +10,7 @@
  *    text that PETSc and Sable print through PetscHelpPrintf, and prints it at the end of the
  *    help pass (SableHelpFlush, also registered to run in PetscFinalize and at exit): Sable's
  *    sections grouped by prefix (-domain_, -dem_, -fluid_, -cpl_,
- *    -lb_, -io_, -mon_, -sable_), then PETSc's sections in the order PETSc printed them. PETSc's
+ *    -lb_, -io_, -mon_, -avg_, -sable_), then PETSc's sections in the order PETSc printed them. PETSc's
  *    "(None)" (no manual page) at the end of a line is left out. Without -help the printer
  *    passes everything through at once. */
 #include "sable.h"
@@ -365,8 +365,8 @@ PetscErrorCode SableHelpFlush(void)
     const int ns  = SableHelpSections(SableHelp.text, sec, nlines + 1, lines);
     int       own = 0;
     for (int k = 0; k < ns; k++) own += sec[k].group >= 0;
-    if (own) printf("Sable's options, by prefix (-domain_, -dem_, -fluid_, -cpl_, -lb_, -io_, -mon_, -sable_); PETSc's follow\n");
-    for (int g = 0; g < 8; g++) /* Sable's, by prefix */
+    if (own) printf("Sable's options, by prefix (-domain_, -dem_, -fluid_, -cpl_, -lb_, -io_, -mon_, -avg_, -sable_); PETSc's follow\n");
+    for (int g = 0; g < 9; g++) /* Sable's, by prefix */
       for (int k = 0; k < ns; k++)
         if (sec[k].group == g) SableHelpPrintSection(&sec[k]);
     if (own) printf("========================================\nPETSc's options:\n");

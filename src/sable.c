@@ -20,7 +20,7 @@
  * src/, hence in the generated SableReadOptions). Returns -1 for PETSc's. */
 int SableOptionGroup(const char *name)
 {
-  const char *pre[] = {"domain_", "dem_", "fluid_", "cpl_", "lb_", "io_", "mon_", "sable_"};
+  const char *pre[] = {"domain_", "dem_", "fluid_", "cpl_", "lb_", "io_", "mon_", "avg_", "sable_"};
 
   if (!strcmp(name, "restart")) return 5;
   if (!strncmp(name, "fluid_poisson_", 14) || !strncmp(name, "fluid_viscous_", 14)) {
@@ -37,7 +37,7 @@ int SableOptionGroup(const char *name)
 PetscBool SableOptionIsOwn(const char *name)
 {
   const int g = SableOptionGroup(name);
-  return (PetscBool)(g >= 0 && g != 7);
+  return (PetscBool)(g >= 0 && g != 8);
 }
 
 /* PETSc's integer options that Sable's cases and tools give (PETSc reads them, not Sable, so no

@@ -76,11 +76,11 @@ void SableTempRemove(void);
 #endif
 
 /* Not collective. Whether option name (no dash) is one of Sable's own: under -dem_, -fluid_,
- * -cpl_, -domain_, -io_, -lb_, -mon_, except the PETSc solvers' options under -fluid_poisson_ and
+ * -cpl_, -domain_, -io_, -lb_, -mon_, -avg_, except the PETSc solvers' options under -fluid_poisson_ and
  * -fluid_viscous_ (sable.c). */
 PetscBool SableOptionIsOwn(const char *name);
 /* The -help group of an option name without its dash (0 -domain_, 1 -dem_, 2 -fluid_, 3 -cpl_,
- * 4 -lb_, 5 -io_ and -restart, 6 -mon_, 7 -sable_), -1 for PETSc's. */
+ * 4 -lb_, 5 -io_ and -restart, 6 -mon_, 7 -avg_, 8 -sable_), -1 for PETSc's. */
 int SableOptionGroup(const char *name);
 
 /* Readers of numeric options (options.c), inside the PetscOptionsBegin block of the object that

@@ -15,6 +15,7 @@
  * column figures and the next progress and checkpoint times), every interval and at the end;
  * -restart PATH continues from one, so the restarted run's frames and summary are those of the
  * uninterrupted run. */
+#include "drivers/average.h"
 #include "drivers/drivers.h"
 
 struct _p_CoupledRun {
@@ -24,6 +25,7 @@ struct _p_CoupledRun {
   PetscBool  t_end_set, probe_set;
   DriverCkpt ckpt;
   DriverMon  mon;
+  DriverAvg  avg; /* time averages (-avg_start) */
 };
 
 PetscErrorCode DriverIsCoupled(PetscBool *on)
@@ -64,6 +66,7 @@ PetscErrorCode CoupledRunDestroy(CoupledRun *r)
 {
   PetscFunctionBeginUser;
   if (*r) PetscCall(DriverMonDestroy(&(*r)->mon));
+  if (*r) PetscCall(DriverAvgDestroy(&(*r)->avg));
   PetscCall(PetscFree(*r));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -153,6 +156,7 @@ static PetscErrorCode CoupledCheckpointWrite(void *ctx, IoCkpt ck)
   PetscCall(IoCkptWriteShared(ck, "run/coupled", IO_CKPT_REAL, COUPLED_CKPT_NRUN, v));
   PetscCall(DriverCkptWriteRun(c->io, ck));
   PetscCall(MonCheckpointWrite(c->r->mon.mon, ck));
+  PetscCall(DriverAvgCheckpointWrite(c->r->avg, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -192,6 +196,7 @@ static PetscErrorCode CoupledOutput(const Coupled *c)
   PetscCall(IoFrameBegin(c->io, t, step));
   PetscCall(DemWriteOutput(c->dem, c->io));
   PetscCall(FluidWriteOutput(c->fl, c->io));
+  PetscCall(DriverAvgWriteOutput(c->r->avg, c->io));
   PetscCall(IoFrameEnd(c->io));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -317,6 +322,7 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
     PetscCall(CplStep(c->cpl, &st));
     PetscCall(CplGetTime(c->cpl, &t, &step));
     PetscCall(BalanceCheck(c->lb, PETSC_FALSE, NULL));
+    PetscCall(DriverAvgSample(r->avg, t));
     PetscCall(IoDue(c->io, t, &due));
     if (due) PetscCall(CoupledOutput(c));
     PetscCall(CoupledMonitor(c, &st));
@@ -416,14 +422,17 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
   PetscCall(FluidSetUp(c->fl));
   PetscCall(CplSetUp(c->cpl));
   PetscCall(DriverMonSetUp(&c->r->mon, c->io));
+  PetscCall(DriverAvgSetUp(c->r->avg, c->r->dom, c->dem, c->fl, c->io));
   if (f) {
-    PetscReal v[COUPLED_CKPT_NRUN];
+    PetscReal v[COUPLED_CKPT_NRUN], t;
     PetscCall(FluidCheckpointRead(c->fl, f));
     PetscCall(CplCheckpointRead(c->cpl, f));
     PetscCall(IoCkptReadShared(f, "run/coupled", IO_CKPT_REAL, COUPLED_CKPT_NRUN, v));
     PetscCall(CoupledRestoreColumn(c, v));
     PetscCall(DriverCkptReadRun(c->r->comm, c->io, f)); /* refuses another run's frames before running */
     PetscCall(MonCheckpointRead(c->r->mon.mon, f));
+    PetscCall(CplGetTime(c->cpl, &t, NULL));
+    PetscCall(DriverAvgCheckpointRead(c->r->avg, f, t));
     PetscCall(IoCkptClose(&f));
     PetscCall(DriverCkptRestarted(ck, t0));
   }
@@ -450,6 +459,8 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
     PetscCall(CoupledCheckDryOptions(r->comm));
     PetscCall(DriverCkptSetFromOptions(&r->ckpt, r->comm)); /* here, not with the run's options: -help lists them once, with the dry run's */
     PetscCall(DriverMonSetFromOptions(&r->mon, r->comm, PETSC_TRUE));
+    PetscCall(DriverAvgCreate(r->comm, &r->avg));
+    PetscCall(DriverAvgSetFromOptions(r->avg));
     PetscCall(SableCheckOptionsUsed(r->comm));
     PetscCall(DemGetFrozen(dem, &c.frozen));
     PetscCall(DemHasConvexShapes(dem, &convex));

@@ -12,6 +12,7 @@
  * output's continuation and the options (DriverCkptWriteRun); -restart PATH continues from one
  * instead of inserting the case's particles (same options), the cuts restored before the DEM is
  * set up, its frames numbered on and its index grown. */
+#include "drivers/average.h"
 #include "drivers/drivers.h"
 #include <sys/resource.h>
 
@@ -21,6 +22,7 @@ struct _p_DryRun {
   PetscBool  t_end_set;
   DriverCkpt ckpt;
   DriverMon  mon;
+  DriverAvg  avg; /* time averages (-avg_start) */
   Dem        dem; /* what a checkpoint holds: the DEM's state, the balancer's and the run's (io, options) */
   Balance    lb;  /* may be NULL */
   Io         io;
@@ -43,6 +45,8 @@ PetscErrorCode DryRunSetFromOptions(DryRun r)
   PetscOptionsEnd();
   PetscCall(DriverCkptSetFromOptions(&r->ckpt, r->comm));
   PetscCall(DriverMonSetFromOptions(&r->mon, r->comm, PETSC_FALSE));
+  PetscCall(DriverAvgCreate(r->comm, &r->avg));
+  PetscCall(DriverAvgSetFromOptions(r->avg));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -50,11 +54,12 @@ PetscErrorCode DryRunDestroy(DryRun *r)
 {
   PetscFunctionBeginUser;
   if (*r) PetscCall(DriverMonDestroy(&(*r)->mon));
+  if (*r) PetscCall(DriverAvgDestroy(&(*r)->avg));
   PetscCall(PetscFree(*r));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode DryOutput(Dem dem, Io io)
+static PetscErrorCode DryOutput(Dem dem, DriverAvg avg, Io io)
 {
   DemStats  st;
   PetscReal t;
@@ -66,6 +71,7 @@ static PetscErrorCode DryOutput(Dem dem, Io io)
   PetscCall(DemGetTime(dem, &t, &step));
   PetscCall(IoFrameBegin(io, t, step));
   PetscCall(DemWriteOutput(dem, io));
+  PetscCall(DriverAvgWriteOutput(avg, io));
   PetscCall(IoFrameEnd(io));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -79,6 +85,7 @@ static PetscErrorCode DryCheckpointWrite(void *ctx, IoCkpt ck)
   if (r->lb) PetscCall(BalanceCheckpointWrite(r->lb, ck));
   PetscCall(DriverCkptWriteRun(r->io, ck));
   PetscCall(MonCheckpointWrite(r->mon.mon, ck));
+  PetscCall(DriverAvgCheckpointWrite(r->avg, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -162,7 +169,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
   PetscCall(PetscTime(&t0));
   if (io) {
     PetscCall(IoDue(io, t, &due));
-    if (due) PetscCall(DryOutput(dem, io));
+    if (due) PetscCall(DryOutput(dem, r->avg, io));
   }
   PetscCall(DryMonitor(r, dem));
   while (t < r->t_end - 0.5 * dt) {
@@ -175,9 +182,10 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
     PetscCall(DemStep(dem));
     if (lb) PetscCall(BalanceCheck(lb, PETSC_FALSE, NULL));
     PetscCall(DemGetTime(dem, &t, NULL));
+    PetscCall(DriverAvgSample(r->avg, t));
     if (io) {
       PetscCall(IoDue(io, t, &due));
-      if (due) PetscCall(DryOutput(dem, io));
+      if (due) PetscCall(DryOutput(dem, r->avg, io));
     }
     PetscCall(DryMonitor(r, dem));
     if (r->progress_dt > 0 && t >= next - 0.5 * dt) {
@@ -191,7 +199,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
   }
   if (io) {
     PetscCall(IoDueFinal(io, t, &due));
-    if (due) PetscCall(DryOutput(dem, io));
+    if (due) PetscCall(DryOutput(dem, r->avg, io));
   }
   if (r->ckpt.set) PetscCall(DryCheckpoint(r));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -220,9 +228,12 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   }
   PetscCall(DemSetUp(dem)); /* a checkpoint of another rank count or format is refused here */
   PetscCall(DriverMonSetUp(&r->mon, io));
+  PetscCall(DriverAvgSetUp(r->avg, dom, dem, NULL, io));
   if (ck) {
     PetscCall(DriverCkptReadRun(r->comm, io, ck)); /* refuses another run's frames before running */
     PetscCall(MonCheckpointRead(r->mon.mon, ck));
+    PetscCall(DemGetTime(dem, &t, NULL));
+    PetscCall(DriverAvgCheckpointRead(r->avg, ck, t));
     PetscCall(DemSetRestart(dem, NULL));
     PetscCall(IoCkptClose(&ck));
     PetscCall(DriverCkptRestarted(&r->ckpt, t0));

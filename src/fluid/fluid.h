@@ -112,6 +112,10 @@ PetscErrorCode FluidApplyBoundaryValues(Fluid fluid);
 /* Collective. Writes eps, p and the cell-centred velocity into the open frame of io (the fluid
  * mesh is declared on first use). */
 PetscErrorCode FluidWriteOutput(Fluid fluid, Io io);
+/* Collective. The cell-centred velocity of the owned cells (m/s; per component the mean of the
+ * cell's two face values), 3 per cell, x fastest, as FluidWriteOutput writes it; vel has room
+ * for 3 x the owned cell count. */
+PetscErrorCode FluidGetCellVelocity(Fluid fluid, PetscReal *vel);
 
 /* Analytic fields (fields.c): x is a point (m); a scalar function returns the value, a vector
  * function fills v[3] (m/s). */

@@ -1,19 +1,16 @@
 /* Fluid output: porosity eps, pressure p and the cell-centred velocity (the mean of the two
  * face values of each component) of the owned cells, written as fluid fields of the open
- * frame (io.h). */
+ * frame (io.h). The cell-centred velocity is also what the drivers' time averages sample. */
 #include "fluid/fluid_impl.h"
 
-PetscErrorCode FluidWriteOutput(Fluid fl, Io io)
+PetscErrorCode FluidGetCellVelocity(Fluid fl, PetscReal *vel)
 {
   const FluidGrid   *g = &fl->g;
-  const PetscScalar *u, *e, *p;
-  PetscReal         *vel;
-  PetscInt           idx[3], c, o, n = g->xm[0] * g->xm[1] * g->xm[2];
+  const PetscScalar *u;
+  PetscInt           idx[3], c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(IoSetFluidMesh(io, g->lo, g->h, g->N));
   PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
-  PetscCall(PetscMalloc1(3 * n, &vel));
   PetscCall(VecGetArrayRead(fl->uloc, &u));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
@@ -21,6 +18,20 @@ PetscErrorCode FluidWriteOutput(Fluid fl, Io io)
     for (int d = 0; d < 3; d++) vel[3 * o + d] = 0.5 * (u[f + d] + u[f + g->fs[d] + d]);
   }
   PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidWriteOutput(Fluid fl, Io io)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *e, *p;
+  PetscReal         *vel;
+  PetscInt           n = g->xm[0] * g->xm[1] * g->xm[2];
+
+  PetscFunctionBeginUser;
+  PetscCall(IoSetFluidMesh(io, g->lo, g->h, g->N));
+  PetscCall(PetscMalloc1(3 * n, &vel));
+  PetscCall(FluidGetCellVelocity(fl, vel));
   PetscCall(VecGetArrayRead(fl->eps, &e));
   PetscCall(VecGetArrayRead(fl->p, &p));
   PetscCall(IoWriteField(io, "eps", 1, g->xs, g->xm, e));

@@ -5,7 +5,7 @@
 #       different sizes (the stack a reader leaves uninitialised holds other bytes), and every
 #       number shown between <> is sane: finite, |x| <= 1e30, and 0 or |x| >= 1e-200;
 #   (b) Sable's options come first, grouped by prefix (-domain_, -dem_, -fluid_, -cpl_, -lb_,
-#       -io_, -mon_, -sable_), all before the first of PETSc's;
+#       -io_, -mon_, -avg_, -sable_), all before the first of PETSc's;
 #   (c) no line ends with PETSc's "(None)" (no manual page);
 #   (d) with bed.opts each face shows its own inlet velocity and table: the values the case
 #       gives that face, the default (0,0,0; none) for the others.
@@ -44,12 +44,12 @@ done
 
 # (b) Sable's first, grouped by prefix
 for c in none bed settle; do
-  awk 'function own(n) { return n == "-restart" || n ~ /^-(domain|dem|fluid|cpl|lb|io|mon|sable)_/ && (n !~ /^-fluid_(poisson|viscous)_/ || n ~ /^-fluid_(poisson_pc_lag|poisson_pc_lag_growth|viscous_number_max)$/) }
+  awk 'function own(n) { return n == "-restart" || n ~ /^-(domain|dem|fluid|cpl|lb|io|mon|avg|sable)_/ && (n !~ /^-fluid_(poisson|viscous)_/ || n ~ /^-fluid_(poisson_pc_lag|poisson_pc_lag_growth|viscous_number_max)$/) }
     /^ *-[a-zA-Z]/ {
       n = $1; sub(/[:<].*/, "", n)
       if (own(n)) {
-        last = NR; split("domain dem fluid cpl lb io mon sable", p, " ")
-        for (k = 1; k <= 8; k++) if (index(n, "-" p[k] "_") == 1) g = k
+        last = NR; split("domain dem fluid cpl lb io mon avg sable", p, " ")
+        for (k = 1; k <= 9; k++) if (index(n, "-" p[k] "_") == 1) g = k
         if (n == "-restart") g = 6
         if (g < prev) back++
         prev = g; nown++
