@@ -99,7 +99,7 @@ PetscErrorCode DriverCkptWriteRun(Io io, IoCkpt ck)
  * -options_file. */
 static PetscBool driver_option_is_run(const char *o)
 {
-  const char *pre[]   = {"-io_", "-avg_", "-log", "-info", "-malloc", "-options_", "-help", "-version", "-sable_", "-history", "-memory_view", "-objects_dump"};
+  const char *pre[]   = {"-io_", "-mon_", "-avg_", "-log", "-info", "-malloc", "-options_", "-help", "-version", "-sable_", "-history", "-memory_view", "-objects_dump"};
   const char *exact[] = {"-restart", "-dem_t_end", "-cpl_t_end", "-dem_progress_interval", "-cpl_progress_interval", "-cpl_probe_z"};
 
   for (size_t k = 0; k < sizeof pre / sizeof pre[0]; k++)
