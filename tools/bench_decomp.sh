@@ -25,7 +25,7 @@ SETTLE="-options_file cases/settle/settle.opts -dem_lattice 0,0,0 -dem_init_file
 SILO="-options_file cases/silo/fill.opts -dem_t_end 0.02 -dem_progress_interval 0 -io_interval 0"
 BED="-options_file cases/fluidized_bed/bed.opts -cpl_t_end 3 -cpl_progress_interval 0 -io_interval 0"
 VARIANTS="default x y z"
-args() { case $1 in default) echo "" ;; *) echo "-da_processors_$1 2" ;; esac; }
+args() { case $1 in default) echo "" ;; x) echo "-da_processors_x 2" ;; y) echo "-da_processors_y 2" ;; z) echo "-da_processors_z 2" ;; esac; }
 for k in 1 2 3; do
   for c in settle silo bed; do
     case $c in settle) A=$SETTLE ;; silo) A=$SILO ;; bed) A=$BED ;; esac
@@ -43,7 +43,7 @@ ups() {
     bed) sed -n 's/^done: .*, \([0-9]*\) fluid steps in \([0-9.]*\) s.*/\1 \2/p' "$2" | awk '{printf "%.6f\n", $2 * 1e6 / (2 * $1 * 4800)}' ;;
   esac
 }
-echo "2 ranks, us per particle-step (wall), median of 3; default = Sable's choice, x/y/z = -da_processors_<axis> 2 (z: PETSc's default)"
+echo "2 ranks, us per particle-step (wall), median of 3; default = Sable's choice, x/y/z = -da_processors_x, _y or _z 2 (z: PETSc's default)"
 echo "| case | default | x | y | z | default / best hand-chosen | default chose |"
 echo "|---|---|---|---|---|---|---|"
 for c in settle silo bed; do

@@ -63,12 +63,13 @@ else
 fi
 
 # (3): the user's process grid wins
-for a in z x; do
-  run 2 "$W/given_$a" -dem_t_end 0.001 -io_interval 0 -da_processors_$a 2
-  want="2 x 1 x 1"; [ $a = z ] && want="1 x 1 x 2"
-  if grep -q "^decomposition: $want ranks, as given by -da_processors_x/y/z" "$W/given_$a/log" && grep -q '^done:' "$W/given_$a/log"; then
-    echo "PASS decomposition given: -da_processors_$a 2 runs on $want, as given"
-  else echo "FAIL decomposition given: -da_processors_$a 2: $(grep -E '^decomposition|error' "$W/given_$a/log" | head -n 1)"; fi
+for opt in "-da_processors_z 2" "-da_processors_x 2"; do
+  d=$W/given_$(echo "$opt" | cut -c16)
+  run 2 "$d" -dem_t_end 0.001 -io_interval 0 $opt
+  want="2 x 1 x 1"; [ "$opt" = "-da_processors_z 2" ] && want="1 x 1 x 2"
+  if grep -q "^decomposition: $want ranks, as given by -da_processors_x/y/z" "$d/log" && grep -q '^done:' "$d/log"; then
+    echo "PASS decomposition given: $opt runs on $want, as given"
+  else echo "FAIL decomposition given: $opt: $(grep -E '^decomposition|error' "$d/log" | head -n 1)"; fi
 done
 
 # (4): the same physics up to decomposition
