@@ -26,7 +26,8 @@ SILO="-options_file cases/silo/fill.opts -dem_t_end 0.02 -dem_progress_interval 
 BED="-options_file cases/fluidized_bed/bed.opts -cpl_t_end 3 -cpl_progress_interval 0 -io_interval 0"
 VARIANTS="default x y z"
 args() { case $1 in default) echo "" ;; x) echo "-da_processors_x 2" ;; y) echo "-da_processors_y 2" ;; z) echo "-da_processors_z 2" ;; esac; }
-for k in 1 2 3; do
+ROUNDS=${ROUNDS:-3}
+for k in $(seq "$ROUNDS"); do
   for c in settle silo bed; do
     case $c in settle) A=$SETTLE ;; silo) A=$SILO ;; bed) A=$BED ;; esac
     for v in $VARIANTS; do
@@ -43,13 +44,13 @@ ups() {
     bed) sed -n 's/^done: .*, \([0-9]*\) fluid steps in \([0-9.]*\) s.*/\1 \2/p' "$2" | awk '{printf "%.6f\n", $2 * 1e6 / (2 * $1 * 4800)}' ;;
   esac
 }
-echo "2 ranks, us per particle-step (wall), median of 3; default = Sable's choice, x/y/z = -da_processors_x, _y or _z 2 (z: PETSc's default)"
+echo "2 ranks, us per particle-step (wall), median of $ROUNDS; default = Sable's choice, x/y/z = -da_processors_x, _y or _z 2 (z: PETSc's default)"
 echo "| case | default | x | y | z | default / best hand-chosen | default chose |"
 echo "|---|---|---|---|---|---|---|"
 for c in settle silo bed; do
   row="| $c"
   for v in $VARIANTS; do
-    m=$(for k in 1 2 3; do ups $c $O/$c.$v.$k.log; done | median)
+    m=$(for k in $(seq "$ROUNDS"); do ups $c $O/$c.$v.$k.log; done | median)
     eval "m_$v=$m"
     row="$row | $(printf '%.4f' "$m")"
   done
