@@ -394,6 +394,8 @@ static PetscErrorCode BalanceDecompPrint(Balance b, const BalanceDecompProblem *
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+#define BALANCE_DECOMP_MAX_CELLS 16777216 /* 64 MB of counts and weights on every rank */
+
 PetscErrorCode BalanceDecompose(Balance b)
 {
   Domain              *dom   = b->dom;
@@ -412,6 +414,10 @@ PetscErrorCode BalanceDecompose(Balance b)
   PetscCall(DomainProcessGridGiven(&given));
   if (given || b->ckpt_cuts) {
     PetscCall(PetscPrintf(b->comm, "decomposition: %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, %s\n", dom->nranks[0], dom->nranks[1], dom->nranks[2], b->ckpt_cuts ? "the checkpoint's process grid and cuts" : "as given by -da_processors_x/y/z"));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (ncell > BALANCE_DECOMP_MAX_CELLS) { /* every rank would hold the counts of the whole grid */
+    PetscCall(PetscPrintf(b->comm, "decomposition: %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, PETSc's default (the grid's %" PetscInt_FMT " cells are too many to weigh at set-up, more than %d)\n", dom->nranks[0], dom->nranks[1], dom->nranks[2], ncell, BALANCE_DECOMP_MAX_CELLS));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscCalloc2(ncell, &count, ncell, &w));
