@@ -386,7 +386,7 @@ static PetscErrorCode BalanceDecompPrint(Balance b, const BalanceDecompProblem *
         }
       }
     }
-  PetscCall(PetscPrintf(b->comm, "decomposition: %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, cut along %s%s: largest rank %.0f%% of the particle load + %.0f%% in ghosts", d->p[0], d->p[1], d->p[2], axes, d->balanced ? cuts : ", uniform cuts", (double)(100 * d->own / total), (double)(100 * d->ghost / total)));
+  PetscCall(PetscPrintf(b->comm, "decomposition: %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, cut along %s%s: largest rank %.0f%% of the load + %.0f%% in ghosts", d->p[0], d->p[1], d->p[2], axes, d->balanced ? cuts : ", uniform cuts", (double)(100 * d->own / total), (double)(100 * d->ghost / total)));
   if (!moved) PetscCall(PetscPrintf(b->comm, " (PETSc's default; no other is 5%% lower)"));
   else if (ref->cost >= 0) PetscCall(PetscPrintf(b->comm, ", against %.0f%% + %.0f%% for PETSc's default %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT, (double)(100 * ref->own / total), (double)(100 * ref->ghost / total), ref->p[0], ref->p[1], ref->p[2]));
   if (pb->whole >= 0 && d->p[pb->whole] == 1) PetscCall(PetscPrintf(b->comm, "; %c, the gravity axis, is not cut (the particles move along it)", "xyz"[pb->whole]));
