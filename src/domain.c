@@ -116,7 +116,7 @@ PetscErrorCode DomainDestroy(Domain *dom)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DomainSetOwnership(Domain *dom, PetscInt *const l[3])
+PetscErrorCode DomainSetDecomposition(Domain *dom, const PetscInt p[3], PetscInt *const l[3])
 {
   DM             da;
   DMBoundaryType bt[3];
@@ -127,17 +127,42 @@ PetscErrorCode DomainSetOwnership(Domain *dom, PetscInt *const l[3])
   PetscCall(DMDAGetInfo(dom->da, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, &sw, &bt[0], &bt[1], &bt[2], NULL));
   for (int k = 0; k < 3; k++) {
     PetscInt sum = 0;
-    for (PetscInt r = 0; r < dom->nranks[k]; r++) {
+    for (PetscInt r = 0; r < p[k]; r++) {
       PetscCheck(l[k][r] >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "new ownership along %c: rank column %" PetscInt_FMT " gets %" PetscInt_FMT " cells, must be >= 1", "xyz"[k], r, l[k][r]);
       sum += l[k][r];
     }
     PetscCheck(sum == dom->cells[k], comm, PETSC_ERR_ARG_SIZ, "new ownership along %c sums to %" PetscInt_FMT " cells, the grid has %" PetscInt_FMT, "xyz"[k], sum, dom -> cells[k]);
   }
-  PetscCall(DMDACreate3d(comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, dom->cells[0], dom->cells[1], dom->cells[2], dom->nranks[0], dom->nranks[1], dom->nranks[2], 1, sw, l[0], l[1], l[2], &da));
+  /* the new DMDA before the old one goes: they share PETSc's inner communicator, which objects
+     created on the old one (the fluid's) keep using */
+  PetscCall(DMDACreate3d(comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, dom->cells[0], dom->cells[1], dom->cells[2], p[0], p[1], p[2], 1, sw, l[0], l[1], l[2], &da));
   PetscCall(DMSetUp(da));
   PetscCall(DMDestroy(&dom->da));
   dom->da = da;
   PetscCall(DomainSetBoxes(dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DomainSetOwnership(Domain *dom, PetscInt *const l[3])
+{
+  const PetscInt p[3] = {dom->nranks[0], dom->nranks[1], dom->nranks[2]};
+
+  PetscFunctionBeginUser;
+  PetscCall(DomainSetDecomposition(dom, p, l));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DomainProcessGridGiven(PetscBool *given)
+{
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  *given = PETSC_FALSE;
+  for (int k = 0; k < 3; k++) {
+    const char *opt[3] = {"-da_processors_x", "-da_processors_y", "-da_processors_z"};
+    PetscCall(PetscOptionsHasName(NULL, NULL, opt[k], &set));
+    *given = (PetscBool)(*given || set);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

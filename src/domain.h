@@ -33,6 +33,12 @@ PetscErrorCode DomainDestroy(Domain *dom);
  * ownership ranges l[k][0..nranks[k]-1] (cells per rank column, summing to cells[k]), and
  * updates this rank's cells and box. The caller moves the data living on the old layout. */
 PetscErrorCode DomainSetOwnership(Domain *dom, PetscInt *const l[3]);
+/* Collective. As DomainSetOwnership, with the process grid p[0] x p[1] x p[2] (same rank count)
+ * as well: l[k][0..p[k]-1]. */
+PetscErrorCode DomainSetDecomposition(Domain *dom, const PetscInt p[3], PetscInt *const l[3]);
+/* Not collective. Whether the user gave any of -da_processors_x/y/z (then the process grid is
+ * theirs and Sable does not choose one). */
+PetscErrorCode DomainProcessGridGiven(PetscBool *given);
 /* Collective. Moves the global Vec *v of DMDA from onto DMDA to (same grid and dofs, another
  * ownership) through the natural ordering: every value lands bit for bit at the same grid
  * point. *v is destroyed and replaced. */

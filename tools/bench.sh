@@ -5,7 +5,9 @@
 # from the state at 0.8 s simulated), median of 3 runs, and the peak memory per particle
 # (marginal: the difference of peak RSS between the two sizes over the difference in count);
 # then the fluid (tools/bench_fluid.sh), the coupled fluidized bed (tools/bench_fluidized.sh) and
-# the checkpoints of 10^5 and 10^6 settled spheres (tools/bench_checkpoint.sh).
+# the checkpoints of 10^5 and 10^6 settled spheres (tools/bench_checkpoint.sh) and the default
+# decomposition on 2 ranks against the hand-chosen process grids (tools/bench_decomp.sh, on the
+# settled 10k bed of this run when there is one).
 # Usage: tools/bench.sh [sizes], sizes among 10k 100k (default both). Output in bench-out/.
 set -eu
 cd "$(dirname "$0")/.."
@@ -43,3 +45,4 @@ fi
 [ -x build/tools/bench_fluid ] || [ ! -x tools/bench_fluid.sh ] || tools/bench_fluid.sh
 tools/bench_fluidized.sh
 tools/bench_checkpoint.sh
+tools/bench_decomp.sh

@@ -50,3 +50,31 @@ PetscErrorCode BalanceLoads(const BalanceGrid *g, const PetscReal *w, PetscInt *
  * -da_processors_x/y/z are not given (the "squarish" factorisation of DMSetUp_DA_3D). Like the
  * DMDA's, it may exceed the cells along an axis: the caller checks p[d] minw[d] <= n[d]. */
 PetscErrorCode BalanceProcessGrid(const PetscInt n[3], PetscInt size, PetscInt p[3]);
+
+/* The decomposition of a run's start (decompose.c): the problem, */
+typedef struct {
+  PetscInt  n[3];          /* global cell counts */
+  PetscInt  size;          /* ranks */
+  PetscInt  pref[3];       /* the reference process grid (PETSc's default), kept with uniform cuts unless beaten by gain */
+  PetscInt  minw[3];       /* thinnest box along an axis of one rank (cells) */
+  PetscInt  minw_split[3]; /* thinnest box along a split axis (cells; the halo) */
+  PetscReal halo[3];       /* halo depth in cells, reach / h */
+  PetscBool periodic[3];
+  PetscInt  max_sweeps; /* of BalanceCuts */
+  PetscReal gain;       /* relative lowering of the estimate needed to leave the reference */
+  PetscInt  whole;      /* an axis to leave unsplit when a grid allows it (gravity's), or -1 */
+} BalanceDecompProblem;
+/* and a candidate: process grid, cuts l[k][0..p[k]-1] (arrays of pb->size entries owned by the
+ * caller), the estimate (largest rank load plus ghosts) and that rank's load and ghosts. */
+typedef struct {
+  PetscInt  p[3];
+  PetscInt *l[3];
+  PetscBool balanced; /* cuts from BalanceCuts, else the DMDA's uniform ones */
+  PetscReal cost, own, ghost;
+} BalanceDecomp;
+/* The estimate of the decomposition (p, l) on the cell weights w. */
+PetscErrorCode BalanceDecompCost(const BalanceDecompProblem *pb, const PetscInt p[3], PetscInt *const l[3], const PetscReal *w, PetscReal *cost, PetscReal *own, PetscReal *ghost);
+/* The best decomposition into *best and the reference into *ref (ref->cost < 0: its uniform
+ * cuts are thinner than the minimum widths): among the grids that leave pb->whole unsplit, or
+ * all grids when none does. Errors when no process grid fits. */
+PetscErrorCode BalanceBestDecomposition(const BalanceDecompProblem *pb, const PetscReal *w, BalanceDecomp *best, BalanceDecomp *ref);

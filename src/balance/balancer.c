@@ -52,6 +52,7 @@ struct _p_Balance {
      and the compute time since the last check carried over (dem, fluid) */
   PetscBool      restored;
   PetscLogDouble t_since[2];
+  PetscBool      ckpt_cuts; /* the Domain holds a checkpoint's cuts: BalanceDecompose keeps them */
 };
 
 PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb)
@@ -324,6 +325,133 @@ PetscErrorCode BalanceIsActive(Balance b, PetscBool *on)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The problem of BalanceDecompose: the Domain's grid, the minimum widths of BalanceMinWidth for
+ * an axis of one rank and a split one, the halo depth in cells. */
+static PetscErrorCode BalanceDecompProblemSet(Balance b, BalanceDecompProblem *pb)
+{
+  const Domain *dom = b->dom;
+  PetscReal     reach;
+  PetscInt      sw;
+  PetscMPIInt   size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(b->comm, &size));
+  PetscCall(DemGetHaloWidth(b->dem, &reach));
+  PetscCall(DMDAGetInfo(dom->da, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, &sw, NULL, NULL, NULL, NULL));
+  pb->size       = size;
+  pb->max_sweeps = b->max_sweeps;
+  pb->gain       = 0.05;
+  pb->whole      = -1;
+  {
+    PetscReal g[3], gmax = 0;
+    PetscCall(DemGetGravity(b->dem, g));
+    for (int k = 0; k < 3; k++)
+      if (PetscAbsReal(g[k]) > gmax) {
+        gmax      = PetscAbsReal(g[k]);
+        pb->whole = k;
+      }
+  }
+  for (int k = 0; k < 3; k++) {
+    const PetscInt halo = (PetscInt)PetscCeilReal(reach / dom->h[k] * (1 - 1e-12));
+    pb->n[k]            = dom->cells[k];
+    pb->pref[k]         = dom->nranks[k];
+    pb->periodic[k]     = dom->periodic[k];
+    pb->halo[k]         = reach / dom->h[k];
+    pb->minw_split[k]   = PetscMax(PetscMax(1, sw), halo);
+    pb->minw[k]         = dom->periodic[k] ? pb->minw_split[k] : PetscMax(1, sw);
+    if (b->cpl) {
+      pb->minw[k]       = PetscMax(pb->minw[k], 2);
+      pb->minw_split[k] = PetscMax(pb->minw_split[k], 2);
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* One line: the decomposition d, and why (its estimate against the reference's). */
+static PetscErrorCode BalanceDecompPrint(Balance b, const BalanceDecompProblem *pb, const BalanceDecomp *d, const BalanceDecomp *ref, PetscReal total, PetscBool moved)
+{
+  char axes[8] = "", cuts[256] = "";
+
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 3; k++)
+    if (d->p[k] > 1) {
+      size_t len = strlen(axes);
+      PetscCall(PetscSNPrintf(axes + len, sizeof axes - len, "%s%c", len ? "," : "", "xyz"[k]));
+      if (d->balanced) {
+        len = strlen(cuts);
+        PetscCall(PetscSNPrintf(cuts + len, sizeof cuts - len, "%s%c", len ? "; " : ", balanced cuts (cells per rank) ", "xyz"[k]));
+        for (PetscInt r = 0; r < d->p[k]; r++) {
+          len = strlen(cuts);
+          PetscCall(PetscSNPrintf(cuts + len, sizeof cuts - len, "%s%" PetscInt_FMT, r ? "," : " ", d->l[k][r]));
+        }
+      }
+    }
+  PetscCall(PetscPrintf(b->comm, "decomposition: %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, cut along %s%s: largest rank %.0f%% of the load + %.0f%% in ghosts", d->p[0], d->p[1], d->p[2], axes, d->balanced ? cuts : ", uniform cuts", (double)(100 * d->own / total), (double)(100 * d->ghost / total)));
+  if (!moved) PetscCall(PetscPrintf(b->comm, " (PETSc's default; no other is 5%% lower)"));
+  else if (ref->cost >= 0) PetscCall(PetscPrintf(b->comm, ", against %.0f%% + %.0f%% for PETSc's default %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT, (double)(100 * ref->own / total), (double)(100 * ref->ghost / total), ref->p[0], ref->p[1], ref->p[2]));
+  if (pb->whole >= 0 && d->p[pb->whole] == 1) PetscCall(PetscPrintf(b->comm, "; %c, the gravity axis, is not cut (the particles move along it)", "xyz"[pb->whole]));
+  PetscCall(PetscPrintf(b->comm, "; -da_processors_x/y/z choose another\n"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+#define BALANCE_DECOMP_MAX_CELLS 16777216 /* 64 MB of counts and weights on every rank */
+
+PetscErrorCode BalanceDecompose(Balance b)
+{
+  Domain              *dom   = b->dom;
+  const PetscInt       ncell = dom->cells[0] * dom->cells[1] * dom->cells[2];
+  const BalanceWeight  wm    = {b->weight == 1 ? BALANCE_WEIGHT_QUADRATIC : BALANCE_WEIGHT_LINEAR, b->alpha, b->beta};
+  BalanceDecompProblem pb;
+  BalanceDecomp        best, ref;
+  PetscInt            *count, *buf, np = 0;
+  PetscReal           *w, total     = 0;
+  PetscBool            given, moved = PETSC_FALSE;
+  const PetscInt      *l[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(BalanceDecompProblemSet(b, &pb));
+  if (pb.size == 1) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DomainProcessGridGiven(&given));
+  if (given || b->ckpt_cuts) {
+    PetscCall(PetscPrintf(b->comm, "decomposition: %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, %s\n", dom->nranks[0], dom->nranks[1], dom->nranks[2], b->ckpt_cuts ? "the checkpoint's process grid and cuts" : "as given by -da_processors_x/y/z"));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (ncell > BALANCE_DECOMP_MAX_CELLS) { /* every rank would hold the counts of the whole grid */
+    PetscCall(PetscPrintf(b->comm, "decomposition: %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, PETSc's default (the grid's %" PetscInt_FMT " cells are too many to weigh at set-up, more than %d)\n", dom->nranks[0], dom->nranks[1], dom->nranks[2], ncell, BALANCE_DECOMP_MAX_CELLS));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscCalloc2(ncell, &count, ncell, &w));
+  PetscCall(DemGetCellCounts(b->dem, count));
+  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, count, (PetscMPIInt)ncell, MPIU_INT, MPI_SUM, b->comm));
+  for (PetscInt c = 0; c < ncell; c++) np += count[c];
+  if (!np) {
+    PetscCall(PetscPrintf(b->comm, "decomposition: %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " ranks, PETSc's default (no particles at set-up to choose from)\n", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
+    PetscCall(PetscFree2(count, w));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(BalanceCellWeights(&wm, ncell, count, w));
+  for (PetscInt c = 0; c < ncell; c++) total += w[c];
+  PetscCall(PetscMalloc1(6 * pb.size, &buf));
+  for (int k = 0; k < 3; k++) {
+    best.l[k] = buf + k * pb.size;
+    ref.l[k]  = buf + (3 + k) * pb.size;
+  }
+  PetscCall(BalanceBestDecomposition(&pb, w, &best, &ref));
+  PetscCall(DMDAGetOwnershipRanges(dom->da, &l[0], &l[1], &l[2]));
+  for (int k = 0; k < 3; k++) {
+    moved = (PetscBool)(moved || best.p[k] != dom->nranks[k]);
+    for (PetscInt r = 0; r < best.p[k] && !moved; r++) moved = (PetscBool)(best.l[k][r] != l[k][r]);
+  }
+  if (moved) {
+    PetscCall(DomainSetDecomposition(dom, best.p, best.l));
+    PetscCall(DemRedistribute(b->dem));
+  }
+  PetscCall(BalanceDecompPrint(b, &pb, &best, &ref, total, moved));
+  PetscCall(PetscFree(buf));
+  PetscCall(PetscFree2(count, w));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Checkpoints. The cuts are part of the decomposition a checkpoint's per-rank state belongs to,
  * so a restart on the same rank count puts them back before anything is set up on the Domain;
  * the schedule (last check, next check time, once done) and the counters continue, so the
@@ -387,6 +515,30 @@ static PetscErrorCode BalanceCkptSameGrid(Balance b, IoCkpt ck, PetscBool *same)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. A run that leaves the process grid to Sable restarts on the checkpoint's, when the
+ * rank count and the grid are the checkpoint's: the cuts chosen at its start (BalanceDecompose)
+ * stay. */
+static PetscErrorCode BalanceCkptAdoptGrid(Balance b, IoCkpt ck)
+{
+  Domain   *dom = b->dom;
+  PetscInt  grid[6], *l[3];
+  PetscBool given;
+
+  PetscFunctionBeginUser;
+  PetscCall(DomainProcessGridGiven(&given));
+  PetscCall(IoCkptReadShared(ck, "lb/grid", IO_CKPT_INT, 6, grid));
+  if (given || grid[0] != dom->cells[0] || grid[1] != dom->cells[1] || grid[2] != dom->cells[2]) PetscFunctionReturn(PETSC_SUCCESS);
+  if (grid[3] == dom->nranks[0] && grid[4] == dom->nranks[1] && grid[5] == dom->nranks[2]) PetscFunctionReturn(PETSC_SUCCESS);
+  {
+    BalanceGrid g = {{grid[0], grid[1], grid[2]}, {grid[3], grid[4], grid[5]}, {1, 1, 1}, 0};
+    PetscCall(PetscMalloc3(grid[3], &l[0], grid[4], &l[1], grid[5], &l[2]));
+    PetscCall(BalanceUniformCuts(&g, l));
+    PetscCall(DomainSetDecomposition(dom, g.p, l));
+    PetscCall(PetscFree3(l[0], l[1], l[2]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode BalanceCkptReadCuts(Balance b, IoCkpt ck)
 {
   Domain  *dom = b->dom;
@@ -423,12 +575,14 @@ PetscErrorCode BalanceCheckpointRead(Balance b, IoCkpt ck)
   b->t_total    = clk[1];
   b->alpha_used = clk[2];
   b->beta_used  = clk[3];
+  if (ranks == size) PetscCall(BalanceCkptAdoptGrid(b, ck));
   if (ranks == size) PetscCall(BalanceCkptSameGrid(b, ck, &same));
   if (!same) { /* the cuts belong to another grid or process grid: the DMDA's, and a check soon */
     PetscCall(PetscPrintf(b->comm, "lb: restart on %d ranks (process grid %d x %d x %d) from a checkpoint of %d ranks%s: default cuts, not the checkpoint's%s\n", (int)size, (int)b->dom->nranks[0], (int)b->dom->nranks[1], (int)b->dom->nranks[2], ranks, ranks == size ? " on another grid or process grid (lb/grid)" : "", b->scheme == LB_NONE ? "" : "; the balancer checks after the first step"));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(BalanceCkptReadCuts(b, ck));
+  b->ckpt_cuts = PETSC_TRUE;
   PetscCall(IoCkptReadRowsInto(ck, "lb/measured", IO_CKPT_REAL, 2, since));
   b->last_step  = st[0];
   b->done_once  = (PetscBool)(st[1] != 0);

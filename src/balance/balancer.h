@@ -18,6 +18,13 @@ PetscErrorCode             BalanceSetUp(Balance lb);
 /* Checks when the scheme says so (force: now, and rebalance whatever the threshold); moved
  * tells whether the cuts changed. Prints one line per check unless -lb_verbose 0. */
 PetscErrorCode BalanceCheck(Balance lb, PetscBool force, PetscBool *moved);
+/* The decomposition of the run's start, chosen from the particles (decompose.c): after DemSetUp
+ * and before the fluid and the coupling are set up, on more than one rank, unless the user gave
+ * any of -da_processors_x/y/z or the Domain holds a checkpoint's cuts, the process grid and cuts
+ * with the smallest estimated largest rank load plus ghosts (balancer weights -lb_weight,
+ * -lb_alpha, -lb_beta) replace PETSc's default when they lower that estimate by more than 5%,
+ * and the DEM's particles move onto them. Prints one line: what was chosen and why. */
+PetscErrorCode BalanceDecompose(Balance lb);
 /* The current rank loads under the weight model: smallest, largest, mean. */
 PetscErrorCode BalanceGetLoads(Balance lb, PetscReal *lmin, PetscReal *lmax, PetscReal *lavg);
 /* The coupling whose fluid moves with the cuts (set before BalanceSetUp; NULL: a dry run). */

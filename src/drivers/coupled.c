@@ -417,6 +417,7 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
     PetscCall(DemSetExternal(c->dem, PETSC_TRUE));
   }
   PetscCall(DemSetUp(c->dem));
+  PetscCall(BalanceDecompose(c->lb)); /* the process grid and cuts from the particles, before the fluid's layout */
   PetscCall(DemSetRestart(c->dem, NULL));
   PetscCall(FluidSetCheckpointing(c->fl, PETSC_TRUE)); /* also a stop signal writes a checkpoint */
   PetscCall(FluidSetUp(c->fl));
@@ -464,7 +465,7 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
     PetscCall(SableCheckOptionsUsed(r->comm));
     PetscCall(DemGetFrozen(dem, &c.frozen));
     PetscCall(DemHasConvexShapes(dem, &convex));
-    PetscCall(PetscPrintf(r->comm, "modules: DEM on%s; fluid on; coupling on; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT ", fluid grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", c.frozen ? " (frozen: no particle integration)" : "", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2], dom->cells[0], dom->cells[1], dom->cells[2]));
+    PetscCall(PetscPrintf(r->comm, "modules: DEM on%s; fluid on; coupling on; convex shapes %s; fluid grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", c.frozen ? " (frozen: no particle integration)" : "", convex ? "on (libccd)" : "off", dom->cells[0], dom->cells[1], dom->cells[2]));
     PetscCall(CoupledSetUp(&c));
     PetscCall(DemGetGravity(dem, g));
     c.col = ColumnFromGravity(dom, g);

@@ -205,7 +205,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
+PetscErrorCode DryRunCase(DryRun r, Dem dem, Balance lb, Io io)
 {
   PetscBool      convex;
   PetscReal      phi, coord, t;
@@ -218,7 +218,7 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscFunctionBeginUser;
   PetscCall(SableCheckOptionsUsed(r->comm));
   PetscCall(DemHasConvexShapes(dem, &convex));
-  PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s; process grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT "\n", convex ? "on (libccd)" : "off", dom->nranks[0], dom->nranks[1], dom->nranks[2]));
+  PetscCall(PetscPrintf(r->comm, "modules: DEM on; fluid off (dry case); coupling off; convex shapes %s\n", convex ? "on (libccd)" : "off"));
   PetscCall(PetscTime(&t0));
   if (r->ckpt.restart[0]) {
     PetscCall(IoCkptOpen(r->comm, r->ckpt.restart, &ck));
@@ -226,7 +226,8 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
     if (lb) PetscCall(BalanceCheckpointRead(lb, ck));
     PetscCall(DemSetRestart(dem, ck));
   }
-  PetscCall(DemSetUp(dem)); /* a checkpoint of another rank count or format is refused here */
+  PetscCall(DemSetUp(dem));                /* a checkpoint of another rank count or format is refused here */
+  if (lb) PetscCall(BalanceDecompose(lb)); /* the process grid and cuts from the particles */
   PetscCall(DriverMonSetUp(&r->mon, io));
   PetscCall(DriverAvgSetUp(r->avg, dom, dem, NULL, io));
   if (ck) {
