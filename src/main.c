@@ -312,7 +312,7 @@ static PetscErrorCode SableRun(void)
   if (!coupled || help) {
     PetscCall(DryRunCreate(PETSC_COMM_WORLD, &dry));
     PetscCall(DryRunSetFromOptions(dry));
-    if (!help) PetscCall(DryRunCase(dry, dem, lb, io));
+    if (!help) PetscCall(DryRunCase(dry, &dom, dem, lb, io));
     PetscCall(DryRunDestroy(&dry));
   }
   PetscCall(BalanceDestroy(&lb));

@@ -79,7 +79,7 @@ PetscErrorCode            DryRunCreate(MPI_Comm comm, DryRun *run);
 PetscErrorCode            DryRunSetFromOptions(DryRun run);
 /* Sets up the Dem (options read) and the Balance, runs, prints the summary lines; lb and io
  * may be NULL (no balancing, no output). */
-PetscErrorCode DryRunCase(DryRun run, Dem dem, Balance lb, Io io);
+PetscErrorCode DryRunCase(DryRun run, Domain *dom, Dem dem, Balance lb, Io io);
 /* The loop alone (the Dem set up): from the DEM's time to -dem_t_end; lb and io may be NULL. */
 PetscErrorCode DryRunLoop(DryRun run, Dem dem, Balance lb, Io io);
 PetscErrorCode DryRunDestroy(DryRun *run);

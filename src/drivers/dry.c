@@ -205,7 +205,7 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DryRunCase(DryRun r, Dem dem, Balance lb, Io io)
+PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
 {
   PetscBool      convex;
   PetscReal      phi, coord, t;
