@@ -11,7 +11,9 @@
 #   (c) a run continued from a checkpoint leaves the same monitor file as the uninterrupted run
 #       (every column but the wall-clock ones, as text);
 #   (d) tools/plot_monitor finds the frequency of a 3 Hz sine within the spectrum's resolution;
-#   (e) a probe in a dry run and an empty box are refused in one line naming the option.
+#   (e) a probe in a dry run and an empty box are refused in one line naming the option;
+#   (f) a lattice bed at rest: the 95% height is the centre of the lattice's layer k = ceil(0.95 nz)
+#       - 1, z0 + (k + 1/2) a, exactly, and the centre-of-mass height z0 + nz a / 2 (1e-12).
 cd "$(dirname "$0")/../.." || exit 1
 ROOT=$(pwd)
 S=$ROOT/${BIN:-bin}/sable
@@ -139,4 +141,21 @@ for c in "probe in a dry run|-mon_probe_0: a probe of the fluid pressure; this r
   out=$("$S" -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0 -mon_interval 0.001 $opt 2>&1); rc=$?
   if [ "$rc" -ne 0 ] && [ "$(printf '%s\n' "$out" | grep -c 'sable: error')" -eq 1 ] && printf '%s' "$out" | grep -q -- "$pat"; then echo "PASS monitor bad input, $name: exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""
   else echo "FAIL monitor bad input, $name: exit $rc; got: $out"; fi
+done
+# (f) the analytic heights of a lattice
+for lat in "12 0" "15 0.002"; do
+  set -- $lat
+  out=$("$S" -options_file cases/settle/quick.opts -dem_lattice 10,10,$1 -dem_lattice_origin 0,0,$2 -dem_t_end 0 -io_interval 0 -mon_interval 0.01 -io_dir "$W/lat$1" 2>&1)
+  res=$(/usr/bin/python3 -c "
+import math, numpy as np
+r = np.genfromtxt('$W/lat$1/sable_monitor.csv', delimiter=',', names=True)
+nz, z0, a = $1, $2, 0.01449
+h = z0 + (math.ceil(0.95 * nz) - 1 + 0.5) * a
+m = z0 + nz * a / 2
+h1, m1 = float(np.atleast_1d(r['bed_height_95_m'])[0]), float(np.atleast_1d(r['mean_height_m'])[0])
+print(int(h1 == h and abs(m1 - m) <= 1e-12 * m), repr(h1), repr(h), '%.1e' % (abs(m1 - m) / m))
+" 2>&1)
+  set -- $1 $res
+  if [ "$2" = 1 ]; then echo "PASS monitor bed height of a lattice, nz=$1: 95% height $3 m = the analytic $4 m exactly, centre of mass within $5 relative (bound 1e-12)"
+  else echo "FAIL monitor bed height of a lattice, nz=$1: $*; $(printf '%s' "$out" | grep 'sable:' | head -n 1)"; fi
 done
