@@ -20,18 +20,31 @@
  * Read on another rank count or process grid, the state is redistributed (checkpoint_remap.c). */
 #include "dem/dem_impl.h"
 
-#define DEM_CKPT_NCOUNT 14 /* per-rank counters, see DemCkptCounters */
+/* Collective. Every per-particle dataset of the table, this rank's rows (x0 and id apart). */
+static PetscErrorCode DemCkptFields(Dem dem, IoCkpt ck, PetscBool write)
+{
+  PetscFunctionBeginUser;
+  for (size_t f = 0; f < dem_ckpt_nfields; f++) {
+    const DemCkptField *fd   = &dem_ckpt_fields[f];
+    void               *data = *(void **)((char *)dem + fd->at);
+    const PetscInt      rows = fd->ncomp * (dem->p.n + (fd->ghosts ? dem->p.ng : 0));
+    if (fd->coupled && !dem->ext.on) continue;
+    if (write) PetscCall(IoCkptWriteRows(ck, fd->name, fd->type, rows, data));
+    else PetscCall(IoCkptReadRowsInto(ck, fd->name, fd->type, rows, data));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* The per-rank counters, in the order they are stored. */
 static void DemCkptCounters(Dem dem, PetscInt c[DEM_CKPT_NCOUNT], PetscBool get)
 {
-  PetscInt *v[DEM_CKPT_NCOUNT] = {&dem->p.n, &dem->p.ng, &dem->p.next_id, &dem->nl.builds, &dem->nl.sorts, &dem->clock.step, &dem->state, &dem->initial.n, &dem->walls.nwall, &dem->ex.migrated, &dem->nl.nc[0], &dem->nl.nc[1], &dem->nl.nc[2], NULL};
-  for (int k = 0; k < DEM_CKPT_NCOUNT - 1; k++) {
+  PetscInt *v[DEM_CKPT_NCOUNT] = {[CK_N] = &dem->p.n, [CK_NG] = &dem->p.ng, [CK_NEXT_ID] = &dem->p.next_id, [CK_BUILDS] = &dem->nl.builds, [CK_SORTS] = &dem->nl.sorts, [CK_STEP] = &dem->clock.step, [CK_STATE] = &dem->state, [CK_INITIAL_N] = &dem->initial.n, [CK_NWALL] = &dem->walls.nwall, [CK_MIGRATED] = &dem->ex.migrated, [CK_NC0] = &dem->nl.nc[0], [CK_NC1] = &dem->nl.nc[1], [CK_NC2] = &dem->nl.nc[2]};
+  for (int k = 0; k < CK_NEED_BUILD; k++) {
     if (get) c[k] = *v[k];
     else *v[k] = c[k];
   }
-  if (get) c[DEM_CKPT_NCOUNT - 1] = dem->need_build;
-  else dem->need_build = (PetscBool)(c[DEM_CKPT_NCOUNT - 1] != 0);
+  if (get) c[CK_NEED_BUILD] = dem->need_build;
+  else dem->need_build = (PetscBool)(c[CK_NEED_BUILD] != 0);
 }
 
 /* Collective. The per-rank variable-length lists: ghost send lists, wall lists and springs. */
@@ -116,21 +129,14 @@ PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
   m      = dem->p.n ? dem->nl.start[dem->p.n] : 0;
   PetscCall(IoCkptWriteRows(ck, "dem/counters", IO_CKPT_INT, DEM_CKPT_NCOUNT, c));
   PetscCall(IoCkptWriteRows(ck, "dem/clock", IO_CKPT_REAL, 3, clk));
-  PetscCall(IoCkptWriteRows(ck, "dem/x", IO_CKPT_REAL, 3 * N, dem->p.x));
-  PetscCall(IoCkptWriteRows(ck, "dem/v", IO_CKPT_REAL, 3 * N, dem->p.v));
-  PetscCall(IoCkptWriteRows(ck, "dem/w", IO_CKPT_REAL, 3 * N, dem->p.w));
-  PetscCall(IoCkptWriteRows(ck, "dem/q", IO_CKPT_REAL, 4 * N, dem->p.q));
-  PetscCall(IoCkptWriteRows(ck, "dem/f", IO_CKPT_REAL, 3 * N, dem->p.f));
-  PetscCall(IoCkptWriteRows(ck, "dem/tq", IO_CKPT_REAL, 3 * N, dem->p.tq));
+  PetscCall(DemCkptFields(dem, ck, PETSC_TRUE));
   PetscCall(IoCkptWriteRows(ck, "dem/x0", IO_CKPT_REAL, 3 * dem->p.n, dem->p.x0));
   PetscCall(IoCkptWriteRows(ck, "dem/id", IO_CKPT_INT, N, dem->p.id));
-  PetscCall(IoCkptWriteRows(ck, "dem/shape", IO_CKPT_INT, N, dem->p.shape));
   PetscCall(IoCkptWriteRows(ck, "dem/nl_start", IO_CKPT_INT, dem->p.n ? dem->p.n + 1 : 0, dem->nl.start));
   PetscCall(IoCkptWriteRows(ck, "dem/nl_nbr", IO_CKPT_INT, m, dem->nl.nbr));
   PetscCall(IoCkptWriteRows(ck, "dem/nl_own", IO_CKPT_INT, m, dem->nl.own));
   PetscCall(IoCkptWriteRows(ck, "dem/nl_hist", IO_CKPT_REAL, dem->nl.hist ? 3 * m : 0, dem->nl.hist));
   PetscCall(DemCkptWriteLists(dem, ck));
-  PetscCall(DemExternalCheckpointWrite(dem, ck));
   PetscCall(DemCkptWriteConvex(dem, ck));
   PetscCall(DemCkptWriteWalls(dem, ck));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -262,7 +268,7 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   }
   PetscCall(IoCkptReadRowsInto(ck, "dem/counters", IO_CKPT_INT, DEM_CKPT_NCOUNT, c));
   PetscCall(IoCkptReadRowsInto(ck, "dem/clock", IO_CKPT_REAL, 3, clk));
-  PetscCheck(c[8] == nwall, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint has %" PetscInt_FMT " walls, the case's options make %" PetscInt_FMT, path, c[8], nwall);
+  PetscCheck(c[CK_NWALL] == nwall, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint has %" PetscInt_FMT " walls, the case's options make %" PetscInt_FMT, path, c[CK_NWALL], nwall);
   DemCkptCounters(dem, c, PETSC_FALSE);
   PetscCall(DemNeighSetCells(dem, dem->nl.nc)); /* the grid's cell count depends on the particles at its set-up */
   dem->clock.t          = clk[0];
@@ -271,18 +277,12 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   dem->stop_sig         = 0;
   N                     = dem->p.n + dem->p.ng;
   PetscCall(DemParticlesReserve(dem, N));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/x", IO_CKPT_REAL, 3 * N, dem->p.x));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/v", IO_CKPT_REAL, 3 * N, dem->p.v));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/w", IO_CKPT_REAL, 3 * N, dem->p.w));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/q", IO_CKPT_REAL, 4 * N, dem->p.q));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/f", IO_CKPT_REAL, 3 * N, dem->p.f));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/tq", IO_CKPT_REAL, 3 * N, dem->p.tq));
+  PetscCall(DemExternalCheckpointCheck(dem, ck));
+  PetscCall(DemCkptFields(dem, ck, PETSC_FALSE));
   PetscCall(IoCkptReadRowsInto(ck, "dem/x0", IO_CKPT_REAL, 3 * dem->p.n, dem->p.x0));
   PetscCall(IoCkptReadRowsInto(ck, "dem/id", IO_CKPT_INT, N, dem->p.id));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/shape", IO_CKPT_INT, N, dem->p.shape));
   PetscCall(DemCkptReadList(dem, ck, path));
   PetscCall(DemCkptReadLists(dem, ck, path));
-  PetscCall(DemExternalCheckpointRead(dem, ck));
   PetscCall(DemCkptReadConvex(dem, ck));
   PetscCall(DemCkptReadWalls(dem, ck));
   PetscFunctionReturn(PETSC_SUCCESS);

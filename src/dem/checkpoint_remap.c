@@ -21,20 +21,8 @@
 #include "dem/dem_impl.h"
 #include <stddef.h>
 
-/* A per-particle dataset: rows of ncomp values, per writing rank its n owned particles then (if
- * ghosts) its ng ghosts, read into the array whose pointer sits at offset at of struct _p_Dem.
- * An array added here must also travel in the migration record (exchange.c). The ids are read
- * on their own: the lists need the ghosts' too. */
-typedef struct {
-  const char *name;
-  IoCkptType  type;
-  int         ncomp;
-  PetscBool   ghosts;
-  size_t      at;
-  PetscBool   coupled; /* the coupling's arrays (external.c): only in a coupled run's checkpoint */
-} DemCkptField;
-
-static const DemCkptField dem_ckpt_fields[] = {
+/* The per-particle datasets (dem_impl.h), walked by the writer and both readers. */
+const DemCkptField dem_ckpt_fields[] = {
   {"dem/shape", IO_CKPT_INT, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.shape), PETSC_FALSE},
   {"dem/x", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.x), PETSC_FALSE},
   {"dem/v", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.v), PETSC_FALSE},
@@ -47,19 +35,8 @@ static const DemCkptField dem_ckpt_fields[] = {
   {"dem/ext_u", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.udrag), PETSC_TRUE},
   {"dem/ext_j", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.jdrag), PETSC_TRUE},
 };
+const size_t dem_ckpt_nfields = sizeof dem_ckpt_fields / sizeof dem_ckpt_fields[0];
 
-#define DEM_CKPT_NCOUNT 14 /* per-rank counters, in the order of DemCkptCounters (checkpoint.c): */
-enum {
-  CK_N,
-  CK_NG,
-  CK_NEXT_ID,
-  CK_BUILDS,
-  CK_SORTS,
-  CK_STEP,
-  CK_STATE,
-  CK_INITIAL_N,
-  CK_NWALL
-};
 #define CNT(b, r, k) ((b)->cnt[DEM_CKPT_NCOUNT * (r) + (k)])
 
 /* What this rank reads: the writing ranks [r0, r1) of R. */
@@ -174,7 +151,7 @@ static PetscErrorCode DemRemapParticles(Dem dem, DemRemap *b)
   PetscCall(DemParticlesReserve(dem, b->nown));
   dem->p.n  = b->nown;
   dem->p.ng = 0;
-  for (size_t f = 0; f < sizeof dem_ckpt_fields / sizeof dem_ckpt_fields[0]; f++) {
+  for (size_t f = 0; f < dem_ckpt_nfields; f++) {
     const DemCkptField *fd = &dem_ckpt_fields[f];
     const size_t        sz = IoCkptTypeSize(fd->type) * (size_t)fd->ncomp;
     char               *o;

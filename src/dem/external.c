@@ -45,22 +45,8 @@ PetscErrorCode DemSetExternal(Dem dem, PetscBool on)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective. The coupling's arrays of the local particles, when switched on. */
-PetscErrorCode DemExternalCheckpointWrite(Dem dem, IoCkpt ck)
-{
-  const PetscInt n = dem->p.n;
-
-  PetscFunctionBeginUser;
-  if (!dem->ext.on) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(IoCkptWriteRows(ck, "dem/ext_fext", IO_CKPT_REAL, 3 * n, dem->ext.fext));
-  PetscCall(IoCkptWriteRows(ck, "dem/ext_k", IO_CKPT_REAL, n, dem->ext.kdrag));
-  PetscCall(IoCkptWriteRows(ck, "dem/ext_u", IO_CKPT_REAL, 3 * n, dem->ext.udrag));
-  PetscCall(IoCkptWriteRows(ck, "dem/ext_j", IO_CKPT_REAL, 3 * n, dem->ext.jdrag));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Collective. After the particles are read (dem->p.n set, arrays reserved): the coupling's
- * arrays; a coupled run's checkpoint and a dry one are not interchangeable. */
+/* Collective. A coupled run's checkpoint holds the coupling's arrays (dem/ext_*, rows of the
+ * checkpoint table, checkpoint.c) and a dry one does not: neither continues the other. */
 PetscErrorCode DemExternalCheckpointCheck(Dem dem, IoCkpt ck)
 {
   const char *path;
@@ -71,20 +57,6 @@ PetscErrorCode DemExternalCheckpointCheck(Dem dem, IoCkpt ck)
   PetscCall(IoCkptHas(ck, "dem/ext_k", &has));
   PetscCheck(has || !dem->ext.on, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/ext_k is missing: a dry run's checkpoint cannot continue a coupled run (this case has -fluid_ or -cpl_ options)", path);
   PetscCheck(!has || dem->ext.on, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/ext_k shows a coupled run's checkpoint; this case is dry (give the coupled case's -fluid_ and -cpl_ options)", path);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode DemExternalCheckpointRead(Dem dem, IoCkpt ck)
-{
-  const PetscInt n = dem->p.n;
-
-  PetscFunctionBeginUser;
-  PetscCall(DemExternalCheckpointCheck(dem, ck));
-  if (!dem->ext.on) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(IoCkptReadRowsInto(ck, "dem/ext_fext", IO_CKPT_REAL, 3 * n, dem->ext.fext));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/ext_k", IO_CKPT_REAL, n, dem->ext.kdrag));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/ext_u", IO_CKPT_REAL, 3 * n, dem->ext.udrag));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/ext_j", IO_CKPT_REAL, 3 * n, dem->ext.jdrag));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
