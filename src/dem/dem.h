@@ -25,6 +25,7 @@ typedef struct {
 typedef struct {
   PetscInt  id, shape;
   PetscReal x[3], v[3], w[3], q[4];
+  PetscReal r; /* a sphere's own radius (m) in a scene with sizes of their own; 0: its shape's */
 } DemParticle;
 
 PetscErrorCode DemCreate(Domain *dom, Dem *dem);
@@ -61,6 +62,12 @@ PetscErrorCode DemGetTimeStep(Dem dem, PetscReal *dt);
 /* The option that set the time step: "-dem_dt", or "-dem_dt_tc" when that replaced it. */
 PetscErrorCode DemGetTimeStepOption(Dem dem, const char **opt);
 PetscErrorCode DemGetStats(Dem dem, DemStats *s);
+/* The particles that entered (sources) and left (outlets) since the start, global totals. */
+typedef struct {
+  PetscInt  inserted, removed;
+  PetscReal m_inserted, m_removed; /* kg */
+} DemFlowStats;
+PetscErrorCode DemGetFlow(Dem dem, DemFlowStats *f);
 /* Collective. Stops a diverging run with a message: kinetic energy not finite, or the largest
  * overlap above -dem_overlap_max radii (a time step too large for the stiffness lets particles
  * pass through each other while every number stays finite). s from DemGetStats. */

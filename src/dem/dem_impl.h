@@ -211,6 +211,11 @@ typedef struct {
   PetscReal   shape_frac[DEM_MAX_SHAPES];
   ConvexShape cvx[DEM_MAX_SHAPES];
   PetscBool   convex;
+  /* sizes of their own: a source draws each sphere's radius from a distribution (psd.h), which
+     the particle keeps (DemParticle.r); r_source_max is the largest radius a source can add (m),
+     set with the sources' options, so that reach and cells cover it from the start */
+  PetscBool poly;
+  PetscReal r_source_max;
 } DemShapeTable;
 
 /* The contact model (contact_laws.c): the law, the materials and the parameters of every
@@ -263,6 +268,15 @@ typedef struct {
   PetscReal init_overlap_max; /* -dem_init_file_overlap_max (radii); 0: from the contact design */
 } DemInsertion;
 
+/* The particles that entered and left the run (sources.c, sinks.c): global totals, the same on
+ * every rank; the mass balance is initial + inserted - removed = present, in count and in the
+ * id checksum (DemStep's -dem_check_every). */
+typedef struct {
+  PetscInt  inserted, removed;       /* particles */
+  PetscReal m_inserted, m_removed;   /* their mass (kg) */
+  PetscReal id_inserted, id_removed; /* sums of their ids */
+} DemFlow;
+
 /* External forces from a coupling (external.c): per-particle arrays, NULL unless DemSetExternal
  * switched them on; frozen: nothing is integrated. */
 typedef struct {
@@ -283,6 +297,7 @@ struct _p_Dem {
   DemClock         clock;
   DemInsertion     insert;
   DemExternalState ext;
+  DemFlow          flow;
   /* run control */
   PetscReal      g[3];        /* gravity (m/s^2) */
   PetscReal      overlap_max; /* -dem_overlap_max: a larger overlap stops the run (DemCheckHealth) */

@@ -66,6 +66,16 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode DemGetFlow(Dem dem, DemFlowStats *f)
+{
+  PetscFunctionBeginUser;
+  f->inserted   = dem->flow.inserted;
+  f->removed    = dem->flow.removed;
+  f->m_inserted = dem->flow.m_inserted;
+  f->m_removed  = dem->flow.m_removed;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord)
 {
   const Domain *dom  = dem->dom;
