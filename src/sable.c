@@ -47,10 +47,17 @@ PetscBool SableOptionIsOwn(const char *name)
 static const char *const SablePetscIntOptions[]        = {"da_grid_x", "da_grid_y", "da_grid_z", "da_processors_x", "da_processors_y", "da_processors_z", "da_overlap", "da_overlap_x", "da_overlap_y", "da_overlap_z", "da_refine", "da_refine_x", "da_refine_y", "da_refine_z", "da_refine_hierarchy_x", "da_refine_hierarchy_y", "da_refine_hierarchy_z"};
 static const char *const SablePetscSolverIntSuffixes[] = {"ksp_max_it", "ksp_gmres_restart", "pc_mg_levels", "pc_hypre_boomeramg_max_iter", "pc_hypre_boomeramg_max_levels", "pc_hypre_boomeramg_agg_nl", "pc_gamg_agg_nsmooths"};
 
+static void SableIndexPattern(const char *name, char *pat, size_t size, char *index, size_t isize);
+
+/* Whether name is in the list, or is an indexed name ("dem_insert_3_psd") whose pattern
+ * ("dem_insert_%d_psd") is. */
 static PetscBool SableInList(const char *name, const char *const *list, size_t n)
 {
+  char pat[128], index[16];
+
+  SableIndexPattern(name, pat, sizeof pat, index, sizeof index);
   for (size_t k = 0; k < n && list[k]; k++)
-    if (!strcmp(name, list[k])) return PETSC_TRUE;
+    if (!strcmp(name, list[k]) || (index[0] && !strcmp(pat, list[k]))) return PETSC_TRUE;
   return PETSC_FALSE;
 }
 

@@ -40,3 +40,7 @@ double DemPsdSample(const DemPsd *psd, double u);
 void DemPsdRange(const DemPsd *psd, double *dmin, double *dmax);
 /* The number-weighted mean of d^3 (m^3): mass per particle = rho pi/6 <d^3>, for kg/s rates. */
 double DemPsdMeanCube(const DemPsd *psd);
+/* The quantile of the standard normal law at p in (0,1) (-inf at 0, inf at 1), to ~1e-15. */
+double DemPsdNormalQuantile(double p);
+/* Not collective. One line saying the distribution (kind, sizes, cut-offs), for a summary. */
+PetscErrorCode DemPsdDescribe(const DemPsd *psd, char *buf, size_t size);
