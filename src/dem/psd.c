@@ -259,7 +259,12 @@ static PetscErrorCode DemPsdSetUpTable(MPI_Comm comm, char names[PSD_NOPT][64], 
     kd[k] = psd->d[i];
     kf[k] = f[i];
   }
-  PetscCheck(n > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g m and %s %g m leave no diameter of %s with a fraction > 0 inside", names[PSD_MIN], (double)(set[PSD_MIN] ? psd->dmin : 0), names[PSD_MAX], (double)(set[PSD_MAX] ? psd->dmax : INFINITY), names[PSD_DIAMETERS]);
+  if (!n) {
+    char cut[160];
+    if (set[PSD_MIN] && set[PSD_MAX]) PetscCall(PetscSNPrintf(cut, sizeof cut, "%s %g m and %s %g m leave", names[PSD_MIN], (double)psd->dmin, names[PSD_MAX], (double)psd->dmax));
+    else PetscCall(PetscSNPrintf(cut, sizeof cut, "%s %g m leaves", names[set[PSD_MIN] ? PSD_MIN : PSD_MAX], (double)(set[PSD_MIN] ? psd->dmin : psd->dmax)));
+    SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "%s no diameter of %s with a fraction > 0 inside", cut, names[PSD_DIAMETERS]);
+  }
   sum = 0;
   for (PetscInt i = 0; i < n; i++) sum += psd->kind == DEM_PSD_MASS ? kf[i] / (kd[i] * kd[i] * kd[i]) : kf[i];
   psd->ntab = n;
