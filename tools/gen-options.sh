@@ -19,9 +19,9 @@
 # A flag or word option is read either under a literal name, PetscOptionsBool("-dem_frozen", ...),
 # or through a table of literal names, PetscOptionsEnum(FluidBCOption[d][s], ...), whose
 # one-line initializer in the same file ("FluidBCOption[3][2] = {{...}}") lists them.
-# Names built at run time from an index (a source's -dem_insert_<k>_psd) are registered by a
-# one-line table of printf patterns whose name ends in WordOptions or IntOptions
-# ("DemPsdWordOptions[] = {"-dem_insert_%d_psd"}"); sable.c matches an indexed name with them.
+# Names built at run time from an index (the kind of source k's size distribution, read under
+# a prefix) are registered by a one-line table of printf patterns whose name ends in WordOptions
+# or IntOptions (DemPsdWordOptions in src/dem/psd.c); sable.c matches an indexed name with them.
 # A name written in the code is a name in these lists: nothing to keep by hand.
 # Usage: tools/gen-options.sh SRCDIR > header
 set -e

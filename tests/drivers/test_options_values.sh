@@ -72,14 +72,21 @@ awk '/^  -(dem|fluid|cpl|domain|io|lb)_[a-z0-9_]*[ :]/ {
   }' "$T/help" > "$T/kinds"
 flags=$(genlist SableFlagOptions); words=$(genlist SableWordOptions)
 bad=""
+# an indexed name (dem_insert_0_psd) is listed by its pattern (dem_insert_%d_psd), which -help shows
+# through the members a run reads, if any: each shown must be of the pattern's kind
 for kind in flag word; do
   list=$flags; [ $kind = word ] && list=$words
   for f in $(awk -v k=$kind '$1 == k {print $2}' "$T/kinds"); do
-    printf '%s\n' $list | grep -qx "$f" || bad="$bad $f(-help: $kind, not in the generated list)"
+    pat=$(printf '%s' "$f" | sed -E 's/_[0-9]+(_|$)/_%d\1/')
+    printf '%s\n' $list | grep -qxF -e "$f" -e "$pat" || bad="$bad $f(-help: $kind, not in the generated list)"
   done
   for f in $list; do
     case $f in dem_*|fluid_*|cpl_*|domain_*|io_*|lb_*) ;; *) continue ;; esac
-    grep -qx "$kind $f" "$T/kinds" || bad="$bad $f(listed as a $kind, -help: $(awk -v n="$f" '$2 == n {print $1}' "$T/kinds" | head -n 1))"
+    case $f in
+    *%d*) other=$(awk -v re="^$(printf '%s' "$f" | sed 's/%d/[0-9]+/')\$" -v k=$kind '$2 ~ re && $1 != k {print $1; exit}' "$T/kinds")
+      [ -z "$other" ] || bad="$bad $f(listed as a $kind, -help: $other)" ;;
+    *) grep -qx "$kind $f" "$T/kinds" || bad="$bad $f(listed as a $kind, -help: $(awk -v n="$f" '$2 == n {print $1}' "$T/kinds" | head -n 1))" ;;
+    esac
   done
 done
 nf=$(grep -c '^flag ' "$T/kinds"); nw=$(grep -c '^word ' "$T/kinds"); nn=$(grep -c '^number ' "$T/kinds")
