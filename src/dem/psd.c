@@ -86,18 +86,13 @@ double DemPsdNormalQuantile(double p)
 /* The quantile of the cut continuous law at u in [0,1). */
 static double dem_psd_quantile(const DemPsd *psd, double u)
 {
-  const double p = psd->plo + u * (psd->phi - psd->plo);
-  double       d;
+  double d, z;
 
-  switch (psd->kind) {
-  case DEM_PSD_NORMAL:
-    d = psd->mu + psd->sigma * DemPsdNormalQuantile(p);
-    break;
-  case DEM_PSD_LOGNORMAL:
-    d = exp(psd->mu + psd->sigma * DemPsdNormalQuantile(p));
-    break;
-  default: /* uniform */
-    d = psd->dmin + u * (psd->dmax - psd->dmin);
+  if (psd->kind == DEM_PSD_UNIFORM) d = psd->dmin + u * (psd->dmax - psd->dmin);
+  else {
+    /* a window above the median is sampled by its upper-tail probabilities: no cancellation */
+    z = psd->plo > 0.5 ? -DemPsdNormalQuantile(psd->qlo - u * (psd->qlo - psd->qhi)) : DemPsdNormalQuantile(psd->plo + u * (psd->phi - psd->plo));
+    d = psd->kind == DEM_PSD_NORMAL ? psd->mu + psd->sigma * z : exp(psd->mu + psd->sigma * z);
   }
   return PetscMin(PetscMax(d, psd->dmin), psd->dmax); /* round-off never leaves [min, max] */
 }
@@ -333,6 +328,8 @@ static PetscErrorCode DemPsdSetUpLaw(MPI_Comm comm, char names[PSD_NOPT][64], co
   pin      = dem_psd_normal_between(al, be);
   psd->plo = dem_psd_cdf(al);
   psd->phi = dem_psd_cdf(be);
+  psd->qlo = dem_psd_cdf(-al);
+  psd->qhi = dem_psd_cdf(-be);
   PetscCheck(pin >= DEM_PSD_PMIN && psd->phi > psd->plo, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g m and %s %g m keep a probability of %.3g of the %s law (%s %g m, %s %g m): at least %g; move the cut-offs towards the mean", names[PSD_MIN], (double)psd->dmin, names[PSD_MAX], (double)psd->dmax, pin, kname, names[PSD_MEAN], (double)psd->mean, names[PSD_STD], (double)psd->std, DEM_PSD_PMIN);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -381,6 +378,6 @@ PetscErrorCode DemPsdDescribe(const DemPsd *psd, char *buf, size_t size)
   DemPsdRange(psd, &lo, &hi);
   if (psd->kind == DEM_PSD_SINGLE) PetscCall(PetscSNPrintf(buf, size, "single, diameter %g m", psd->mean));
   else if (psd->kind == DEM_PSD_NUMBER || psd->kind == DEM_PSD_MASS) PetscCall(PetscSNPrintf(buf, size, "table of %d diameters by %s in [%g, %g] m, number-weighted mean %g m, std %g m", (int)psd->ntab, DemPsdKindNames[psd->kind], lo, hi, psd->mean, psd->std));
-  else PetscCall(PetscSNPrintf(buf, size, "%s, mean %g m, std %g m, cut to [%g, %g] m (probability kept %.6g)%s", DemPsdKindNames[psd->kind], psd->mean, psd->std, psd->dmin, psd->dmax, psd->phi - psd->plo, psd->classes ? ", in classes" : ""));
+  else PetscCall(PetscSNPrintf(buf, size, "%s, mean %g m, std %g m, cut to [%g, %g] m (probability kept %.6g)%s", DemPsdKindNames[psd->kind], psd->mean, psd->std, psd->dmin, psd->dmax, psd->plo > 0.5 ? psd->qlo - psd->qhi : psd->phi - psd->plo, psd->classes ? ", in classes" : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

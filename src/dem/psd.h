@@ -29,6 +29,7 @@ typedef struct {
   PetscReal  mean, std, dmin, dmax;                         /* diameters (m); dmin/dmax the cut-offs */
   PetscInt   classes;                                       /* > 0: samples snapped to this many diameters */
   PetscReal  mu, sigma, plo, phi;                           /* derived: log-parameters, CDF at the cut-offs */
+  PetscReal  qlo, qhi;                                      /* 1 - CDF at the cut-offs (a window above the median samples by these) */
 } DemPsd;
 
 /* Reads <prefix>_psd* inside an open PetscOptionsBegin block; checks the values (one line naming

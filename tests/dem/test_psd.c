@@ -1,16 +1,16 @@
 /* Size distributions (src/dem/psd.c) against the distributions themselves. For each law set
  * through the options (a table by number, a table by mass with an entry dropped by a cut-off, a
- * cut lognormal, a cut normal, a uniform), N = 100,000 diameters are drawn as a source draws them,
- * d = DemPsdSample(u) with u a splitmix64 hash of the particle's index, and their number- and
- * mass-weighted mean, standard deviation, d10, d50 and d90 are compared with the exact values of
- * the set (cut) law, computed here from its own closed forms (partial moments of the truncated
- * normal and lognormal; sums for a table), within 3 standard errors of the law: sigma/sqrt(N) for
- * a mean, the delta method for a standard deviation and for the mass-weighted (ratio) estimators,
- * sqrt(p(1-p)/N)/f(d_p) for a quantile (its mass-weighted form for mass quantiles). A table's
- * quantiles are atoms: the sample's must be the table's exact one; its fractions are checked as
- * set, by number or BY MASS; the mass table sampled as if by number must fail that check. Also:
- * the normal quantile against 20-digit values, the mean of d^3 (kg/s rates), the range, the
- * default cut-offs (1e-6 tails), classes (bin medians).
+ * cut lognormal, a cut normal, the far tail of a normal, a uniform), N = 100,000 diameters are
+ * drawn as a source draws them, d = DemPsdSample(u) with u a splitmix64 hash of the particle's
+ * index, and their number- and mass-weighted mean, standard deviation, d10, d50 and d90 are
+ * compared with the exact values of the set (cut) law, computed here from its own closed forms
+ * (partial moments of the truncated normal and lognormal; sums for a table), within 3 standard
+ * errors of the law: sigma/sqrt(N) for a mean, the delta method for a standard deviation and for
+ * the mass-weighted (ratio) estimators, sqrt(p(1-p)/N)/f(d_p) for a quantile (its mass-weighted
+ * form for mass quantiles). A table's quantiles are atoms: the sample's must be the table's exact
+ * one; its fractions are checked as set, by number or BY MASS; the mass table sampled as if by
+ * number must fail that check. Also: the normal quantile against 20-digit values, the mean of d^3
+ * (kg/s rates), the range, the default cut-offs (1e-6 tails), classes (bin medians).
  * With arguments, the program only reads them as a source's distribution (-dem_insert_0_psd ...)
  * and prints it, or one error line: the bad-input test, test_psd_badinput.sh. */
 #include "check.h"
@@ -333,6 +333,11 @@ static PetscErrorCode Laws(double *d)
   PetscCall(PsdFromString("-dem_insert_0_psd normal -dem_insert_0_psd_mean 1e-3 -dem_insert_0_psd_std 0.25e-3 -dem_insert_0_psd_min 0.5e-3 -dem_insert_0_psd_max 1.6e-3", &psd));
   L = (Law){NORMAL, 0.5e-3, 1.6e-3, 1e-3, 0.25e-3, 0, {0}, {0}};
   PetscCall(CheckLaw("normal cut to [0.5, 1.6] mm", &psd, &L, d));
+
+  /* a window 6 to 7 standard deviations above the mean: sampled by its upper-tail probabilities */
+  PetscCall(PsdFromString("-dem_insert_0_psd normal -dem_insert_0_psd_mean 1e-3 -dem_insert_0_psd_std 0.1e-3 -dem_insert_0_psd_min 1.6e-3 -dem_insert_0_psd_max 1.7e-3", &psd));
+  L = (Law){NORMAL, 1.6e-3, 1.7e-3, 1e-3, 0.1e-3, 0, {0}, {0}};
+  PetscCall(CheckLaw("normal's tail cut to [1.6, 1.7] mm", &psd, &L, d));
 
   PetscCall(PsdFromString("-dem_insert_0_psd uniform -dem_insert_0_psd_min 0.5e-3 -dem_insert_0_psd_max 1.5e-3", &psd));
   L = (Law){UNIFORM, 0.5e-3, 1.5e-3, 0, 0, 0, {0}, {0}};
