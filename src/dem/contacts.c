@@ -12,7 +12,10 @@
  * touching pairs. That halves the mispredicted branches of a dense step (callgrind) and cuts its
  * time by about a quarter. A scene of one shape reads its radius and parameters once; the
  * arithmetic is the same, expression by expression, as a row-by-row loop, and so are the order
- * of every sum and therefore the forces, to the bit. */
+ * of every sum and therefore the forces, to the bit. Spheres of their own sizes (poly) read each
+ * particle's radius and mass and form the pair's m*, R* and linear stiffness and damping per
+ * contact (dem_pair_sized) from the (shape, shape) material table; the block body is compiled
+ * twice, with poly a constant, so the loop of the other scenes is the one it was. */
 #include <string.h>
 #include "dem/dem_impl.h"
 
@@ -52,7 +55,7 @@ typedef struct {
   double                 dt;
 } DemPairPass;
 
-static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRowSum *sum)
+static inline void dem_pair_block_body(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRowSum *sum, const PetscBool poly)
 {
   DemRowSum S              = *sum; /* a local copy, kept in registers */
   const double *restrict x = P->pt->x, *restrict v = P->pt->v, *restrict w = P->pt->w;
@@ -63,13 +66,14 @@ static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRo
   const PetscBool      rot = P->cm->rotation, mono = P->mono;
   const double         dt = P->dt, *rad = P->rad;
   const DemPairParams *pp = P->cm->pp;
+  const double *restrict prad = P->pt->rad, *restrict pmass = P->pt->m;
   PetscInt             m = 0, mn = 0, ta[DEM_PAIR_BLOCK], tn[DEM_PAIR_BLOCK];
   double               td[DEM_PAIR_BLOCK][4];
 
   for (PetscInt a = a0; a < a1; a++) { /* pass 1 */
     const PetscInt i = own[a], j = nbr[a];
     const double  *xi = x + 3 * i, *xj = x + 3 * j;
-    const double   rs    = mono ? rad[0] + rad[0] : rad[shape[i]] + rad[shape[j]];
+    const double   rs    = poly ? prad[i] + prad[j] : mono ? rad[0] + rad[0] : rad[shape[i]] + rad[shape[j]];
     const double   d[3]  = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
     const double   d2    = dem_dot(d, d);
     const int      touch = d2 < rs * rs;
@@ -85,8 +89,13 @@ static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRo
   for (PetscInt t = 0; t < m; t++) { /* pass 2 */
     const PetscInt       a = ta[t], i = own[a], j = nbr[a];
     const double         d[3] = {td[t][0], td[t][1], td[t][2]}, d2 = td[t][3];
-    const double         ri = mono ? rad[0] : rad[shape[i]], rj = mono ? rad[0] : rad[shape[j]], rs = ri + rj;
+    const double         ri = poly ? prad[i] : mono ? rad[0] : rad[shape[i]], rj = poly ? prad[j] : mono ? rad[0] : rad[shape[j]], rs = ri + rj;
     const DemPairParams *p    = mono ? pp : pp + shape[i] * ns + shape[j];
+    DemPairParams        sized;
+    if (poly) { /* m* and R* of the two spheres */
+      dem_pair_sized(law, p, pmass[i], ri, pmass[j], rj, &sized);
+      p = &sized;
+    }
     double              *xi_t = hist ? hist + 3 * a : NULL;
     if (i != S.cur) { /* the previous row is complete */
       if (S.cur >= 0)
@@ -132,6 +141,16 @@ static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRo
   *sum = S;
 }
 
+static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRowSum *sum)
+{
+  dem_pair_block_body(P, a0, a1, sum, PETSC_FALSE);
+}
+
+static void dem_pair_block_poly(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRowSum *sum)
+{
+  dem_pair_block_body(P, a0, a1, sum, PETSC_TRUE);
+}
+
 /* Pair forces over the list: adds to f and tq of the local particles, resets or advances the
  * springs of the list; reads x, v, w of the particles and ghosts, the radii and the contact model. */
 PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const DemContactModel *cm, DemNeigh *nl, double dt)
@@ -144,7 +163,10 @@ PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
   for (PetscInt s = 0; s < st->nshape; s++) rad[s] = st->shp[s].r;
-  for (PetscInt a0 = 0; a0 < ne; a0 += DEM_PAIR_BLOCK) dem_pair_block(&P, a0, PetscMin(a0 + DEM_PAIR_BLOCK, ne), &sum);
+  if (p->rad)
+    for (PetscInt a0 = 0; a0 < ne; a0 += DEM_PAIR_BLOCK) dem_pair_block_poly(&P, a0, PetscMin(a0 + DEM_PAIR_BLOCK, ne), &sum);
+  else
+    for (PetscInt a0 = 0; a0 < ne; a0 += DEM_PAIR_BLOCK) dem_pair_block(&P, a0, PetscMin(a0 + DEM_PAIR_BLOCK, ne), &sum);
   if (sum.cur >= 0)
     for (int k = 0; k < 3; k++) {
       p->f[3 * sum.cur + k] += sum.fi[k];
