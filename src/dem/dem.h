@@ -105,6 +105,9 @@ PetscErrorCode DemGetContactFiguresSized(Dem dem, PetscInt s, PetscInt t, PetscR
  * own radii in [rmin, rmax] (m); widens the range a source or an init file declared
  * (DemShapeTable.r_source_min/max) so that reach, cells and the time-step check cover it. */
 PetscErrorCode DemSetOwnSizes(Dem dem, PetscReal rmin, PetscReal rmax);
+/* Whether the scene has spheres of their own sizes, and the range of radii it was set up for (m;
+ * 0, 0 when not). Not collective. */
+PetscErrorCode DemGetOwnSizes(Dem dem, PetscBool *poly, PetscReal *rmin, PetscReal *rmax);
 /* Local particle-particle pairs in contact found by the Verlet list ([0]) and by an O(N^2)
  * search over the same positions ([1]), with an order-independent fingerprint of the id pairs
  * of each set; they must agree. Not collective. */

@@ -249,6 +249,21 @@ PetscErrorCode DemGetLargestRadius(Dem dem, PetscReal *r)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode DemGetOwnSizes(Dem dem, PetscBool *poly, PetscReal *rmin, PetscReal *rmax)
+{
+  PetscFunctionBeginUser;
+  *poly = dem->shapes.poly;
+  *rmin = *rmax = 0;
+  if (!dem->shapes.poly) PetscFunctionReturn(PETSC_SUCCESS);
+  *rmin = dem->shapes.r_source_min > 0 ? dem->shapes.r_source_min : PETSC_MAX_REAL;
+  *rmax = dem->shapes.r_source_max;
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    *rmin = PetscMin(*rmin, dem->shapes.shp[s].r);
+    *rmax = PetscMax(*rmax, dem->shapes.shp[s].r);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemSetOwnSizes(Dem dem, PetscReal rmin, PetscReal rmax)
 {
   PetscFunctionBeginUser;
