@@ -286,6 +286,11 @@ typedef struct {
      (0: no file), the lattice's follow, [file_end, file_end + lat_count) */
   PetscInt  file_end;
   PetscReal init_overlap_max; /* -dem_init_file_overlap_max (radii); 0: from the contact design */
+  /* -dem_init_file_radii auto|shapes|own: whether the file's spheres keep their own radii (a
+     scene of own sizes) or become shapes by radius; the file's radius range (m) */
+  PetscInt  file_radii;
+  PetscBool file_own;
+  PetscReal file_rmin, file_rmax;
 } DemInsertion;
 
 /* The particles that entered and left the run (sources.c, sinks.c): global totals, the same on
