@@ -17,7 +17,7 @@ static PetscErrorCode CplSetParticleDrag(Cpl cpl)
   PetscCall(PetscMalloc1(pa.nlocal + 1, &eps));
   PetscCall(CplInterpolate(cpl, ex.u, eps));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
-    const PetscReal d  = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
+    const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
     for (int k = 0; k < 3; k++) w2 += PetscSqr(ex.u[3 * p + k] - pa.v[3 * p + k]);
     const PetscReal re = cpl->rho * d * eps[p] * PetscSqrtReal(w2) / cpl->mu;

@@ -160,7 +160,7 @@ PetscErrorCode DemGetContactFiguresSized(Dem dem, PetscInt s, PetscInt t, PetscR
   PetscFunctionBeginUser;
   PetscCheck(s >= 0 && s < dem->shapes.nshape && t < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape pair (%" PetscInt_FMT ", %" PetscInt_FMT ") out of range", s, t);
   PetscCheck(ri > 0 && (t < 0 || rj > 0), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "radii %g, %g must be > 0 (m)", (double)ri, (double)rj);
-  const DemPairParams *b = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
+  const DemPairParams *b  = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
   const double         mi = dem_sphere_mass(dem->shapes.shp[s].rho, ri), mj = t < 0 ? 0 : dem_sphere_mass(dem->shapes.shp[t].rho, rj);
   dem_pair_sized(dem->contact.law, b, mi, ri, mj, t < 0 ? 0 : rj, &q);
   *e = t < 0 ? PetscMin(dem->contact.mat.e, dem->contact.wmat.e) : dem->contact.mat.e;

@@ -32,8 +32,8 @@ typedef struct {
   double hratio;     /* hertz: gt/gn ratio applied to sqrt(m* S) damping */
   /* for spheres of their own sizes (dem_pair_sized): zeta of the restitution, the impact speed
      of a kn from Young's modulus (0: kn given), and whether kt was given */
-  double    zeta, vimp;
-  int       kt_given;
+  double zeta, vimp;
+  int    kt_given;
 } DemPairParams;
 
 static inline double dem_dot(const double *a, const double *b)

@@ -65,15 +65,15 @@ static inline void dem_pair_block_body(const DemPairPass *P, PetscInt a0, PetscI
   const DemLaw         law = P->cm->law;
   const PetscBool      rot = P->cm->rotation, mono = P->mono;
   const double         dt = P->dt, *rad = P->rad;
-  const DemPairParams *pp = P->cm->pp;
+  const DemPairParams *pp     = P->cm->pp;
   const double *restrict prad = P->pt->rad, *restrict pmass = P->pt->m;
-  PetscInt             m = 0, mn = 0, ta[DEM_PAIR_BLOCK], tn[DEM_PAIR_BLOCK];
-  double               td[DEM_PAIR_BLOCK][4];
+  PetscInt m = 0, mn = 0, ta[DEM_PAIR_BLOCK], tn[DEM_PAIR_BLOCK];
+  double   td[DEM_PAIR_BLOCK][4];
 
   for (PetscInt a = a0; a < a1; a++) { /* pass 1 */
     const PetscInt i = own[a], j = nbr[a];
     const double  *xi = x + 3 * i, *xj = x + 3 * j;
-    const double   rs    = poly ? prad[i] + prad[j] : mono ? rad[0] + rad[0] : rad[shape[i]] + rad[shape[j]];
+    const double   rs    = poly ? prad[i] + prad[j] : (mono ? rad[0] + rad[0] : rad[shape[i]] + rad[shape[j]]);
     const double   d[3]  = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
     const double   d2    = dem_dot(d, d);
     const int      touch = d2 < rs * rs;
@@ -89,14 +89,14 @@ static inline void dem_pair_block_body(const DemPairPass *P, PetscInt a0, PetscI
   for (PetscInt t = 0; t < m; t++) { /* pass 2 */
     const PetscInt       a = ta[t], i = own[a], j = nbr[a];
     const double         d[3] = {td[t][0], td[t][1], td[t][2]}, d2 = td[t][3];
-    const double         ri = poly ? prad[i] : mono ? rad[0] : rad[shape[i]], rj = poly ? prad[j] : mono ? rad[0] : rad[shape[j]], rs = ri + rj;
-    const DemPairParams *p    = mono ? pp : pp + shape[i] * ns + shape[j];
+    const double         ri = poly ? prad[i] : (mono ? rad[0] : rad[shape[i]]), rj = poly ? prad[j] : (mono ? rad[0] : rad[shape[j]]), rs = ri + rj;
+    const DemPairParams *p = mono ? pp : pp + shape[i] * ns + shape[j];
     DemPairParams        sized;
     if (poly) { /* m* and R* of the two spheres */
       dem_pair_sized(law, p, pmass[i], ri, pmass[j], rj, &sized);
       p = &sized;
     }
-    double              *xi_t = hist ? hist + 3 * a : NULL;
+    double *xi_t = hist ? hist + 3 * a : NULL;
     if (i != S.cur) { /* the previous row is complete */
       if (S.cur >= 0)
         for (int k = 0; k < 3; k++) {

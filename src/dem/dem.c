@@ -241,7 +241,7 @@ PetscErrorCode DemSetUp(Dem dem)
   }
   PetscCheck(!dem->shapes.poly || !dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_shape: convex shapes keep one size per shape; a source or -dem_init_file_radii own of spheres of their own sizes cannot be combined with them");
   if (dem->shapes.poly) rmax = PetscMax(rmax, dem->shapes.r_source_max); /* reach, skin and cells cover the largest size a source adds */
-  PetscCall(DemShapesSetUp(dem)); /* convex shapes: mass, inertia tensor (shapes.c) */
+  PetscCall(DemShapesSetUp(dem));                                        /* convex shapes: mass, inertia tensor (shapes.c) */
   PetscCall(DemMaterialsSetUp(dem));
   PetscCall(DemCheckTimeStep(dem));
   if (dem->nl.skin < 0) dem->nl.skin = 0.2 * rmax;

@@ -29,8 +29,8 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
       const PetscInt j = dem->nl.nbr[a];
       /* a pair seen from both sides (full list, or a ghost partner) counts half on each */
-      const PetscBool both  = (PetscBool)(dem->nl.full_list || j >= dem->p.n);
-      const double    rj    = DemRadius(&dem->p, &dem->shapes, j), rs = ri + rj;
+      const PetscBool both = (PetscBool)(dem->nl.full_list || j >= dem->p.n);
+      const double    rj = DemRadius(&dem->p, &dem->shapes, j), rs = ri + rj;
       const double    d[3]  = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
       const double    delta = rs - sqrt(dem_dot(d, d));
       if (delta <= 0) continue;
@@ -177,7 +177,7 @@ PetscErrorCode DemWriteOutput(Dem dem, Io io)
   PetscCall(PetscLogEventBegin(DEM_Output, 0, 0, 0, 0));
   PetscCall(PetscMalloc1(dem->p.n + 1, &r));
   for (PetscInt i = 0; i < dem->p.n; i++) r[i] = DemRadius(&dem->p, &dem->shapes, i); /* each sphere's own in a scene of own sizes */
-  if (per) { /* positions wrapped into the box along periodic axes, the run's own left as they are */
+  if (per) {                                                                          /* positions wrapped into the box along periodic axes, the run's own left as they are */
     PetscCall(PetscMalloc1(3 * dem->p.n + 3, &x));
     PetscCall(PetscArraycpy(x, dem->p.x, 3 * dem->p.n));
     for (PetscInt i = 0; i < dem->p.n; i++) DemWrapPeriodic(dem->dom, x + 3 * i);

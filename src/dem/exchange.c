@@ -293,7 +293,7 @@ PetscErrorCode DemGhostsCreate(Dem dem)
   const Domain *dom = dem->dom;
   const double  h   = dem->nl.reach;
   size_t        soff[28], roff[28];
-  const size_t  GW  = GHOST_WIDTH + (dem->shapes.poly ? 1 : 0);
+  const size_t  GW = GHOST_WIDTH + (dem->shapes.poly ? 1 : 0);
 
   PetscFunctionBeginUser;
   dem->p.ng = 0;

@@ -90,7 +90,8 @@ PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, D
   if (st->convex) PetscCall(DemRotateFirstHalf(p, st, dt)); /* full inertia tensor (rotation.c) */
   else if (rotation)
     for (PetscInt i = 0; i < n; i++) {
-      const double ii = p->invi ? p->invi[i] : st->nshape == 1 ? st->shp[0].invi : st->shp[shape[i]].invi;
+      const double ii = p->invi ? p->invi[i] : st->nshape == 1 ? st->shp[0].invi
+                                                               : st->shp[shape[i]].invi;
       dem_spin_first_half(w + 3 * i, q + 4 * i, tq + 3 * i, ii, h);
     }
   *maxdisp2 = d2max;

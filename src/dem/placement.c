@@ -126,7 +126,7 @@ static PetscErrorCode DemPlacePairDepth(Dem dem, PetscInt i, PetscInt j, double 
   } else {
     const double d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
     const double ri = DemRadius(&dem->p, &dem->shapes, i), rj = DemRadius(&dem->p, &dem->shapes, j);
-    *depth          = PetscMax(0.0, ri + rj - sqrt(dem_dot(d, d))) / PetscMin(ri, rj);
+    *depth = PetscMax(0.0, ri + rj - sqrt(dem_dot(d, d))) / PetscMin(ri, rj);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
