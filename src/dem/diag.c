@@ -142,7 +142,9 @@ static PetscErrorCode DemViewSizes(Dem dem, PetscViewer v)
       const double  ri = r[a], rj = b < 0 ? 0 : r[b], mi = dem_sphere_mass(dem->shapes.shp[0].rho, ri), mj = b < 0 ? 0 : dem_sphere_mass(dem->shapes.shp[0].rho, rj);
       PetscCall(DemGetContactFiguresSized(dem, 0, b < 0 ? -1 : 0, ri, rj, dem->contact.vimpact, &tc, &e));
       dem_pair_sized(dem->contact.law, b < 0 ? &dem->contact.pw[0] : &dem->contact.pp[0], mi, ri, mj, rj, &q);
-      PetscCall(PetscViewerASCIIPrintf(v, "  contact r=%g m with %s r=%g m: Tc = %.3g s, dt/Tc = %.3g (limit %g), e = %g, overlap at %g m/s <= %.3g r\n", ri, b < 0 ? "wall," : "particle", rj, (double)tc, (double)(dem->clock.dt / tc), (double)dem->clock.dt_frac, (double)e, (double)dem->contact.vimpact, DemImpactOverlap(dem, &q) / PetscMin(ri, b < 0 ? ri : rj)));
+      char with[64] = "wall";
+      if (b >= 0) PetscCall(PetscSNPrintf(with, sizeof with, "particle r=%g m", rj));
+      PetscCall(PetscViewerASCIIPrintf(v, "  contact r=%g m with %s: Tc = %.3g s, dt/Tc = %.3g (limit %g), e = %g, overlap at %g m/s <= %.3g r\n", ri, with, (double)tc, (double)(dem->clock.dt / tc), (double)dem->clock.dt_frac, (double)e, (double)dem->contact.vimpact, DemImpactOverlap(dem, &q) / PetscMin(ri, b < 0 ? ri : rj)));
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
