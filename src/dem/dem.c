@@ -231,6 +231,7 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscFunctionBeginUser;
   dem->state++;
   if (!dem->restart) PetscCall(DemInsert(dem)); /* a restart reads its particles below */
+  else PetscCall(DemInsertRestartSizes(dem));   /* insert.c: own sizes of an init file, as when inserted */
   for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
     DemShape *sh = &dem->shapes.shp[s];
     sh->m        = dem_sphere_mass(sh->rho, sh->r);

@@ -410,6 +410,7 @@ PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, D
 PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt);                  /* integrate.c */
 PetscErrorCode DemInsertSetFromOptions(Dem dem);                                                                                                      /* insert.c */
 PetscErrorCode DemInsert(Dem dem);                                                                                                                    /* insert.c */
+PetscErrorCode DemInsertRestartSizes(Dem dem);                                                                                                        /* insert.c */
 double         DemLatticeSpacing(Dem dem);                                                                                                            /* insert.c */
 double         DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
 PetscErrorCode DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */

@@ -42,15 +42,18 @@ static void dem_random_quat(PetscInt seed, PetscInt site, double q[4])
 
 static const char *const DemFileRadiiNames[] = {"auto", "shapes", "own"};
 
-/* Collective. The -dem_init_file's radii: their range, and whether the spheres keep them (a
- * scene of own sizes, declared here so that reach and cells cover the file's largest). */
-static PetscErrorCode DemInitFileRadii(Dem dem)
+/* Collective. From all rows d of the -dem_init_file's radii: their range, and whether the spheres
+ * keep them (a scene of own sizes, declared so that reach and cells cover the file's largest).
+ * Particles added before that had their shape's radius: they keep it, now as their own. */
+static PetscErrorCode DemInitFileRadii(Dem dem, const PetscReal *dr, PetscInt rows)
 {
   PetscReal *d;
-  PetscInt   rows, nnew = 0;
+  PetscInt   nnew = 0;
+  PetscBool  was  = dem->shapes.poly;
 
   PetscFunctionBeginUser;
-  PetscCall(IoReadDatasetAll(dem->comm, dem->insert.init_file, "/particles/radius", 1, &rows, &d));
+  PetscCall(PetscMalloc1(rows + 1, &d));
+  PetscCall(PetscArraycpy(d, dr, rows));
   dem->insert.file_rmin = PETSC_MAX_REAL;
   dem->insert.file_rmax = 0;
   for (PetscInt i = 0; i < rows; i++) {
@@ -68,7 +71,12 @@ static PetscErrorCode DemInitFileRadii(Dem dem)
   }
   PetscCall(PetscFree(d));
   dem->insert.file_own = (PetscBool)(dem->insert.file_radii == 2 || (dem->insert.file_radii == 0 && (dem->shapes.poly || dem->shapes.nshape + nnew > DEM_MAX_SHAPES)));
-  if (dem->insert.file_own && rows) PetscCall(DemSetOwnSizes(dem, dem->insert.file_rmin, dem->insert.file_rmax));
+  if (!dem->insert.file_own || !rows) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DemSetOwnSizes(dem, dem->insert.file_rmin, dem->insert.file_rmax));
+  if (!was && dem->p.n) {
+    PetscCall(DemParticlesReserve(dem, dem->p.n)); /* the size arrays */
+    for (PetscInt i = 0; i < dem->p.n; i++) DemParticleSetSize(dem, i, dem->shapes.shp[dem->p.shape[i]].r);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -105,7 +113,13 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscCheck(dem->insert.lat_jitter >= 0 && dem->insert.lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->insert.lat_jitter);
   PetscCheck(dem->insert.lat_speed >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_speed %g must be >= 0", (double)dem->insert.lat_speed);
   if (dem->insert.init_file[0]) PetscCall(IoCheckReadable(dem->comm, "-dem_init_file", dem->insert.init_file));
-  if (dem->insert.init_file[0] && !dem->shapes.convex) PetscCall(DemInitFileRadii(dem));
+  if (dem->insert.init_file[0] && dem->insert.file_radii == 2 && !dem->shapes.convex) { /* own: declared now, so a restart has it too */
+    PetscReal *d;
+    PetscInt   rows;
+    PetscCall(IoReadDatasetAll(dem->comm, dem->insert.init_file, "/particles/radius", 1, &rows, &d));
+    PetscCall(DemInitFileRadii(dem, d, rows));
+    PetscCall(PetscFree(d));
+  }
   PetscCheck(dem->insert.file_radii != 2 || !dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_init_file_radii own: convex shapes (-dem_shape) keep one size per shape");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -205,15 +219,9 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
   const int   width[6] = {3, 3, 3, 4, 1, 1};
   PetscReal  *d;
   PetscInt    rows = 0, r, *mine, nmine = 0, n0 = dem->p.n;
-  PetscBool   own;
+  PetscBool   own = dem->insert.file_own;
 
   PetscFunctionBeginUser;
-  /* own radii: as declared with the options, or the scene became one of own sizes since (auto) */
-  if (!dem->insert.file_own && dem->insert.file_radii == 0 && dem->shapes.poly && dem->insert.file_rmax > 0) {
-    PetscCall(DemSetOwnSizes(dem, dem->insert.file_rmin, dem->insert.file_rmax));
-    dem->insert.file_own = PETSC_TRUE;
-  }
-  own = dem->insert.file_own;
   /* one dataset at a time, keeping only this rank's rows: the peak is one column of the file */
   for (int k = 0; k < 6; k++) {
     PetscCall(IoReadDatasetAll(dem->comm, dem->insert.init_file, names[k], width[k], &r, &d));
@@ -235,6 +243,10 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
       }
     }
     if (k == 4) PetscCall(DemCheckFileIds(dem, d, rows));
+    if (k == 5 && dem->insert.file_radii == 0) { /* auto: decided once the rows are known */
+      PetscCall(DemInitFileRadii(dem, d, rows));
+      own = dem->insert.file_own;
+    }
     for (PetscInt a = 0; a < nmine && k > 0; a++) {
       const PetscInt i = n0 + a, row = mine[a];
       if (k == 1)
@@ -273,6 +285,21 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
   for (PetscInt a = 0; a < nmine; a++) dem->p.next_id = PetscMax(dem->p.next_id, dem->p.id[n0 + a] + 1);
   PetscCall(PetscFree(mine));
   *nfile = rows;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. A restart inserts nothing, but its scene has own sizes as the run that wrote it:
+ * -dem_init_file_radii auto decides from the file's radii as DemInsert would have. */
+PetscErrorCode DemInsertRestartSizes(Dem dem)
+{
+  PetscReal *d;
+  PetscInt   rows;
+
+  PetscFunctionBeginUser;
+  if (!dem->insert.init_file[0] || dem->insert.file_radii != 0 || dem->shapes.convex) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(IoReadDatasetAll(dem->comm, dem->insert.init_file, "/particles/radius", 1, &rows, &d));
+  PetscCall(DemInitFileRadii(dem, d, rows));
+  PetscCall(PetscFree(d));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

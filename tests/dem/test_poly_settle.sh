@@ -1,7 +1,8 @@
 #!/bin/sh
 # A polydisperse bed settling: 300 glass spheres of lognormal diameters (d50 10 mm, sigma_g 1.3,
 # cut to 0.5-2 d50; tools/poly_bed.py) dropped from a lattice into a box, each keeping its own
-# radius (-dem_init_file_radii own), friction, linear law. References are other runs of the same
+# radius (-dem_init_file_radii auto: 300 distinct radii are more than shapes can hold), friction,
+# linear law. References are other runs of the same
 # physics and conservation:
 #   -dem_deterministic on 1 and 2 ranks: the final frames equal bit for bit, particle by particle
 #     (by id: position, velocity, angular velocity, radius);
@@ -17,7 +18,7 @@ export OMPI_MCA_rmaps_base_oversubscribe=1
 W=$(mktemp -d)
 trap 'rm -rf "$W"' EXIT
 tools/poly_bed.py "$W/bed.h5" 300 0.01 1.3 0.15 0.15 0 >/dev/null || echo "FAIL poly settle: tools/poly_bed.py exited with status $?"
-SCENE="-domain_lo 0,0,0 -domain_hi 0.15,0.15,0.2 -dem_box 0,0,0,0.15,0.15,0.2 -dem_radius 0.005 -dem_density 2500 -dem_kn 2e4 -dem_restitution 0.5 -dem_friction 0.3 -dem_dt_tc 0.05 -dem_init_file $W/bed.h5 -dem_init_file_radii own -dem_deterministic -dem_check_every 100 -dem_progress_interval 0"
+SCENE="-domain_lo 0,0,0 -domain_hi 0.15,0.15,0.2 -dem_box 0,0,0,0.15,0.15,0.2 -dem_radius 0.005 -dem_density 2500 -dem_kn 2e4 -dem_restitution 0.5 -dem_friction 0.3 -dem_dt_tc 0.05 -dem_init_file $W/bed.h5 -dem_deterministic -dem_check_every 100 -dem_progress_interval 0"
 T=0.6
 H=0.3
 run() { # np, dir, args...
