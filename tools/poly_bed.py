@@ -3,9 +3,10 @@
 polydisperse tests and the bench (tools/bench_poly.sh).
 
 N spheres whose diameters are drawn from a lognormal distribution (median d50, geometric
-standard deviation sigma_g), cut to [cut_lo, cut_hi] x d50 by redrawing, placed at rest on a
-cubic lattice of spacing 1.05 x the largest cut diameter filling x, y first from the box's lower
-corner, ids 0..N-1. With --mono every sphere has the number-mean diameter of the lognormal draw
+standard deviation sigma_g), cut to [cut_lo, cut_hi] x d50 by redrawing, placed on a cubic
+lattice of spacing 1.05 x the largest cut diameter filling x, y first from the box's lower
+corner, each moved off its site by up to 0.9 of its own gap per axis and given a velocity
+uniform in +-0.1 m/s per axis (so that the columns do not stack), ids 0..N-1. With --mono every sphere has the number-mean diameter of the lognormal draw
 instead (the monodisperse bed of the same mean size and count). The draw is a function of the
 seed only. Sable reads it with -dem_init_file FILE -dem_init_file_radii own.
 
@@ -45,11 +46,13 @@ def main():
         raise SystemExit("poly_bed.py: the box %g x %g m holds no lattice site of spacing %g m" % (a.lx, a.ly, s))
     k = np.arange(a.n)
     pos = np.stack([(k % nx + 0.5) * s, (k // nx % ny + 0.5) * s, a.z0 + (k // (nx * ny) + 0.5) * s], axis=1)
+    pos += 0.9 * (0.5 * (s - d))[:, None] * rng.uniform(-1, 1, (a.n, 3))
+    vel = rng.uniform(-0.1, 0.1, (a.n, 3))
     q = np.zeros((a.n, 4))
     q[:, 0] = 1
     with h5py.File(a.out, "w") as f:
         f["particles/position"] = pos
-        f["particles/velocity"] = np.zeros((a.n, 3))
+        f["particles/velocity"] = vel
         f["particles/angular_velocity"] = np.zeros((a.n, 3))
         f["particles/quaternion"] = q
         f["particles/id"] = k.astype(np.float64)
