@@ -7,7 +7,8 @@
 # then the fluid (tools/bench_fluid.sh), the coupled fluidized bed (tools/bench_fluidized.sh) and
 # the checkpoints of 10^5 and 10^6 settled spheres (tools/bench_checkpoint.sh) and the default
 # decomposition on 2 ranks against the hand-chosen process grids (tools/bench_decomp.sh, on the
-# settled 10k bed of this run when there is one).
+# settled 10k bed of this run when there is one) and a lognormal bed against a monodisperse one
+# (tools/bench_poly.sh).
 # Usage: tools/bench.sh [sizes], sizes among 10k 100k (default both). Output in bench-out/.
 set -eu
 cd "$(dirname "$0")/.."
@@ -46,3 +47,4 @@ fi
 tools/bench_fluidized.sh
 tools/bench_checkpoint.sh
 tools/bench_decomp.sh
+tools/bench_poly.sh

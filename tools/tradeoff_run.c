@@ -89,7 +89,7 @@ static PetscErrorCode Impact(void)
     dt = dt_tc * tc;
     PetscCall(PetscTime(&t0));
     for (; steps < 10000000 && t_out < 0; steps++) {
-      DemParticle pa, pb = b;
+      DemParticle pa = {0}, pb = b;
       PetscReal   t, delta;
       PetscCall(GetById(dem, 0, &pa));
       if (!wall) PetscCall(GetById(dem, 1, &pb));
@@ -134,7 +134,7 @@ static PetscErrorCode AddBodyCentres(Dem dem)
   for (PetscInt k = 0; k < n[2] - 1; k++)
     for (PetscInt j = 0; j < n[1]; j++)
       for (PetscInt i = 0; i < n[0]; i++) {
-        DemParticle p;
+        DemParticle p = {0};
         PetscCall(PetscMemzero(&p, sizeof p));
         p.id   = 1000000 + i + n[0] * (j + n[1] * k);
         p.q[0] = 1;

@@ -54,6 +54,28 @@ static inline PetscBool CplInteriorFace(const Domain *dom, int d, const PetscInt
   return PETSC_TRUE;
 }
 
+/* Particle p's volume (m^3), drag diameter (m), kernel side (m) and mass (kg): a sphere of its
+ * own size (pa->r, a scene of own sizes) 4/3 pi r^3, 2 r, kscale V^(1/3) and its shape's density
+ * times V; otherwise its shape's figures (CplKernelSide, DemGetShape). */
+static inline PetscReal CplVolumeOf(Cpl cpl, const DemArrays *pa, PetscInt p)
+{
+  const PetscReal r = pa->r ? pa->r[p] : 0;
+  return pa->r ? 4.0 / 3.0 * PETSC_PI * r * r * r : cpl->vol[pa->shape[p]];
+}
+static inline PetscReal CplDiameterOf(Cpl cpl, const DemArrays *pa, PetscInt p)
+{
+  return pa->r ? 2 * pa->r[p] : cpl->diam[pa->shape[p]];
+}
+static inline PetscReal CplSideOf(Cpl cpl, const DemArrays *pa, PetscInt p)
+{
+  return pa->r ? cpl->kscale * PetscCbrtReal(CplVolumeOf(cpl, pa, p)) : cpl->side[pa->shape[p]];
+}
+static inline PetscReal CplMassOf(Cpl cpl, const DemArrays *pa, PetscInt p)
+{
+  const PetscInt s = pa->shape[p];
+  return pa->r ? cpl->mass[s] / cpl->vol[s] * CplVolumeOf(cpl, pa, p) : cpl->mass[s];
+}
+
 /* kernel.c */
 PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplStencil *s);
 PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal *vol, PetscReal *diam);

@@ -28,7 +28,7 @@ PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscRe
   PetscFunctionBeginUser;
   PetscCall(DemGetArrays(cpl->dem, &pa));
   for (PetscInt p = 0; p < pa.nlocal; p++)
-    for (int k = 0; k < 3; k++) loc[k] += cpl->mass[pa.shape[p]] * pa.v[3 * p + k];
+    for (int k = 0; k < 3; k++) loc[k] += CplMassOf(cpl, &pa, p) * pa.v[3 * p + k];
   PetscCall(FluidGetVelocity(cpl->fl, &u));
   PetscCall(FluidGetPorosity(cpl->fl, &eps));
   PetscCall(DMGlobalToLocal(cpl->cda, eps, INSERT_VALUES, cpl->cloc));
@@ -65,7 +65,7 @@ PetscErrorCode CplGetSolidVolume(Cpl cpl, PetscReal *grid, PetscReal *particles)
 
   PetscFunctionBeginUser;
   PetscCall(DemGetArrays(cpl->dem, &pa));
-  for (PetscInt p = 0; p < pa.nlocal; p++) v += cpl->vol[pa.shape[p]];
+  for (PetscInt p = 0; p < pa.nlocal; p++) v += CplVolumeOf(cpl, &pa, p);
   PetscCall(MPIU_Allreduce(&v, particles, 1, MPIU_REAL, MPIU_SUM, cpl->comm));
   *grid = cpl->solid_grid;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -153,7 +153,7 @@ PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3])
   PetscFunctionBeginUser;
   PetscCall(DemGetArrays(cpl->dem, &pa));
   for (PetscInt p = 0; p < pa.nlocal; p++)
-    for (int k = 0; k < 3; k++) loc[k] += (cpl->mass[pa.shape[p]] - cpl->rho * cpl->vol[pa.shape[p]]) * cpl->g[k];
+    for (int k = 0; k < 3; k++) loc[k] += (CplMassOf(cpl, &pa, p) - cpl->rho * CplVolumeOf(cpl, &pa, p)) * cpl->g[k];
   PetscCall(MPIU_Allreduce(loc, w, 3, MPIU_REAL, MPIU_SUM, cpl->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -17,15 +17,14 @@ static PetscErrorCode CplSetParticleDrag(Cpl cpl)
   PetscCall(PetscMalloc1(pa.nlocal + 1, &eps));
   PetscCall(CplInterpolate(cpl, ex.u, eps));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
-    const PetscInt  s  = pa.shape[p];
-    const PetscReal d  = cpl->diam[s];
+    const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
     for (int k = 0; k < 3; k++) w2 += PetscSqr(ex.u[3 * p + k] - pa.v[3 * p + k]);
     const PetscReal re = cpl->rho * d * eps[p] * PetscSqrtReal(w2) / cpl->mu;
     ex.k[p]            = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps[p], re);
     PetscCheck(PetscIsNormalReal(ex.k[p]), PETSC_COMM_SELF, PETSC_ERR_FP, "particle %" PetscInt_FMT ": drag coefficient %g at porosity %g, Re_p %g is not finite", pa.id[p], (double)ex.k[p], (double)eps[p], (double)re);
     for (int k = 0; k < 3; k++) {
-      ex.fext[3 * p + k] = -cpl->rho * cpl->vol[s] * cpl->g[k];
+      ex.fext[3 * p + k] = -cpl->rho * vol * cpl->g[k];
       ex.j[3 * p + k]    = 0;
     }
   }

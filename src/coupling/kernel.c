@@ -139,7 +139,7 @@ static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil
     }
     for (PetscInt p = 0; p < pa->nlocal; p++) {
       CplStencil *st1 = &cpl->stc[p];
-      PetscCall(CplStencilOf(cpl, pa->x + 3 * p, cpl->side[pa->shape[p]], st1));
+      PetscCall(CplStencilOf(cpl, pa->x + 3 * p, CplSideOf(cpl, pa, p), st1));
       if (!cpl_fits_all(&bc, st1->c0, st1->nc)) PetscCall(CplCheckFits(&bc, st1->c0, st1->nc, pa->id[p]));
       for (int d = 0; d < 3; d++) {
         PetscInt      first[3];
@@ -184,7 +184,7 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
   PetscCall(VecGetArray(cpl->cloc, &a));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     const CplStencil *st1 = &stc[p];
-    const PetscReal   f   = cpl->vol[pa.shape[p]] / cpl->cell_vol;
+    const PetscReal   f   = CplVolumeOf(cpl, &pa, p) / cpl->cell_vol;
     for (int k = 0; k < st1->nc[2]; k++)
       for (int j = 0; j < st1->nc[1]; j++) {
         const double wjk = f * st1->wc[2][k] * st1->wc[1][j];

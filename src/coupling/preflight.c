@@ -36,7 +36,8 @@ static PetscErrorCode CplCheckFaces(Cpl cpl, PetscViewer viewer)
 PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce)
 {
   PetscReal hmin = PetscMin(cpl->dom->h[0], PetscMin(cpl->dom->h[1], cpl->dom->h[2]));
-  PetscReal dmax = 0, smax = 0, tau = PETSC_MAX_REAL, dtc = 0, dtd, tc, e;
+  PetscReal dmax = 0, smax = 0, tau = PETSC_MAX_REAL, dtc = 0, dtd, tc, e, rs[2];
+  PetscBool poly;
 
   PetscFunctionBeginUser;
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
@@ -46,6 +47,15 @@ PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce)
     smax              = PetscMax(smax, cpl->side[s]);
     tau               = PetscMin(tau, cpl->mass[s] / K);
     PetscCall(DemGetContactFigures(cpl->dem, s, s, 1.0, &tc, &e));
+    dtc = PetscMax(dtc, dtd / tc);
+  }
+  PetscCall(DemGetOwnSizes(cpl->dem, &poly, &rs[0], &rs[1]));
+  for (int a = 0; a < 2 && poly; a++) { /* spheres of their own sizes: the smallest and the largest */
+    const PetscReal v = 4.0 / 3.0 * PETSC_PI * rs[a] * rs[a] * rs[a], K = 3 * PETSC_PI * cpl->mu * 2 * rs[a] * CplDragFactor(cpl->law, cpl->eps_min0, 0);
+    dmax = PetscMax(dmax, 2 * rs[a]);
+    smax = PetscMax(smax, cpl->kscale * PetscCbrtReal(v));
+    tau  = PetscMin(tau, cpl->mass[0] / cpl->vol[0] * v / K);
+    PetscCall(DemGetContactFiguresSized(cpl->dem, 0, 0, rs[a], rs[a], 1.0, &tc, &e));
     dtc = PetscMax(dtc, dtd / tc);
   }
   if (viewer) {

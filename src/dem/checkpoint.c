@@ -28,10 +28,22 @@ static PetscErrorCode DemCkptFields(Dem dem, IoCkpt ck, PetscBool write)
     const DemCkptField *fd   = &dem_ckpt_fields[f];
     void               *data = *(void **)((char *)dem + fd->at);
     const PetscInt      rows = fd->ncomp * (dem->p.n + (fd->ghosts ? dem->p.ng : 0));
-    if (fd->coupled && !dem->ext.on) continue;
+    if ((fd->coupled && !dem->ext.on) || (fd->poly && !dem->shapes.poly)) continue;
     if (write) PetscCall(IoCkptWriteRows(ck, fd->name, fd->type, rows, data));
     else PetscCall(IoCkptReadRowsInto(ck, fd->name, fd->type, rows, data));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. A checkpoint of spheres of their own sizes (dem/radius) continues only such a scene,
+ * and the other way round. */
+static PetscErrorCode DemCkptPolyCheck(Dem dem, IoCkpt ck, const char *path)
+{
+  PetscBool has;
+
+  PetscFunctionBeginUser;
+  PetscCall(IoCkptHas(ck, "dem/radius", &has));
+  PetscCheck(has == dem->shapes.poly, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the checkpoint's spheres %s sizes of their own (dataset dem/radius) and this case's %s: give the options of the run that wrote it (its sources or -dem_init_file_radii)", path, has ? "have" : "have no", has ? "have not" : "have");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -262,6 +274,7 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscCall(DemCheckpointNeedsRemap(dem, ck, &remap));
   if (remap) { /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
     PetscCall(DemExternalCheckpointCheck(dem, ck));
+    PetscCall(DemCkptPolyCheck(dem, ck, path));
     PetscCall(DemCheckpointReadRemap(dem, ck));
     PetscCall(DemCkptReadWalls(dem, ck));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -278,6 +291,7 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   N                     = dem->p.n + dem->p.ng;
   PetscCall(DemParticlesReserve(dem, N));
   PetscCall(DemExternalCheckpointCheck(dem, ck));
+  PetscCall(DemCkptPolyCheck(dem, ck, path));
   PetscCall(DemCkptFields(dem, ck, PETSC_FALSE));
   PetscCall(IoCkptReadRowsInto(ck, "dem/x0", IO_CKPT_REAL, 3 * dem->p.n, dem->p.x0));
   PetscCall(IoCkptReadRowsInto(ck, "dem/id", IO_CKPT_INT, N, dem->p.id));

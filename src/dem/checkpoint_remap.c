@@ -23,17 +23,21 @@
 
 /* The per-particle datasets (dem_impl.h), walked by the writer and both readers. */
 const DemCkptField dem_ckpt_fields[] = {
-  {"dem/shape", IO_CKPT_INT, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.shape), PETSC_FALSE},
-  {"dem/x", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.x), PETSC_FALSE},
-  {"dem/v", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.v), PETSC_FALSE},
-  {"dem/w", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.w), PETSC_FALSE},
-  {"dem/q", IO_CKPT_REAL, 4, PETSC_TRUE, offsetof(struct _p_Dem, p.q), PETSC_FALSE},
-  {"dem/f", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.f), PETSC_FALSE},
-  {"dem/tq", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.tq), PETSC_FALSE},
-  {"dem/ext_fext", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.fext), PETSC_TRUE},
-  {"dem/ext_k", IO_CKPT_REAL, 1, PETSC_FALSE, offsetof(struct _p_Dem, ext.kdrag), PETSC_TRUE},
-  {"dem/ext_u", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.udrag), PETSC_TRUE},
-  {"dem/ext_j", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.jdrag), PETSC_TRUE},
+  {"dem/shape", IO_CKPT_INT, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.shape), PETSC_FALSE, PETSC_FALSE},
+  {"dem/x", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.x), PETSC_FALSE, PETSC_FALSE},
+  {"dem/v", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.v), PETSC_FALSE, PETSC_FALSE},
+  {"dem/w", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.w), PETSC_FALSE, PETSC_FALSE},
+  {"dem/q", IO_CKPT_REAL, 4, PETSC_TRUE, offsetof(struct _p_Dem, p.q), PETSC_FALSE, PETSC_FALSE},
+  {"dem/f", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.f), PETSC_FALSE, PETSC_FALSE},
+  {"dem/tq", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.tq), PETSC_FALSE, PETSC_FALSE},
+  {"dem/ext_fext", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.fext), PETSC_TRUE, PETSC_FALSE},
+  {"dem/ext_k", IO_CKPT_REAL, 1, PETSC_FALSE, offsetof(struct _p_Dem, ext.kdrag), PETSC_TRUE, PETSC_FALSE},
+  {"dem/ext_u", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.udrag), PETSC_TRUE, PETSC_FALSE},
+  {"dem/ext_j", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.jdrag), PETSC_TRUE, PETSC_FALSE},
+  {"dem/radius", IO_CKPT_REAL, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.rad), PETSC_FALSE, PETSC_TRUE},
+  {"dem/mass", IO_CKPT_REAL, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.m), PETSC_FALSE, PETSC_TRUE},
+  {"dem/inv_mass", IO_CKPT_REAL, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.invm), PETSC_FALSE, PETSC_TRUE},
+  {"dem/inv_inertia", IO_CKPT_REAL, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.invi), PETSC_FALSE, PETSC_TRUE},
 };
 const size_t dem_ckpt_nfields = sizeof dem_ckpt_fields / sizeof dem_ckpt_fields[0];
 
@@ -155,7 +159,7 @@ static PetscErrorCode DemRemapParticles(Dem dem, DemRemap *b)
     const DemCkptField *fd = &dem_ckpt_fields[f];
     const size_t        sz = IoCkptTypeSize(fd->type) * (size_t)fd->ncomp;
     char               *o;
-    if (fd->coupled && !dem->ext.on) continue;
+    if ((fd->coupled && !dem->ext.on) || (fd->poly && !dem->shapes.poly)) continue;
     o = *(char **)((char *)dem + fd->at);
     for (PetscInt r = 0; r < b->R; r++) rows[r] = fd->ncomp * (CNT(b, r, CK_N) + (fd->ghosts ? CNT(b, r, CK_NG) : 0));
     PetscCall(DemRemapSlab(b, fd->name, fd->type, rows, PETSC_FALSE, &s));
@@ -266,7 +270,7 @@ static PetscErrorCode DemRemapCheckMap(Dem dem, const DemRemap *b)
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < dem->p.n; i++)
     for (int k = 0; k < 3; k++) {
-      const double x = dem->p.x[3 * i + k], r = dom->periodic[k] ? dom->len[k] : dem->shapes.shp[dem->p.shape[i]].r;
+      const double x = dem->p.x[3 * i + k], r = dom->periodic[k] ? dom->len[k] : DemRadius(&dem->p, &dem->shapes, i);
       if ((x >= dom->lo[k] - r && x <= dom->hi[k] + r) || dem->p.id[i] >= bad) continue; /* a NaN fails the test */
       bad = dem->p.id[i];
       for (int c = 0; c < 3; c++) where[c] = dem->p.x[3 * i + c];

@@ -95,9 +95,12 @@ static PetscErrorCode DemPairFill(Dem dem, const DemMaterial *a, const DemMateri
     const double V = dem->contact.vimpact, sr = sqrt(p->reff);
     p->kn = 16.0 / 15.0 * sr * p->es * pow(15.0 * p->meff * V * V / (16.0 * sr * p->es), 0.2);
   }
-  p->kt = b->kt_set ? b->kt : 2.0 / 7.0 * p->kn;
-  p->gn = 2 * dem_zeta(e) * sqrt(p->kn / p->meff);
-  p->gt = dem->contact.tdamp_ratio * p->gn;
+  p->kt       = b->kt_set ? b->kt : 2.0 / 7.0 * p->kn;
+  p->gn       = 2 * dem_zeta(e) * sqrt(p->kn / p->meff);
+  p->gt       = dem->contact.tdamp_ratio * p->gn;
+  p->zeta     = dem_zeta(e); /* sizes of their own: dem_pair_sized (contact_laws.h) */
+  p->vimp     = b->kn_set ? 0 : dem->contact.vimpact;
+  p->kt_given = b->kt_set;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -124,14 +127,10 @@ PetscErrorCode DemMaterialsSetUp(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v, PetscReal *tc, PetscReal *e)
+/* Contact time at impact speed v of the pair parameters p of restitution ee. */
+static PetscErrorCode DemPairFigures(Dem dem, const DemPairParams *p, double ee, PetscReal v, PetscReal *tc)
 {
-  const DemPairParams *p  = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
-  const double         ee = t < 0 ? PetscMin(dem->contact.mat.e, dem->contact.wmat.e) : dem->contact.mat.e;
-
   PetscFunctionBeginUser;
-  PetscCheck(s >= 0 && s < dem->shapes.nshape && t < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape pair (%" PetscInt_FMT ", %" PetscInt_FMT ") out of range", s, t);
-  *e = ee;
   if (dem->contact.law == DEM_LAW_HERTZ) {
     double ch, tau;
     PetscCall(DemHertzRestitutionMap(ee, &ch, &tau));
@@ -141,5 +140,57 @@ PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v
     const double w0 = p->kn / p->meff, g = 0.5 * p->gn;
     *tc = PETSC_PI / sqrt(w0 - g * g);
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v, PetscReal *tc, PetscReal *e)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(s >= 0 && s < dem->shapes.nshape && t < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape pair (%" PetscInt_FMT ", %" PetscInt_FMT ") out of range", s, t);
+  const DemPairParams *p = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
+  *e                     = t < 0 ? PetscMin(dem->contact.mat.e, dem->contact.wmat.e) : dem->contact.mat.e;
+  PetscCall(DemPairFigures(dem, p, *e, v, tc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetContactFiguresSized(Dem dem, PetscInt s, PetscInt t, PetscReal ri, PetscReal rj, PetscReal v, PetscReal *tc, PetscReal *e)
+{
+  DemPairParams q;
+
+  PetscFunctionBeginUser;
+  PetscCheck(s >= 0 && s < dem->shapes.nshape && t < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "shape pair (%" PetscInt_FMT ", %" PetscInt_FMT ") out of range", s, t);
+  PetscCheck(ri > 0 && (t < 0 || rj > 0), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "radii %g, %g must be > 0 (m)", (double)ri, (double)rj);
+  const DemPairParams *b  = t < 0 ? &dem->contact.pw[s] : &dem->contact.pp[s * dem->shapes.nshape + t];
+  const double         mi = dem_sphere_mass(dem->shapes.shp[s].rho, ri), mj = t < 0 ? 0 : dem_sphere_mass(dem->shapes.shp[t].rho, rj);
+  dem_pair_sized(dem->contact.law, b, mi, ri, mj, t < 0 ? 0 : rj, &q);
+  *e = t < 0 ? PetscMin(dem->contact.mat.e, dem->contact.wmat.e) : dem->contact.mat.e;
+  PetscCall(DemPairFigures(dem, &q, *e, v, tc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Spheres of their own sizes: dt against the contact time of the smallest and largest radii a
+ * source can add (r_source_min, r_source_max; the shapes' radii where unset), with each other
+ * and with the walls, for every material pair; -dem_dt_tc takes the shortest of them too. */
+PetscErrorCode DemCheckTimeStepSizes(Dem dem)
+{
+  double r[2] = {PETSC_MAX_REAL, 0};
+
+  PetscFunctionBeginUser;
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    r[0] = PetscMin(r[0], dem->shapes.shp[s].r);
+    r[1] = PetscMax(r[1], dem->shapes.shp[s].r);
+  }
+  if (dem->shapes.r_source_min > 0) r[0] = PetscMin(r[0], dem->shapes.r_source_min);
+  r[1] = PetscMax(r[1], dem->shapes.r_source_max);
+  for (int pass = 0; pass < 2; pass++)
+    for (PetscInt s = 0; s < dem->shapes.nshape; s++)
+      for (PetscInt t = -1; t < dem->shapes.nshape; t++)
+        for (int a = 0; a < 2; a++)
+          for (int b = 0; b < (t < 0 ? 1 : 2); b++) {
+            PetscReal tc = 0, e;
+            PetscCall(DemGetContactFiguresSized(dem, s, t, r[a], r[b], dem->contact.vimpact, &tc, &e));
+            if (pass == 0 && dem->clock.dt_tc > 0) dem->clock.dt = PetscMin(dem->clock.dt, dem->clock.dt_tc * tc);
+            PetscCheck(pass == 0 || dem->clock.dt <= dem->clock.dt_frac * tc, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (radius %g m with %s%g m, the sizes a source adds): use -dem_dt <= %g", dem->clock.dt_tc > 0 ? "-dem_dt_tc gives dt" : "-dem_dt", (double)dem->clock.dt, (double)dem->clock.dt_frac, (double)tc, r[a], t < 0 ? "a wall, " : "radius ", t < 0 ? 0.0 : r[b], (double)(dem->clock.dt_frac * tc));
+          }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

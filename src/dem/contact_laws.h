@@ -30,6 +30,10 @@ typedef struct {
   double mu;         /* Coulomb friction coefficient */
   double meff, reff; /* effective mass (kg) and radius (m) */
   double hratio;     /* hertz: gt/gn ratio applied to sqrt(m* S) damping */
+  /* for spheres of their own sizes (dem_pair_sized): zeta of the restitution, the impact speed
+     of a kn from Young's modulus (0: kn given), and whether kt was given */
+  double zeta, vimp;
+  int    kt_given;
 } DemPairParams;
 
 static inline double dem_dot(const double *a, const double *b)
@@ -42,6 +46,26 @@ static inline void dem_cross(const double *a, const double *b, double *c)
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The parameters of a pair of spheres of their own sizes: the material's (b, from the (shape,
+ * shape) or (shape, wall) table) with m* and R* of masses mi, mj and radii ri, rj (mj = rj = 0:
+ * a wall), and for the linear laws kn (Hertz-equivalent at the impact speed when it came from
+ * Young's modulus), kt = 2/7 kn unless given, gn = 2 zeta sqrt(kn/m*), gt = ratio gn — the
+ * expressions of DemPairFill (contact_laws.c). Symmetric in i and j to the bit. */
+static inline void dem_pair_sized(DemLaw law, const DemPairParams *b, double mi, double ri, double mj, double rj, DemPairParams *o)
+{
+  *o      = *b;
+  o->meff = mj > 0 ? mi * mj / (mi + mj) : mi;
+  o->reff = rj > 0 ? ri * rj / (ri + rj) : ri;
+  if (law == DEM_LAW_HERTZ) return;
+  if (b->vimp > 0) {
+    const double V = b->vimp, sr = sqrt(o->reff);
+    o->kn = 16.0 / 15.0 * sr * o->es * pow(15.0 * o->meff * V * V / (16.0 * sr * o->es), 0.2);
+  }
+  if (!b->kt_given) o->kt = 2.0 / 7.0 * o->kn;
+  o->gn = 2 * b->zeta * sqrt(o->kn / o->meff);
+  o->gt = b->hratio * o->gn;
 }
 
 /* Normal force magnitude (N, positive = repulsive) and, through *kt_out / *gt_out, the

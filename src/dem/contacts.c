@@ -12,7 +12,11 @@
  * touching pairs. That halves the mispredicted branches of a dense step (callgrind) and cuts its
  * time by about a quarter. A scene of one shape reads its radius and parameters once; the
  * arithmetic is the same, expression by expression, as a row-by-row loop, and so are the order
- * of every sum and therefore the forces, to the bit. */
+ * of every sum and therefore the forces, to the bit. Spheres of their own sizes (poly) run a loop
+ * of their own, the same but for the radii and masses read per particle and the pair's m*, R*
+ * and linear stiffness and damping formed per contact (dem_pair_sized) from the (shape, shape)
+ * material table: a shared body with a constant flag was not specialised by the compiler for
+ * the other scenes, whose loop must stay the one it was. */
 #include <string.h>
 #include "dem/dem_impl.h"
 
@@ -132,6 +136,93 @@ static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRo
   *sum = S;
 }
 
+/* The same for spheres of their own sizes: the radii and masses of the two particles, m* and R*
+ * per contact (dem_pair_sized); a function of its own so that the loop above stays the one every
+ * other scene runs. */
+static void dem_pair_block_poly(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRowSum *sum)
+{
+  DemRowSum S              = *sum; /* a local copy, kept in registers */
+  const double *restrict x = P->pt->x, *restrict v = P->pt->v, *restrict w = P->pt->w;
+  double *restrict f = P->pt->f, *restrict tq = P->pt->tq, *restrict hist = P->nl->hist;
+  const PetscInt *restrict shape = P->pt->shape, *restrict nbr = P->nl->nbr, *restrict own = P->nl->own;
+  const PetscInt       ns = P->ns, nhalf = P->nl->full_list ? 0 : P->pt->n;
+  const DemLaw         law = P->cm->law;
+  const PetscBool      rot = P->cm->rotation, mono = P->mono;
+  const double         dt     = P->dt;
+  const DemPairParams *pp     = P->cm->pp;
+  const double *restrict prad = P->pt->rad, *restrict pmass = P->pt->m;
+  PetscInt m = 0, mn = 0, ta[DEM_PAIR_BLOCK], tn[DEM_PAIR_BLOCK];
+  double   td[DEM_PAIR_BLOCK][4];
+
+  for (PetscInt a = a0; a < a1; a++) { /* pass 1 */
+    const PetscInt i = own[a], j = nbr[a];
+    const double  *xi = x + 3 * i, *xj = x + 3 * j;
+    const double   rs    = prad[i] + prad[j];
+    const double   d[3]  = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+    const double   d2    = dem_dot(d, d);
+    const int      touch = d2 < rs * rs;
+    for (int k = 0; k < 3; k++) td[m][k] = d[k];
+    td[m][3] = d2;
+    ta[m]    = a;
+    tn[mn]   = a;
+    m += touch;
+    mn += !touch;
+  }
+  if (hist)
+    for (PetscInt t = 0; t < mn; t++) dem_spring_reset(hist + 3 * tn[t]);
+  for (PetscInt t = 0; t < m; t++) { /* pass 2 */
+    const PetscInt       a = ta[t], i = own[a], j = nbr[a];
+    const double         d[3] = {td[t][0], td[t][1], td[t][2]}, d2 = td[t][3];
+    const double         ri = prad[i], rj = prad[j], rs = ri + rj;
+    const DemPairParams *p = mono ? pp : pp + shape[i] * ns + shape[j];
+    DemPairParams        sized;
+    dem_pair_sized(law, p, pmass[i], ri, pmass[j], rj, &sized); /* m* and R* of the two spheres */
+    p            = &sized;
+    double *xi_t = hist ? hist + 3 * a : NULL;
+    if (i != S.cur) { /* the previous row is complete */
+      if (S.cur >= 0)
+        for (int k = 0; k < 3; k++) {
+          f[3 * S.cur + k] += S.fi[k];
+          tq[3 * S.cur + k] += S.ti[k];
+        }
+      S.cur = i;
+      for (int k = 0; k < 3; k++) S.fi[k] = S.ti[k] = 0;
+    }
+    const double *vi = v + 3 * i, *wi = w + 3 * i, *vj = v + 3 * j, *wj = w + 3 * j;
+    const double  dist = sqrt(d2), inv = 1.0 / dist, delta = rs - dist;
+    const double  nrm[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
+    const double  li = ri - 0.5 * delta, lj = rj - 0.5 * delta; /* lever arms */
+    double        vr[3], kt, gt, F[3], c[3] = {0, 0, 0};        /* c: n x ft, the torque's direction */
+    /* partner's contact-point velocity relative to i's: v_j - v_i + (w_j l_j + w_i l_i) x (-n)... */
+    {
+      double wsum[3], cw[3];
+      for (int k = 0; k < 3; k++) wsum[k] = li * wi[k] + lj * wj[k];
+      dem_cross(wsum, nrm, cw); /* w_i x (l_i n) - w_j x (-l_j n) = (l_i w_i + l_j w_j) x n */
+      for (int k = 0; k < 3; k++) vr[k] = vj[k] - vi[k] - cw[k];
+    }
+    const double vn = dem_dot(vr, nrm);
+    const double fn = dem_normal_force(law, p, delta, vn, &kt, &gt);
+    for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k]; /* on i */
+    if (p->mu > 0) {
+      double vt[3], ft[3];
+      for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
+      dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft); /* ft acts on the partner */
+      if (rot) {
+        dem_cross(nrm, ft, c); /* torque on i: (l_i n) x (-ft); on j: (-l_j n) x ft */
+        for (int k = 0; k < 3; k++) S.ti[k] -= li * c[k];
+      }
+      for (int k = 0; k < 3; k++) F[k] -= ft[k];
+    }
+    for (int k = 0; k < 3; k++) S.fi[k] += F[k];
+    if (j < nhalf)
+      for (int k = 0; k < 3; k++) {
+        f[3 * j + k] -= F[k];
+        tq[3 * j + k] -= lj * c[k];
+      }
+  }
+  *sum = S;
+}
+
 /* Pair forces over the list: adds to f and tq of the local particles, resets or advances the
  * springs of the list; reads x, v, w of the particles and ghosts, the radii and the contact model. */
 PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const DemContactModel *cm, DemNeigh *nl, double dt)
@@ -144,7 +235,10 @@ PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Contacts, 0, 0, 0, 0));
   for (PetscInt s = 0; s < st->nshape; s++) rad[s] = st->shp[s].r;
-  for (PetscInt a0 = 0; a0 < ne; a0 += DEM_PAIR_BLOCK) dem_pair_block(&P, a0, PetscMin(a0 + DEM_PAIR_BLOCK, ne), &sum);
+  if (p->rad)
+    for (PetscInt a0 = 0; a0 < ne; a0 += DEM_PAIR_BLOCK) dem_pair_block_poly(&P, a0, PetscMin(a0 + DEM_PAIR_BLOCK, ne), &sum);
+  else
+    for (PetscInt a0 = 0; a0 < ne; a0 += DEM_PAIR_BLOCK) dem_pair_block(&P, a0, PetscMin(a0 + DEM_PAIR_BLOCK, ne), &sum);
   if (sum.cur >= 0)
     for (int k = 0; k < 3; k++) {
       p->f[3 * sum.cur + k] += sum.fi[k];

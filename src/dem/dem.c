@@ -196,6 +196,7 @@ static PetscErrorCode DemCheckTimeStep(Dem dem)
       PetscCheck(dem->clock.dt <= dem->clock.dt_frac * tc, dem->comm, PETSC_ERR_ARG_OUTOFRANGE,
                  "%s %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (%s, radius %g m): use -dem_dt <= %g", dem->clock.dt_tc > 0 ? "-dem_dt_tc gives dt" : "-dem_dt", (double)dem->clock.dt, (double)dem->clock.dt_frac, (double)tc, t < 0 ? "particle-wall" : "particle-particle", (double)dem->shapes.shp[s].r, (double)(dem->clock.dt_frac * tc));
     }
+  if (dem->shapes.poly) PetscCall(DemCheckTimeStepSizes(dem)); /* contact_laws.c: the sizes a source adds */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -204,10 +205,14 @@ static PetscErrorCode DemComputeForces(Dem dem)
   PetscFunctionBeginUser;
   double *restrict f = dem->p.f;
   const double g[3]  = {dem->g[0], dem->g[1], dem->g[2]};
-  for (PetscInt i = 0; i < dem->p.n; i++) {
-    const double m = dem->shapes.shp[dem->shapes.nshape == 1 ? 0 : dem->p.shape[i]].m;
-    for (int k = 0; k < 3; k++) f[3 * i + k] = m * g[k];
-  }
+  if (dem->p.m) /* spheres of their own sizes */
+    for (PetscInt i = 0; i < dem->p.n; i++)
+      for (int k = 0; k < 3; k++) f[3 * i + k] = dem->p.m[i] * g[k];
+  else
+    for (PetscInt i = 0; i < dem->p.n; i++) {
+      const double m = dem->shapes.shp[dem->shapes.nshape == 1 ? 0 : dem->p.shape[i]].m;
+      for (int k = 0; k < 3; k++) f[3 * i + k] = m * g[k];
+    }
   if (dem->contact.rotation) PetscCall(PetscArrayzero(dem->p.tq, 3 * dem->p.n));
   if (dem->shapes.convex) { /* convex shapes: libccd narrow phase (convex_contacts.c) */
     PetscCall(DemContactsPairsConvex(dem));
@@ -226,15 +231,18 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscFunctionBeginUser;
   dem->state++;
   if (!dem->restart) PetscCall(DemInsert(dem)); /* a restart reads its particles below */
+  else PetscCall(DemInsertRestartSizes(dem));   /* insert.c: own sizes of an init file, as when inserted */
   for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
     DemShape *sh = &dem->shapes.shp[s];
-    sh->m        = sh->rho * 4.0 / 3.0 * PETSC_PI * sh->r * sh->r * sh->r;
+    sh->m        = dem_sphere_mass(sh->rho, sh->r);
     sh->inertia  = 0.4 * sh->m * sh->r * sh->r;
     sh->invm     = 1.0 / sh->m;
     sh->invi     = 1.0 / sh->inertia;
     rmax         = PetscMax(rmax, sh->r);
   }
-  PetscCall(DemShapesSetUp(dem)); /* convex shapes: mass, inertia tensor (shapes.c) */
+  PetscCheck(!dem->shapes.poly || !dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_shape: convex shapes keep one size per shape; a source or -dem_init_file_radii own of spheres of their own sizes cannot be combined with them");
+  if (dem->shapes.poly) rmax = PetscMax(rmax, dem->shapes.r_source_max); /* reach, skin and cells cover the largest size a source adds */
+  PetscCall(DemShapesSetUp(dem));                                        /* convex shapes: mass, inertia tensor (shapes.c) */
   PetscCall(DemMaterialsSetUp(dem));
   PetscCall(DemCheckTimeStep(dem));
   if (dem->nl.skin < 0) dem->nl.skin = 0.2 * rmax;
@@ -353,6 +361,10 @@ PetscErrorCode DemDestroy(Dem *dem)
   PetscCall(PetscFree((*dem)->p.x0));
   PetscCall(PetscFree((*dem)->p.id));
   PetscCall(PetscFree((*dem)->p.shape));
+  PetscCall(PetscFree((*dem)->p.rad));
+  PetscCall(PetscFree((*dem)->p.m));
+  PetscCall(PetscFree((*dem)->p.invm));
+  PetscCall(PetscFree((*dem)->p.invi));
   PetscCall(PetscFree(*dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -98,6 +98,16 @@ PetscErrorCode DemSetParticle(Dem dem, PetscInt i, const DemParticle *p);
 /* Contact time and restitution the parameters give for a pair of shape s with shape t (t < 0:
  * the wall), at impact speed v (only the hertz law depends on v). */
 PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v, PetscReal *tc, PetscReal *e);
+/* The same for spheres of their own radii ri, rj (m) of materials s, t (t < 0: the wall, rj
+ * unused): m* and R* of the two sizes, the material's parameters (valid after DemSetUp). */
+PetscErrorCode DemGetContactFiguresSized(Dem dem, PetscInt s, PetscInt t, PetscReal ri, PetscReal rj, PetscReal v, PetscReal *tc, PetscReal *e);
+/* Before DemSetFromOptions' callers set up (i.e. before DemSetUp): the scene has spheres of their
+ * own radii in [rmin, rmax] (m); widens the range a source or an init file declared
+ * (DemShapeTable.r_source_min/max) so that reach, cells and the time-step check cover it. */
+PetscErrorCode DemSetOwnSizes(Dem dem, PetscReal rmin, PetscReal rmax);
+/* Whether the scene has spheres of their own sizes, and the range of radii it was set up for (m;
+ * 0, 0 when not). Not collective. */
+PetscErrorCode DemGetOwnSizes(Dem dem, PetscBool *poly, PetscReal *rmin, PetscReal *rmax);
 /* Local particle-particle pairs in contact found by the Verlet list ([0]) and by an O(N^2)
  * search over the same positions ([1]), with an order-independent fingerprint of the id pairs
  * of each set; they must agree. Not collective. */
@@ -116,6 +126,7 @@ typedef struct {
   PetscInt         nlocal, nghost;
   const PetscReal *x, *v; /* position (m), velocity (m/s), xyz interleaved */
   const PetscInt  *id, *shape;
+  const PetscReal *r; /* each sphere's own radius (m) in a scene of own sizes; NULL: its shape's (DemGetShapeGeometry) */
 } DemArrays;
 PetscErrorCode DemGetArrays(Dem dem, DemArrays *a);
 /* Not collective. A number that changes whenever the local particles' positions or order may

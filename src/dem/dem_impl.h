@@ -201,6 +201,9 @@ typedef struct {
   double   *x, *v, *w, *f, *tq, *q, *x0; /* x0: positions at the last list build */
   PetscInt *id, *shape;
   PetscInt  next_id;
+  /* spheres of their own sizes (DemShapeTable.poly; NULL otherwise): radius (m), mass (kg),
+     1/m and 1/I with I = 2/5 m r^2, of locals and ghosts; the shape names the material */
+  double *rad, *m, *invm, *invi;
 } DemParticles;
 
 /* The shape table (shapes.c): spheres or convex shapes, which the table owns (cvx); convex =
@@ -216,7 +219,24 @@ typedef struct {
      set with the sources' options, so that reach and cells cover it from the start */
   PetscBool poly;
   PetscReal r_source_max;
+  PetscReal r_source_min; /* the smallest radius a source can add (m): the time-step check covers it */
 } DemShapeTable;
+
+/* The radius (m) and mass (kg) of particle i (local or ghost): its own in a scene of own sizes,
+ * else its shape's. For the paths outside the hot loops, which specialise on p->rad. */
+static inline double DemRadius(const DemParticles *p, const DemShapeTable *st, PetscInt i)
+{
+  return p->rad ? p->rad[i] : st->shp[p->shape[i]].r;
+}
+static inline double DemMass(const DemParticles *p, const DemShapeTable *st, PetscInt i)
+{
+  return p->m ? p->m[i] : st->shp[p->shape[i]].m;
+}
+/* A sphere's mass from its density and radius: the one expression shapes and particles use. */
+static inline double dem_sphere_mass(double rho, double r)
+{
+  return rho * 4.0 / 3.0 * PETSC_PI * r * r * r;
+}
 
 /* The contact model (contact_laws.c): the law, the materials and the parameters of every
  * (shape, shape) and (shape, wall) pair. */
@@ -266,6 +286,11 @@ typedef struct {
      (0: no file), the lattice's follow, [file_end, file_end + lat_count) */
   PetscInt  file_end;
   PetscReal init_overlap_max; /* -dem_init_file_overlap_max (radii); 0: from the contact design */
+  /* -dem_init_file_radii auto|shapes|own: whether the file's spheres keep their own radii (a
+     scene of own sizes) or become shapes by radius; the file's radius range (m) */
+  PetscInt  file_radii;
+  PetscBool file_own;
+  PetscReal file_rmin, file_rmax;
 } DemInsertion;
 
 /* The particles that entered and left the run (sources.c, sinks.c): global totals, the same on
@@ -320,8 +345,10 @@ PetscErrorCode       DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, P
 PetscErrorCode       DemSpringsRestore(Dem dem, const DemSpring *recs, PetscInt nrec);                /* springs.c */
 PetscErrorCode       DemParticlesReserve(Dem dem, PetscInt n);                                        /* particles.c */
 PetscErrorCode       DemParticlesPermute(Dem dem, const PetscInt *perm);                              /* particles.c */
+void                 DemParticleSetSize(Dem dem, PetscInt i, double r);                               /* particles.c: radius, mass, 1/m, 1/I of a poly scene's particle i */
 PetscErrorCode       DemMaterialsSetUp(Dem dem);                                                      /* contact_laws.c */
 PetscErrorCode       DemHertzRestitutionMap(double e, double *ch, double *tau);                       /* contact_laws.c */
+PetscErrorCode       DemCheckTimeStepSizes(Dem dem);                                                  /* contact_laws.c: spheres of their own sizes */
 PetscErrorCode       DemShapesSetFromOptions(Dem dem);                                                /* shapes.c */
 PetscErrorCode       DemShapesSetUp(Dem dem);                                                         /* shapes.c */
 PetscErrorCode       DemShapesDestroy(Dem dem);                                                       /* shapes.c */
@@ -330,7 +357,8 @@ PetscErrorCode       DemExchangeDestroy(Dem dem);                               
 PetscErrorCode       DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec);         /* exchange.c */
 #define MIG_HEAD                 22                                                                   /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
 #define MIG_EXT                  10                                                                   /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
-#define MIG_RECORD_SIZE(dem, ns) (MIG_HEAD + ((dem)->ext.on ? MIG_EXT : 0) + 4 * (size_t)(ns))
+#define MIG_POLY                 1                                                                    /* in a scene of own sizes: the radius (mass and inertia follow from it) */
+#define MIG_RECORD_SIZE(dem, ns) (MIG_HEAD + ((dem)->ext.on ? MIG_EXT : 0) + ((dem)->shapes.poly ? MIG_POLY : 0) + 4 * (size_t)(ns))
 PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n); /* exchange.c */
 /* exchange.c: the migration record of local particle i (position + shift, state, coupling
  * state, springs): doubles written; unpack appends the particle and its springs */
@@ -382,6 +410,7 @@ PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, D
 PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt);                  /* integrate.c */
 PetscErrorCode DemInsertSetFromOptions(Dem dem);                                                                                                      /* insert.c */
 PetscErrorCode DemInsert(Dem dem);                                                                                                                    /* insert.c */
+PetscErrorCode DemInsertRestartSizes(Dem dem);                                                                                                        /* insert.c */
 double         DemLatticeSpacing(Dem dem);                                                                                                            /* insert.c */
 double         DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
 PetscErrorCode DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
@@ -421,6 +450,7 @@ typedef struct {
   PetscBool   ghosts;
   size_t      at;
   PetscBool   coupled;
+  PetscBool   poly; /* only in a scene of spheres of their own sizes (DemParticles.rad) */
 } DemCkptField;
 extern const DemCkptField dem_ckpt_fields[];
 extern const size_t       dem_ckpt_nfields;

@@ -20,22 +20,26 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
   PetscFunctionBeginUser;
   if (dem->shapes.convex) PetscCall(DemConvexStatsLocal(dem, r, c, &rmax)); /* convex_diag.c */
   for (PetscInt i = 0; i < dem->p.n && !dem->shapes.convex; i++) {
-    const DemShape *s = &dem->shapes.shp[dem->p.shape[i]];
-    r[0] += 0.5 * s->m * dem_dot(dem->p.v + 3 * i, dem->p.v + 3 * i);
-    r[1] += 0.5 * s->inertia * dem_dot(dem->p.w + 3 * i, dem->p.w + 3 * i);
-    r[2] -= s->m * dem_dot(dem->g, dem->p.x + 3 * i);
+    const DemShape *s  = &dem->shapes.shp[dem->p.shape[i]];
+    const double    mi = DemMass(&dem->p, &dem->shapes, i), ri = DemRadius(&dem->p, &dem->shapes, i);
+    r[0] += 0.5 * mi * dem_dot(dem->p.v + 3 * i, dem->p.v + 3 * i);
+    r[1] += 0.5 * (dem->p.invi ? 1.0 / dem->p.invi[i] : s->inertia) * dem_dot(dem->p.w + 3 * i, dem->p.w + 3 * i);
+    r[2] -= mi * dem_dot(dem->g, dem->p.x + 3 * i);
     r[4] += (double)dem->p.id[i];
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
       const PetscInt j = dem->nl.nbr[a];
       /* a pair seen from both sides (full list, or a ghost partner) counts half on each */
-      const PetscBool both  = (PetscBool)(dem->nl.full_list || j >= dem->p.n);
-      const double    rs    = s->r + dem->shapes.shp[dem->p.shape[j]].r;
+      const PetscBool both = (PetscBool)(dem->nl.full_list || j >= dem->p.n);
+      const double    rj = DemRadius(&dem->p, &dem->shapes, j), rs = ri + rj;
       const double    d[3]  = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
       const double    delta = rs - sqrt(dem_dot(d, d));
       if (delta <= 0) continue;
       if (!both || dem->p.id[i] < dem->p.id[j]) c[1]++;
-      r[3] += (both ? 0.5 : 1.0) * dem_spring_energy(dem, &dem->contact.pp[dem->p.shape[i] * dem->shapes.nshape + dem->p.shape[j]], delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
-      rmax = PetscMax(rmax, delta / PetscMin(s->r, dem->shapes.shp[dem->p.shape[j]].r));
+      const DemPairParams *pp = &dem->contact.pp[dem->p.shape[i] * dem->shapes.nshape + dem->p.shape[j]];
+      DemPairParams        sized;
+      if (dem->p.rad) dem_pair_sized(dem->contact.law, pp, mi, ri, dem->p.m[j], rj, &sized);
+      r[3] += (both ? 0.5 : 1.0) * dem_spring_energy(dem, dem->p.rad ? &sized : pp, delta, dem->nl.hist ? dem->nl.hist + 3 * a : NULL);
+      rmax = PetscMax(rmax, delta / PetscMin(ri, rj));
     }
   }
   for (PetscInt w = 0; w < dem->walls.nwall && !dem->shapes.convex; w++) {
@@ -43,10 +47,12 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
     for (PetscInt a = 0; a < wl->cnt; a++) {
       const PetscInt i = wl->idx[a];
       double         nrm[3];
-      const double   rr = dem->shapes.shp[dem->p.shape[i]].r, delta = dem_wall_sphere(wl, dem->p.x + 3 * i, rr, nrm);
+      const double   rr = DemRadius(&dem->p, &dem->shapes, i), delta = dem_wall_sphere(wl, dem->p.x + 3 * i, rr, nrm);
+      DemPairParams  sized;
       if (delta <= 0) continue;
       c[2]++;
-      r[3] += dem_spring_energy(dem, &dem->contact.pw[dem->p.shape[i]], delta, dem->contact.law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);
+      if (dem->p.rad) dem_pair_sized(dem->contact.law, &dem->contact.pw[dem->p.shape[i]], dem->p.m[i], rr, 0, 0, &sized);
+      r[3] += dem_spring_energy(dem, dem->p.rad ? &sized : &dem->contact.pw[dem->p.shape[i]], delta, dem->contact.law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);
       rmax = PetscMax(rmax, delta / rr);
     }
   }
@@ -86,16 +92,17 @@ PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord)
 
   PetscFunctionBeginUser;
   for (PetscInt s = 0; s < dem->shapes.nshape; s++) dmax = PetscMax(dmax, 2 * dem->shapes.shp[s].r);
+  if (dem->shapes.poly) dmax = PetscMax(dmax, 2 * dem->shapes.r_source_max);
   gx = PetscMax(1, (PetscInt)(dom->len[0] / dmax));
   gy = PetscMax(1, (PetscInt)(dom->len[1] / dmax));
   PetscCall(PetscMalloc2(gx * gy, &top, gx * gy, &gtop));
   for (PetscInt c = 0; c < gx * gy; c++) top[c] = -PETSC_MAX_REAL;
   for (PetscInt i = 0; i < dem->p.n; i++) {
-    const double   r = dem->shapes.shp[dem->p.shape[i]].r, *x = dem->p.x + 3 * i;
+    const double   r = DemRadius(&dem->p, &dem->shapes, i), *x = dem->p.x + 3 * i;
     const PetscInt cx = PetscMin(gx - 1, PetscMax(0, (PetscInt)((x[0] - dom->lo[0]) / dom->len[0] * gx)));
     const PetscInt cy = PetscMin(gy - 1, PetscMax(0, (PetscInt)((x[1] - dom->lo[1]) / dom->len[1] * gy)));
     top[cx + gx * cy] = PetscMax(top[cx + gx * cy], x[2] + r - dom->lo[2]);
-    vol += dem->shapes.shp[dem->p.shape[i]].vol;
+    vol += dem->p.rad ? 4.0 / 3.0 * PETSC_PI * r * r * r : dem->shapes.shp[dem->p.shape[i]].vol;
   }
   PetscCallMPI(MPI_Allreduce(top, gtop, (PetscMPIInt)(gx * gy), MPI_DOUBLE, MPI_MAX, dem->comm));
   PetscCallMPI(MPI_Allreduce(&vol, &vg, 1, MPI_DOUBLE, MPI_SUM, dem->comm));
@@ -120,6 +127,28 @@ double DemImpactOverlap(Dem dem, const DemPairParams *p)
   return dem->contact.vimpact * sqrt(p->meff / p->kn);
 }
 
+/* Spheres of their own sizes: the contact figures of the smallest and largest radius a source
+ * adds (material 0), with each other and with a wall. */
+static PetscErrorCode DemViewSizes(Dem dem, PetscViewer v)
+{
+  double r[2] = {dem->shapes.r_source_min > 0 ? dem->shapes.r_source_min : dem->shapes.shp[0].r, PetscMax(dem->shapes.r_source_max, dem->shapes.shp[0].r)};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "  spheres of their own sizes, radii %g to %g m (per-pair m*, R*):\n", r[0], r[1]));
+  for (int a = 0; a < 2; a++)
+    for (int b = -1; b < 2; b++) {
+      PetscReal     tc, e;
+      DemPairParams q;
+      const double  ri = r[a], rj = b < 0 ? 0 : r[b], mi = dem_sphere_mass(dem->shapes.shp[0].rho, ri), mj = b < 0 ? 0 : dem_sphere_mass(dem->shapes.shp[0].rho, rj);
+      PetscCall(DemGetContactFiguresSized(dem, 0, b < 0 ? -1 : 0, ri, rj, dem->contact.vimpact, &tc, &e));
+      dem_pair_sized(dem->contact.law, b < 0 ? &dem->contact.pw[0] : &dem->contact.pp[0], mi, ri, mj, rj, &q);
+      char with[64] = "wall";
+      if (b >= 0) PetscCall(PetscSNPrintf(with, sizeof with, "particle r=%g m", rj));
+      PetscCall(PetscViewerASCIIPrintf(v, "  contact r=%g m with %s: Tc = %.3g s, dt/Tc = %.3g (limit %g), e = %g, overlap at %g m/s <= %.3g r\n", ri, with, (double)tc, (double)(dem->clock.dt / tc), (double)dem->clock.dt_frac, (double)e, (double)dem->contact.vimpact, DemImpactOverlap(dem, &q) / PetscMin(ri, b < 0 ? ri : rj)));
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemView(Dem dem, PetscViewer v)
 {
   const char *law[] = {"linear spring-dashpot, Coulomb without history", "linear spring-dashpot with tangential history", "Hertz-Mindlin with tangential history"};
@@ -137,6 +166,7 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
       const double         ov = DemImpactOverlap(dem, p);
       PetscCall(PetscViewerASCIIPrintf(v, "  contact r=%g m with %s: Tc = %.3g s, dt/Tc = %.3g (limit %g), e = %g, overlap at %g m/s <= %.3g r\n", (double)dem->shapes.shp[s].r, t < 0 ? "wall" : "particle", (double)tc, (double)(dem->clock.dt / tc), (double)dem->clock.dt_frac, (double)e, (double)dem->contact.vimpact, ov / dem->shapes.shp[s].r));
     }
+  if (dem->shapes.poly) PetscCall(DemViewSizes(dem, v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -148,8 +178,8 @@ PetscErrorCode DemWriteOutput(Dem dem, Io io)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Output, 0, 0, 0, 0));
   PetscCall(PetscMalloc1(dem->p.n + 1, &r));
-  for (PetscInt i = 0; i < dem->p.n; i++) r[i] = dem->shapes.shp[dem->p.shape[i]].r;
-  if (per) { /* positions wrapped into the box along periodic axes, the run's own left as they are */
+  for (PetscInt i = 0; i < dem->p.n; i++) r[i] = DemRadius(&dem->p, &dem->shapes, i); /* each sphere's own in a scene of own sizes */
+  if (per) {                                                                          /* positions wrapped into the box along periodic axes, the run's own left as they are */
     PetscCall(PetscMalloc1(3 * dem->p.n + 3, &x));
     PetscCall(PetscArraycpy(x, dem->p.x, 3 * dem->p.n));
     for (PetscInt i = 0; i < dem->p.n; i++) DemWrapPeriodic(dem->dom, x + 3 * i);
@@ -184,7 +214,7 @@ PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]
   for (PetscInt i = 0; i < dem->p.n; i++)
     for (PetscInt a = dem->nl.start[i]; a < dem->nl.start[i + 1]; a++) {
       const PetscInt j    = dem->nl.nbr[a];
-      const double   rs   = dem->shapes.shp[dem->p.shape[i]].r + dem->shapes.shp[dem->p.shape[j]].r;
+      const double   rs   = DemRadius(&dem->p, &dem->shapes, i) + DemRadius(&dem->p, &dem->shapes, j);
       const double   d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
       if (dem_dot(d, d) < rs * rs && (!(dem->nl.full_list || j >= dem->p.n) || dem->p.id[i] < dem->p.id[j])) {
         count[0]++;
@@ -193,7 +223,7 @@ PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]
     }
   for (PetscInt i = 0; i < dem->p.n; i++)
     for (PetscInt j = i + 1; j < dem->p.n; j++) {
-      const double rs   = dem->shapes.shp[dem->p.shape[i]].r + dem->shapes.shp[dem->p.shape[j]].r;
+      const double rs   = DemRadius(&dem->p, &dem->shapes, i) + DemRadius(&dem->p, &dem->shapes, j);
       const double d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
       if (dem_dot(d, d) < rs * rs) {
         count[1]++;

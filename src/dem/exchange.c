@@ -16,7 +16,7 @@
  * along a split or periodic axis is an error (a particle could then reach past a neighbour). */
 #include "dem/dem_impl.h"
 
-#define GHOST_WIDTH 15 /* id, shape, x[3], v[3], w[3], q[4] */
+#define GHOST_WIDTH 15 /* id, shape, x[3], v[3], w[3], q[4]; then the radius in a scene of own sizes */
 
 static void dem_dir_offsets(int d, int o[3])
 {
@@ -145,7 +145,7 @@ size_t DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, con
 {
   PetscInt         ns;
   const DemSpring *s0 = dem_springs_of(recs, nrec, dem->p.id[i], &ns);
-  const size_t     hw = MIG_HEAD + (dem->ext.on ? MIG_EXT : 0);
+  const size_t     hw = MIG_HEAD + (dem->ext.on ? MIG_EXT : 0) + (dem->shapes.poly ? MIG_POLY : 0);
 
   b[0] = (double)dem->p.id[i];
   b[1] = (double)dem->p.shape[i];
@@ -166,6 +166,7 @@ size_t DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, con
       b[MIG_HEAD + 7 + k] = dem->ext.jdrag[3 * i + k];
     }
   }
+  if (dem->shapes.poly) b[hw - MIG_POLY] = dem->p.rad[i];
   for (PetscInt a = 0; a < ns; a++) {
     b[hw + 4 * a] = (double)s0[a].partner;
     for (int k = 0; k < 3; k++) b[hw + 4 * a + 1 + k] = s0[a].xi[k];
@@ -175,11 +176,12 @@ size_t DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, con
 
 PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used)
 {
-  DemParticle    p;
+  DemParticle    p  = {0};
   const PetscInt ns = (PetscInt)b[21], i = dem->p.n;
-  const size_t   hw = MIG_HEAD + (dem->ext.on ? MIG_EXT : 0);
+  const size_t   hw = MIG_HEAD + (dem->ext.on ? MIG_EXT : 0) + (dem->shapes.poly ? MIG_POLY : 0);
 
   PetscFunctionBeginUser;
+  if (dem->shapes.poly) p.r = b[hw - MIG_POLY];
   p.id    = (PetscInt)b[0];
   p.shape = (PetscInt)b[1];
   for (int k = 0; k < 3; k++) {
@@ -225,7 +227,7 @@ PetscErrorCode DemCheckInDomain(Dem dem)
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < dem->p.n; i++)
     for (int k = 0; k < 3; k++) {
-      const double x = dem->p.x[3 * i + k], r = dem->shapes.shp[dem->p.shape[i]].r;
+      const double x = dem->p.x[3 * i + k], r = DemRadius(&dem->p, &dem->shapes, i);
       PetscCheck(PetscIsInfOrNanReal(x) == PETSC_FALSE, PETSC_COMM_SELF, PETSC_ERR_FP, "t = %g s: particle %" PetscInt_FMT " has a non-finite position; the run is diverging: lower -dem_dt (now %g s)", (double)dem->clock.t, dem->p.id[i], (double)dem->clock.dt);
       if (dom->periodic[k] || (x >= dom->lo[k] - r && x <= dom->hi[k] + r)) continue;
       for (PetscInt w = 0; w < dem->walls.nwall; w++) { /* wholly behind an unbounded plane: it went through, the step cannot resolve the contact */
@@ -291,6 +293,7 @@ PetscErrorCode DemGhostsCreate(Dem dem)
   const Domain *dom = dem->dom;
   const double  h   = dem->nl.reach;
   size_t        soff[28], roff[28];
+  const size_t  GW = GHOST_WIDTH + (dem->shapes.poly ? 1 : 0);
 
   PetscFunctionBeginUser;
   dem->p.ng = 0;
@@ -317,12 +320,12 @@ PetscErrorCode DemGhostsCreate(Dem dem)
     }
   }
   soff[0] = 0;
-  for (int d = 0; d < 27; d++) soff[d + 1] = soff[d] + GHOST_WIDTH * (size_t)ex->nsend[d];
+  for (int d = 0; d < 27; d++) soff[d + 1] = soff[d] + GW * (size_t)ex->nsend[d];
   PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, soff[27] + 1));
   for (int d = 0; d < 27; d++)
     for (PetscInt a = 0; a < ex->nsend[d]; a++) {
       const PetscInt i = ex->send[d][a];
-      double        *b = ex->sbuf + soff[d] + GHOST_WIDTH * a;
+      double        *b = ex->sbuf + soff[d] + GW * a;
       b[0]             = (double)dem->p.id[i];
       b[1]             = (double)dem->p.shape[i];
       for (int k = 0; k < 3; k++) {
@@ -331,14 +334,15 @@ PetscErrorCode DemGhostsCreate(Dem dem)
         b[8 + k] = dem->p.w[3 * i + k];
       }
       for (int k = 0; k < 4; k++) b[11 + k] = dem->p.q[4 * i + k];
+      if (dem->shapes.poly) b[15] = dem->p.rad[i];
     }
   PetscCall(DemExchangeVariable(dem, soff, roff));
-  PetscCall(DemParticlesReserve(dem, dem->p.n + (PetscInt)(roff[27] / GHOST_WIDTH)));
+  PetscCall(DemParticlesReserve(dem, dem->p.n + (PetscInt)(roff[27] / GW)));
   for (int d = 0; d < 27; d++) {
     ex->recvstart[d] = dem->p.n + dem->p.ng;
-    ex->nrecv[d]     = (PetscInt)((roff[d + 1] - roff[d]) / GHOST_WIDTH);
+    ex->nrecv[d]     = (PetscInt)((roff[d + 1] - roff[d]) / GW);
     for (PetscInt a = 0; a < ex->nrecv[d]; a++) {
-      const double  *b = ex->rbuf + roff[d] + GHOST_WIDTH * a;
+      const double  *b = ex->rbuf + roff[d] + GW * a;
       const PetscInt g = dem->p.n + dem->p.ng++;
       dem->p.id[g]     = (PetscInt)b[0];
       dem->p.shape[g]  = (PetscInt)b[1];
@@ -348,6 +352,7 @@ PetscErrorCode DemGhostsCreate(Dem dem)
         dem->p.w[3 * g + k] = b[8 + k];
       }
       for (int k = 0; k < 4; k++) dem->p.q[4 * g + k] = b[11 + k];
+      if (dem->shapes.poly) DemParticleSetSize(dem, g, b[15]); /* the owner's mass and inertia, to the bit */
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);

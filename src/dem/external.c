@@ -20,7 +20,7 @@ void DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState 
   const PetscInt n = p->n, *shape = p->shape;
 
   for (PetscInt i = 0; i < n; i++) {
-    const double im = st->shp[shape[i]].invm, hk = h * kd[i];
+    const double im = p->invm ? p->invm[i] : st->shp[shape[i]].invm, hk = h * kd[i];
     const double den = 1.0 / (1.0 + hk * im);
     for (int k = 0; k < 3; k++) {
       const double vn = (v[3 * i + k] + h * (f[3 * i + k] + fe[3 * i + k]) * im + hk * im * u[3 * i + k]) * den;
@@ -87,6 +87,7 @@ PetscErrorCode DemGetArrays(Dem dem, DemArrays *a)
   a->v      = dem->p.v;
   a->id     = dem->p.id;
   a->shape  = dem->p.shape;
+  a->r      = dem->p.rad;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -6,7 +6,9 @@
  *   c = 1, 2, 3 — the symmetry-breaking velocity of the LIGGGHTS peer decks, so both codes start
  *   from the same state; shapes drawn by number fraction (-dem_radius_fraction); with
  *   -dem_lattice_random_orientation, a uniformly random orientation (for convex shapes).
- * Or: particles from an HDF5 file that Sable wrote (-dem_init_file), the last frame's state.
+ * Or: particles from an HDF5 file that Sable wrote (-dem_init_file), the last frame's state; its
+ * spheres become shapes by radius, or keep their own radii (-dem_init_file_radii own, or auto:
+ * when the scene has sizes of their own or the file more distinct radii than shapes can hold).
  * Both at once: the lattice's ids follow the file's. Whether they start clear of the walls and
  * of each other is checked once the ghosts exist (placement.c). */
 #include "dem/dem_impl.h"
@@ -38,6 +40,46 @@ static void dem_random_quat(PetscInt seed, PetscInt site, double q[4])
   q[3] = s2 * sin(b);
 }
 
+static const char *const DemFileRadiiNames[] = {"auto", "shapes", "own"};
+
+/* Collective. From all rows d of the -dem_init_file's radii: their range, and whether the spheres
+ * keep them (a scene of own sizes, declared so that reach and cells cover the file's largest).
+ * Particles added before that had their shape's radius: they keep it, now as their own. */
+static PetscErrorCode DemInitFileRadii(Dem dem, const PetscReal *dr, PetscInt rows)
+{
+  PetscReal *d;
+  PetscInt   nnew = 0;
+  PetscBool  was  = dem->shapes.poly;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(rows + 1, &d));
+  PetscCall(PetscArraycpy(d, dr, rows));
+  dem->insert.file_rmin = PETSC_MAX_REAL;
+  dem->insert.file_rmax = 0;
+  for (PetscInt i = 0; i < rows; i++) {
+    PetscCheck(d[i] > 0 && PetscIsNormalReal(d[i]), dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/radius, %g, must be > 0 (m)", dem->insert.init_file, i, (double)d[i]);
+    dem->insert.file_rmin = PetscMin(dem->insert.file_rmin, d[i]);
+    dem->insert.file_rmax = PetscMax(dem->insert.file_rmax, d[i]);
+  }
+  if (dem->insert.file_radii == 0) { /* auto: count the radii no shape has */
+    PetscCall(PetscSortReal(rows, d));
+    for (PetscInt i = 0; i < rows && nnew <= DEM_MAX_SHAPES; i++) {
+      PetscBool known = (PetscBool)(i > 0 && PetscAbsReal(d[i] - d[i - 1]) <= 1e-12 * d[i]);
+      for (PetscInt s = 0; s < dem->shapes.nshape && !known; s++) known = (PetscBool)(PetscAbsReal(dem->shapes.shp[s].r - d[i]) <= 1e-12 * d[i]);
+      nnew += !known;
+    }
+  }
+  PetscCall(PetscFree(d));
+  dem->insert.file_own = (PetscBool)(dem->insert.file_radii == 2 || (dem->insert.file_radii == 0 && (dem->shapes.poly || dem->shapes.nshape + nnew > DEM_MAX_SHAPES)));
+  if (!dem->insert.file_own || !rows) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DemSetOwnSizes(dem, dem->insert.file_rmin, dem->insert.file_rmax));
+  if (!was && dem->p.n) {
+    PetscCall(DemParticlesReserve(dem, dem->p.n)); /* the size arrays */
+    for (PetscInt i = 0; i < dem->p.n; i++) DemParticleSetSize(dem, i, dem->shapes.shp[dem->p.shape[i]].r);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemInsertSetFromOptions(Dem dem)
 {
   PetscBool set;
@@ -57,6 +99,7 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscCall(PetscOptionsBool("-dem_lattice_random_orientation", "Uniformly random initial orientations (convex shapes)", NULL, dem->insert.random_orient, &dem->insert.random_orient, NULL));
   PetscCall(PetscOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, dem->insert.seed, &dem->insert.seed, NULL));
   PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles); default none (the particles come from -dem_lattice)", NULL, dem->insert.init_file, dem->insert.init_file, sizeof dem->insert.init_file, NULL));
+  PetscCall(PetscOptionsEList("-dem_init_file_radii", "Spheres of -dem_init_file: own (each keeps its radius: a scene of own sizes, the shape index names the material), shapes (one shape per distinct radius, at most 32), or auto (own when the scene has own sizes or the file has more distinct radii than shapes can hold)", NULL, DemFileRadiiNames, 3, DemFileRadiiNames[dem->insert.file_radii], &dem->insert.file_radii, NULL));
   PetscCall(PetscOptionsReal("-dem_init_file_overlap_max", "Largest overlap / radius a -dem_init_file particle may start with, with another or with a wall; default twice the contact design's overlap at -dem_impact_velocity, at least 0.05", NULL, dem->insert.init_overlap_max, &dem->insert.init_overlap_max, &set));
   PetscOptionsEnd();
   PetscCheck(!set || (dem->insert.init_overlap_max > 0 && dem->insert.init_overlap_max < 2), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file_overlap_max %g must be in (0,2) (radii)", (double)dem->insert.init_overlap_max);
@@ -70,6 +113,14 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   PetscCheck(dem->insert.lat_jitter >= 0 && dem->insert.lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->insert.lat_jitter);
   PetscCheck(dem->insert.lat_speed >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_speed %g must be >= 0", (double)dem->insert.lat_speed);
   if (dem->insert.init_file[0]) PetscCall(IoCheckReadable(dem->comm, "-dem_init_file", dem->insert.init_file));
+  if (dem->insert.init_file[0] && dem->insert.file_radii == 2 && !dem->shapes.convex) { /* own: declared now, so a restart has it too */
+    PetscReal *d;
+    PetscInt   rows;
+    PetscCall(IoReadDatasetAll(dem->comm, dem->insert.init_file, "/particles/radius", 1, &rows, &d));
+    PetscCall(DemInitFileRadii(dem, d, rows));
+    PetscCall(PetscFree(d));
+  }
+  PetscCheck(dem->insert.file_radii != 2 || !dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_init_file_radii own: convex shapes (-dem_shape) keep one size per shape");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -168,6 +219,7 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
   const int   width[6] = {3, 3, 3, 4, 1, 1};
   PetscReal  *d;
   PetscInt    rows = 0, r, *mine, nmine = 0, n0 = dem->p.n;
+  PetscBool   own = dem->insert.file_own;
 
   PetscFunctionBeginUser;
   /* one dataset at a time, keeping only this rank's rows: the peak is one column of the file */
@@ -183,7 +235,7 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
       }
       PetscCall(DemParticlesReserve(dem, n0 + nmine));
       for (PetscInt a = 0; a < nmine; a++) {
-        DemParticle p;
+        DemParticle p = {0};
         PetscCall(PetscMemzero(&p, sizeof p));
         for (int c = 0; c < 3; c++) p.x[c] = d[3 * mine[a] + c];
         p.q[0] = 1;
@@ -191,6 +243,10 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
       }
     }
     if (k == 4) PetscCall(DemCheckFileIds(dem, d, rows));
+    if (k == 5 && dem->insert.file_radii == 0) { /* auto: decided once the rows are known */
+      PetscCall(DemInitFileRadii(dem, d, rows));
+      own = dem->insert.file_own;
+    }
     for (PetscInt a = 0; a < nmine && k > 0; a++) {
       const PetscInt i = n0 + a, row = mine[a];
       if (k == 1)
@@ -204,7 +260,8 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
         for (int c = 0; c < 4; c++) dem->p.q[4 * i + c] = q[c] * sc;
       }
       if (k == 4) dem->p.id[i] = (PetscInt)d[row];
-      if (k == 5) PetscCall(DemShapeForRadius(dem, d[row], &dem->p.shape[i]));
+      if (k == 5 && own) DemParticleSetSize(dem, i, d[row]); /* material 0 unless the file names another */
+      else if (k == 5) PetscCall(DemShapeForRadius(dem, d[row], &dem->p.shape[i]));
     }
     PetscCall(PetscFree(d));
   }
@@ -217,7 +274,10 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
       PetscCheck(r == rows, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: /particles/shape has %" PetscInt_FMT " rows, expected %" PetscInt_FMT, dem->insert.init_file, r, rows);
       for (PetscInt a = 0; a < nmine; a++) {
         const PetscInt i = n0 + a, s = (PetscInt)d[mine[a]];
-        if (s >= 0 && s < dem->shapes.nshape && PetscAbsReal(dem->shapes.shp[s].r - dem->shapes.shp[dem->p.shape[i]].r) <= 1e-12 * dem->shapes.shp[s].r) dem->p.shape[i] = s;
+        if (own && s >= 0 && s < dem->shapes.nshape) { /* the material it had */
+          dem->p.shape[i] = s;
+          DemParticleSetSize(dem, i, dem->p.rad[i]);
+        } else if (!own && s >= 0 && s < dem->shapes.nshape && PetscAbsReal(dem->shapes.shp[s].r - dem->shapes.shp[dem->p.shape[i]].r) <= 1e-12 * dem->shapes.shp[s].r) dem->p.shape[i] = s;
       }
       PetscCall(PetscFree(d));
     }
@@ -225,6 +285,21 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
   for (PetscInt a = 0; a < nmine; a++) dem->p.next_id = PetscMax(dem->p.next_id, dem->p.id[n0 + a] + 1);
   PetscCall(PetscFree(mine));
   *nfile = rows;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. A restart inserts nothing, but its scene has own sizes as the run that wrote it:
+ * -dem_init_file_radii auto decides from the file's radii as DemInsert would have. */
+PetscErrorCode DemInsertRestartSizes(Dem dem)
+{
+  PetscReal *d;
+  PetscInt   rows;
+
+  PetscFunctionBeginUser;
+  if (!dem->insert.init_file[0] || dem->insert.file_radii != 0 || dem->shapes.convex) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(IoReadDatasetAll(dem->comm, dem->insert.init_file, "/particles/radius", 1, &rows, &d));
+  PetscCall(DemInitFileRadii(dem, d, rows));
+  PetscCall(PetscFree(d));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

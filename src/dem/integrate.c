@@ -8,7 +8,8 @@
  *   step by one Newton step of 1/sqrt(|q|^2), exact to O((w dt)^4) since |q| stays 1 + O((w dt)^2).
  * The first half also tracks the largest displacement since the last list build.
  * With a coupling attached (external.c) the translational kicks are DemExternalKick's (drag
- * implicit); a frozen DEM (-dem_frozen) moves nothing. */
+ * implicit); a frozen DEM (-dem_frozen) moves nothing. Spheres of their own sizes take their own
+ * 1/m and 1/I (DemParticles.invm, invi). */
 #include "dem/dem_impl.h"
 
 #define DEM_INTEGRATE_BLOCK 256 /* particles per block of the first half step */
@@ -53,7 +54,15 @@ PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, D
   /* blocks of particles small enough to stay in L1 between the kick-drift and the displacement */
   for (PetscInt b0 = 0; b0 < n; b0 += DEM_INTEGRATE_BLOCK) {
     const PetscInt b1 = PetscMin(b0 + DEM_INTEGRATE_BLOCK, n);
-    if (st->nshape == 1) {
+    if (p->invm) /* spheres of their own sizes */
+      for (PetscInt i = b0; i < b1; i++) {
+        const double im = e->on ? 0 : p->invm[i];
+        for (int k = 0; k < 3; k++) {
+          v[3 * i + k] += h * f[3 * i + k] * im;
+          x[3 * i + k] += dt * v[3 * i + k];
+        }
+      }
+    else if (st->nshape == 1) {
       const double im = e->on ? 0 : st->shp[0].invm;
       for (PetscInt k = 3 * b0; k < 3 * b1; k++) {
         v[k] += h * f[k] * im;
@@ -81,7 +90,8 @@ PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, D
   if (st->convex) PetscCall(DemRotateFirstHalf(p, st, dt)); /* full inertia tensor (rotation.c) */
   else if (rotation)
     for (PetscInt i = 0; i < n; i++) {
-      const double ii = st->nshape == 1 ? st->shp[0].invi : st->shp[shape[i]].invi;
+      const double ii = p->invi ? p->invi[i] : st->nshape == 1 ? st->shp[0].invi
+                                                               : st->shp[shape[i]].invi;
       dem_spin_first_half(w + 3 * i, q + 4 * i, tq + 3 * i, ii, h);
     }
   *maxdisp2 = d2max;
@@ -103,6 +113,9 @@ PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, 
   if (e->frozen) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(DEM_Integrate, 0, 0, 0, 0));
   if (e->on) DemExternalKick(p, st, e, h);
+  else if (p->invm)
+    for (PetscInt i = 0; i < n; i++)
+      for (int k = 0; k < 3; k++) v[3 * i + k] += h * f[3 * i + k] * p->invm[i];
   else if (st->nshape == 1) {
     const double im = st->shp[0].invm;
     for (PetscInt k = 0; k < 3 * n; k++) v[k] += h * f[k] * im;
@@ -112,6 +125,9 @@ PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, 
       for (int k = 0; k < 3; k++) v[3 * i + k] += h * f[3 * i + k] * im;
     }
   if (st->convex) PetscCall(DemRotateSecondHalf(p, st, dt)); /* full inertia tensor (rotation.c) */
+  else if (spin && p->invi)
+    for (PetscInt i = 0; i < n; i++)
+      for (int k = 0; k < 3; k++) w[3 * i + k] += h * tq[3 * i + k] * p->invi[i];
   else if (spin && st->nshape == 1) {
     const double ii = st->shp[0].invi;
     for (PetscInt k = 0; k < 3 * n; k++) w[k] += h * tq[k] * ii;

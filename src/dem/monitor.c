@@ -1,5 +1,6 @@
 /* The DEM's figures for the monitor file, each one a function of the particles alone so that a
- * user can compute it again from a frame (position, id and the shapes' masses):
+ * user can compute it again from a frame (position, id and the shapes' masses, or each sphere's
+ * radius and the density in a scene of own sizes):
  *   bed height h95: along gravity, the centre coordinate of the particle at which the solids mass
  *     counted from the bottom first reaches 95% (the smallest particle coordinate c with
  *     m(x <= c) >= 0.95 M (1 - 1e-12), "bottom" and "<=" in the sense of gravity; the slack keeps
@@ -15,6 +16,7 @@
 
 static inline double dem_mass_of(const Dem dem, PetscInt i)
 {
+  if (dem->p.m) return dem->p.m[i]; /* spheres of their own sizes */
   return dem->shapes.shp[dem->shapes.nshape == 1 ? 0 : dem->p.shape[i]].m;
 }
 

@@ -173,7 +173,7 @@ static PetscErrorCode DemPairList(Dem dem)
   PetscCall(PetscFree(nl->start));
   PetscCall(PetscMalloc1(dem->p.n + 1, &nl->start));
   for (PetscInt i = 0; i < dem->p.n; i++) {
-    const double *xi = dem->p.x + 3 * i, ri = dem->shapes.shp[dem->p.shape[i]].r;
+    const double *xi = dem->p.x + 3 * i, ri = DemRadius(&dem->p, &dem->shapes, i);
     PetscInt      c[3];
     nl->start[i] = m;
     for (int k = 0; k < 3; k++) c[k] = dem_cell_coord(nl, xi, k);
@@ -191,7 +191,7 @@ static PetscErrorCode DemPairList(Dem dem)
         const PetscInt j = nl->order[a];
         if (j == i) continue;
         if (!dem->nl.full_list && j < dem->p.n && (s >= 14 || (s == 0 && j < i))) continue; /* the pair is in j's row */
-        const double *xj = dem->p.x + 3 * j, rc = ri + dem->shapes.shp[dem->p.shape[j]].r + skin;
+        const double *xj = dem->p.x + 3 * j, rc = ri + DemRadius(&dem->p, &dem->shapes, j) + skin;
         const double  d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
         if (dem_dot(d, d) >= rc * rc) continue;
         if (m == nl->cap) {

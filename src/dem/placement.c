@@ -96,7 +96,7 @@ static double DemPlaceFileLimit(Dem dem)
 static PetscErrorCode DemPlaceWallDepth(Dem dem, const DemWall *w, PetscInt i, double *depth)
 {
   const DemShape *s = &dem->shapes.shp[dem->p.shape[i]];
-  const double   *x = dem->p.x + 3 * i;
+  const double   *x = dem->p.x + 3 * i, r = DemRadius(&dem->p, &dem->shapes, i);
 
   PetscFunctionBeginUser;
   *depth = 0;
@@ -107,7 +107,7 @@ static PetscErrorCode DemPlaceWallDepth(Dem dem, const DemWall *w, PetscInt i, d
     if (c.overlap && DemWallCovers(w, c.point, x)) *depth = c.depth / s->req;
   } else {
     double nrm[3];
-    *depth = PetscMax(0.0, dem_wall_sphere(w, x, s->r, nrm)) / s->r;
+    *depth = PetscMax(0.0, dem_wall_sphere(w, x, r, nrm)) / r;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -125,7 +125,8 @@ static PetscErrorCode DemPlacePairDepth(Dem dem, PetscInt i, PetscInt j, double 
     if (c.overlap) *depth = c.depth / PetscMin(si->req, sj->req);
   } else {
     const double d[3] = {dem->p.x[3 * j] - dem->p.x[3 * i], dem->p.x[3 * j + 1] - dem->p.x[3 * i + 1], dem->p.x[3 * j + 2] - dem->p.x[3 * i + 2]};
-    *depth            = PetscMax(0.0, si->r + sj->r - sqrt(dem_dot(d, d))) / PetscMin(si->r, sj->r);
+    const double ri = DemRadius(&dem->p, &dem->shapes, i), rj = DemRadius(&dem->p, &dem->shapes, j);
+    *depth = PetscMax(0.0, ri + rj - sqrt(dem_dot(d, d))) / PetscMin(ri, rj);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -245,6 +245,32 @@ PetscErrorCode DemGetLargestRadius(Dem dem, PetscReal *r)
   PetscFunctionBeginUser;
   *r = 0;
   for (PetscInt s = 0; s < dem->shapes.nshape; s++) *r = PetscMax(*r, dem->shapes.shp[s].r);
+  if (dem->shapes.poly) *r = PetscMax(*r, dem->shapes.r_source_max);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetOwnSizes(Dem dem, PetscBool *poly, PetscReal *rmin, PetscReal *rmax)
+{
+  PetscFunctionBeginUser;
+  *poly = dem->shapes.poly;
+  *rmin = *rmax = 0;
+  if (!dem->shapes.poly) PetscFunctionReturn(PETSC_SUCCESS);
+  *rmin = dem->shapes.r_source_min > 0 ? dem->shapes.r_source_min : PETSC_MAX_REAL;
+  *rmax = dem->shapes.r_source_max;
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    *rmin = PetscMin(*rmin, dem->shapes.shp[s].r);
+    *rmax = PetscMax(*rmax, dem->shapes.shp[s].r);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemSetOwnSizes(Dem dem, PetscReal rmin, PetscReal rmax)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(rmin > 0 && rmax >= rmin, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "sizes of their own: radii [%g, %g] m must satisfy 0 < rmin <= rmax", (double)rmin, (double)rmax);
+  dem->shapes.r_source_min = dem->shapes.r_source_min > 0 ? PetscMin(dem->shapes.r_source_min, rmin) : rmin;
+  dem->shapes.r_source_max = PetscMax(dem->shapes.r_source_max, rmax);
+  dem->shapes.poly         = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

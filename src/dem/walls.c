@@ -120,7 +120,7 @@ PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const
     w->cnt     = 0;
     for (PetscInt i = 0; i < pt->n && !w->removed; i++) {
       const double d[3]  = {pt->x[3 * i] - w->p[0], pt->x[3 * i + 1] - w->p[1], pt->x[3 * i + 2] - w->p[2]};
-      const double reach = st->shp[pt->shape[i]].r + skin;
+      const double reach = DemRadius(pt, st, i) + skin;
       if (w->kind == DEM_WALL_CYLINDER) { /* distance from the curved surface, inside */
         const double a = dem_dot(d, w->n), rho2 = dem_dot(d, d) - a * a;
         if (w->R - sqrt(PetscMax(rho2, 0.0)) >= reach) continue;
@@ -145,24 +145,24 @@ PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const
 /* The walls' contact forces on the spheres (DemStep has moved the walls): adds to f and tq of the
  * particles in the wall lists, advances or resets the walls' springs; reads x, v, w, the radii
  * and the contact model. */
-PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt)
+static inline void dem_walls_body(DemParticles *pt, const double *rad, const DemContactModel *cm, DemWalls *walls, double dt, const PetscBool poly)
 {
-  double rad[DEM_MAX_SHAPES]; /* the radii, side by side (as in the pair loop) */
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
-  for (PetscInt s = 0; s < st->nshape; s++) rad[s] = st->shp[s].r;
   for (PetscInt wi = 0; wi < walls->nwall; wi++) {
     DemWall      *w = &walls->wall[wi];
     DemPairParams pwl;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt       i  = w->idx[a];
       const double        *xi = pt->x + 3 * i, *vi = pt->v + 3 * i, *wi_ = pt->w + 3 * i;
-      const double         r = rad[pt->shape[i]];
+      const double         r = poly ? pt->rad[i] : rad[pt->shape[i]];
       double               nrm[3]; /* from the particle to the wall */
       const double         delta = dem_wall_sphere(w, xi, r, nrm);
       double              *xi_t  = cm->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
       const DemPairParams *p     = DemWallParams(cm, w, pt->shape[i], &pwl);
+      DemPairParams        sized;
+      if (poly && delta > 0) { /* m* = m, R* = r of the sphere */
+        dem_pair_sized(cm->law, p, pt->m[i], r, 0, 0, &sized);
+        p = &sized;
+      }
       if (delta <= 0) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
@@ -189,6 +189,17 @@ PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const
       for (int k = 0; k < 3; k++) pt->f[3 * i + k] += F[k];
     }
   }
+}
+
+PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt)
+{
+  double rad[DEM_MAX_SHAPES]; /* the radii, side by side (as in the pair loop) */
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
+  for (PetscInt s = 0; s < st->nshape; s++) rad[s] = st->shp[s].r;
+  if (pt->rad) dem_walls_body(pt, rad, cm, walls, dt, PETSC_TRUE); /* spheres of their own sizes */
+  else dem_walls_body(pt, rad, cm, walls, dt, PETSC_FALSE);
   PetscCall(PetscLogEventEnd(DEM_Walls, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

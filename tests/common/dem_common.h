@@ -61,7 +61,7 @@ static inline PetscErrorCode TestDemDestroy(Domain *dom, Dem *dem)
 static inline PetscInt TestFind(Dem dem, PetscInt id)
 {
   PetscInt    n;
-  DemParticle p;
+  DemParticle p = {0};
 
   DemGetLocalCount(dem, &n);
   for (PetscInt i = 0; i < n; i++) {
@@ -73,7 +73,7 @@ static inline PetscInt TestFind(Dem dem, PetscInt id)
 
 static inline DemParticle TestGet(Dem dem, PetscInt id)
 {
-  DemParticle p;
+  DemParticle p = {0};
   memset(&p, 0, sizeof p);
   PetscInt i = TestFind(dem, id);
   if (i >= 0) DemGetParticle(dem, i, &p);
@@ -94,7 +94,7 @@ static inline PetscErrorCode TestGatherById(Dem dem, MPI_Comm comm, PetscInt N, 
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(PetscMalloc1(7 * n + 1, &loc));
   for (PetscInt i = 0; i < n; i++) {
-    DemParticle p;
+    DemParticle p = {0};
     PetscCall(DemGetParticle(dem, i, &p));
     loc[7 * i] = (double)p.id;
     for (int k = 0; k < 3; k++) {

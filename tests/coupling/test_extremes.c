@@ -22,7 +22,7 @@ static PetscErrorCode AddBodyCentres(Dem dem)
   for (PetscInt k = 0; k < 10; k++)
     for (PetscInt j = 0; j < 4; j++)
       for (PetscInt i = 0; i < 4; i++) {
-        DemParticle p;
+        DemParticle p = {0};
         PetscCall(PetscMemzero(&p, sizeof p));
         p.id   = 100000 + i + 4 * (j + 4 * k);
         p.q[0] = 1;

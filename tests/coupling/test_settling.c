@@ -31,7 +31,7 @@ int main(int argc, char **argv)
   }
   vt = 0.5 * (lo + hi);
   for (PetscInt s = 0; s < nsteps; s++) {
-    DemParticle p;
+    DemParticle p = {0};
     PetscCall(CplStep(t.cpl, &st));
     PetscCall(DemGetParticle(t.dem, 0, &p));
     vmax = PetscMax(vmax, -p.v[2]);

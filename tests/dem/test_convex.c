@@ -94,7 +94,7 @@ static void Momenta(Dem dem, double P[3], double L[3])
   DemGetLocalCount(dem, &n);
   for (int k = 0; k < 3; k++) P[k] = L[k] = 0;
   for (PetscInt i = 0; i < n; i++) {
-    DemParticle p;
+    DemParticle p = {0};
     double      J[3], m, Ls[3], mv[3], o[3];
     DemGetParticle(dem, i, &p);
     Moments(p.shape, J, &m);
@@ -304,7 +304,7 @@ static PetscErrorCode BoxForceDirection(Dem dem, double dv[3])
   for (int s = 0; s < 2; s++) {
     PetscCall(DemStep(dem));
     for (PetscInt i = 0; i < 2; i++) {
-      DemParticle q;
+      DemParticle q = {0};
       PetscCall(DemGetParticle(dem, i, &q));
       if (q.id == 1)
         for (int k = 0; k < 3; k++) dv[k] += (s ? 1 : -1) * q.v[k];
@@ -396,7 +396,7 @@ static PetscErrorCode Collisions(PetscBool boxes, double vs, double ws, const ch
     PetscInt n;
     PetscCall(DemGetLocalCount(dem, &n));
     for (PetscInt i = 0; i < n; i++) {
-      DemParticle p;
+      DemParticle p = {0};
       PetscCall(DemGetParticle(dem, i, &p));
       for (int k = 0; k < 3; k++) {
         p.w[k] = ws * sin(1.7 * p.id + 2.1 * k);

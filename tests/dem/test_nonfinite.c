@@ -26,7 +26,7 @@ int main(int argc, char **argv)
   PetscCall(DemSetUp(dem));
   for (int s = 0; s < 5; s++) PetscCall(DemStep(dem));
   {
-    DemParticle p;
+    DemParticle p = {0};
     PetscCall(DemGetParticle(dem, 13, &p));
     p.v[1] = NAN;
     PetscCall(DemSetParticle(dem, 13, &p));

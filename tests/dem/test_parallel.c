@@ -98,7 +98,7 @@ static PetscErrorCode Momentum(void)
     double   p[3] = {0, 0, 0}, pg[3], a = 0, ag;
     PetscCall(DemGetLocalCount(dem, &n));
     for (PetscInt i = 0; i < n; i++) { /* one shape: momentum per unit mass */
-      DemParticle q;
+      DemParticle q = {0};
       PetscCall(DemGetParticle(dem, i, &q));
       for (int k = 0; k < 3; k++) p[k] += q.v[k];
       a += sqrt(q.v[0] * q.v[0] + q.v[1] * q.v[1] + q.v[2] * q.v[2]);

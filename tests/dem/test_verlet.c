@@ -19,7 +19,7 @@ static PetscErrorCode Positions(const char *extra, PetscInt steps, PetscReal *x)
   for (PetscInt s = 0; s < steps; s++) PetscCall(DemStep(dem));
   PetscCall(DemGetLocalCount(dem, &n));
   for (PetscInt i = 0; i < n; i++) {
-    DemParticle p;
+    DemParticle p = {0};
     PetscCall(DemGetParticle(dem, i, &p));
     for (int k = 0; k < 3; k++) x[3 * p.id + k] = p.x[k];
   }

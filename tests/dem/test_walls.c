@@ -43,7 +43,7 @@ static PetscErrorCode Get(Dem dem, double s[10])
 
   PetscFunctionBeginUser;
   if (i >= 0) {
-    DemParticle p;
+    DemParticle p = {0};
     PetscCall(DemGetParticle(dem, i, &p));
     for (int k = 0; k < 3; k++) {
       loc[k]     = p.x[k];
