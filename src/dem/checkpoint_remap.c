@@ -348,6 +348,9 @@ PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck)
   dem->stop_sig = 0;
   PetscCall(PetscPrintf(dem->comm, "restart: the particles of the checkpoint's %" PetscInt_FMT " rank(s) redistributed over this run's boxes (the run continues to round-off, bitwise with -dem_deterministic)\n", b.R));
   PetscCall(DemGetStats(dem, &st));
-  PetscCheck(st.n == dem->initial.n && st.checksum == dem->initial.checksum, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/id gives %" PetscInt_FMT " particles with id checksum %.17g after the redistribution, the run had %" PetscInt_FMT " and %.17g: an id is missing or repeated", b.path, st.n, st.checksum, dem->initial.n, dem->initial.checksum);
+  /* the run's count: initial + inserted - removed (dem->flow, read before the remap) */
+  const PetscInt n0 = dem->initial.n + dem->flow.inserted - dem->flow.removed;
+  const double   c0 = dem->initial.checksum + dem->flow.id_inserted - dem->flow.id_removed;
+  PetscCheck(st.n == n0 && st.checksum == c0, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/id gives %" PetscInt_FMT " particles with id checksum %.17g after the redistribution, the run had %" PetscInt_FMT " and %.17g: an id is missing or repeated", b.path, st.n, st.checksum, n0, c0);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
