@@ -116,7 +116,8 @@ static PetscErrorCode DemRemapCounters(Dem dem, DemRemap *b)
     nsum += CNT(b, r, CK_N);
     dem->p.next_id = PetscMax(dem->p.next_id, CNT(b, r, CK_NEXT_ID));
   }
-  PetscCheck(nsum == CNT(b, 0, CK_INITIAL_N), dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters gives %" PetscInt_FMT " particles owned by the ranks that wrote it, and a run of %" PetscInt_FMT, b->path, nsum, CNT(b, 0, CK_INITIAL_N));
+  /* the run's count: initial + inserted - removed (dem->flow, read before the remap) */
+  PetscCheck(nsum == CNT(b, 0, CK_INITIAL_N) + dem->flow.inserted - dem->flow.removed, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters gives %" PetscInt_FMT " particles owned by the ranks that wrote it, and a run of %" PetscInt_FMT, b->path, nsum, CNT(b, 0, CK_INITIAL_N) + dem->flow.inserted - dem->flow.removed);
   b->nown = 0;
   for (PetscInt r = b->r0; r < b->r1; r++) b->nown += CNT(b, r, CK_N);
   dem->nl.builds   = CNT(b, 0, CK_BUILDS);
