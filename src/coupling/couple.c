@@ -53,10 +53,34 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* -cpl_outlet_remove: every fluid outlet face becomes a DEM outlet (dem/sinks.c) that removes
+ * the particles leaving the domain across it; without it such a particle stops the run. */
+static PetscErrorCode CplOutletFaces(Cpl cpl, PetscBool remove)
+{
+  const char *side[2] = {"lo", "hi"};
+  char        name[48];
+  PetscInt    n = 0;
+
+  PetscFunctionBeginUser;
+  if (!remove) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      FluidBCType t;
+      PetscCall(FluidGetBC(cpl->fl, d, s, &t));
+      if (t != FLUID_BC_OUTLET) continue;
+      PetscCall(PetscSNPrintf(name, sizeof name, "-cpl_outlet_remove %c%s", "xyz"[d], side[s]));
+      PetscCall(DemAddOutletSide(cpl->dem, d, s, name));
+      n++;
+    }
+  PetscCheck(n > 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_outlet_remove: the fluid has no outlet face (-fluid_bc_<side> outlet): nothing to remove particles at");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The fluid's properties come from the Fluid (FluidSetFromOptions has read them). */
 PetscErrorCode CplSetFromOptions(Cpl cpl)
 {
   PetscReal fg[3];
+  PetscBool remove = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
@@ -65,7 +89,9 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(SableOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d", NULL, "(0,inf)", cpl->kscale, &cpl->kscale, NULL));
   PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->eps_floor, &cpl->eps_floor, NULL));
   PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->relax_max, &cpl->relax_max, NULL));
+  PetscCall(PetscOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", NULL, remove, &remove, NULL));
   PetscOptionsEnd();
+  PetscCall(CplOutletFaces(cpl, remove));
   PetscCall(FluidGetDensity(cpl->fl, &cpl->rho));
   PetscCall(FluidGetViscosity(cpl->fl, &cpl->mu));
   PetscCall(FluidGetGravity(cpl->fl, fg));

@@ -15,7 +15,8 @@
  * of the pair loop (narrow.rot) are formed from q in every pass before they are read, whichever
  * of the eager or lazy ways rot_pairs picks, and libccd and geom/ keep nothing between calls.
  * Wall motion (DemCkptWriteWalls): a translating plane's position and travel are in wall_state; a
- * removed plane's flag is dem/wall_removed. A drum (cylinder and caps turning at omega) has no
+ * removed plane's flag is dem/wall_removed. The particles that entered and left (dem->flow) and
+ * the outlets' totals are dem/flow (sinks.c). A drum (cylinder and caps turning at omega) has no
  *  angle: its geometry is invariant under its rotation and its surface velocity is given.
  * Read on another rank count or process grid, the state is redistributed (checkpoint_remap.c). */
 #include "dem/dem_impl.h"
@@ -151,6 +152,7 @@ PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
   PetscCall(DemCkptWriteLists(dem, ck));
   PetscCall(DemCkptWriteConvex(dem, ck));
   PetscCall(DemCkptWriteWalls(dem, ck));
+  PetscCall(DemSinksCheckpoint(dem, ck, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -275,6 +277,7 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   if (remap) { /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
     PetscCall(DemExternalCheckpointCheck(dem, ck));
     PetscCall(DemCkptPolyCheck(dem, ck, path));
+    PetscCall(DemSinksCheckpoint(dem, ck, PETSC_FALSE)); /* the remap checks the count against it */
     PetscCall(DemCheckpointReadRemap(dem, ck));
     PetscCall(DemCkptReadWalls(dem, ck));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -299,5 +302,6 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscCall(DemCkptReadLists(dem, ck, path));
   PetscCall(DemCkptReadConvex(dem, ck));
   PetscCall(DemCkptReadWalls(dem, ck));
+  PetscCall(DemSinksCheckpoint(dem, ck, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

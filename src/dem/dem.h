@@ -68,6 +68,15 @@ typedef struct {
   PetscReal m_inserted, m_removed; /* kg */
 } DemFlowStats;
 PetscErrorCode DemGetFlow(Dem dem, DemFlowStats *f);
+/* Outlets (sinks.c). DemAddOutletSide: not collective, before the first step; side s (0 lo,
+ * 1 hi) of axis d removes the particles that leave the domain across it, name (the option that
+ * asked for it) labels it in messages and the summary. DemGetOutletFlow: outlet k's global
+ * totals. DemFlowView: collective; the balance initial + inserted - removed = present and each
+ * outlet's totals, when the run has outlets or a particle entered or left. */
+PetscErrorCode DemAddOutletSide(Dem dem, int d, int s, const char *name);
+PetscErrorCode DemGetOutletCount(Dem dem, PetscInt *n);
+PetscErrorCode DemGetOutletFlow(Dem dem, PetscInt k, const char **name, PetscInt *removed, PetscReal *mass);
+PetscErrorCode DemFlowView(Dem dem, PetscViewer viewer);
 /* Collective. Stops a diverging run with a message: kinetic energy not finite, or the largest
  * overlap above -dem_overlap_max radii (a time step too large for the stiffness lets particles
  * pass through each other while every number stays finite). s from DemGetStats. */

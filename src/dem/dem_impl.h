@@ -302,6 +302,31 @@ typedef struct {
   PetscReal id_inserted, id_removed; /* sums of their ids */
 } DemFlow;
 
+/* Outlets (sinks.c): a box, a plane patch or a domain side that removes particles in the
+ * window t_start <= t <= t_stop, with its global totals; the particles marked at this step
+ * (local indices, increasing, and the outlet of each) wait for the rebuild that removes them. */
+#define DEM_MAX_OUTLETS 10 /* -dem_outlet_<k>, k = 0..9; a coupled run may add the 6 sides */
+typedef enum {
+  DEM_OUTLET_BOX,
+  DEM_OUTLET_PATCH,
+  DEM_OUTLET_SIDE
+} DemOutletKind;
+typedef struct {
+  DemOutletKind kind;
+  char          name[48];                 /* the option that made it, for messages and the summary */
+  double        lo[3], hi[3];             /* box */
+  double        p[3], e1[3], e2[3], n[3]; /* patch: corner, edges, unit normal */
+  int           axis, side;               /* side: axis 0..2, 0 lo / 1 hi */
+  double        t_start, t_stop;          /* s */
+  PetscInt      removed;                  /* global totals */
+  double        m_removed, id_removed;
+} DemOutlet;
+typedef struct {
+  DemOutlet out[DEM_MAX_OUTLETS + 6];
+  PetscInt  nout;
+  PetscInt *gone, *gone_out, ngone, capgone;
+} DemSinks;
+
 /* External forces from a coupling (external.c): per-particle arrays, NULL unless DemSetExternal
  * switched them on; frozen: nothing is integrated. */
 typedef struct {
@@ -323,6 +348,7 @@ struct _p_Dem {
   DemInsertion     insert;
   DemExternalState ext;
   DemFlow          flow;
+  DemSinks         sinks;
   /* run control */
   PetscReal      g[3];        /* gravity (m/s^2) */
   PetscReal      overlap_max; /* -dem_overlap_max: a larger overlap stops the run (DemCheckHealth) */
@@ -418,6 +444,15 @@ PetscErrorCode DemRebuild(Dem dem);                                             
 PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt caprec);                                                              /* rebuild.c */
 PetscErrorCode DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap);                                                                         /* checkpoint_remap.c: another rank count or other boxes */
 PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck);                                                                                            /* checkpoint_remap.c */
+
+/* Outlets and the mass balance (sinks.c): called by dem.c (DemStep), rebuild.c and the
+ * checkpoints; sinks.c calls particles.c and diag.c only. */
+PetscErrorCode DemSinksSetFromOptions(Dem dem);
+PetscErrorCode DemSinksMark(Dem dem);                                   /* not collective: the particles the outlets take at this step */
+PetscErrorCode DemSinksRemove(Dem dem);                                 /* collective: removes the marked ones; global totals */
+PetscErrorCode DemCheckBalance(Dem dem);                                /* collective: initial + inserted - removed = present */
+PetscErrorCode DemSinksCheckpoint(Dem dem, IoCkpt ck, PetscBool write); /* collective: dem->flow and the outlets' totals */
+PetscErrorCode DemSinksDestroy(Dem dem);
 
 /* Checkpoints (checkpoint.c, checkpoint_remap.c). The per-rank counters of dem/counters, in
  * their stored order (DemCkptCounters). */

@@ -249,10 +249,11 @@ static PetscErrorCode DemInsertFile(Dem dem, PetscInt *nfile)
     }
     for (PetscInt a = 0; a < nmine && k > 0; a++) {
       const PetscInt i = n0 + a, row = mine[a];
-      if (k == 1)
-        for (int c = 0; c < 3; c++) dem->p.v[3 * i + c] = d[3 * row + c];
-      if (k == 2)
-        for (int c = 0; c < 3; c++) dem->p.w[3 * i + c] = d[3 * row + c];
+      if (k == 1 || k == 2) { /* the integrators square them: |v|^2, |w|^2 must be finite */
+        const PetscReal *u = d + 3 * row, u2 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+        PetscCheck(PetscIsNormalReal(u2) || u2 == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of %s, (%g, %g, %g), is not a finite %s", dem->insert.init_file, row, names[k], (double)u[0], (double)u[1], (double)u[2], k == 1 ? "velocity (m/s)" : "spin (rad/s)");
+        for (int c = 0; c < 3; c++) (k == 1 ? dem->p.v : dem->p.w)[3 * i + c] = u[c];
+      }
       if (k == 3) {
         const PetscReal *q = d + 4 * row, nq = PetscSqrtReal(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
         PetscCheck(PetscIsNormalReal(nq) && nq > 1e-12, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-dem_init_file %s: row %" PetscInt_FMT " of /particles/quaternion, (%g, %g, %g, %g), is not a rotation (norm %g)", dem->insert.init_file, row, (double)q[0], (double)q[1], (double)q[2], (double)q[3], (double)nq);

@@ -1,7 +1,8 @@
 /* The rebuild: everything that changes the local particles' order and the lists at once, run by
  * DemSetUp, by DemStep when a particle or a wall moved more than skin/2 since the last one (all
  * ranks agree, dem.c), and by DemRedistribute after the decomposition changed:
- *   springs saved by id pair (springs.c) -> migration of the particles that left the box, to a
+ *   springs saved by id pair (springs.c) -> the particles outlets took removed (sinks.c: their
+ *   springs find no partner) -> migration of the particles that left the box, to a
  *   neighbour (exchange.c) or, after a remap, to any rank (redistribute.c) -> re-sort of the
  *   locals every -dem_sort_interval builds (neighbours.c) -> ghost creation (exchange.c) -> bins
  *   and pair list (neighbours.c) -> springs restored by id pair -> wall lists (walls.c) -> the
@@ -16,6 +17,7 @@ PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt 
   PetscFunctionBeginUser;
   dem->state++; /* migration and re-sorting change the local order */
   dem->p.ng = 0;
+  if (dem->sinks.nout) PetscCall(DemSinksRemove(dem)); /* the particles outlets took (sinks.c) */
   PetscCall(PetscLogEventBegin(DEM_Exchange, 0, 0, 0, 0));
   PetscCall(DemCheckInDomain(dem));
   if (dem->ex.remap) PetscCall(DemMigrateGlobal(dem, &recs, &nrec, &caprec));

@@ -3,6 +3,8 @@
  *   kinetic_energy, rotational_energy [J]; max_overlap [radius]; contacts, wall_contacts [-];
  *   bed_height_95 [m] (the centre height below which 95% of the solids mass lies, along
  *   gravity), mean_height [m] (the centre of mass along gravity);
+ *   inserted, removed [-] and inserted_mass, removed_mass [kg]: the particles sources added and
+ *   outlets took since the start (particles = initial + inserted - removed);
  *   box<k>_mass [kg], box<k>_count [-] for each -mon_box_<k> lo_x,lo_y,lo_z,hi_x,hi_y,hi_z;
  *   a coupled run adds p_probe<k> [Pa] at each -mon_probe_<k> x,y,z (the cell-centred pressure
  *   interpolated trilinearly), dp<k> [Pa] = p(probe a) - p(probe b) for each -mon_dp_<k> a,b,
@@ -59,7 +61,7 @@ PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool co
 /* The columns, in the order DriverMonRow fills them. */
 static PetscErrorCode DriverMonColumns(DriverMon *m)
 {
-  const char *dem[][2] = {{"time", "s"}, {"step", "-"}, {"particles", "-"}, {"kinetic_energy", "J"}, {"rotational_energy", "J"}, {"max_overlap", "radius"}, {"contacts", "-"}, {"wall_contacts", "-"}, {"bed_height_95", "m"}, {"mean_height", "m"}};
+  const char *dem[][2] = {{"time", "s"}, {"step", "-"}, {"particles", "-"}, {"kinetic_energy", "J"}, {"rotational_energy", "J"}, {"max_overlap", "radius"}, {"contacts", "-"}, {"wall_contacts", "-"}, {"bed_height_95", "m"}, {"mean_height", "m"}, {"inserted", "-"}, {"removed", "-"}, {"inserted_mass", "kg"}, {"removed_mass", "kg"}};
   char        name[64];
 
   PetscFunctionBeginUser;
@@ -109,6 +111,7 @@ PetscErrorCode DriverMonRow(DriverMon *m, const DriverMonInput *in)
   PetscInt       c = 0, ncol;
   PetscBool      due;
   DemStats       st;
+  DemFlowStats   fl;
   PetscLogDouble now;
 
   PetscFunctionBeginUser;
@@ -129,6 +132,11 @@ PetscErrorCode DriverMonRow(DriverMon *m, const DriverMonInput *in)
   v[c++] = (PetscReal)st.wall_contacts;
   v[c++] = h;
   v[c++] = mean;
+  PetscCall(DemGetFlow(in->dem, &fl));
+  v[c++] = (PetscReal)fl.inserted;
+  v[c++] = (PetscReal)fl.removed;
+  v[c++] = fl.m_inserted;
+  v[c++] = fl.m_removed;
   for (PetscInt b = 0; b < m->nbox; b++) {
     PetscInt cnt;
     PetscCall(DemGetMassInBox(in->dem, m->box[b], m->box[b] + 3, &v[c], &cnt));

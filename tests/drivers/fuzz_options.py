@@ -26,7 +26,8 @@ an .h5 that HDF5 cannot read, a *.tmp file (runs stopped at the timeout excepted
 The bounds are 0 crashes, 0 hangs, 0 non-finite values, 0 temporaries, every error one line;
 a first check feeds the judge made-up runs of each kind to show that it can fail.
 Options files with -dem_init_file start from a frame that the file of the same folder named by
-the init file's prefix (silo/fill.opts for fill_000001.h5) writes first; files without a domain
+the init file's prefix (silo/fill.opts for fill_000001.h5) writes first (none there: the file of
+the folder the init file's directory names, silo/ for out/silo/fill_000001.h5); files without a domain
 (cases/presets) are added after cases/settle/quick.opts (dry) or cases/fluidized_bed/small.opts.
 
 Usage: fuzz_options.py [--runs N] [--seed S] [--timeout T] [--jobs J] [--case K [--keep]] [--dump F]
@@ -133,8 +134,10 @@ def prepare_cases(work, sable):
         if init:
             prefix = os.path.basename(init).rsplit("_", 1)[0]
             folder = os.path.dirname(rel)
-            src = [r for r, t in texts.items() if os.path.dirname(r) == folder and opt_value(t, "-io_prefix") == prefix
-                   and not opt_value(t, "-dem_init_file")]
+            writes = lambda f: [r for r, t in texts.items() if os.path.dirname(r) == f and opt_value(t, "-io_prefix") == prefix
+                                and not opt_value(t, "-dem_init_file")]
+            # the same folder's, else the case folder the init file's directory names (out/silo/...)
+            src = writes(folder) or writes(os.path.join("cases", os.path.basename(os.path.dirname(init))))
             if not src:
                 problems.append("%s: no file in %s writes %s" % (rel, folder, init))
                 continue
@@ -587,7 +590,7 @@ def report(runs, problems, seed, elapsed, show_max=8):
     bad = [r for r in runs if r["class"] == "bad"]
     fail |= line(not crashes, "%d crashes in %d runs" % (len(crashes), n), crashes)
     fail |= line(not hangs, "%d hangs in %d runs" % (len(hangs), n), hangs)
-    fail |= line(not nf, "%d non-finite values written (%d runs)" % (sum(x[0] for r in nf for x in r["nonfinite"]), len(nf)),
+    fail |= line(not nf, "%d non-finite values written (%d runs)" % (sum(x[1] for r in nf for x in r["nonfinite"]), len(nf)),
                  nf, lambda r: "; non-finite: " + ", ".join("%s:%s %d" % (f, w, c) for f, c, w in r["nonfinite"][:3]))
     fail |= line(not unread, "%d unreadable .h5 files written (%d runs)" % (sum(len(r["unreadable"]) for r in unread), len(unread)),
                  unread, lambda r: "; " + r["unreadable"][0])
