@@ -139,6 +139,7 @@ PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
   PetscCall(DemCkptWriteLists(dem, ck));
   PetscCall(DemCkptWriteConvex(dem, ck));
   PetscCall(DemCkptWriteWalls(dem, ck));
+  PetscCall(DemSourcesCheckpoint(dem, ck, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -260,7 +261,8 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscFunctionBeginUser;
   PetscCall(IoCkptGetPath(ck, &path));
   PetscCall(DemCheckpointNeedsRemap(dem, ck, &remap));
-  if (remap) { /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
+  PetscCall(DemSourcesCheckpoint(dem, ck, PETSC_FALSE)); /* first: the remap checks the count with it */
+  if (remap) {                                           /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
     PetscCall(DemExternalCheckpointCheck(dem, ck));
     PetscCall(DemCheckpointReadRemap(dem, ck));
     PetscCall(DemCkptReadWalls(dem, ck));

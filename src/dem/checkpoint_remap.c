@@ -116,7 +116,7 @@ static PetscErrorCode DemRemapCounters(Dem dem, DemRemap *b)
     nsum += CNT(b, r, CK_N);
     dem->p.next_id = PetscMax(dem->p.next_id, CNT(b, r, CK_NEXT_ID));
   }
-  PetscCheck(nsum == CNT(b, 0, CK_INITIAL_N), dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters gives %" PetscInt_FMT " particles owned by the ranks that wrote it, and a run of %" PetscInt_FMT, b->path, nsum, CNT(b, 0, CK_INITIAL_N));
+  PetscCheck(nsum == CNT(b, 0, CK_INITIAL_N) + dem->flow.inserted - dem->flow.removed, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/counters gives %" PetscInt_FMT " particles owned by the ranks that wrote it, and a run of %" PetscInt_FMT, b->path, nsum, CNT(b, 0, CK_INITIAL_N) + dem->flow.inserted - dem->flow.removed);
   b->nown = 0;
   for (PetscInt r = b->r0; r < b->r1; r++) b->nown += CNT(b, r, CK_N);
   dem->nl.builds   = CNT(b, 0, CK_BUILDS);
@@ -348,6 +348,8 @@ PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck)
   dem->stop_sig = 0;
   PetscCall(PetscPrintf(dem->comm, "restart: the particles of the checkpoint's %" PetscInt_FMT " rank(s) redistributed over this run's boxes (the run continues to round-off, bitwise with -dem_deterministic)\n", b.R));
   PetscCall(DemGetStats(dem, &st));
-  PetscCheck(st.n == dem->initial.n && st.checksum == dem->initial.checksum, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/id gives %" PetscInt_FMT " particles with id checksum %.17g after the redistribution, the run had %" PetscInt_FMT " and %.17g: an id is missing or repeated", b.path, st.n, st.checksum, dem->initial.n, dem->initial.checksum);
+  const PetscInt  n_exp  = dem->initial.n + dem->flow.inserted - dem->flow.removed;
+  const PetscReal id_exp = dem->initial.checksum + dem->flow.id_inserted - dem->flow.id_removed;
+  PetscCheck(st.n == n_exp && st.checksum == id_exp, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/id gives %" PetscInt_FMT " particles with id checksum %.17g after the redistribution, the run had %" PetscInt_FMT " and %.17g: an id is missing or repeated", b.path, st.n, st.checksum, n_exp, id_exp);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -171,6 +171,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCheck(dem->nl.sort_interval >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_sort_interval %" PetscInt_FMT " must be >= 0", dem->nl.sort_interval);
   PetscCall(DemWallsSetFromOptions(dem));
   PetscCall(DemInsertSetFromOptions(dem));
+  PetscCall(DemSourcesSetFromOptions(dem)); /* -dem_insert_<k>_* (sources.c) */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -237,6 +238,7 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscCall(DemShapesSetUp(dem)); /* convex shapes: mass, inertia tensor (shapes.c) */
   PetscCall(DemMaterialsSetUp(dem));
   PetscCall(DemCheckTimeStep(dem));
+  PetscCall(DemSourcesSetUp(dem)); /* needs dt and the shapes' masses */
   if (dem->nl.skin < 0) dem->nl.skin = 0.2 * rmax;
   PetscCheck(dem->nl.skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->nl.skin);
   dem->nl.reach         = 2 * rmax + dem->nl.skin;
@@ -281,10 +283,13 @@ PetscErrorCode DemStep(Dem dem)
   /* every rank rebuilds when one needs to: the ghosts must be re-created everywhere */
   /* the same reduction tells every rank whether any caught a signal (the run loop stops at the
      next step, on every rank alike) */
-  int need[2] = {dem->need_build || 4 * d2 > dem->nl.skin * dem->nl.skin || 2 * wmax > dem->nl.skin, SableSignalCaught()}, any[2] = {need[0], need[1]};
+  /* a source's batch is placed at a rebuild (sources.c): the same decision on every rank */
+  const PetscBool due     = dem->src.n ? DemSourcesDue(dem) : PETSC_FALSE;
+  int             need[2] = {due || dem->need_build || 4 * d2 > dem->nl.skin * dem->nl.skin || 2 * wmax > dem->nl.skin, SableSignalCaught()}, any[2] = {need[0], need[1]};
   if (dem->ex.active) PetscCallMPI(MPI_Allreduce(need, any, 2, MPI_INT, MPI_MAX, dem->comm));
   dem->stop_sig = any[1];
   SableProgress();
+  if (due) PetscCall(DemSourcesPlace(dem));
   if (any[0]) PetscCall(DemRebuild(dem));
   else PetscCall(DemGhostsUpdate(dem));
   PetscLogDouble c0, c1;
@@ -298,7 +303,9 @@ PetscErrorCode DemStep(Dem dem)
   if (dem->check_every > 0 && dem->clock.step % dem->check_every == 0) {
     DemStats st;
     PetscCall(DemGetStats(dem, &st));
-    PetscCheck(st.n == dem->initial.n && st.checksum == dem->initial.checksum, dem->comm, PETSC_ERR_PLIB, "step %" PetscInt_FMT ": %" PetscInt_FMT " particles with id checksum %.17g, expected %" PetscInt_FMT " and %.17g: a particle was lost or duplicated", dem->clock.step, st.n, st.checksum, dem->initial.n, dem->initial.checksum);
+    const PetscInt  n_exp  = dem->initial.n + dem->flow.inserted - dem->flow.removed;
+    const PetscReal id_exp = dem->initial.checksum + dem->flow.id_inserted - dem->flow.id_removed;
+    PetscCheck(st.n == n_exp && st.checksum == id_exp, dem->comm, PETSC_ERR_PLIB, "step %" PetscInt_FMT ": %" PetscInt_FMT " particles with id checksum %.17g, expected %" PetscInt_FMT " and %.17g: a particle was lost or duplicated", dem->clock.step, st.n, st.checksum, n_exp, id_exp);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -340,6 +347,7 @@ PetscErrorCode DemDestroy(Dem *dem)
   PetscCall(DemNeighDestroy(*dem));
   PetscCall(DemExchangeDestroy(*dem));
   PetscCall(DemShapesDestroy(*dem));
+  PetscCall(DemSourcesDestroy(*dem));
   for (PetscInt w = 0; w < (*dem)->walls.nwall; w++) {
     PetscCall(PetscFree((*dem)->walls.wall[w].idx));
     PetscCall(PetscFree((*dem)->walls.wall[w].hist));
