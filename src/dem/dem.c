@@ -1,7 +1,7 @@
 /* The Dem object: options, set-up and the time step (see dem.h).
- * One step (velocity Verlet): half kick + drift (+ rebuild check) -> walls move -> lists rebuilt
- * (rebuild.c) if a particle or a wall moved more than skin/2 -> forces (gravity, pairs, walls) ->
- * half kick.
+ * One step (velocity Verlet): half kick + drift (+ rebuild check) -> walls move -> a source's
+ * batch placed when due (sources.c), then lists rebuilt (rebuild.c) if it was, or if a particle
+ * or a wall moved more than skin/2 -> forces (gravity, pairs, walls) -> half kick.
  * The time step is checked against the contact time at set-up: dt <= dt_max_fraction * Tc for
  * every pair type (Tc of the hertz law at -dem_impact_velocity); -dem_dt_tc sets dt to a fraction
  * of the shortest Tc instead. A run that diverges anyway (dt too large for the stiffness: the
