@@ -12,7 +12,8 @@
 #   the first batch places fewer, the summary reports the rest, a warning is printed, and the
 #   carried particles are all placed once the first ones have fallen away;
 # - restart: a run with an active source stopped at T/2 and continued ends bitwise as the
-#   uninterrupted run, on 1 and 2 ranks;
+#   uninterrupted run, on 1 and 2 ranks, and continued on 1 rank it holds the rate's count;
+# - a pour of 21 batches with -dem_deterministic: the same set on 1, 2 and 4 ranks, bitwise;
 # - bad input (a region outside the domain, a rate that cannot fit, start after stop, no rate and
 #   no total, a negative rate, count or mass) stops with one line naming the option, on 1 and 2 ranks.
 cd "$(dirname "$0")/../.." || exit 1
@@ -64,6 +65,16 @@ for np in 2 4; do
   else echo "FAIL sources same set np=$np: $1 ids in one run only, $2 particles differing"; fi
 done
 
+# a pour over many batches, with -dem_deterministic (bitwise the same run on any rank count): the
+# whole set at 0.1 s is the same on 2 and 4 ranks as on 1
+for np in 1 2 4; do run $np "$W/det$np" $POUR -dem_insert_0_rate 2000 -dem_deterministic -dem_t_end 0.1 -io_interval 0.1; done
+for np in 2 4; do
+  set -- $($C same "$(last "$W/det1")" "$(last "$W/det$np")")
+  n=$($C count "$(last "$W/det1")")
+  if [ "$1" = 0 ] && [ "$2" = 0 ] && [ "$n" = 210 ]; then echo "PASS sources same pour np=$np: the $n particles of 21 batches at 0.1 s (set: 2000/s x (0.1 s + 5 ms)), bitwise as on 1 rank"
+  else echo "FAIL sources same pour np=$np: $n particles (expected 210), $1 ids in one run only, $2 particles differing"; fi
+done
+
 # shortfall
 SHORT="-dem_insert_0_region box -dem_insert_0_box 0.03,0.03,0.15,0.07,0.07,0.19 -dem_insert_0_count 100 -dem_insert_0_period 0.01"
 run 1 "$W/short1" $SHORT -dem_t_end 2e-5 -io_interval 2e-5
@@ -90,6 +101,13 @@ for np in 1 2; do
   if [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then echo "PASS sources restart np=$np: final frames at t = 0.1 s bitwise equal, $1 datasets compared, 0 differing (restart at 0.0503 s, mid-window)"
   else echo "FAIL sources restart np=$np: $1 datasets compared, $2 differing: $3 $4 $5"; fi
 done
+
+# a checkpoint with an active source continued on another rank count (2 -> 1): the count at the
+# end is the rate's, floor(2000 x (0.1 s + 5 ms)) = 210, every id once (the remap's check)
+run 1 "$W/remap" $POUR -dem_insert_0_rate 2000 -dem_t_end 0.1 -io_interval 0.1 -restart "../restart2/half/$(sed -n 's/^checkpoint: //p' "$W/restart2/half/log" | tail -n 1)"
+n=$($C count "$(last "$W/remap")")
+if [ "$n" = 210 ] && grep -q '^restart: the particles of the checkpoint.s 2 rank' "$W/remap/log"; then echo "PASS sources restart 2 -> 1 ranks: $n particles at 0.1 s (set: 210)"
+else echo "FAIL sources restart 2 -> 1 ranks: $n particles at 0.1 s (set: 210); $(grep error "$W/remap/log" | head -n 1)"; fi
 
 # bad input
 bad() { # name, expected pattern, args...
