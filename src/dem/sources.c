@@ -457,11 +457,12 @@ static PetscErrorCode DemSourceBatch(Dem dem, DemSource *s, PetscInt *next_id, D
   for (PetscInt c = 0; c < K; c++) DemSourceCandidate(dem, s, s->cand + c, &cand[c]);
   PetscCall(DemSourceBlocked(dem, s, K, cand, blk));
   DemPsdRange(&s->psd, &dmin, &dmax);
+  const double reach = 0.5 * dmax + dem->shapes.r_source_max; /* this source's and any source's radii */
   for (int d = 0; d < 3; d++) {
-    lo[d] = s->lo[d] - dmax;
-    hi[d] = s->hi[d] + dmax;
+    lo[d] = s->lo[d] - reach;
+    hi[d] = s->hi[d] + reach;
   }
-  PetscCall(DemSrcGridCreate(lo, hi, dmax, &g)); /* the accepted of earlier sources too */
+  PetscCall(DemSrcGridCreate(lo, hi, reach, &g)); /* the accepted of earlier sources too */
   for (PetscInt a = 0; a < acc->n; a++) PetscCall(DemSrcGridAdd(&g, acc->xr + 4 * a, acc->xr[4 * a + 3]));
   for (; i < K && s->inserted < ntgt && s->m_inserted < mtgt; i++) {
     DemParticle *p = &cand[i];
@@ -541,6 +542,14 @@ PetscErrorCode DemSourcesAddPending(Dem dem)
   dem->p.ng = 0; /* the ghosts go (the rebuild makes them again): locals are appended */
   for (PetscInt a = 0; a < dem->src.npend; a++) PetscCall(DemAddParticle(dem, &dem->src.pend[a]));
   dem->src.npend = 0;
+  { /* the cell grid was sized for the particles of its set-up (at most 8 cells per particle +
+       1000, neighbours.c): a run that starts empty would bin thousands of particles in cells many
+       reaches wide. Once the count would allow 4 times the cells, the grid is sized again at this
+       rebuild (a function of the count and the grid, so a restart does the same). */
+    double ideal = 1;
+    for (int k = 0; k < 3; k++) ideal *= PetscMax(1.0, PetscFloorReal((dem->dom->subhi[k] - dem->dom->sublo[k] + 2 * dem->nl.reach) / dem->nl.reach));
+    if (dem->nl.cstart && dem->nl.ncell < ideal && 8.0 * dem->p.n + 1000 > 4.0 * dem->nl.ncell) PetscCall(DemNeighResetCells(dem));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
