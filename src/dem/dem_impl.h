@@ -314,7 +314,7 @@ typedef struct {
   DemSourceRegion region;
   PetscReal       g[12];               /* box lo,hi; cylinder centre, unit axis, R, L; patch p0, e1, e2 */
   PetscReal       n[3], depth;         /* patch: unit normal (the stream's side) and the slab depth (m) */
-  PetscReal       lo[3], hi[3];        /* bounding box of the centres a candidate may take (m) */
+  PetscReal       lo[3], hi[3];        /* the region's bounding box (m) */
   PetscReal       rate, mass_rate;     /* 1/s, kg/s; 0: none */
   PetscInt        count;               /* total; < 0: none */
   PetscReal       mass;                /* total (kg); < 0: none */
@@ -323,7 +323,7 @@ typedef struct {
   PetscBool       random_orient;
   PetscInt        shape, seed, attempts;
   DemPsd          psd;
-  PetscReal       m_mean, vol_max; /* mean particle mass (kg), largest particle volume (m^3) */
+  PetscReal       m_mean; /* mean particle mass (kg) */
   /* state */
   PetscInt  inserted, cand, batch, shortfall, warn_at;
   PetscReal m_inserted;

@@ -147,6 +147,8 @@ PetscErrorCode DemSourcesSetFromOptions(Dem dem)
         PetscCall(PetscOptionsHasName(NULL, NULL, opt, &has));
         PetscCheck(!has, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s (box, cylinder or patch)", opt, DemSourceRegionOption[k]);
       }
+      PetscBool ro = PETSC_FALSE; /* read (not given) so that -help lists the flag of every source */
+      PetscCall(PetscOptionsBool(DemSourceOrientOption[k], "Uniformly random orientations (default: for convex shapes)", NULL, ro, &ro, NULL));
       continue;
     }
     PetscCall(PetscMemzero(s, sizeof *s));
