@@ -587,7 +587,7 @@ def report(runs, problems, seed, elapsed, show_max=8):
     bad = [r for r in runs if r["class"] == "bad"]
     fail |= line(not crashes, "%d crashes in %d runs" % (len(crashes), n), crashes)
     fail |= line(not hangs, "%d hangs in %d runs" % (len(hangs), n), hangs)
-    fail |= line(not nf, "%d non-finite values written (%d runs)" % (sum(x[0] for r in nf for x in r["nonfinite"]), len(nf)),
+    fail |= line(not nf, "%d non-finite values written (%d runs)" % (sum(x[1] for r in nf for x in r["nonfinite"]), len(nf)),
                  nf, lambda r: "; non-finite: " + ", ".join("%s:%s %d" % (f, w, c) for f, c, w in r["nonfinite"][:3]))
     fail |= line(not unread, "%d unreadable .h5 files written (%d runs)" % (sum(len(r["unreadable"]) for r in unread), len(unread)),
                  unread, lambda r: "; " + r["unreadable"][0])
