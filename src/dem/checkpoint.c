@@ -153,6 +153,7 @@ PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
   PetscCall(DemCkptWriteConvex(dem, ck));
   PetscCall(DemCkptWriteWalls(dem, ck));
   PetscCall(DemSinksCheckpoint(dem, ck, PETSC_TRUE));
+  PetscCall(DemSourcesCheckpoint(dem, ck, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -274,7 +275,8 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscFunctionBeginUser;
   PetscCall(IoCkptGetPath(ck, &path));
   PetscCall(DemCheckpointNeedsRemap(dem, ck, &remap));
-  if (remap) { /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
+  PetscCall(DemSourcesCheckpoint(dem, ck, PETSC_FALSE)); /* first: the remap checks the count with it */
+  if (remap) {                                           /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
     PetscCall(DemExternalCheckpointCheck(dem, ck));
     PetscCall(DemCkptPolyCheck(dem, ck, path));
     PetscCall(DemSinksCheckpoint(dem, ck, PETSC_FALSE)); /* the remap checks the count against it */

@@ -1,7 +1,7 @@
 /* The Dem object: options, set-up and the time step (see dem.h).
- * One step (velocity Verlet): half kick + drift (+ rebuild check) -> walls move -> lists rebuilt
- * (rebuild.c) if a particle or a wall moved more than skin/2 -> forces (gravity, pairs, walls) ->
- * half kick.
+ * One step (velocity Verlet): half kick + drift (+ rebuild check) -> walls move -> a source's
+ * batch placed when due (sources.c), then lists rebuilt (rebuild.c) if it was, or if a particle
+ * or a wall moved more than skin/2 -> forces (gravity, pairs, walls) -> half kick.
  * The time step is checked against the contact time at set-up: dt <= dt_max_fraction * Tc for
  * every pair type (Tc of the hertz law at -dem_impact_velocity); -dem_dt_tc sets dt to a fraction
  * of the shortest Tc instead. A run that diverges anyway (dt too large for the stiffness: the
@@ -172,6 +172,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   PetscCall(DemWallsSetFromOptions(dem));
   PetscCall(DemInsertSetFromOptions(dem));
   PetscCall(DemSinksSetFromOptions(dem));
+  PetscCall(DemSourcesSetFromOptions(dem)); /* -dem_insert_<k>_* (sources.c) */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -246,6 +247,7 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscCall(DemShapesSetUp(dem));                                        /* convex shapes: mass, inertia tensor (shapes.c) */
   PetscCall(DemMaterialsSetUp(dem));
   PetscCall(DemCheckTimeStep(dem));
+  PetscCall(DemSourcesSetUp(dem)); /* needs dt and the shapes' masses */
   if (dem->nl.skin < 0) dem->nl.skin = 0.2 * rmax;
   PetscCheck(dem->nl.skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->nl.skin);
   dem->nl.reach         = 2 * rmax + dem->nl.skin;
@@ -291,10 +293,13 @@ PetscErrorCode DemStep(Dem dem)
   /* every rank rebuilds when one needs to: the ghosts must be re-created everywhere */
   /* the same reduction tells every rank whether any caught a signal (the run loop stops at the
      next step, on every rank alike) */
-  int need[2] = {dem->need_build || 4 * d2 > dem->nl.skin * dem->nl.skin || 2 * wmax > dem->nl.skin, SableSignalCaught()}, any[2] = {need[0], need[1]};
+  /* a source's batch is placed at a rebuild (sources.c): the same decision on every rank */
+  const PetscBool due     = dem->src.n ? DemSourcesDue(dem) : PETSC_FALSE;
+  int             need[2] = {due || dem->need_build || 4 * d2 > dem->nl.skin * dem->nl.skin || 2 * wmax > dem->nl.skin, SableSignalCaught()}, any[2] = {need[0], need[1]};
   if (dem->ex.active) PetscCallMPI(MPI_Allreduce(need, any, 2, MPI_INT, MPI_MAX, dem->comm));
   dem->stop_sig = any[1];
   SableProgress();
+  if (due) PetscCall(DemSourcesPlace(dem));
   if (any[0]) PetscCall(DemRebuild(dem));
   else PetscCall(DemGhostsUpdate(dem));
   PetscLogDouble c0, c1;
@@ -347,6 +352,7 @@ PetscErrorCode DemDestroy(Dem *dem)
   PetscCall(DemExchangeDestroy(*dem));
   PetscCall(DemShapesDestroy(*dem));
   PetscCall(DemSinksDestroy(*dem));
+  PetscCall(DemSourcesDestroy(*dem));
   for (PetscInt w = 0; w < (*dem)->walls.nwall; w++) {
     PetscCall(PetscFree((*dem)->walls.wall[w].idx));
     PetscCall(PetscFree((*dem)->walls.wall[w].hist));

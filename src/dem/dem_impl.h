@@ -10,6 +10,7 @@
 #include "dem/contact_laws.h"
 #include "geom/convex.h"
 #include "geom/sat.h"
+#include "dem/psd.h"
 
 #define DEM_MAX_SHAPES 32
 #define DEM_MAX_WALLS  24
@@ -136,6 +137,28 @@ static inline void DemWrapPeriodic(const Domain *dom, double *x)
     x[k] -= dom->len[k] * floor((x[k] - dom->lo[k]) / dom->len[k]);
     if (x[k] >= dom->hi[k]) x[k] = dom->lo[k]; /* round-off */
   }
+}
+
+/* splitmix64: a uniform double in [0,1) from (seed, site, stream), stateless, so a lattice site
+ * or a source's candidate draws the same numbers on any rank count (insert.c, sources.c). */
+static inline double dem_uniform(PetscInt seed, PetscInt site, int stream)
+{
+  uint64_t z = (uint64_t)seed * 0x9E3779B97F4A7C15ULL + (uint64_t)site * 0xBF58476D1CE4E5B9ULL + (uint64_t)stream * 0x94D049BB133111EBULL;
+  z          = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z          = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return (double)(z >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* Whether this rank owns a particle centred at x (the last rank along an axis also owns its
+ * upper face). */
+static inline PetscBool dem_in_box(const Domain *dom, const double *x)
+{
+  for (int k = 0; k < 3; k++) {
+    const PetscBool last = dom->cstart[k] + dom->ccount[k] == dom->cells[k];
+    if (x[k] < dom->sublo[k] || (last ? x[k] > dom->subhi[k] : x[k] >= dom->subhi[k])) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
 }
 
 /* Velocity of the wall's surface at point c (m/s). */
@@ -326,6 +349,39 @@ typedef struct {
   PetscInt  nout;
   PetscInt *gone, *gone_out, ngone, capgone;
 } DemSinks;
+/* Particle sources (sources.c): -dem_insert_<k>_*. Geometry and rates as set; the state (counts,
+ * mass, candidate counter, batch number, shortfall) is the same on every rank and checkpointed. */
+#define DEM_MAX_SOURCES 10
+typedef enum {
+  DEM_SRC_BOX,
+  DEM_SRC_CYLINDER,
+  DEM_SRC_PATCH
+} DemSourceRegion;
+typedef struct {
+  PetscInt        k; /* its option index: -dem_insert_<k>_* */
+  DemSourceRegion region;
+  PetscReal       g[12];               /* box lo,hi; cylinder centre, unit axis, R, L; patch p0, e1, e2 */
+  PetscReal       n[3], depth;         /* patch: unit normal (the stream's side) and the slab depth (m) */
+  PetscReal       lo[3], hi[3];        /* the region's bounding box (m) */
+  PetscReal       rate, mass_rate;     /* 1/s, kg/s; 0: none */
+  PetscInt        count;               /* total; < 0: none */
+  PetscReal       mass;                /* total (kg); < 0: none */
+  PetscReal       start, stop, period; /* s */
+  PetscReal       v[3], vspread;       /* m/s */
+  PetscBool       random_orient;
+  PetscInt        shape, seed, attempts;
+  DemPsd          psd;
+  PetscReal       m_mean; /* mean particle mass (kg) */
+  /* state */
+  PetscInt  inserted, cand, batch, shortfall, warn_at;
+  PetscReal m_inserted;
+} DemSource;
+typedef struct {
+  DemSource    s[DEM_MAX_SOURCES];
+  PetscInt     n;
+  DemParticle *pend; /* accepted at this step, added by the owner at the rebuild */
+  PetscInt     npend, cappend;
+} DemSources;
 
 /* External forces from a coupling (external.c): per-particle arrays, NULL unless DemSetExternal
  * switched them on; frozen: nothing is integrated. */
@@ -359,6 +415,7 @@ struct _p_Dem {
   PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
   PetscInt       state;     /* changes whenever positions or the local order may have (DemGetState) */
   IoCkpt         restart;   /* DemSetRestart: a checkpoint replaces the insertion */
+  DemSources     src;       /* particle sources (sources.c) */
 };
 
 /* Internal functions, by file, from the leaves up: a file calls only files listed above it
@@ -438,6 +495,13 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem);                                
 PetscErrorCode DemInsert(Dem dem);                                                                                                                    /* insert.c */
 PetscErrorCode DemInsertRestartSizes(Dem dem);                                                                                                        /* insert.c */
 double         DemLatticeSpacing(Dem dem);                                                                                                            /* insert.c */
+PetscErrorCode DemSourcesSetFromOptions(Dem dem);                                                                                                     /* sources.c */
+PetscErrorCode DemSourcesSetUp(Dem dem);                                                                                                              /* sources.c: after the time step is known */
+PetscBool      DemSourcesDue(Dem dem);                                                                                                                /* sources.c: a batch is placed at this step (same on every rank) */
+PetscErrorCode DemSourcesPlace(Dem dem);                                                                                                              /* sources.c: collective; the batch, pending until the rebuild */
+PetscErrorCode DemSourcesAddPending(Dem dem);                                                                                                         /* sources.c: in DemRebuild, ghosts dropped */
+PetscErrorCode DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                                                                             /* sources.c */
+PetscErrorCode DemSourcesDestroy(Dem dem);                                                                                                            /* sources.c */
 double         DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
 PetscErrorCode DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
 PetscErrorCode DemRebuild(Dem dem);                                                                                                                   /* rebuild.c */

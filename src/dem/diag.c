@@ -238,7 +238,7 @@ PetscErrorCode DemCheckHealth(Dem dem, const DemStats *st)
   PetscReal tc = 0, e;
 
   PetscFunctionBeginUser;
-  PetscCheck(PetscIsNormalReal(st->ke) || st->ke == 0, dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": kinetic energy is not finite; lower -dem_dt", dem->clock.step);
+  PetscCheck((PetscIsNormalReal(st->ke) || st->ke == 0) && (PetscIsNormalReal(st->ke_rot) || st->ke_rot == 0), dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": %s kinetic energy is not finite; lower -dem_dt", dem->clock.step, PetscIsNormalReal(st->ke) || st->ke == 0 ? "rotational" : "translational");
   if (st->max_overlap <= dem->overlap_max) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(DemGetContactFigures(dem, 0, 0, dem->contact.vimpact, &tc, &e));
   SETERRQ(dem->comm, PETSC_ERR_FP, "step %" PetscInt_FMT ": the largest overlap is %.3g radii, above -dem_overlap_max %g: the contacts are not resolved and the run is diverging (dt/Tc = %.3g); lower -dem_dt or raise -dem_kn", dem->clock.step, (double)st->max_overlap, (double)dem->overlap_max, (double)(dem->clock.dt / tc));

@@ -19,16 +19,6 @@ static double dem_hash_frac(double n, int c)
   return s - floor(s);
 }
 
-/* splitmix64: a uniform double in [0,1) from (seed, site, stream) */
-static double dem_uniform(PetscInt seed, PetscInt site, int stream)
-{
-  uint64_t z = (uint64_t)seed * 0x9E3779B97F4A7C15ULL + (uint64_t)site * 0xBF58476D1CE4E5B9ULL + (uint64_t)stream * 0x94D049BB133111EBULL;
-  z          = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z          = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  z ^= z >> 31;
-  return (double)(z >> 11) * (1.0 / 9007199254740992.0);
-}
-
 /* A uniformly distributed unit quaternion (Shoemake, Graphics Gems III, 1992) from streams 4-6. */
 static void dem_random_quat(PetscInt seed, PetscInt site, double q[4])
 {
@@ -122,16 +112,6 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   }
   PetscCheck(dem->insert.file_radii != 2 || !dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_init_file_radii own: convex shapes (-dem_shape) keep one size per shape");
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-static PetscBool dem_in_box(const Domain *dom, const double *x)
-{
-  for (int k = 0; k < 3; k++) {
-    /* the last rank along an axis also owns its upper face */
-    const PetscBool last = dom->cstart[k] + dom->ccount[k] == dom->cells[k];
-    if (x[k] < dom->sublo[k] || (last ? x[k] > dom->subhi[k] : x[k] >= dom->subhi[k])) return PETSC_FALSE;
-  }
-  return PETSC_TRUE;
 }
 
 /* The lattice spacing: -dem_lattice_spacing, or 1.05 x the largest diameter. */

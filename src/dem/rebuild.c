@@ -47,6 +47,7 @@ PetscErrorCode DemRebuild(Dem dem)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));
   PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
+  PetscCall(DemSourcesAddPending(dem)); /* a source's batch joins once the springs are saved */
   PetscCall(DemRebuildFrom(dem, recs, nrec, caprec));
   PetscCall(PetscLogEventEnd(DEM_Neighbours, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -251,6 +251,7 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(PetscPrintf(r->comm, "done: t = %g s, %" PetscInt_FMT " steps in %.3f s (rank 0 peak memory %.1f MB)\n", (double)t, step, t1 - t0, ru.ru_maxrss / 1024.0));
   PetscCall(PetscPrintf(r->comm, "bed: packing fraction %.4f, mean coordination number %.3f\n", (double)phi, (double)coord));
   PetscCall(DemFlowView(dem, PETSC_VIEWER_STDOUT_WORLD)); /* with sources or outlets: the balance */
+  PetscCall(DemViewSources(dem, PETSC_VIEWER_STDOUT_WORLD));
   index = NULL;
   if (io) PetscCall(IoGetIndexPath(io, &index));
   PetscCall(PetscPrintf(r->comm, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));

@@ -1,0 +1,616 @@
+/* Particle sources: any number of inserters -dem_insert_<k>_* (k = 0..9), each a region (a box,
+ * a cylinder, or a rectangle patch from which a stream leaves), a rate (particles/s or kg/s)
+ * and/or a total (count or mass), start and stop times, an initial velocity with a uniform
+ * spread, random orientations, a shape and a size distribution (psd.h).
+ * Batches: source k places a batch at start + j P (P = -dem_insert_<k>_period), holding what is
+ * due by the end of its window, floor(rate (t_b + P - start)) particles (or, by mass, while the
+ * inserted mass is below mass_rate (t_b + P - start)), capped by the total; what could not be
+ * placed is carried (the target is cumulative) and reported.
+ * Placement is the same on any rank count: candidate c of source k is a function of (seed, c)
+ * only (dem_uniform); each rank tests the candidates centred in its box against its particles
+ * and ghosts (the halo covers r_cand + r_max) and the walls, one reduction gives the blocked set,
+ * then every rank accepts the same candidates in candidate order (rejecting one that overlaps an
+ * earlier accepted one), ids following the largest id so far; the owner adds them at the rebuild
+ * that DemStep runs at every batch step (sources change the particle set only at rebuilds).
+ * A particle placed at the step ending at t is there at t with the set velocity: x is not
+ * drifted, and v0 - g dt/2 before the step's last half kick gives v0 (no contact can act on it).
+ * Units SI. The state (counts, mass, candidate counter, batch, shortfall) is checkpointed. */
+#include "dem/dem_impl.h"
+
+static const char *const DemSourceRegionOption[DEM_MAX_SOURCES] = {"-dem_insert_0_region", "-dem_insert_1_region", "-dem_insert_2_region", "-dem_insert_3_region", "-dem_insert_4_region", "-dem_insert_5_region", "-dem_insert_6_region", "-dem_insert_7_region", "-dem_insert_8_region", "-dem_insert_9_region"};
+static const char *const DemSourceOrientOption[DEM_MAX_SOURCES] = {"-dem_insert_0_random_orientation", "-dem_insert_1_random_orientation", "-dem_insert_2_random_orientation", "-dem_insert_3_random_orientation", "-dem_insert_4_random_orientation", "-dem_insert_5_random_orientation", "-dem_insert_6_random_orientation", "-dem_insert_7_random_orientation", "-dem_insert_8_random_orientation", "-dem_insert_9_random_orientation"};
+static const char *const DemSourceRegionNames[]                 = {"box", "cylinder", "patch"};
+
+#define DEM_SRC_STREAM        16     /* the sources' hash streams start here (the lattice's are 0-6) */
+#define DEM_SRC_DENSE         0.64   /* random close packing: no batch can hold more */
+#define DEM_SRC_PERIOD_STEPS  200    /* default period, in time steps */
+#define DEM_SRC_MAX_CANDIDATE 200000 /* per batch: bounds the memory (about 30 MB) */
+
+/* The geometry option of the region, read into s->g. */
+static PetscErrorCode DemSourceGeometryOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s)
+{
+  char      opt[64];
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  if (s->region == DEM_SRC_BOX) {
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_box", k));
+    PetscCall(SableOptionsRealN(opt, "Source region: box xlo,ylo,zlo,xhi,yhi,zhi", "m", s->g, 0, 6, &set));
+    for (int d = 0; d < 3 && set; d++) PetscCheck(s->g[3 + d] > s->g[d], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: upper bound %g must exceed lower bound %g on axis %d", opt, (double)s->g[3 + d], (double)s->g[d], d);
+  } else if (s->region == DEM_SRC_CYLINDER) {
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_cylinder", k));
+    PetscCall(SableOptionsRealN(opt, "Source region: cylinder centre cx,cy,cz, axis ax,ay,az, radius R, length L", "m", s->g, 0, 8, &set));
+    const double l = set ? sqrt(dem_dot(s->g + 3, s->g + 3)) : 0;
+    PetscCheck(!set || (l > 0 && s->g[6] > 0 && s->g[7] > 0), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the axis must be non-zero and R %g, L %g > 0", opt, (double)s->g[6], (double)s->g[7]);
+    for (int d = 0; d < 3 && set; d++) s->g[3 + d] /= l;
+  } else {
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_patch", k));
+    PetscCall(SableOptionsRealN(opt, "Source region: rectangle with corners p0, p1, p2 (p1-p0 perpendicular to p2-p0); the stream leaves towards (p1-p0)x(p2-p0)", "m", s->g, 0, 9, &set));
+    double e1[3], e2[3];
+    for (int d = 0; d < 3 && set; d++) {
+      e1[d] = s->g[3 + d] - s->g[d];
+      e2[d] = s->g[6 + d] - s->g[d];
+    }
+    const double l1 = set ? sqrt(dem_dot(e1, e1)) : 0, l2 = set ? sqrt(dem_dot(e2, e2)) : 0;
+    PetscCheck(!set || (l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular", opt);
+    if (set) {
+      dem_cross(e1, e2, s->n);
+      for (int d = 0; d < 3; d++) {
+        s->n[d] /= l1 * l2;
+        s->g[3 + d] = e1[d];
+        s->g[6 + d] = e2[d];
+      }
+    }
+  }
+  PetscCheck(set, dem->comm, PETSC_ERR_ARG_WRONG, "%s %s needs %s", DemSourceRegionOption[k], DemSourceRegionNames[s->region], opt);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The rates, totals, times and kinematics of source k. */
+static PetscErrorCode DemSourceRateOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s)
+{
+  char      o[6][64];
+  PetscBool set[6];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(o[0], sizeof o[0], "-dem_insert_%d_rate", k));
+  PetscCall(PetscSNPrintf(o[1], sizeof o[1], "-dem_insert_%d_mass_rate", k));
+  PetscCall(PetscSNPrintf(o[2], sizeof o[2], "-dem_insert_%d_count", k));
+  PetscCall(PetscSNPrintf(o[3], sizeof o[3], "-dem_insert_%d_mass", k));
+  PetscCall(PetscSNPrintf(o[4], sizeof o[4], "-dem_insert_%d_start", k));
+  PetscCall(PetscSNPrintf(o[5], sizeof o[5], "-dem_insert_%d_stop", k));
+  PetscCall(SableOptionsReal(o[0], "Insertion rate in particles per second (0: none)", "1/s", "[0,inf)", 0, &s->rate, &set[0]));
+  PetscCall(SableOptionsReal(o[1], "Insertion rate in mass per second (0: none)", "kg/s", "[0,inf)", 0, &s->mass_rate, &set[1]));
+  PetscCall(SableOptionsInt(o[2], "Total number of particles to insert (default: no total)", NULL, "[0,inf)", -1, &s->count, &set[2]));
+  PetscCall(SableOptionsReal(o[3], "Total mass to insert; the last particle may pass it by less than its own mass (default: no total)", "kg", "[0,inf)", -1, &s->mass, &set[3]));
+  PetscCall(SableOptionsReal(o[4], "Time of the first batch", "s", "[0,inf)", 0, &s->start, &set[4]));
+  PetscCall(SableOptionsReal(o[5], "Time after which no batch is placed (default: never)", "s", "(0,inf)", -1, &s->stop, &set[5]));
+  PetscCheck(!(s->rate > 0 && s->mass_rate > 0), dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the rate of source %d: give one of them", o[0], o[1], k);
+  PetscCheck(!(set[2] && set[3]), dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the total of source %d: give one of them", o[2], o[3], k);
+  PetscCheck(s->rate > 0 || s->mass_rate > 0 || set[2] || set[3], dem->comm, PETSC_ERR_ARG_WRONG, "%s: give a rate (%s or %s) or a total (%s or %s)", DemSourceRegionOption[k], o[0], o[1], o[2], o[3]);
+  PetscCheck(!set[5] || s->stop > s->start, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be after %s %g (s)", o[5], (double)s->stop, o[4], (double)s->start);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Velocity, orientation, shape, seed, period, attempts and sizes of source k. */
+static PetscErrorCode DemSourceParticleOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s)
+{
+  char      opt[64];
+  PetscBool set;
+  double    dmin, dmax;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_velocity", k));
+  PetscCall(SableOptionsRealN(opt, "Initial velocity of the inserted particles vx,vy,vz", "m/s", s->v, 3, 3, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_velocity_spread", k));
+  PetscCall(SableOptionsReal(opt, "Each velocity component gets a uniform random term in +-this", "m/s", "[0,inf)", 0, &s->vspread, NULL));
+  s->random_orient = dem->shapes.convex;
+  PetscCall(PetscOptionsBool(DemSourceOrientOption[k], "Uniformly random orientations (default: for convex shapes)", NULL, s->random_orient, &s->random_orient, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_shape", k));
+  PetscCall(SableOptionsInt(opt, "Shape (material) index of the inserted particles, as in -dem_radius / -dem_shape", NULL, "[0,inf)", 0, &s->shape, NULL));
+  PetscCheck(s->shape < dem->shapes.nshape, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT " must be in [0, %" PetscInt_FMT "] (the shapes of -dem_radius or -dem_shape)", opt, s->shape, dem->shapes.nshape - 1);
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_seed", k));
+  PetscCall(SableOptionsInt(opt, "Seed of the source's candidates (positions, sizes, velocities, orientations)", NULL, "[0,inf)", k + 1, &s->seed, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_period", k));
+  PetscCall(SableOptionsReal(opt, "Time between batches; each batch costs a list rebuild (default 200 time steps)", "s", "(0,inf)", -1, &s->period, &set));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_attempts", k));
+  PetscCall(SableOptionsInt(opt, "Candidates drawn per particle of a batch before the rest is carried to the next batch", NULL, "[1,inf)", 50, &s->attempts, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d", k));
+  PetscCall(DemPsdSetFromOptions(PetscOptionsObject, dem->comm, opt, 2 * dem->shapes.shp[s->shape].r, &s->psd));
+  DemPsdRange(&s->psd, &dmin, &dmax);
+  if (PetscAbsReal(dmin - 2 * dem->shapes.shp[s->shape].r) > 1e-12 * dmin || PetscAbsReal(dmax - dmin) > 1e-12 * dmin) {
+    PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "%s_psd: a source of convex shapes inserts its shape's size (bounding diameter %g m), not a distribution", opt, (double)(2 * dem->shapes.shp[s->shape].r));
+    PetscCall(DemSetOwnSizes(dem, 0.5 * dmin, 0.5 * dmax)); /* spheres of their own sizes: reach, cells and time step cover them */
+  } else {
+    dem->shapes.r_source_max = PetscMax(dem->shapes.r_source_max, 0.5 * dmax);
+    dem->shapes.r_source_min = dem->shapes.r_source_min > 0 ? PetscMin(dem->shapes.r_source_min, 0.5 * dmin) : 0.5 * dmin;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The suffixes of a source's options: any of them without its _region is an error. */
+static const char *const DemSourceSuffixes[] = {"box", "cylinder", "patch", "rate", "mass_rate", "count", "mass", "start", "stop", "velocity", "velocity_spread", "random_orientation", "shape", "seed", "period", "attempts", "psd", "psd_mean", "psd_std", "psd_min", "psd_max", "psd_diameters", "psd_fractions", "psd_classes"};
+
+PetscErrorCode DemSourcesSetFromOptions(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(dem->comm, NULL, "DEM particle sources", NULL);
+  for (int k = 0; k < DEM_MAX_SOURCES; k++) {
+    DemSource *s      = &dem->src.s[dem->src.n];
+    PetscInt   region = 0;
+    PetscBool  set;
+    PetscCall(PetscOptionsEList(DemSourceRegionOption[k], "Particle source: the region candidates are drawn in", NULL, DemSourceRegionNames, 3, DemSourceRegionNames[0], &region, &set));
+    if (!set) {
+      for (size_t a = 0; a < sizeof DemSourceSuffixes / sizeof DemSourceSuffixes[0]; a++) {
+        char      opt[64];
+        PetscBool has;
+        PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_%s", k, DemSourceSuffixes[a]));
+        PetscCall(PetscOptionsHasName(NULL, NULL, opt, &has));
+        PetscCheck(!has, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s (box, cylinder or patch)", opt, DemSourceRegionOption[k]);
+      }
+      PetscBool ro = PETSC_FALSE; /* read (not given) so that -help lists the flag of every source */
+      PetscCall(PetscOptionsBool(DemSourceOrientOption[k], "Uniformly random orientations (default: for convex shapes)", NULL, ro, &ro, NULL));
+      continue;
+    }
+    PetscCall(PetscMemzero(s, sizeof *s));
+    s->region = (DemSourceRegion)region;
+    PetscCall(DemSourceGeometryOptions(PetscOptionsObject, dem, k, s));
+    PetscCall(DemSourceRateOptions(PetscOptionsObject, dem, k, s));
+    PetscCall(DemSourceParticleOptions(PetscOptionsObject, dem, k, s));
+    s->k = k;
+    dem->src.n++;
+  }
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The bounding box of the region (m) and its volume (m^3). */
+static void DemSourceBounds(const DemSource *s, double lo[3], double hi[3], double *vol)
+{
+  const double *g = s->g;
+  if (s->region == DEM_SRC_BOX) {
+    for (int d = 0; d < 3; d++) {
+      lo[d] = g[d];
+      hi[d] = g[3 + d];
+    }
+    *vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+  } else if (s->region == DEM_SRC_CYLINDER) {
+    for (int d = 0; d < 3; d++) {
+      const double e = PetscAbsReal(g[3 + d]) * 0.5 * g[7] + g[6] * sqrt(PetscMax(0.0, 1 - g[3 + d] * g[3 + d]));
+      lo[d]          = g[d] - e;
+      hi[d]          = g[d] + e;
+    }
+    *vol = PETSC_PI * g[6] * g[6] * g[7];
+  } else {
+    for (int d = 0; d < 3; d++) lo[d] = hi[d] = g[d];
+    for (int c = 1; c < 8; c++)
+      for (int d = 0; d < 3; d++) {
+        const double x = g[d] + (c & 1 ? g[3 + d] : 0) + (c & 2 ? g[6 + d] : 0) + (c & 4 ? s->depth * s->n[d] : 0);
+        lo[d]          = PetscMin(lo[d], x);
+        hi[d]          = PetscMax(hi[d], x);
+      }
+    *vol = sqrt(dem_dot(g + 3, g + 3) * dem_dot(g + 6, g + 6)) * s->depth;
+  }
+}
+
+/* Mass (kg) of a particle of diameter d from source s: its shape's at the shape's size. */
+static double DemSourceMass(Dem dem, const DemSource *s, double d)
+{
+  const DemShape *sh = &dem->shapes.shp[s->shape];
+  if (sh->cvx || PetscAbsReal(d - 2 * sh->r) <= 1e-12 * d) return sh->m;
+  return dem_sphere_mass(sh->rho, 0.5 * d); /* the mass the particle will carry (DemParticleSetSize) */
+}
+
+/* The smallest extent of the region a particle must fit in (m). */
+static double DemSourceThinnest(const DemSource *s)
+{
+  const double *g = s->g;
+  if (s->region == DEM_SRC_BOX) return PetscMin(PetscMin(g[3] - g[0], g[4] - g[1]), g[5] - g[2]);
+  if (s->region == DEM_SRC_CYLINDER) return PetscMin(2 * g[6], g[7]);
+  return PetscMin(sqrt(dem_dot(g + 3, g + 3)), sqrt(dem_dot(g + 6, g + 6)));
+}
+
+/* Collective. After the time step and the shapes' masses: the period, the patch's depth, the
+ * region's bounds, the checks that need them, the mean mass. */
+PetscErrorCode DemSourcesSetUp(Dem dem)
+{
+  const double dt = dem->clock.dt;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dem->src.n; i++) {
+    DemSource   *s  = &dem->src.s[i];
+    const char  *rn = DemSourceRegionNames[s->region];
+    const int    k  = (int)s->k;
+    double       dmin, dmax, vol, vn = dem_dot(s->v, s->n);
+    char         go[64];
+    const double rho = dem->shapes.shp[s->shape].rho;
+    PetscCall(PetscSNPrintf(go, sizeof go, "-dem_insert_%d_%s", k, rn));
+    DemPsdRange(&s->psd, &dmin, &dmax);
+    if (s->period < 0) s->period = DEM_SRC_PERIOD_STEPS * dt;
+    PetscCheck(s->period >= dt, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_period %g must be at least the time step %g s", k, (double)s->period, dt);
+    PetscCheck(s->region != DEM_SRC_PATCH || vn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_velocity must leave the patch: its component %g along the patch normal (%g,%g,%g) must be > 0 (m/s)", k, vn, (double)s->n[0], (double)s->n[1], (double)s->n[2]);
+    s->depth = PetscMax(vn * s->period, dmax);
+    DemSourceBounds(s, s->lo, s->hi, &vol);
+    PetscCheck(DemSourceThinnest(s) >= dmax, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the region is %g m thin, less than the largest diameter %g m", go, DemSourceThinnest(s), dmax);
+    for (int d = 0; d < 3; d++) {
+      const double tol = 1e-12 * dem->dom->len[d];
+      PetscCheck(s->lo[d] >= dem->dom->lo[d] - tol && s->hi[d] <= dem->dom->hi[d] + tol, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the region spans [%g, %g] along %c, outside the domain [%g, %g] (-domain_lo/-domain_hi)", go, s->lo[d], s->hi[d], "xyz"[d], (double)dem -> dom -> lo[d], (double)dem -> dom -> hi[d]);
+    }
+    s->m_mean = dem->shapes.shp[s->shape].cvx ? dem->shapes.shp[s->shape].m : DemSourceMass(dem, s, cbrt(DemPsdMeanCube(&s->psd)));
+    {
+      const double per = s->rate > 0 ? s->rate * s->period : s->mass_rate * s->period / s->m_mean;
+      const double vp = s->m_mean / rho, cap = DEM_SRC_DENSE * vol / vp;
+      const char  *ropt  = s->rate > 0 ? "rate" : "mass_rate";
+      const double value = s->rate > 0 ? s->rate : s->mass_rate;
+      PetscCheck(per <= cap, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_%s %g x period %g s = %.4g particles per batch, more than the region holds at random close packing (%.4g = %g x %.4g m^3 / %.4g m^3 per particle): lower the rate or -dem_insert_%d_period, or enlarge %s", k, ropt, value, (double)s->period, per, cap, DEM_SRC_DENSE, vol, vp, k, go);
+      s->warn_at = (PetscInt)PetscMax(2.0, 2 * PetscCeilReal(per));
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The batch time, the end of its window (capped at stop) and whether the source is done. */
+static double DemSourceBatchTime(const DemSource *s)
+{
+  return s->start + (double)s->batch * s->period;
+}
+
+static PetscBool DemSourceDone(const DemSource *s)
+{
+  return (PetscBool)((s->count >= 0 && s->inserted >= s->count) || (s->mass >= 0 && s->m_inserted >= s->mass) || (s->stop > 0 && DemSourceBatchTime(s) >= s->stop));
+}
+
+/* Not collective; the same on every rank (a function of the clock and the sources' state). */
+static PetscBool DemSourceDue(Dem dem, const DemSource *s)
+{
+  return (PetscBool)(!DemSourceDone(s) && dem->clock.t + dem->clock.dt >= DemSourceBatchTime(s) - 0.5 * dem->clock.dt);
+}
+
+PetscBool DemSourcesDue(Dem dem)
+{
+  for (PetscInt i = 0; i < dem->src.n; i++)
+    if (DemSourceDue(dem, &dem->src.s[i])) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* The cumulative targets by the end of the batch's window: count and mass (1e300: none). */
+static void DemSourceTargets(const DemSource *s, double *ntgt, double *mtgt)
+{
+  double w = DemSourceBatchTime(s) + s->period;
+  if (s->stop > 0) w = PetscMin(w, s->stop);
+  w -= s->start;
+  *ntgt = *mtgt = 1e300;
+  if (s->rate > 0) *ntgt = PetscFloorReal(s->rate * w + 1e-9);
+  if (s->count >= 0) *ntgt = PetscMin(*ntgt, (double)s->count);
+  if (s->mass_rate > 0) *mtgt = s->mass_rate * w;
+  if (s->mass >= 0) *mtgt = PetscMin(*mtgt, s->mass);
+}
+
+/* A small linked-cell grid of spheres (centre, radius) over a box, for the placement tests: cells
+ * at least as wide as the largest centre distance that can overlap, coordinates clamped. */
+typedef struct {
+  double   lo[3], inv[3];
+  PetscInt nc[3], n, cap, *head, *next;
+  double  *xr; /* x, y, z, r per item */
+} DemSrcGrid;
+
+static PetscErrorCode DemSrcGridCreate(const double lo[3], const double hi[3], double cell, DemSrcGrid *g)
+{
+  PetscInt ncell = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(g, sizeof *g));
+  for (int d = 0; d < 3; d++) {
+    const double len = PetscMax(hi[d] - lo[d], cell);
+    g->nc[d]         = (PetscInt)PetscMin(64.0, PetscMax(1.0, PetscFloorReal(len / cell)));
+    g->lo[d]         = lo[d];
+    g->inv[d]        = g->nc[d] / len;
+    ncell *= g->nc[d];
+  }
+  PetscCall(PetscMalloc1(ncell, &g->head));
+  for (PetscInt c = 0; c < ncell; c++) g->head[c] = -1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static inline PetscInt dem_src_coord(const DemSrcGrid *g, const double *x, int d)
+{
+  const PetscInt c = (PetscInt)PetscFloorReal((x[d] - g->lo[d]) * g->inv[d]);
+  return c < 0 ? 0 : (c >= g->nc[d] ? g->nc[d] - 1 : c);
+}
+
+static PetscErrorCode DemSrcGridAdd(DemSrcGrid *g, const double x[3], double r)
+{
+  PetscFunctionBeginUser;
+  if (g->n == g->cap) {
+    g->cap = 2 * g->cap + 64;
+    PetscCall(PetscRealloc(sizeof(double) * 4 * (size_t)g->cap, &g->xr));
+    PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)g->cap, &g->next));
+  }
+  const PetscInt c = dem_src_coord(g, x, 0) + g->nc[0] * (dem_src_coord(g, x, 1) + g->nc[1] * dem_src_coord(g, x, 2));
+  for (int d = 0; d < 3; d++) g->xr[4 * g->n + d] = x[d];
+  g->xr[4 * g->n + 3] = r;
+  g->next[g->n]       = g->head[c];
+  g->head[c]          = g->n++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Whether a sphere (x, r) overlaps an item of the grid. */
+static PetscBool DemSrcGridHits(const DemSrcGrid *g, const double x[3], double r)
+{
+  PetscInt c[3];
+  for (int d = 0; d < 3; d++) c[d] = dem_src_coord(g, x, d);
+  for (PetscInt k = PetscMax(c[2] - 1, 0); k <= PetscMin(c[2] + 1, g->nc[2] - 1); k++)
+    for (PetscInt j = PetscMax(c[1] - 1, 0); j <= PetscMin(c[1] + 1, g->nc[1] - 1); j++)
+      for (PetscInt i = PetscMax(c[0] - 1, 0); i <= PetscMin(c[0] + 1, g->nc[0] - 1); i++)
+        for (PetscInt a = g->head[i + g->nc[0] * (j + g->nc[1] * k)]; a >= 0; a = g->next[a]) {
+          const double *y = g->xr + 4 * a, dx[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]}, s = r + y[3];
+          if (dem_dot(dx, dx) < s * s) return PETSC_TRUE;
+        }
+  return PETSC_FALSE;
+}
+
+static PetscErrorCode DemSrcGridDestroy(DemSrcGrid *g)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(g->head));
+  PetscCall(PetscFree(g->next));
+  PetscCall(PetscFree(g->xr));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Candidate c of source s: diameter, centre (wholly inside the region), velocity, orientation;
+ * a function of (seed, k, c) only. Streams of source k: DEM_SRC_STREAM + 16 k + 0..9. */
+static void DemSourceCandidate(Dem dem, const DemSource *s, PetscInt c, DemParticle *p)
+{
+  const int     b = DEM_SRC_STREAM + 16 * (int)s->k;
+  const double *g = s->g, d = DemPsdSample(&s->psd, dem_uniform(s->seed, c, b)), r = 0.5 * d;
+  const double  u[3] = {dem_uniform(s->seed, c, b + 1), dem_uniform(s->seed, c, b + 2), dem_uniform(s->seed, c, b + 3)};
+
+  memset(p, 0, sizeof *p);
+  p->shape = s->shape;
+  p->r     = dem->shapes.poly ? r : 0;
+  if (s->region == DEM_SRC_BOX) {
+    for (int k = 0; k < 3; k++) p->x[k] = g[k] + r + u[k] * (g[3 + k] - g[k] - 2 * r);
+  } else if (s->region == DEM_SRC_CYLINDER) {
+    const double *a = g + 3, e[3] = {PetscAbsReal(a[0]) < 0.6 ? 1 : 0, PetscAbsReal(a[0]) < 0.6 ? 0 : 1, 0};
+    double        b1[3], b2[3];
+    dem_cross(a, e, b1);
+    const double l = sqrt(dem_dot(b1, b1)), rho = (g[6] - r) * sqrt(u[0]), phi = 2 * PETSC_PI * u[1], h = -0.5 * g[7] + r + u[2] * (g[7] - 2 * r);
+    for (int k = 0; k < 3; k++) b1[k] /= l;
+    dem_cross(a, b1, b2);
+    for (int k = 0; k < 3; k++) p->x[k] = g[k] + h * a[k] + rho * (cos(phi) * b1[k] + sin(phi) * b2[k]);
+  } else {
+    const double l1 = sqrt(dem_dot(g + 3, g + 3)), l2 = sqrt(dem_dot(g + 6, g + 6));
+    const double s1 = (r + u[0] * (l1 - 2 * r)) / l1, s2 = (r + u[1] * (l2 - 2 * r)) / l2, h = r + u[2] * PetscMax(0.0, s->depth - 2 * r);
+    for (int k = 0; k < 3; k++) p->x[k] = g[k] + s1 * g[3 + k] + s2 * g[6 + k] + h * s->n[k];
+  }
+  for (int k = 0; k < 3; k++) p->v[k] = s->v[k] + s->vspread * (2 * dem_uniform(s->seed, c, b + 7 + k) - 1);
+  p->q[0] = 1;
+  if (s->random_orient) { /* Shoemake, Graphics Gems III (1992) */
+    const double u1 = dem_uniform(s->seed, c, b + 4), a1 = 2 * PETSC_PI * dem_uniform(s->seed, c, b + 5), a2 = 2 * PETSC_PI * dem_uniform(s->seed, c, b + 6);
+    const double q1 = sqrt(1 - u1), q2 = sqrt(u1);
+    p->q[0] = q2 * cos(a2);
+    p->q[1] = q1 * sin(a1);
+    p->q[2] = q1 * cos(a1);
+    p->q[3] = q2 * sin(a2);
+  }
+}
+
+/* Radius (m) of the candidate p (its own, or its shape's). */
+static inline double dem_src_radius(Dem dem, const DemParticle *p)
+{
+  return p->r > 0 ? p->r : dem->shapes.shp[p->shape].r;
+}
+
+/* Collective. blk[i] = 1 where candidate i overlaps a particle (local or ghost) or a wall: each
+ * rank tests the candidates centred in its box, one reduction joins them. */
+static PetscErrorCode DemSourceBlocked(Dem dem, const DemSource *s, PetscInt K, const DemParticle *cand, unsigned char *blk)
+{
+  double     dmin, dmax, rp = dem->shapes.r_source_max, lo[3], hi[3], nrm[3];
+  DemSrcGrid g;
+
+  PetscFunctionBeginUser;
+  DemPsdRange(&s->psd, &dmin, &dmax);
+  for (PetscInt t = 0; t < dem->shapes.nshape; t++) rp = PetscMax(rp, dem->shapes.shp[t].r);
+  for (int d = 0; d < 3; d++) {
+    lo[d] = s->lo[d] - 0.5 * dmax - rp;
+    hi[d] = s->hi[d] + 0.5 * dmax + rp;
+  }
+  PetscCall(DemSrcGridCreate(lo, hi, 0.5 * dmax + rp, &g));
+  for (PetscInt j = 0; j < dem->p.n + dem->p.ng; j++) {
+    const double *x = dem->p.x + 3 * j;
+    if (x[0] < lo[0] || x[1] < lo[1] || x[2] < lo[2] || x[0] > hi[0] || x[1] > hi[1] || x[2] > hi[2]) continue;
+    PetscCall(DemSrcGridAdd(&g, x, DemRadius(&dem->p, &dem->shapes, j)));
+  }
+  for (PetscInt i = 0; i < K; i++) {
+    const double r = dem_src_radius(dem, &cand[i]);
+    blk[i]         = 0;
+    if (!dem_in_box(dem->dom, cand[i].x)) continue;
+    if (DemSrcGridHits(&g, cand[i].x, r)) blk[i] = 1;
+    for (PetscInt w = 0; w < dem->walls.nwall && !blk[i]; w++)
+      if (!dem->walls.wall[w].removed && dem_wall_sphere(&dem->walls.wall[w], cand[i].x, r, nrm) > 0) blk[i] = 1;
+  }
+  PetscCall(DemSrcGridDestroy(&g));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, blk, (PetscMPIInt)K, MPI_UNSIGNED_CHAR, MPI_MAX, dem->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Accepted candidates of this step, all sources, on every rank (x, y, z, r). */
+typedef struct {
+  double  *xr;
+  PetscInt n, cap;
+} DemSrcAccepted;
+
+/* Collective. One batch of source s: draws K candidates, finds the blocked ones, accepts in
+ * candidate order up to the batch's targets; ids from *next_id on. */
+static PetscErrorCode DemSourceBatch(Dem dem, DemSource *s, PetscInt *next_id, DemSrcAccepted *acc)
+{
+  double         ntgt, mtgt, dmin, dmax, lo[3], hi[3], nwant;
+  DemParticle   *cand;
+  unsigned char *blk;
+  DemSrcGrid     g;
+  PetscInt       K, i = 0;
+
+  PetscFunctionBeginUser;
+  DemSourceTargets(s, &ntgt, &mtgt);
+  nwant = ntgt - s->inserted;
+  if (mtgt < 1e300) nwant = PetscMin(nwant, PetscCeilReal((mtgt - s->m_inserted) / s->m_mean) + 1);
+  K = nwant > 0 ? (PetscInt)PetscMin((double)DEM_SRC_MAX_CANDIDATE, nwant * (double)s->attempts) : 0;
+  PetscCall(PetscMalloc2(K + 1, &cand, K + 1, &blk));
+  for (PetscInt c = 0; c < K; c++) DemSourceCandidate(dem, s, s->cand + c, &cand[c]);
+  PetscCall(DemSourceBlocked(dem, s, K, cand, blk));
+  DemPsdRange(&s->psd, &dmin, &dmax);
+  const double reach = 0.5 * dmax + dem->shapes.r_source_max; /* this source's and any source's radii */
+  for (int d = 0; d < 3; d++) {
+    lo[d] = s->lo[d] - reach;
+    hi[d] = s->hi[d] + reach;
+  }
+  PetscCall(DemSrcGridCreate(lo, hi, reach, &g)); /* the accepted of earlier sources too */
+  for (PetscInt a = 0; a < acc->n; a++) PetscCall(DemSrcGridAdd(&g, acc->xr + 4 * a, acc->xr[4 * a + 3]));
+  for (; i < K && s->inserted < ntgt && s->m_inserted < mtgt; i++) {
+    DemParticle *p = &cand[i];
+    const double r = dem_src_radius(dem, p), m = DemSourceMass(dem, s, 2 * r);
+    if (blk[i] || DemSrcGridHits(&g, p->x, r)) continue;
+    PetscCall(DemSrcGridAdd(&g, p->x, r));
+    if (acc->n == acc->cap) {
+      acc->cap = 2 * acc->cap + 64;
+      PetscCall(PetscRealloc(sizeof(double) * 4 * (size_t)acc->cap, &acc->xr));
+    }
+    for (int d = 0; d < 3; d++) acc->xr[4 * acc->n + d] = p->x[d];
+    acc->xr[4 * acc->n++ + 3] = r;
+    p->id                     = (*next_id)++;
+    s->inserted++;
+    s->m_inserted += m;
+    dem->flow.inserted++;
+    dem->flow.m_inserted += m;
+    dem->flow.id_inserted += (PetscReal)p->id;
+    if (!dem_in_box(dem->dom, p->x)) continue;
+    /* the step's last half kick adds g dt/2: the particle leaves with the set velocity */
+    for (int d = 0; d < 3; d++) p->v[d] -= 0.5 * dem->clock.dt * dem->g[d];
+    if (dem->src.npend == dem->src.cappend) {
+      dem->src.cappend = 2 * dem->src.cappend + 64;
+      PetscCall(PetscRealloc(sizeof(DemParticle) * (size_t)dem->src.cappend, &dem->src.pend));
+    }
+    dem->src.pend[dem->src.npend++] = *p;
+  }
+  s->cand += i;
+  PetscCall(DemSrcGridDestroy(&g));
+  PetscCall(PetscFree2(cand, blk));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* After a batch: the shortfall (particles due and not placed, carried by the cumulative target)
+ * and a warning each time it doubles past two batches' worth. */
+static PetscErrorCode DemSourceShortfall(Dem dem, DemSource *s)
+{
+  double ntgt, mtgt, sh = 0;
+
+  PetscFunctionBeginUser;
+  DemSourceTargets(s, &ntgt, &mtgt);
+  if (ntgt < 1e300) sh = ntgt - s->inserted;
+  if (mtgt < 1e300 && s->m_inserted < mtgt) sh = PetscMax(sh, PetscCeilReal((mtgt - s->m_inserted) / s->m_mean));
+  s->shortfall = (PetscInt)sh;
+  if (s->shortfall >= s->warn_at) {
+    PetscCall(PetscPrintf(dem->comm, "warning: t = %g s: source -dem_insert_%d is %" PetscInt_FMT " particles behind its rate or total (its region is full: enlarge it, lower the rate, or give more -dem_insert_%d_attempts)\n", (double)(dem->clock.t + dem->clock.dt), (int)s->k, s->shortfall, (int)s->k));
+    s->warn_at *= 2;
+  }
+  s->batch++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemSourcesPlace(Dem dem)
+{
+  PetscInt       next_id;
+  DemSrcAccepted acc = {NULL, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Placement, 0, 0, 0, 0));
+  PetscCall(DemGhostsUpdate(dem)); /* the ghosts where they are now, as the locals */
+  PetscCallMPI(MPI_Allreduce(&dem->p.next_id, &next_id, 1, MPIU_INT, MPI_MAX, dem->comm));
+  for (PetscInt i = 0; i < dem->src.n; i++) {
+    DemSource *s = &dem->src.s[i];
+    if (!DemSourceDue(dem, s)) continue;
+    PetscCall(DemSourceBatch(dem, s, &next_id, &acc));
+    PetscCall(DemSourceShortfall(dem, s));
+  }
+  PetscCall(PetscFree(acc.xr));
+  PetscCall(PetscLogEventEnd(DEM_Placement, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemSourcesAddPending(Dem dem)
+{
+  PetscFunctionBeginUser;
+  if (!dem->src.npend) PetscFunctionReturn(PETSC_SUCCESS);
+  dem->p.ng = 0; /* the ghosts go (the rebuild makes them again): locals are appended */
+  for (PetscInt a = 0; a < dem->src.npend; a++) PetscCall(DemAddParticle(dem, &dem->src.pend[a]));
+  dem->src.npend = 0;
+  { /* the cell grid was sized for the particles of its set-up (at most 8 cells per particle +
+       1000, neighbours.c): a run that starts empty would bin thousands of particles in cells many
+       reaches wide. Once the count would allow 4 times the cells, the grid is sized again at this
+       rebuild (a function of the count and the grid, so a restart does the same). */
+    double ideal = 1;
+    for (int k = 0; k < 3; k++) ideal *= PetscMax(1.0, PetscFloorReal((dem->dom->subhi[k] - dem->dom->sublo[k] + 2 * dem->nl.reach) / dem->nl.reach));
+    if (dem->nl.cstart && dem->nl.ncell < ideal && 8.0 * dem->p.n + 1000 > 4.0 * dem->nl.ncell) PetscCall(DemNeighResetCells(dem));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The sources' state and the inserted totals of the flow, dataset dem/sources (the
+ * same on every rank): n, inserted, m_inserted, id_inserted, then per source inserted,
+ * candidates, batch, shortfall, warning level, mass. */
+PetscErrorCode DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write)
+{
+  double         v[4 + 6 * DEM_MAX_SOURCES];
+  const PetscInt nv = 4 + 6 * dem->src.n;
+
+  PetscFunctionBeginUser;
+  if (!dem->src.n) PetscFunctionReturn(PETSC_SUCCESS);
+  if (write) {
+    v[0] = (double)dem->src.n;
+    v[1] = (double)dem->flow.inserted;
+    v[2] = dem->flow.m_inserted;
+    v[3] = dem->flow.id_inserted;
+    for (PetscInt i = 0; i < dem->src.n; i++) {
+      const DemSource *s    = &dem->src.s[i];
+      const double     w[6] = {(double)s->inserted, (double)s->cand, (double)s->batch, (double)s->shortfall, (double)s->warn_at, s->m_inserted};
+      for (int a = 0; a < 6; a++) v[4 + 6 * i + a] = w[a];
+    }
+    PetscCall(IoCkptWriteShared(ck, "dem/sources", IO_CKPT_REAL, nv, v));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(IoCkptReadShared(ck, "dem/sources", IO_CKPT_REAL, nv, v));
+  PetscCheck(v[0] == (double)dem->src.n, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint has %g particle sources, the case's options make %" PetscInt_FMT, v[0], dem->src.n);
+  dem->flow.inserted    = (PetscInt)v[1];
+  dem->flow.m_inserted  = v[2];
+  dem->flow.id_inserted = v[3];
+  for (PetscInt i = 0; i < dem->src.n; i++) {
+    DemSource    *s = &dem->src.s[i];
+    const double *w = v + 4 + 6 * i;
+    s->inserted     = (PetscInt)w[0];
+    s->cand         = (PetscInt)w[1];
+    s->batch        = (PetscInt)w[2];
+    s->shortfall    = (PetscInt)w[3];
+    s->warn_at      = (PetscInt)w[4];
+    s->m_inserted   = w[5];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemViewSources(Dem dem, PetscViewer v)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dem->src.n; i++) {
+    const DemSource *s = &dem->src.s[i];
+    PetscCall(PetscViewerASCIIPrintf(v, "source -dem_insert_%d (%s): %" PetscInt_FMT " particles, %.6g kg inserted in %" PetscInt_FMT " batches; shortfall %" PetscInt_FMT " particles%s\n", (int)s->k, DemSourceRegionNames[s->region], s->inserted, (double)s->m_inserted, s->batch, s->shortfall, s->shortfall ? " (its region was full)" : ""));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemSourcesDestroy(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(dem->src.pend));
+  dem->src.npend = dem->src.cappend = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
