@@ -47,7 +47,7 @@ PetscErrorCode IoSetFromOptions(Io io)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(io->comm, NULL, "Output (HDF5 + XDMF)", NULL);
-  PetscCall(PetscOptionsString("-io_dir", "Output directory", NULL, io->dir, io->dir, sizeof io->dir, NULL));
+  PetscCall(PetscOptionsString("-io_dir", "Output directory, made with its parents if missing", NULL, io->dir, io->dir, sizeof io->dir, NULL));
   PetscCall(PetscOptionsString("-io_prefix", "Output file name prefix", NULL, io->prefix, io->prefix, sizeof io->prefix, NULL));
   PetscCall(SableOptionsReal("-io_interval", "Simulated time between outputs; 0 = no output", "s", "[0,inf)", io->interval, &io->interval, NULL));
   PetscOptionsEnd();
@@ -80,6 +80,21 @@ PetscErrorCode IoGetIndexPath(Io io, const char **path)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* mkdir -p: the directory and any missing parents (0, or the errno of the first that failed). */
+static int io_mkdir_p(const char *dir)
+{
+  char path[PETSC_MAX_PATH_LEN];
+  if (strlen(dir) >= sizeof path) return ENAMETOOLONG;
+  strcpy(path, dir);
+  for (char *c = path + 1; *c; c++) {
+    if (*c != '/') continue;
+    *c = 0;
+    if (mkdir(path, 0755) != 0 && errno != EEXIST) return errno;
+    *c = '/';
+  }
+  return mkdir(path, 0755) != 0 && errno != EEXIST ? errno : 0;
+}
+
 PetscErrorCode IoGetFilePath(Io io, const char *suffix, char *path, size_t len)
 {
   PetscMPIInt rank;
@@ -88,7 +103,7 @@ PetscErrorCode IoGetFilePath(Io io, const char *suffix, char *path, size_t len)
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(path, len, "%s/%s_%s", io->dir, io->prefix, suffix));
   PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
-  if (!rank && mkdir(io->dir, 0755) != 0 && errno != EEXIST) err = errno;
+  if (!rank) err = io_mkdir_p(io->dir);
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, io->comm));
   PetscCheck(!err, io->comm, PETSC_ERR_FILE_OPEN, "-io_dir %s: cannot create the directory (%s)", io->dir, strerror(err));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -150,7 +165,7 @@ static PetscErrorCode IoMakeDir(Io io)
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
-  if (!rank && mkdir(io->dir, 0755) != 0 && errno != EEXIST) err[0] = errno;
+  if (!rank) err[0] = io_mkdir_p(io->dir);
   if (!rank && !err[0] && io->reserve < 0) err[1] = io_reserve(io);
   PetscCallMPI(MPI_Bcast(err, 2, MPI_INT, 0, io->comm));
   PetscCheck(!err[0], io->comm, PETSC_ERR_FILE_OPEN, "-io_dir %s: cannot create the directory (%s)", io->dir, strerror(err[0]));

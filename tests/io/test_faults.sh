@@ -78,6 +78,15 @@ mkdir -p "$D/x/sable.xmf.tmp"
 timeout 60 "$S" $SCENE -dem_lattice 2,2,2 -dem_t_end 0 -io_interval 1 -io_dir "$D/x" > "$D/x.log" 2>&1; rc=$?
 one_line "index not writable" 1 "cannot write $D/x/sable.xmf.tmp: Is a directory" "$D/x.log"
 
+# an output directory whose parents do not exist yet is made with them (as mkdir -p); one under a
+# regular file is refused in one line
+timeout 60 "$S" $SCENE -dem_lattice 2,2,2 -dem_t_end 0 -io_interval 1 -io_dir "$D/new/a/b" > "$D/p.log" 2>&1; rc=$?
+if [ $rc -eq 0 ] && [ -f "$D/new/a/b/sable.xmf" ]; then echo "PASS io_dir parents: $D/new/a/b made with its parents, exit 0"
+else echo "FAIL io_dir parents: exit $rc, $(grep -c sable.xmf "$D/p.log") index lines; $(grep 'sable: error' "$D/p.log" | head -n 1)"; fi
+: > "$D/afile"
+timeout 60 "$S" $SCENE -dem_lattice 2,2,2 -dem_t_end 0 -io_interval 1 -io_dir "$D/afile/out" > "$D/pf.log" 2>&1; rc=$?
+one_line "io_dir under a file" 1 "-io_dir $D/afile/out: cannot create the directory (Not a directory)" "$D/pf.log"
+
 # (b), (c) hostile init files
 /usr/bin/python3 - "$D" <<'PY' || echo "FAIL init files: the script making them exited with status $?"
 import sys, h5py, numpy as np
