@@ -6,12 +6,16 @@
  * due by the end of its window, floor(rate (t_b + P - start)) particles (or, by mass, while the
  * inserted mass is below mass_rate (t_b + P - start)), capped by the total; what could not be
  * placed is carried (the target is cumulative) and reported.
- * Placement is the same on any rank count: candidate c of source k is a function of (seed, c)
- * only (dem_uniform); each rank tests the candidates centred in its box against its particles
- * and ghosts (the halo covers r_cand + r_max) and the walls, one reduction gives the blocked set,
- * then every rank accepts the same candidates in candidate order (rejecting one that overlaps an
- * earlier accepted one), ids following the largest id so far; the owner adds them at the rebuild
- * that DemStep runs at every batch step (sources change the particle set only at rebuilds).
+ * Placement is the same on any rank count: the diameter of the n-th particle of source k is a
+ * function of (seed, k, n) only, a candidate c's position, velocity and orientation of (seed, k,
+ * c) and that diameter (dem_uniform), so a blocked candidate never changes the size drawn (no
+ * size bias where the region is crowded); each rank tests the candidates centred in its box
+ * against its particles and ghosts (the halo covers r_cand + r_max) and the walls, one reduction
+ * gives the blocked set, then every rank accepts the same candidates in candidate order
+ * (rejecting one that overlaps an earlier accepted one; sizes of their own: in rounds, each
+ * particle's candidates in turn, DemSourceBatch), ids following the largest id so far; the owner
+ * adds them at the rebuild that DemStep runs at every batch step (sources change the particle
+ * set only at rebuilds).
  * A particle placed at the step ending at t is there at t with the set velocity: x is not
  * drifted, and v0 - g dt/2 before the step's last half kick gives v0 (no contact can act on it).
  * Units SI. The state (counts, mass, candidate counter, batch, shortfall) is checkpointed. */
@@ -358,12 +362,22 @@ static PetscErrorCode DemSrcGridDestroy(DemSrcGrid *g)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Candidate c of source s: diameter, centre (wholly inside the region), velocity, orientation;
- * a function of (seed, k, c) only. Streams of source k: DEM_SRC_STREAM + 16 k + 0..9. */
-static void DemSourceCandidate(Dem dem, const DemSource *s, PetscInt c, DemParticle *p)
+/* Diameter (m) of the n-th particle source s inserts (n from 0): a function of (seed, k, n) only.
+ * A blocked candidate is replaced by another position for the same particle, never by another
+ * size: redrawing the size too would let small sizes win where the region is crowded, and the
+ * inserted set would no longer follow the distribution. */
+static double DemSourceDiameter(const DemSource *s, PetscInt n)
+{
+  return DemPsdSample(&s->psd, dem_uniform(s->seed, n, DEM_SRC_STREAM + 16 * (int)s->k));
+}
+
+/* Candidate c of source s for a particle of diameter d: centre (wholly inside the region),
+ * velocity, orientation; a function of (seed, k, c, d) only. Streams of source k:
+ * DEM_SRC_STREAM + 16 k + 0..9 (0: the sizes, by particle). */
+static void DemSourceCandidate(Dem dem, const DemSource *s, PetscInt c, double d, DemParticle *p)
 {
   const int     b = DEM_SRC_STREAM + 16 * (int)s->k;
-  const double *g = s->g, d = DemPsdSample(&s->psd, dem_uniform(s->seed, c, b)), r = 0.5 * d;
+  const double *g = s->g, r = 0.5 * d;
   const double  u[3] = {dem_uniform(s->seed, c, b + 1), dem_uniform(s->seed, c, b + 2), dem_uniform(s->seed, c, b + 3)};
 
   memset(p, 0, sizeof *p);
@@ -435,67 +449,144 @@ static PetscErrorCode DemSourceBlocked(Dem dem, const DemSource *s, PetscInt K, 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Accepted candidates of this step, all sources, on every rank (x, y, z, r). */
+/* Accepted candidates of this step, all sources, on every rank (x, y, z, r), and the next id. */
 typedef struct {
   double  *xr;
-  PetscInt n, cap;
+  PetscInt n, cap, next_id;
 } DemSrcAccepted;
 
-/* Collective. One batch of source s: draws K candidates, finds the blocked ones, accepts in
- * candidate order up to the batch's targets; ids from *next_id on. */
-static PetscErrorCode DemSourceBatch(Dem dem, DemSource *s, PetscInt *next_id, DemSrcAccepted *acc)
+/* Not collective (the same on every rank). Candidate p becomes the next particle of source s:
+ * counted, given the next id, and kept for its owner's rebuild. */
+static PetscErrorCode DemSourceAccept(Dem dem, DemSource *s, DemParticle *p, DemSrcAccepted *acc)
 {
-  double         ntgt, mtgt, dmin, dmax, lo[3], hi[3], nwant;
+  const double r = dem_src_radius(dem, p), m = DemSourceMass(dem, s, 2 * r);
+
+  PetscFunctionBeginUser;
+  if (acc->n == acc->cap) {
+    acc->cap = 2 * acc->cap + 64;
+    PetscCall(PetscRealloc(sizeof(double) * 4 * (size_t)acc->cap, &acc->xr));
+  }
+  for (int d = 0; d < 3; d++) acc->xr[4 * acc->n + d] = p->x[d];
+  acc->xr[4 * acc->n++ + 3] = r;
+  p->id                     = acc->next_id++;
+  s->inserted++;
+  s->m_inserted += m;
+  dem->flow.inserted++;
+  dem->flow.m_inserted += m;
+  dem->flow.id_inserted += (PetscReal)p->id;
+  if (!dem_in_box(dem->dom, p->x)) PetscFunctionReturn(PETSC_SUCCESS);
+  /* the step's last half kick adds g dt/2: the particle leaves with the set velocity */
+  for (int d = 0; d < 3; d++) p->v[d] -= 0.5 * dem->clock.dt * dem->g[d];
+  if (dem->src.npend == dem->src.cappend) {
+    dem->src.cappend = 2 * dem->src.cappend + 64;
+    PetscCall(PetscRealloc(sizeof(DemParticle) * (size_t)dem->src.cappend, &dem->src.pend));
+  }
+  dem->src.pend[dem->src.npend++] = *p;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* One placement round of a source: J slots, slot t the particle inserted + t (own sizes: its
+ * diameter DemSourceDiameter) with candidates A0 (slot 0) or A (the others), in slot order;
+ * one size: a single slot of A0 candidates that serves every particle of the batch. */
+typedef struct {
+  PetscBool own;
+  PetscInt  J, A0, A, K;
+  double    ntgt, mtgt; /* the batch's cumulative targets */
+} DemSrcRound;
+
+static inline PetscInt dem_src_slot(const DemSrcRound *r, PetscInt i)
+{
+  return i < r->A0 ? 0 : 1 + (i - r->A0) / r->A;
+}
+
+/* Collective. One round (above): draws the candidates, finds the blocked ones, accepts in
+ * candidate order up to the targets (own sizes: the first free candidate of each slot, the round
+ * ending at a slot with none). *tried: the candidates used; *failed: the slot where it ended,
+ * none placed (-1: it did not). */
+static PetscErrorCode DemSourceRound(Dem dem, DemSource *s, const DemSrcRound *r, DemSrcAccepted *acc, PetscInt *tried, PetscInt *failed)
+{
   DemParticle   *cand;
   unsigned char *blk;
   DemSrcGrid     g;
-  PetscInt       K, i = 0;
+  double         dmin, dmax, lo[3], hi[3], d = 0;
+  PetscInt       i = 0, n0 = s->inserted;
 
   PetscFunctionBeginUser;
-  DemSourceTargets(s, &ntgt, &mtgt);
-  nwant = ntgt - s->inserted;
-  if (mtgt < 1e300) nwant = PetscMin(nwant, PetscCeilReal((mtgt - s->m_inserted) / s->m_mean) + 1);
-  K = nwant > 0 ? (PetscInt)PetscMin((double)DEM_SRC_MAX_CANDIDATE, nwant * (double)s->attempts) : 0;
-  PetscCall(PetscMalloc2(K + 1, &cand, K + 1, &blk));
-  for (PetscInt c = 0; c < K; c++) DemSourceCandidate(dem, s, s->cand + c, &cand[c]);
-  PetscCall(DemSourceBlocked(dem, s, K, cand, blk));
+  PetscCall(PetscMalloc2(r->K + 1, &cand, r->K + 1, &blk));
+  if (!r->own) d = DemSourceDiameter(s, n0);
+  for (PetscInt c = 0; c < r->K; c++) DemSourceCandidate(dem, s, s->cand + c, r->own ? DemSourceDiameter(s, n0 + dem_src_slot(r, c)) : d, &cand[c]);
+  PetscCall(DemSourceBlocked(dem, s, r->K, cand, blk));
   DemPsdRange(&s->psd, &dmin, &dmax);
   const double reach = 0.5 * dmax + dem->shapes.r_source_max; /* this source's and any source's radii */
-  for (int d = 0; d < 3; d++) {
-    lo[d] = s->lo[d] - reach;
-    hi[d] = s->hi[d] + reach;
+  for (int k = 0; k < 3; k++) {
+    lo[k] = s->lo[k] - reach;
+    hi[k] = s->hi[k] + reach;
   }
-  PetscCall(DemSrcGridCreate(lo, hi, reach, &g)); /* the accepted of earlier sources too */
+  PetscCall(DemSrcGridCreate(lo, hi, reach, &g)); /* the accepted of earlier sources and rounds too */
   for (PetscInt a = 0; a < acc->n; a++) PetscCall(DemSrcGridAdd(&g, acc->xr + 4 * a, acc->xr[4 * a + 3]));
-  for (; i < K && s->inserted < ntgt && s->m_inserted < mtgt; i++) {
-    DemParticle *p = &cand[i];
-    const double r = dem_src_radius(dem, p), m = DemSourceMass(dem, s, 2 * r);
-    if (blk[i] || DemSrcGridHits(&g, p->x, r)) continue;
-    PetscCall(DemSrcGridAdd(&g, p->x, r));
-    if (acc->n == acc->cap) {
-      acc->cap = 2 * acc->cap + 64;
-      PetscCall(PetscRealloc(sizeof(double) * 4 * (size_t)acc->cap, &acc->xr));
+  *failed = -1;
+  while (i < r->K && s->inserted < r->ntgt && s->m_inserted < r->mtgt) {
+    DemParticle   *p = &cand[i];
+    const PetscInt t = dem_src_slot(r, i);
+    if (!blk[i] && !DemSrcGridHits(&g, p->x, dem_src_radius(dem, p))) {
+      PetscCall(DemSrcGridAdd(&g, p->x, dem_src_radius(dem, p)));
+      PetscCall(DemSourceAccept(dem, s, p, acc));
+      if (r->own) { /* on to the next slot's candidates */
+        i = t == 0 ? r->A0 : r->A0 + t * r->A;
+        continue;
+      }
     }
-    for (int d = 0; d < 3; d++) acc->xr[4 * acc->n + d] = p->x[d];
-    acc->xr[4 * acc->n++ + 3] = r;
-    p->id                     = (*next_id)++;
-    s->inserted++;
-    s->m_inserted += m;
-    dem->flow.inserted++;
-    dem->flow.m_inserted += m;
-    dem->flow.id_inserted += (PetscReal)p->id;
-    if (!dem_in_box(dem->dom, p->x)) continue;
-    /* the step's last half kick adds g dt/2: the particle leaves with the set velocity */
-    for (int d = 0; d < 3; d++) p->v[d] -= 0.5 * dem->clock.dt * dem->g[d];
-    if (dem->src.npend == dem->src.cappend) {
-      dem->src.cappend = 2 * dem->src.cappend + 64;
-      PetscCall(PetscRealloc(sizeof(DemParticle) * (size_t)dem->src.cappend, &dem->src.pend));
+    i++;
+    if (r->own && (i == r->K || dem_src_slot(r, i) != t)) {
+      *failed = t;
+      break;
     }
-    dem->src.pend[dem->src.npend++] = *p;
   }
-  s->cand += i;
+  *tried = PetscMin(i, r->K);
   PetscCall(DemSrcGridDestroy(&g));
   PetscCall(PetscFree2(cand, blk));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. One batch of source s up to its targets. One size: one round of nwant x attempts
+ * candidates. Own sizes: rounds of J particles with A candidates each, A starting at 1 and
+ * doubling whenever a round ends at a particle with no free candidate, up to -attempts; the batch
+ * ends once a particle has had -attempts candidates (the rest is carried). */
+static PetscErrorCode DemSourceBatch(Dem dem, DemSource *s, DemSrcAccepted *acc)
+{
+  double      dmin, dmax;
+  DemSrcRound r;
+  PetscInt    used = 0, tried, failed;
+
+  PetscFunctionBeginUser;
+  DemSourceTargets(s, &r.ntgt, &r.mtgt);
+  DemPsdRange(&s->psd, &dmin, &dmax);
+  r.own = (PetscBool)(dmax > dmin);
+  if (!r.own) {
+    double nwant = r.ntgt - s->inserted;
+    if (r.mtgt < 1e300) nwant = PetscMin(nwant, PetscCeilReal((r.mtgt - s->m_inserted) / s->m_mean) + 1);
+    r.J = 1;
+    r.A = r.A0 = r.K = nwant > 0 ? (PetscInt)PetscMin((double)DEM_SRC_MAX_CANDIDATE, nwant * (double)s->attempts) : 0;
+    PetscCall(DemSourceRound(dem, s, &r, acc, &tried, &failed));
+    s->cand += tried;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  r.A = 1;
+  for (;;) {
+    double m = s->m_inserted; /* the slots: the particles due, their own masses against the mass target */
+    r.A0     = PetscMin(r.A, s->attempts - used);
+    for (r.J = 0; s->inserted + r.J < r.ntgt && m < r.mtgt && r.A0 + r.J * r.A <= DEM_SRC_MAX_CANDIDATE; r.J++) m += DemSourceMass(dem, s, DemSourceDiameter(s, s->inserted + r.J));
+    if (!r.J) break;
+    r.K = r.A0 + (r.J - 1) * r.A;
+    PetscCall(DemSourceRound(dem, s, &r, acc, &tried, &failed));
+    s->cand += tried;
+    if (failed < 0) used = 0;
+    else {
+      used = failed == 0 ? used + r.A0 : r.A;
+      if (used >= s->attempts) break;
+      r.A = PetscMin(2 * r.A, s->attempts);
+    }
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -520,17 +611,16 @@ static PetscErrorCode DemSourceShortfall(Dem dem, DemSource *s)
 
 PetscErrorCode DemSourcesPlace(Dem dem)
 {
-  PetscInt       next_id;
-  DemSrcAccepted acc = {NULL, 0, 0};
+  DemSrcAccepted acc = {NULL, 0, 0, 0};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Placement, 0, 0, 0, 0));
   PetscCall(DemGhostsUpdate(dem)); /* the ghosts where they are now, as the locals */
-  PetscCallMPI(MPI_Allreduce(&dem->p.next_id, &next_id, 1, MPIU_INT, MPI_MAX, dem->comm));
+  PetscCallMPI(MPI_Allreduce(&dem->p.next_id, &acc.next_id, 1, MPIU_INT, MPI_MAX, dem->comm));
   for (PetscInt i = 0; i < dem->src.n; i++) {
     DemSource *s = &dem->src.s[i];
     if (!DemSourceDue(dem, s)) continue;
-    PetscCall(DemSourceBatch(dem, s, &next_id, &acc));
+    PetscCall(DemSourceBatch(dem, s, &acc));
     PetscCall(DemSourceShortfall(dem, s));
   }
   PetscCall(PetscFree(acc.xr));
