@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """sizes_check.py: the figures tests/dem/test_sources_sizes.sh compares with the set values, read
 from Sable's HDF5 frames (diameter d = 2 x the frame's radius, mass rho pi d^3 / 6). Commands:
-  moments LABEL FRAME SEL LAW  the particles of FRAME selected by SEL (x:lo:hi, the centre's x in
-      [lo, hi)) against LAW: number- and mass-weighted mean, std, d10, d50, d90, each within 3
+  moments LABEL FRAME SEL LAW NMIN  the particles of FRAME selected by SEL (x:lo:hi, the centre's
+      x in [lo, hi); "-": all), at least NMIN of them, against LAW: number- and mass-weighted mean, std, d10, d50, d90, each within 3
       standard errors of the law's exact value (a table's quantiles must be its exact entry), and
       a table's fractions by number (table by number) or by MASS (table by mass) within 3 SE.
       Prints PASS/FAIL lines. LAW: number:d1,d2,..:f1,f2,..  mass:d1,..:f1,..  lognormal:m:s:lo:hi
@@ -131,10 +131,13 @@ def quantile(L, q, p):  # the law's weighted quantile (a table: its entry; else 
     return 0.5 * (lo + hi)
 
 
-def moments(label, path, sel, spec):
+def moments(label, path, sel, spec, nmin):
     g = frame(path)
     d = 2 * g["radius"][select(g, sel)]
     L, n = law(spec), len(d)
+    if n < int(nmin):
+        print("FAIL sizes %s: %d particles, fewer than %s" % (label, n, nmin))
+        return
     for q, wname in ((0, "number"), (3, "mass")):
         mean, std, qs = stats(d, q)
         emean, estd, se = exact(L, q, n)

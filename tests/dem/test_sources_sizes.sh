@@ -45,13 +45,13 @@ LOGN="lognormal -dem_insert_2_psd_mean 2e-3 -dem_insert_2_psd_std 6e-4 -dem_inse
 # distributions
 ONE="-dem_radius 0.001 -dem_gravity 0,0,0 -dem_dt 5e-6 -dem_t_end 5e-6 -io_interval 5e-6"
 run 1 "$W/dist" $ONE -domain_lo 0,0,0 -domain_hi 0.6,0.2,0.2 -dem_box 0,0,0,0.6,0.2,0.2 \
-  -dem_insert_0_region box -dem_insert_0_box 0,0,0,0.2,0.2,0.2 -dem_insert_0_count 4000 -dem_insert_0_psd number -dem_insert_0_psd_diameters 1e-3,2e-3,3e-3 -dem_insert_0_psd_fractions 0.3,0.45,0.25 \
+  -dem_insert_0_region box -dem_insert_0_box 0,0,0,0.2,0.2,0.2 -dem_insert_0_count 10000 -dem_insert_0_psd number -dem_insert_0_psd_diameters 1e-3,2e-3,3e-3 -dem_insert_0_psd_fractions 0.3,0.45,0.25 \
   -dem_insert_1_region box -dem_insert_1_box 0.2,0,0,0.4,0.2,0.2 -dem_insert_1_count 10000 -dem_insert_1_psd mass -dem_insert_1_psd_diameters 1e-3,1.5e-3,2.5e-3 -dem_insert_1_psd_fractions 0.25,0.35,0.4 \
   -dem_insert_2_region box -dem_insert_2_box 0.4,0,0,0.6,0.2,0.2 -dem_insert_2_count 10000 -dem_insert_2_psd $LOGN
 F=$W/dist/out/sable_000001.h5
-$C moments "table by number" "$F" x:0:0.2 number:1e-3,2e-3,3e-3:0.3,0.45,0.25
-$C moments "table by mass" "$F" x:0.2:0.4 mass:1e-3,1.5e-3,2.5e-3:0.25,0.35,0.4
-$C moments "lognormal" "$F" x:0.4:0.6 lognormal:2e-3:6e-4:1e-3:3.5e-3
+$C moments "table by number" "$F" x:0:0.2 number:1e-3,2e-3,3e-3:0.3,0.45,0.25 10000
+$C moments "table by mass" "$F" x:0.2:0.4 mass:1e-3,1.5e-3,2.5e-3:0.25,0.35,0.4 10000
+$C moments "lognormal" "$F" x:0.4:0.6 lognormal:2e-3:6e-4:1e-3:3.5e-3 10000
 
 # the same lognormal source (k = 2, same seed) into a box it fills
 run 1 "$W/full" $ONE -domain_lo 0,0,0 -domain_hi 0.04,0.04,0.04 -dem_box 0,0,0,0.04,0.04,0.04 -dem_insert_2_region box -dem_insert_2_box 0,0,0,0.04,0.04,0.04 -dem_insert_2_count 4000 -dem_insert_2_psd $LOGN
@@ -61,7 +61,7 @@ phi=$(sed -n 's/^bed: packing fraction \([0-9.]*\).*/\1/p' "$W/full/log")
 if [ $# -eq 2 ] && [ "$1" -gt 500 ] && [ "$2" = 0 ] && [ "${short:-0}" -gt 0 ]; then
   echo "PASS sources sizes full region: $1 particles placed before one found no room (shortfall $short, solids fraction $phi), their diameters bitwise those of the dilute run's first $1, in id order"
 else echo "FAIL sources sizes full region: $1 compared, $2 differing from the dilute run (expected > 500, 0), shortfall $short (expected > 0)"; fi
-$C moments "full region" "$W/full/out/sable_000001.h5" - lognormal:2e-3:6e-4:1e-3:3.5e-3
+$C moments "full region" "$W/full/out/sable_000001.h5" - lognormal:2e-3:6e-4:1e-3:3.5e-3 500
 
 # mass rate and total mass
 RHO=2500
