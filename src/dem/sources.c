@@ -513,8 +513,11 @@ static PetscErrorCode DemSourceRound(Dem dem, DemSource *s, const DemSrcRound *r
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(r->K + 1, &cand, r->K + 1, &blk));
-  if (!r->own) d = DemSourceDiameter(s, n0);
-  for (PetscInt c = 0; c < r->K; c++) DemSourceCandidate(dem, s, s->cand + c, r->own ? DemSourceDiameter(s, n0 + dem_src_slot(r, c)) : d, &cand[c]);
+  for (PetscInt c = 0, tcur = -1; c < r->K; c++) { /* a slot's candidates share its particle's diameter */
+    const PetscInt t = r->own ? dem_src_slot(r, c) : 0;
+    if (t != tcur) d = DemSourceDiameter(s, n0 + (tcur = t));
+    DemSourceCandidate(dem, s, s->cand + c, d, &cand[c]);
+  }
   PetscCall(DemSourceBlocked(dem, s, r->K, cand, blk));
   DemPsdRange(&s->psd, &dmin, &dmax);
   const double reach = 0.5 * dmax + dem->shapes.r_source_max; /* this source's and any source's radii */
