@@ -480,34 +480,36 @@ static inline ConvexPose DemPose(const double *x, const double *q)
   ConvexPose p = {{x[0], x[1], x[2]}, {q[0], q[1], q[2], q[3]}};
   return p;
 }
-PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c);                                                               /* convex_contacts.c: the forces' narrow phase */
-PetscErrorCode DemContactsWallsConvex(Dem dem);                                                                                                       /* convex_contacts.c */
-PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax);                                                                /* convex_diag.c */
-PetscErrorCode DemConvexWriteSurface(Dem dem, const double *x, Io io);                                                                                /* convex_diag.c */
-PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                               /* rotation.c */
-PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                              /* rotation.c */
-                                                                                                                                                      /* external.c */
-PetscErrorCode DemExternalCheckpointCheck(Dem dem, IoCkpt ck);                                                                                        /* external.c: a coupled checkpoint for a coupled case, a dry one for a dry case */
-void           DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h);                                              /* external.c */
-PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2); /* integrate.c */
-PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt);                  /* integrate.c */
-PetscErrorCode DemInsertSetFromOptions(Dem dem);                                                                                                      /* insert.c */
-PetscErrorCode DemInsert(Dem dem);                                                                                                                    /* insert.c */
-PetscErrorCode DemInsertRestartSizes(Dem dem);                                                                                                        /* insert.c */
-double         DemLatticeSpacing(Dem dem);                                                                                                            /* insert.c */
-PetscErrorCode DemSourcesSetFromOptions(Dem dem);                                                                                                     /* sources.c */
-PetscErrorCode DemSourcesSetUp(Dem dem);                                                                                                              /* sources.c: after the time step is known */
-PetscBool      DemSourcesDue(Dem dem);                                                                                                                /* sources.c: a batch is placed at this step (same on every rank) */
-PetscErrorCode DemSourcesPlace(Dem dem);                                                                                                              /* sources.c: collective; the batch, pending until the rebuild */
-PetscErrorCode DemSourcesAddPending(Dem dem);                                                                                                         /* sources.c: in DemRebuild, ghosts dropped */
-PetscErrorCode DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                                                                             /* sources.c */
-PetscErrorCode DemSourcesDestroy(Dem dem);                                                                                                            /* sources.c */
-double         DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
-PetscErrorCode DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
-PetscErrorCode DemRebuild(Dem dem);                                                                                                                   /* rebuild.c */
-PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt caprec);                                                              /* rebuild.c */
-PetscErrorCode DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap);                                                                         /* checkpoint_remap.c: another rank count or other boxes */
-PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck);                                                                                            /* checkpoint_remap.c */
+PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c);                                                                         /* convex_contacts.c: the forces' narrow phase */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                                                                                                                 /* convex_contacts.c */
+PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax);                                                                          /* convex_diag.c */
+PetscErrorCode DemConvexWriteSurface(Dem dem, const double *x, Io io);                                                                                          /* convex_diag.c */
+PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                                         /* rotation.c */
+PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                                        /* rotation.c */
+                                                                                                                                                                /* external.c */
+PetscErrorCode           DemExternalCheckpointCheck(Dem dem, IoCkpt ck);                                                                                        /* external.c: a coupled checkpoint for a coupled case, a dry one for a dry case */
+void                     DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h);                                              /* external.c */
+PetscErrorCode           DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2); /* integrate.c */
+PetscErrorCode           DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt);                  /* integrate.c */
+PetscErrorCode           DemInsertSetFromOptions(Dem dem);                                                                                                      /* insert.c */
+PetscErrorCode           DemInsert(Dem dem);                                                                                                                    /* insert.c */
+PetscErrorCode           DemInsertRestartSizes(Dem dem);                                                                                                        /* insert.c */
+double                   DemLatticeSpacing(Dem dem);                                                                                                            /* insert.c */
+PetscErrorCode           DemSourcesSetFromOptions(Dem dem);                                                                                                     /* sources_options.c */
+PetscErrorCode           DemSourcesSetUp(Dem dem);                                                                                                              /* sources_options.c: after the time step is known */
+double                   DemSourceMass(Dem dem, const DemSource *s, double d);                                                                                  /* sources_options.c: a particle of diameter d (kg) */
+extern const char *const DemSourceRegionNames[];                                                                                                                /* sources_options.c: box, cylinder, patch */
+PetscBool                DemSourcesDue(Dem dem);                                                                                                                /* sources.c: a batch is placed at this step (same on every rank) */
+PetscErrorCode           DemSourcesPlace(Dem dem);                                                                                                              /* sources.c: collective; the batch, pending until the rebuild */
+PetscErrorCode           DemSourcesAddPending(Dem dem);                                                                                                         /* sources.c: in DemRebuild, ghosts dropped */
+PetscErrorCode           DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                                                                             /* sources.c */
+PetscErrorCode           DemSourcesDestroy(Dem dem);                                                                                                            /* sources.c */
+double                   DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
+PetscErrorCode           DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
+PetscErrorCode           DemRebuild(Dem dem);                                                                                                                   /* rebuild.c */
+PetscErrorCode           DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt caprec);                                                              /* rebuild.c */
+PetscErrorCode           DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap);                                                                         /* checkpoint_remap.c: another rank count or other boxes */
+PetscErrorCode           DemCheckpointReadRemap(Dem dem, IoCkpt ck);                                                                                            /* checkpoint_remap.c */
 
 /* Outlets and the mass balance (sinks.c): called by dem.c (DemStep), rebuild.c and the
  * checkpoints; sinks.c calls particles.c and diag.c only. */

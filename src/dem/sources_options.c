@@ -1,0 +1,238 @@
+/* The options of the particle sources (-dem_insert_<k>_*, k = 0..9) and their set-up checks:
+ * the region (box, cylinder, patch) and its bounds, the rate or total, times, velocity,
+ * orientation, shape, seed, period, attempts and the size distribution (psd.h); after the time
+ * step is known, the default period (200 steps), the patch's slab depth, and the refusals that
+ * need them (a region outside the domain or thinner than the largest diameter, a batch larger
+ * than the region holds at random close packing, a patch stream that does not leave it).
+ * What the sources do with these: sources.c. */
+#include "dem/dem_impl.h"
+
+#define DEM_SRC_DENSE        0.64 /* random close packing: no batch can hold more */
+#define DEM_SRC_PERIOD_STEPS 200  /* default period, in time steps */
+
+static const char *const DemSourceRegionOption[DEM_MAX_SOURCES] = {"-dem_insert_0_region", "-dem_insert_1_region", "-dem_insert_2_region", "-dem_insert_3_region", "-dem_insert_4_region", "-dem_insert_5_region", "-dem_insert_6_region", "-dem_insert_7_region", "-dem_insert_8_region", "-dem_insert_9_region"};
+static const char *const DemSourceOrientOption[DEM_MAX_SOURCES] = {"-dem_insert_0_random_orientation", "-dem_insert_1_random_orientation", "-dem_insert_2_random_orientation", "-dem_insert_3_random_orientation", "-dem_insert_4_random_orientation", "-dem_insert_5_random_orientation", "-dem_insert_6_random_orientation", "-dem_insert_7_random_orientation", "-dem_insert_8_random_orientation", "-dem_insert_9_random_orientation"};
+const char *const        DemSourceRegionNames[]                 = {"box", "cylinder", "patch"};
+
+/* The geometry option of the region, read into s->g. */
+static PetscErrorCode DemSourceGeometryOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s)
+{
+  char      opt[64];
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  if (s->region == DEM_SRC_BOX) {
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_box", k));
+    PetscCall(SableOptionsRealN(opt, "Source region: box xlo,ylo,zlo,xhi,yhi,zhi", "m", s->g, 0, 6, &set));
+    for (int d = 0; d < 3 && set; d++) PetscCheck(s->g[3 + d] > s->g[d], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: upper bound %g must exceed lower bound %g on axis %d", opt, (double)s->g[3 + d], (double)s->g[d], d);
+  } else if (s->region == DEM_SRC_CYLINDER) {
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_cylinder", k));
+    PetscCall(SableOptionsRealN(opt, "Source region: cylinder centre cx,cy,cz, axis ax,ay,az, radius R, length L", "m", s->g, 0, 8, &set));
+    const double l = set ? sqrt(dem_dot(s->g + 3, s->g + 3)) : 0;
+    PetscCheck(!set || (l > 0 && s->g[6] > 0 && s->g[7] > 0), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the axis must be non-zero and R %g, L %g > 0", opt, (double)s->g[6], (double)s->g[7]);
+    for (int d = 0; d < 3 && set; d++) s->g[3 + d] /= l;
+  } else {
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_patch", k));
+    PetscCall(SableOptionsRealN(opt, "Source region: rectangle with corners p0, p1, p2 (p1-p0 perpendicular to p2-p0); the stream leaves towards (p1-p0)x(p2-p0)", "m", s->g, 0, 9, &set));
+    double e1[3], e2[3];
+    for (int d = 0; d < 3 && set; d++) {
+      e1[d] = s->g[3 + d] - s->g[d];
+      e2[d] = s->g[6 + d] - s->g[d];
+    }
+    const double l1 = set ? sqrt(dem_dot(e1, e1)) : 0, l2 = set ? sqrt(dem_dot(e2, e2)) : 0;
+    PetscCheck(!set || (l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular", opt);
+    if (set) {
+      dem_cross(e1, e2, s->n);
+      for (int d = 0; d < 3; d++) {
+        s->n[d] /= l1 * l2;
+        s->g[3 + d] = e1[d];
+        s->g[6 + d] = e2[d];
+      }
+    }
+  }
+  PetscCheck(set, dem->comm, PETSC_ERR_ARG_WRONG, "%s %s needs %s", DemSourceRegionOption[k], DemSourceRegionNames[s->region], opt);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The rates, totals, times and kinematics of source k. */
+static PetscErrorCode DemSourceRateOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s)
+{
+  char      o[6][64];
+  PetscBool set[6];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(o[0], sizeof o[0], "-dem_insert_%d_rate", k));
+  PetscCall(PetscSNPrintf(o[1], sizeof o[1], "-dem_insert_%d_mass_rate", k));
+  PetscCall(PetscSNPrintf(o[2], sizeof o[2], "-dem_insert_%d_count", k));
+  PetscCall(PetscSNPrintf(o[3], sizeof o[3], "-dem_insert_%d_mass", k));
+  PetscCall(PetscSNPrintf(o[4], sizeof o[4], "-dem_insert_%d_start", k));
+  PetscCall(PetscSNPrintf(o[5], sizeof o[5], "-dem_insert_%d_stop", k));
+  PetscCall(SableOptionsReal(o[0], "Insertion rate in particles per second (0: none)", "1/s", "[0,inf)", 0, &s->rate, &set[0]));
+  PetscCall(SableOptionsReal(o[1], "Insertion rate in mass per second (0: none)", "kg/s", "[0,inf)", 0, &s->mass_rate, &set[1]));
+  PetscCall(SableOptionsInt(o[2], "Total number of particles to insert (default: no total)", NULL, "[0,inf)", -1, &s->count, &set[2]));
+  PetscCall(SableOptionsReal(o[3], "Total mass to insert; the last particle may pass it by less than its own mass (default: no total)", "kg", "[0,inf)", -1, &s->mass, &set[3]));
+  PetscCall(SableOptionsReal(o[4], "Time of the first batch", "s", "[0,inf)", 0, &s->start, &set[4]));
+  PetscCall(SableOptionsReal(o[5], "Time after which no batch is placed (default: never)", "s", "(0,inf)", -1, &s->stop, &set[5]));
+  PetscCheck(!(s->rate > 0 && s->mass_rate > 0), dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the rate of source %d: give one of them", o[0], o[1], k);
+  PetscCheck(!(set[2] && set[3]), dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the total of source %d: give one of them", o[2], o[3], k);
+  PetscCheck(s->rate > 0 || s->mass_rate > 0 || set[2] || set[3], dem->comm, PETSC_ERR_ARG_WRONG, "%s: give a rate (%s or %s) or a total (%s or %s)", DemSourceRegionOption[k], o[0], o[1], o[2], o[3]);
+  PetscCheck(!set[5] || s->stop > s->start, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be after %s %g (s)", o[5], (double)s->stop, o[4], (double)s->start);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Velocity, orientation, shape, seed, period, attempts and sizes of source k. */
+static PetscErrorCode DemSourceParticleOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s)
+{
+  char      opt[64];
+  PetscBool set;
+  double    dmin, dmax;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_velocity", k));
+  PetscCall(SableOptionsRealN(opt, "Initial velocity of the inserted particles vx,vy,vz", "m/s", s->v, 3, 3, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_velocity_spread", k));
+  PetscCall(SableOptionsReal(opt, "Each velocity component gets a uniform random term in +-this", "m/s", "[0,inf)", 0, &s->vspread, NULL));
+  s->random_orient = dem->shapes.convex;
+  PetscCall(PetscOptionsBool(DemSourceOrientOption[k], "Uniformly random orientations (default: for convex shapes)", NULL, s->random_orient, &s->random_orient, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_shape", k));
+  PetscCall(SableOptionsInt(opt, "Shape (material) index of the inserted particles, as in -dem_radius / -dem_shape", NULL, "[0,inf)", 0, &s->shape, NULL));
+  PetscCheck(s->shape < dem->shapes.nshape, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT " must be in [0, %" PetscInt_FMT "] (the shapes of -dem_radius or -dem_shape)", opt, s->shape, dem->shapes.nshape - 1);
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_seed", k));
+  PetscCall(SableOptionsInt(opt, "Seed of the source's candidates (positions, sizes, velocities, orientations)", NULL, "[0,inf)", k + 1, &s->seed, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_period", k));
+  PetscCall(SableOptionsReal(opt, "Time between batches; each batch costs a list rebuild (default 200 time steps)", "s", "(0,inf)", -1, &s->period, &set));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_attempts", k));
+  PetscCall(SableOptionsInt(opt, "Candidates drawn per particle of a batch before the rest is carried to the next batch", NULL, "[1,inf)", 50, &s->attempts, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d", k));
+  PetscCall(DemPsdSetFromOptions(PetscOptionsObject, dem->comm, opt, 2 * dem->shapes.shp[s->shape].r, &s->psd));
+  DemPsdRange(&s->psd, &dmin, &dmax);
+  if (PetscAbsReal(dmin - 2 * dem->shapes.shp[s->shape].r) > 1e-12 * dmin || PetscAbsReal(dmax - dmin) > 1e-12 * dmin) {
+    PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "%s_psd: a source of convex shapes inserts its shape's size (bounding diameter %g m), not a distribution", opt, (double)(2 * dem->shapes.shp[s->shape].r));
+    PetscCall(DemSetOwnSizes(dem, 0.5 * dmin, 0.5 * dmax)); /* spheres of their own sizes: reach, cells and time step cover them */
+  } else {
+    dem->shapes.r_source_max = PetscMax(dem->shapes.r_source_max, 0.5 * dmax);
+    dem->shapes.r_source_min = dem->shapes.r_source_min > 0 ? PetscMin(dem->shapes.r_source_min, 0.5 * dmin) : 0.5 * dmin;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The suffixes of a source's options: any of them without its _region is an error. */
+static const char *const DemSourceSuffixes[] = {"box", "cylinder", "patch", "rate", "mass_rate", "count", "mass", "start", "stop", "velocity", "velocity_spread", "random_orientation", "shape", "seed", "period", "attempts", "psd", "psd_mean", "psd_std", "psd_min", "psd_max", "psd_diameters", "psd_fractions", "psd_classes"};
+
+PetscErrorCode DemSourcesSetFromOptions(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(dem->comm, NULL, "DEM particle sources", NULL);
+  for (int k = 0; k < DEM_MAX_SOURCES; k++) {
+    DemSource *s      = &dem->src.s[dem->src.n];
+    PetscInt   region = 0;
+    PetscBool  set;
+    PetscCall(PetscOptionsEList(DemSourceRegionOption[k], "Particle source: the region candidates are drawn in", NULL, DemSourceRegionNames, 3, DemSourceRegionNames[0], &region, &set));
+    if (!set) {
+      for (size_t a = 0; a < sizeof DemSourceSuffixes / sizeof DemSourceSuffixes[0]; a++) {
+        char      opt[64];
+        PetscBool has;
+        PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_%s", k, DemSourceSuffixes[a]));
+        PetscCall(PetscOptionsHasName(NULL, NULL, opt, &has));
+        PetscCheck(!has, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s (box, cylinder or patch)", opt, DemSourceRegionOption[k]);
+      }
+      PetscBool ro = PETSC_FALSE; /* read (not given) so that -help lists the flag of every source */
+      PetscCall(PetscOptionsBool(DemSourceOrientOption[k], "Uniformly random orientations (default: for convex shapes)", NULL, ro, &ro, NULL));
+      continue;
+    }
+    PetscCall(PetscMemzero(s, sizeof *s));
+    s->region = (DemSourceRegion)region;
+    PetscCall(DemSourceGeometryOptions(PetscOptionsObject, dem, k, s));
+    PetscCall(DemSourceRateOptions(PetscOptionsObject, dem, k, s));
+    PetscCall(DemSourceParticleOptions(PetscOptionsObject, dem, k, s));
+    s->k = k;
+    dem->src.n++;
+  }
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The bounding box of the region (m) and its volume (m^3). */
+static void DemSourceBounds(const DemSource *s, double lo[3], double hi[3], double *vol)
+{
+  const double *g = s->g;
+  if (s->region == DEM_SRC_BOX) {
+    for (int d = 0; d < 3; d++) {
+      lo[d] = g[d];
+      hi[d] = g[3 + d];
+    }
+    *vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+  } else if (s->region == DEM_SRC_CYLINDER) {
+    for (int d = 0; d < 3; d++) {
+      const double e = PetscAbsReal(g[3 + d]) * 0.5 * g[7] + g[6] * sqrt(PetscMax(0.0, 1 - g[3 + d] * g[3 + d]));
+      lo[d]          = g[d] - e;
+      hi[d]          = g[d] + e;
+    }
+    *vol = PETSC_PI * g[6] * g[6] * g[7];
+  } else {
+    for (int d = 0; d < 3; d++) lo[d] = hi[d] = g[d];
+    for (int c = 1; c < 8; c++)
+      for (int d = 0; d < 3; d++) {
+        const double x = g[d] + (c & 1 ? g[3 + d] : 0) + (c & 2 ? g[6 + d] : 0) + (c & 4 ? s->depth * s->n[d] : 0);
+        lo[d]          = PetscMin(lo[d], x);
+        hi[d]          = PetscMax(hi[d], x);
+      }
+    *vol = sqrt(dem_dot(g + 3, g + 3) * dem_dot(g + 6, g + 6)) * s->depth;
+  }
+}
+
+/* Mass (kg) of a particle of diameter d from source s: its shape's at the shape's size. */
+double DemSourceMass(Dem dem, const DemSource *s, double d)
+{
+  const DemShape *sh = &dem->shapes.shp[s->shape];
+  if (sh->cvx || PetscAbsReal(d - 2 * sh->r) <= 1e-12 * d) return sh->m;
+  return dem_sphere_mass(sh->rho, 0.5 * d); /* the mass the particle will carry (DemParticleSetSize) */
+}
+
+/* The smallest extent of the region a particle must fit in (m). */
+static double DemSourceThinnest(const DemSource *s)
+{
+  const double *g = s->g;
+  if (s->region == DEM_SRC_BOX) return PetscMin(PetscMin(g[3] - g[0], g[4] - g[1]), g[5] - g[2]);
+  if (s->region == DEM_SRC_CYLINDER) return PetscMin(2 * g[6], g[7]);
+  return PetscMin(sqrt(dem_dot(g + 3, g + 3)), sqrt(dem_dot(g + 6, g + 6)));
+}
+
+/* Collective. After the time step and the shapes' masses: the period, the patch's depth, the
+ * region's bounds, the checks that need them, the mean mass. */
+PetscErrorCode DemSourcesSetUp(Dem dem)
+{
+  const double dt = dem->clock.dt;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dem->src.n; i++) {
+    DemSource   *s  = &dem->src.s[i];
+    const char  *rn = DemSourceRegionNames[s->region];
+    const int    k  = (int)s->k;
+    double       dmin, dmax, vol, vn = dem_dot(s->v, s->n);
+    char         go[64];
+    const double rho = dem->shapes.shp[s->shape].rho;
+    PetscCall(PetscSNPrintf(go, sizeof go, "-dem_insert_%d_%s", k, rn));
+    DemPsdRange(&s->psd, &dmin, &dmax);
+    if (s->period < 0) s->period = DEM_SRC_PERIOD_STEPS * dt;
+    PetscCheck(s->period >= dt, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_period %g must be at least the time step %g s", k, (double)s->period, dt);
+    PetscCheck(s->region != DEM_SRC_PATCH || vn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_velocity must leave the patch: its component %g along the patch normal (%g,%g,%g) must be > 0 (m/s)", k, vn, (double)s->n[0], (double)s->n[1], (double)s->n[2]);
+    s->depth = PetscMax(vn * s->period, dmax);
+    DemSourceBounds(s, s->lo, s->hi, &vol);
+    PetscCheck(DemSourceThinnest(s) >= dmax, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the region is %g m thin, less than the largest diameter %g m", go, DemSourceThinnest(s), dmax);
+    for (int d = 0; d < 3; d++) {
+      const double tol = 1e-12 * dem->dom->len[d];
+      PetscCheck(s->lo[d] >= dem->dom->lo[d] - tol && s->hi[d] <= dem->dom->hi[d] + tol, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the region spans [%g, %g] along %c, outside the domain [%g, %g] (-domain_lo/-domain_hi)", go, s->lo[d], s->hi[d], "xyz"[d], (double)dem -> dom -> lo[d], (double)dem -> dom -> hi[d]);
+    }
+    s->m_mean = dem->shapes.shp[s->shape].cvx ? dem->shapes.shp[s->shape].m : DemSourceMass(dem, s, cbrt(DemPsdMeanCube(&s->psd)));
+    {
+      const double per = s->rate > 0 ? s->rate * s->period : s->mass_rate * s->period / s->m_mean;
+      const double vp = s->m_mean / rho, cap = DEM_SRC_DENSE * vol / vp;
+      const char  *ropt  = s->rate > 0 ? "rate" : "mass_rate";
+      const double value = s->rate > 0 ? s->rate : s->mass_rate;
+      PetscCheck(per <= cap, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_%s %g x period %g s = %.4g particles per batch, more than the region holds at random close packing (%.4g = %g x %.4g m^3 / %.4g m^3 per particle): lower the rate or -dem_insert_%d_period, or enlarge %s", k, ropt, value, (double)s->period, per, cap, DEM_SRC_DENSE, vol, vp, k, go);
+      s->warn_at = (PetscInt)PetscMax(2.0, 2 * PetscCeilReal(per));
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
