@@ -190,7 +190,10 @@ PetscErrorCode DemCheckTimeStepSizes(Dem dem)
             PetscReal tc = 0, e;
             PetscCall(DemGetContactFiguresSized(dem, s, t, r[a], r[b], dem->contact.vimpact, &tc, &e));
             if (pass == 0 && dem->clock.dt_tc > 0) dem->clock.dt = PetscMin(dem->clock.dt, dem->clock.dt_tc * tc);
-            PetscCheck(pass == 0 || dem->clock.dt <= dem->clock.dt_frac * tc, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g s exceeds -dem_dt_max_fraction %g x the contact time %g s (radius %g m with %s%g m, the sizes a source adds): use -dem_dt <= %g", dem->clock.dt_tc > 0 ? "-dem_dt_tc gives dt" : "-dem_dt", (double)dem->clock.dt, (double)dem->clock.dt_frac, (double)tc, r[a], t < 0 ? "a wall, " : "radius ", t < 0 ? 0.0 : r[b], (double)(dem->clock.dt_frac * tc));
+            if (pass == 0 || dem->clock.dt <= dem->clock.dt_frac * tc) continue;
+            char with[64] = "a wall";
+            if (t >= 0) PetscCall(PetscSNPrintf(with, sizeof with, "a sphere of radius %g m", (double)r[b]));
+            SETERRQ(dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g s exceeds -dem_dt_max_fraction %g x the contact time %g s of a sphere of radius %g m with %s (sizes of their own, from a source's size distribution or an init file): use -dem_dt <= %g, or raise the smallest size (a source's -dem_insert_<k>_psd_min)", dem->clock.dt_tc > 0 ? "-dem_dt_tc gives dt" : "-dem_dt", (double)dem->clock.dt, (double)dem->clock.dt_frac, (double)tc, (double)r[a], with, (double)(dem->clock.dt_frac * tc));
           }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
