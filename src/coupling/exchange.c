@@ -4,7 +4,7 @@
 #include "coupling/coupling_impl.h"
 
 /* Drag coefficient, fluid velocity and buoyancy at the particles; zeroes the impulses. */
-static PetscErrorCode CplSetParticleDrag(Cpl cpl)
+PetscErrorCode CplSetParticleDrag(Cpl cpl)
 {
   DemArrays   pa;
   DemExternal ex;
@@ -36,7 +36,7 @@ static PetscErrorCode CplSetParticleDrag(Cpl cpl)
 /* beta and u_s on the faces from K and the particle velocities at the new positions, and the
  * impulses of the DEM substeps just taken (for the momentum owed after the fluid step), in one
  * pass; the source is the momentum owed from the previous step. */
-static PetscErrorCode CplSetFluidDrag(Cpl cpl)
+PetscErrorCode CplSetFluidDrag(Cpl cpl)
 {
   DemArrays          pa;
   DemExternal        ex;
@@ -128,28 +128,65 @@ static PetscErrorCode CplDragTotal(Cpl cpl, PetscReal drag[3])
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CplStep(Cpl cpl, CplStats *st)
+/* Adaptive steps (-fluid_adaptive_dt, a moving bed): the step is the largest whole number of DEM
+ * steps, at most -cpl_substeps, within 0.9 of the fluid's stability limit at the step's start
+ * (the margin the fluid's own adaptive step takes), and not beyond CplSetEndTime. The DEM step
+ * stays -dem_dt, so the particles' clock stays on its grid and a restart needs nothing more than
+ * the clocks already in the checkpoint: the step is computed afresh from the fields. */
+static PetscErrorCode CplChooseStep(Cpl cpl)
 {
+  PetscReal dtmax, fit;
+  PetscInt  n = cpl->substeps;
+
   PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(st, sizeof *st));
-  PetscCall(CplSetParticleDrag(cpl));
-  if (!cpl->frozen) {
-    PetscCall(PetscLogEventBegin(cpl->ev_dem, 0, 0, 0, 0));
-    for (PetscInt s = 0; s < cpl->substeps; s++) PetscCall(DemStep(cpl->dem));
-    PetscCall(PetscLogEventEnd(cpl->ev_dem, 0, 0, 0, 0));
+  PetscCall(FluidGetStableTimeStep(cpl->fl, &dtmax));
+  fit = 0.9 * dtmax / cpl->dtd;
+  if (fit < (PetscReal)n) n = (PetscInt)PetscFloorReal(fit);
+  PetscCheck(n >= 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "at t = %g s the fluid's stability limit %g s (-fluid_cfl_max, -fluid_viscous_number_max) is below one DEM step -dem_dt %g s: lower -dem_dt, or use -fluid_viscous implicit if the viscous limit binds", (double)cpl->t, (double)dtmax, (double)cpl->dtd);
+  if (cpl->t_end >= 0) {
+    const PetscReal left = PetscFloorReal((cpl->t_end - cpl->t) / cpl->dtd + 0.5);
+    if (left >= 1 && left < (PetscReal)n) n = (PetscInt)left;
   }
-  PetscCall(CplProjectPorosity(cpl, st));
-  PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
-  PetscCall(CplSetFluidDrag(cpl));
-  PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
+  cpl->nsub = n;
+  cpl->dt   = n * cpl->dtd;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The fluid's step: the drag fields and the owed momentum in two-way coupling; in one-way
+ * coupling the fluid is single phase (porosity 1, no drag fields: they stay 0). */
+static PetscErrorCode CplFluidPart(Cpl cpl, CplStats *st)
+{
   PetscLogDouble f0, f1;
+
+  PetscFunctionBeginUser;
+  if (cpl->mode == CPL_MODE_TWOWAY) {
+    PetscCall(CplProjectPorosity(cpl, st));
+    PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
+    PetscCall(CplSetFluidDrag(cpl));
+    PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
+  } else st->eps_min = 1;
   PetscCall(PetscTime(&f0));
   PetscCall(FluidStep(cpl->fl, cpl->dt, &st->fluid));
   PetscCall(PetscTime(&f1));
   cpl->t_fluid += f1 - f0;
-  PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "the fluid cut its step to %g s (-fluid_adaptive_dt); a coupled run needs the fixed step %g s: lower -dem_dt or -cpl_substeps instead", (double)st->fluid.dt, (double)cpl->dt);
+  PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, cpl->adaptive ? "the fluid cut the coupling step %g s to %g s after the DEM substeps (the porosity changed the viscous limit by more than the 10%% margin): lower -cpl_substeps or use -fluid_viscous implicit" : (cpl->frozen ? "the fluid cut its step %g s to %g s (-fluid_adaptive_dt): a frozen bed takes the fixed step -fluid_dt; lower -fluid_dt instead" : "the fluid cut its step %g s to %g s"), (double)cpl->dt, (double)st->fluid.dt);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplStep(Cpl cpl, CplStats *st)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(st, sizeof *st));
+  if (cpl->adaptive) PetscCall(CplChooseStep(cpl));
+  PetscCall(CplSetParticleDrag(cpl));
+  if (!cpl->frozen) {
+    PetscCall(PetscLogEventBegin(cpl->ev_dem, 0, 0, 0, 0));
+    for (PetscInt s = 0; s < cpl->nsub; s++) PetscCall(DemStep(cpl->dem));
+    PetscCall(PetscLogEventEnd(cpl->ev_dem, 0, 0, 0, 0));
+  }
+  PetscCall(CplFluidPart(cpl, st));
   PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
-  PetscCall(CplComputeOwed(cpl, &st->owed_norm));
+  if (cpl->mode == CPL_MODE_TWOWAY) PetscCall(CplComputeOwed(cpl, &st->owed_norm));
   PetscCall(CplDragTotal(cpl, st->drag));
   PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
   cpl->t += cpl->dt;

@@ -103,6 +103,30 @@ static PetscErrorCode FluidCheckStability(Fluid fl, PetscReal *dt, FluidStats *s
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode FluidGetStableTimeStep(Fluid fl, PetscReal *dtmax)
+{
+  const PetscScalar *u, *eps;
+  FluidLimits        lim;
+  PetscInt           cell[3];
+  PetscReal          cfl, vis;
+
+  PetscFunctionBeginUser;
+  PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidGetStableTimeStep");
+  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+  PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
+  PetscCall(VecGetArrayRead(fl->uloc, &u));
+  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
+  FluidLocalLimits(fl, 1.0, u, eps, &lim); /* both numbers are proportional to dt */
+  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
+  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(FluidMaxLoc(fl, lim.cfl, lim.ccell, &cfl, cell));
+  PetscCall(FluidMaxLoc(fl, lim.vis, lim.vcell, &vis, cell));
+  *dtmax = PETSC_MAX_REAL;
+  if (cfl > 0) *dtmax = fl->cfl_max / cfl;
+  if (fl->visc == FLUID_VISC_EXPLICIT && vis > 0) *dtmax = PetscMin(*dtmax, fl->visc_max / vis);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The predictor right-hand side into fl->uhat (active faces); fixed faces keep their value. */
 static PetscErrorCode FluidPredictorRHS(Fluid fl, PetscReal dt, const PetscScalar *eps0, const PetscScalar *p)
 {
