@@ -16,6 +16,8 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
   PetscCall(DemGetExternal(cpl->dem, &ex));
   PetscCall(PetscMalloc1(pa.nlocal + 1, &eps));
   PetscCall(CplInterpolate(cpl, ex.u, eps));
+  if (cpl->mode == CPL_MODE_ONEWAY) /* single phase: exactly 1, not the kernel sum's 1 +- roundoff (Beetstra's sqrt(1 - eps)) */
+    for (PetscInt p = 0; p < pa.nlocal; p++) eps[p] = 1;
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
