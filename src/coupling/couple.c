@@ -47,7 +47,7 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   c->kscale      = 1;
   c->eps_floor   = 0.2;
   c->relax_max   = 1;
-  c->init_rtol   = 1e-8;
+  c->init_rtol   = 1e-4;
   c->init_max    = 1000;
   c->t_end       = -1;
   c->ev_project  = ev[0];
