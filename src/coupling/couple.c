@@ -49,7 +49,6 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   c->relax_max   = 1;
   c->init_rtol   = 1e-4;
   c->init_max    = 1000;
-  c->t_end       = -1;
   c->ev_project  = ev[0];
   c->ev_drag     = ev[1];
   c->ev_exchange = ev[2];
@@ -147,13 +146,19 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscCheck(!cpl->frozen || !cpl->substeps_set, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_substeps %d is ignored with -dem_frozen (no DEM steps; the step is -fluid_dt): give one of them", (int)cpl->substeps);
   PetscCheck(!cpl->frozen || cpl->mode == CPL_MODE_TWOWAY, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_mode oneway with -dem_frozen: a frozen bed only acts on the fluid, one-way coupling only on the particles; nothing would be coupled");
   PetscCall(FluidGetAdaptive(cpl->fl, &cpl->adaptive));
-  cpl->adaptive = (PetscBool)(cpl->adaptive && !cpl->frozen);
-  cpl->dtd      = dtd;
-  cpl->nsub     = cpl->substeps;
+  cpl->dtd  = dtd;
+  cpl->dtf  = dtf;
+  cpl->nsub = cpl->substeps;
   if (cpl->frozen) cpl->dt = dtf;
   else {
     cpl->dt = cpl->substeps * dtd;
     PetscCheck(!fset || PetscAbsReal(dtf - cpl->dt) <= 1e-9 * cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_dt %g differs from -cpl_substeps %d x -dem_dt %g = %g: give one of them consistently (the fluid step is substeps x dt_dem)", (double)dtf, (int)cpl->substeps, (double)dtd, (double)cpl->dt);
+  }
+  {
+    char name[96];
+    if (cpl->frozen) PetscCall(PetscSNPrintf(name, sizeof name, "-fluid_dt"));
+    else PetscCall(PetscSNPrintf(name, sizeof name, "-cpl_substeps %d x -dem_dt %g s", (int)cpl->substeps, (double)dtd));
+    PetscCall(FluidSetTimeStepName(cpl->fl, name));
   }
   {
     CplStats st;
@@ -197,9 +202,10 @@ PetscErrorCode CplRedistribute(Cpl cpl)
 PetscErrorCode CplView(Cpl cpl, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->law], (int)cpl->substeps, (double)(cpl->adaptive ? cpl->substeps * cpl->dtd : cpl->dt), (double)cpl->kscale, (double)cpl->eps_floor, cpl->frozen ? ", frozen bed (no DEM steps)" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->law], (int)cpl->substeps, (double)(cpl->adaptive ? (cpl->frozen ? cpl->dtf : cpl->substeps * cpl->dtd) : cpl->dt), (double)cpl->kscale, (double)cpl->eps_floor, cpl->frozen ? ", frozen bed (no DEM steps)" : ""));
   if (cpl->mode == CPL_MODE_ONEWAY) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: one-way (-cpl_mode oneway): the fluid acts on the particles only; the fluid is single phase (porosity 1, no drag reaction)\n"));
-  if (cpl->adaptive) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): 1 to %d DEM steps of %g s per fluid step, within 0.9 of the fluid's stability limit\n", (int)cpl->substeps, (double)cpl->dtd));
+  if (cpl->adaptive && cpl->frozen) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): at most -fluid_dt %g s, within 0.9 of the fluid's stability limit\n", (double)cpl->dtf));
+  else if (cpl->adaptive) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): 1 to %d DEM steps of %g s per fluid step, within 0.9 of the fluid's stability limit\n", (int)cpl->substeps, (double)cpl->dtd));
   if (cpl->init != CPL_INIT_REST) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: initial fluid %s%s\n", CplInitNames[cpl->init], cpl->restarting ? " (not applied: the fluid comes from the checkpoint)" : ""));
   if (cpl->init == CPL_INIT_STEADY && !cpl->restarting) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: the steady start converged in %d pseudo steps of %g s (-cpl_init_fluid_rtol %g)\n", (int)cpl->init_its, (double)(cpl->frozen ? cpl->dt : cpl->substeps * cpl->dtd), (double)cpl->init_rtol));
   PetscCall(CplPreflight(cpl, viewer, PETSC_FALSE));
@@ -253,14 +259,7 @@ PetscErrorCode CplGetClippedCount(Cpl cpl, PetscInt *count)
 PetscErrorCode CplGetStepQuantum(Cpl cpl, PetscReal *dq)
 {
   PetscFunctionBeginUser;
-  *dq = cpl->adaptive ? cpl->dtd : cpl->dt;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode CplSetEndTime(Cpl cpl, PetscReal t_end)
-{
-  PetscFunctionBeginUser;
-  cpl->t_end = t_end;
+  *dq = cpl->adaptive ? (cpl->frozen ? 1e-9 * cpl->dtf : cpl->dtd) : cpl->dt;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

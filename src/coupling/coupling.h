@@ -84,8 +84,6 @@ PetscErrorCode CplGetTimeStep(Cpl cpl, PetscReal *dt);
 /* The times the coupling steps end on are multiples of this (s): the coupling step itself, or
  * with adaptive steps (-fluid_adaptive_dt) the DEM step. Cadence tolerances use it. */
 PetscErrorCode CplGetStepQuantum(Cpl cpl, PetscReal *dq);
-/* Not collective. With adaptive steps, the last step ends on t_end (s) instead of beyond it. */
-PetscErrorCode CplSetEndTime(Cpl cpl, PetscReal t_end);
 /* Before CplSetUp: the fluid and the coupling will be read from a checkpoint, so set-up skips
  * the initial fluid state (-cpl_init_fluid). */
 PetscErrorCode CplSetRestarting(Cpl cpl, PetscBool on);

@@ -35,10 +35,9 @@ struct _p_Cpl {
   PetscReal rho, mu, g[3];
   /* state */
   PetscBool      frozen, correct;
-  PetscBool      adaptive; /* -fluid_adaptive_dt in a moving bed: nsub DEM steps of dtd per step */
+  PetscBool      adaptive; /* -fluid_adaptive_dt: nsub DEM steps of dtd per step (frozen: the fluid's step) */
   PetscInt       nsub;     /* DEM steps of the current step (substeps unless adaptive) */
-  PetscReal      dtd;      /* the DEM step (s) */
-  PetscReal      t_end;    /* CplSetEndTime (s; < 0: none): the last adaptive step ends on it */
+  PetscReal      dtd, dtf; /* the DEM step, -fluid_dt (s) */
   PetscReal      dt, t, cell_vol, eps_min0;
   PetscInt       step;
   PetscInt       clipped_total;

@@ -130,25 +130,28 @@ static PetscErrorCode CplDragTotal(Cpl cpl, PetscReal drag[3])
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Adaptive steps (-fluid_adaptive_dt, a moving bed): the step is the largest whole number of DEM
+/* Adaptive steps (-fluid_adaptive_dt). A frozen bed asks for -fluid_dt and takes what the fluid
+ * takes. A moving bed: the step is the largest whole number of DEM
  * steps, at most -cpl_substeps, within 0.9 of the fluid's stability limit at the step's start
- * (the margin the fluid's own adaptive step takes), and not beyond CplSetEndTime. The DEM step
- * stays -dem_dt, so the particles' clock stays on its grid and a restart needs nothing more than
- * the clocks already in the checkpoint: the step is computed afresh from the fields. */
+ * (the margin the fluid's own adaptive step takes). The DEM step stays -dem_dt, so the
+ * particles' clock stays on its grid. The step depends on the fields only, never on the run's
+ * end or cadences (a run may end up to one step past -cpl_t_end, as with fixed steps): so a run
+ * stopped at a checkpoint takes the uninterrupted run's steps, and a restart needs nothing
+ * beyond the clocks and fields already in the checkpoint. */
 static PetscErrorCode CplChooseStep(Cpl cpl)
 {
   PetscReal dtmax, fit;
   PetscInt  n = cpl->substeps;
 
   PetscFunctionBeginUser;
+  if (cpl->frozen) { /* no DEM steps: ask for -fluid_dt; the fluid cuts it */
+    cpl->dt = cpl->dtf;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(FluidGetStableTimeStep(cpl->fl, &dtmax));
   fit = 0.9 * dtmax / cpl->dtd;
   if (fit < (PetscReal)n) n = (PetscInt)PetscFloorReal(fit);
   PetscCheck(n >= 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "at t = %g s the fluid's stability limit %g s (-fluid_cfl_max, -fluid_viscous_number_max) is below one DEM step -dem_dt %g s: lower -dem_dt, or use -fluid_viscous implicit if the viscous limit binds", (double)cpl->t, (double)dtmax, (double)cpl->dtd);
-  if (cpl->t_end >= 0) {
-    const PetscReal left = PetscFloorReal((cpl->t_end - cpl->t) / cpl->dtd + 0.5);
-    if (left >= 1 && left < (PetscReal)n) n = (PetscInt)left;
-  }
   cpl->nsub = n;
   cpl->dt   = n * cpl->dtd;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -171,7 +174,8 @@ static PetscErrorCode CplFluidPart(Cpl cpl, CplStats *st)
   PetscCall(FluidStep(cpl->fl, cpl->dt, &st->fluid));
   PetscCall(PetscTime(&f1));
   cpl->t_fluid += f1 - f0;
-  PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, cpl->adaptive ? "the fluid cut the coupling step %g s to %g s after the DEM substeps (the porosity changed the viscous limit by more than the 10%% margin): lower -cpl_substeps or use -fluid_viscous implicit" : (cpl->frozen ? "the fluid cut its step %g s to %g s (-fluid_adaptive_dt): a frozen bed takes the fixed step -fluid_dt; lower -fluid_dt instead" : "the fluid cut its step %g s to %g s"), (double)cpl->dt, (double)st->fluid.dt);
+  if (cpl->frozen) cpl->dt = st->fluid.dt; /* no particle moved: the step the fluid took is the step */
+  PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "the fluid cut the coupling step %g s to %g s after the DEM substeps had run (the new porosity raised the viscous number beyond the 10%% margin of -fluid_adaptive_dt): lower -cpl_substeps or use -fluid_viscous implicit", (double)cpl->dt, (double)st->fluid.dt);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

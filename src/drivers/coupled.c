@@ -11,8 +11,8 @@
  * the height at the start, its mean over the progress lines of the second half, and at the end.
  * A one-way run (-cpl_mode oneway) has no bed lines: its fluid sees no porosity.
  * With -fluid_adaptive_dt the coupling steps vary in whole DEM steps (coupling/exchange.c): the
- * loop's end and cadences are then judged to half a DEM step, and the last step ends on
- * -cpl_t_end.
+ * loop's end and cadences are then judged to half a DEM step (the run ends at the first step
+ * end from -cpl_t_end on, as the steps do not look at the end: restarts stay exact).
  * A run is coupled when any -cpl_ or -fluid_ option is given (DriverIsCoupled).
  * Checkpoints (-io_checkpoint_interval, simulated seconds; drivers/checkpoint.c): the DEM's, the
  * fluid's and the coupling's exact state, and the driver's own (run/coupled: the sums of the
@@ -317,7 +317,6 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
   PetscCall(CoupledBedWeight(c->cpl, &c->col, &w));
   PetscCall(CplGetTime(c->cpl, &t, &c->s0));
   step = c->s0;
-  PetscCall(CplSetEndTime(c->cpl, r->t_end));
   PetscCall(CplGetStepQuantum(c->cpl, &dt)); /* the step, or the DEM step with adaptive steps */
   PetscCall(PetscTime(&t0));
   PetscCall(IoDue(c->io, t, &due));

@@ -67,6 +67,9 @@ PetscErrorCode FluidStep(Fluid fluid, PetscReal dt, FluidStats *stats);
  * for a fluid at rest with the implicit viscous term). A caller that picks its own step from it
  * (the coupling's adaptive step) takes a margin below it. */
 PetscErrorCode FluidGetStableTimeStep(Fluid fluid, PetscReal *dtmax);
+/* Not collective. How the caller sets the step (an option text such as "-cpl_substeps 5 x
+ * -dem_dt 0.001 s"): the stability errors then advise lowering it by name. */
+PetscErrorCode FluidSetTimeStepName(Fluid fluid, const char *name);
 /* Whether -fluid_adaptive_dt is on. Not collective. */
 PetscErrorCode FluidGetAdaptive(Fluid fluid, PetscBool *on);
 /* Initial states (init.c). Not collective: the inlets' velocity U (m/s, the superficial
