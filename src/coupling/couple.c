@@ -17,7 +17,9 @@
  * loses momentum to them and nothing is owed. */
 #include "coupling/coupling_impl.h"
 
-static const char *const CplDragNames[] = {"beetstra", "difelice", "gidaspow", "CplDragLaw", "CPL_DRAG_", NULL};
+static const char *const CplDragNames[] = {"beetstra", "difelice", "gidaspow", "schiller", "CplDragLaw", "CPL_DRAG_", NULL};
+static const char *const CplModeNames[] = {"twoway", "oneway", "CplMode", "CPL_MODE_", NULL};
+static const char *const CplInitNames[] = {"rest", "uniform", "steady", "CplInitFluid", "CPL_INIT_", NULL};
 
 PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
 {
@@ -45,6 +47,8 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   c->kscale      = 1;
   c->eps_floor   = 0.2;
   c->relax_max   = 1;
+  c->init_rtol   = 1e-4;
+  c->init_max    = 1000;
   c->ev_project  = ev[0];
   c->ev_drag     = ev[1];
   c->ev_exchange = ev[2];
@@ -84,7 +88,11 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
-  PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu)", NULL, CplDragNames, (PetscEnum)cpl->law, (PetscEnum *)&cpl->law, NULL));
+  PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu), schiller (Schiller-Naumann, single sphere)", NULL, CplDragNames, (PetscEnum)cpl->law, (PetscEnum *)&cpl->law, NULL));
+  PetscCall(PetscOptionsEnum("-cpl_mode", "twoway: fluid and particles act on each other; oneway: the fluid acts on the particles only (the fluid is single phase: porosity 1 everywhere, no drag reaction)", NULL, CplModeNames, (PetscEnum)cpl->mode, (PetscEnum *)&cpl->mode, NULL));
+  PetscCall(PetscOptionsEnum("-cpl_init_fluid", "Fluid velocity before the first step: rest, uniform (the inlet's superficial velocity over the porosity), steady (a steady solve through the initial bed held fixed)", NULL, CplInitNames, (PetscEnum)cpl->init, (PetscEnum *)&cpl->init, NULL));
+  PetscCall(SableOptionsReal("-cpl_init_fluid_rtol", "-cpl_init_fluid steady: stop when a pseudo step changes the velocity by less than this times its maximum", NULL, "(0,1)", cpl->init_rtol, &cpl->init_rtol, NULL));
+  PetscCall(SableOptionsInt("-cpl_init_fluid_max_steps", "-cpl_init_fluid steady: most pseudo steps (of the coupling step) before the run stops unconverged", NULL, "[1,inf)", cpl->init_max, &cpl->init_max, NULL));
   PetscCall(SableOptionsInt("-cpl_substeps", "DEM steps per fluid step; the fluid step is this times -dem_dt", NULL, "[1,inf)", cpl->substeps, &cpl->substeps, &cpl->substeps_set));
   PetscCall(SableOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d", NULL, "(0,inf)", cpl->kscale, &cpl->kscale, NULL));
   PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->eps_floor, &cpl->eps_floor, NULL));
@@ -136,18 +144,36 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscCall(FluidGetTimeStep(cpl->fl, &dtf, &fset));
   /* a frozen bed takes no DEM steps: the coupling step is the fluid's */
   PetscCheck(!cpl->frozen || !cpl->substeps_set, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_substeps %d is ignored with -dem_frozen (no DEM steps; the step is -fluid_dt): give one of them", (int)cpl->substeps);
+  PetscCheck(!cpl->frozen || cpl->mode == CPL_MODE_TWOWAY, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_mode oneway with -dem_frozen: a frozen bed only acts on the fluid, one-way coupling only on the particles; nothing would be coupled");
+  PetscCall(FluidGetAdaptive(cpl->fl, &cpl->adaptive));
+  cpl->dtd  = dtd;
+  cpl->dtf  = dtf;
+  cpl->nsub = cpl->substeps;
   if (cpl->frozen) cpl->dt = dtf;
   else {
     cpl->dt = cpl->substeps * dtd;
     PetscCheck(!fset || PetscAbsReal(dtf - cpl->dt) <= 1e-9 * cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_dt %g differs from -cpl_substeps %d x -dem_dt %g = %g: give one of them consistently (the fluid step is substeps x dt_dem)", (double)dtf, (int)cpl->substeps, (double)dtd, (double)cpl->dt);
   }
   {
+    char name[96];
+    if (cpl->frozen) PetscCall(PetscSNPrintf(name, sizeof name, "-fluid_dt"));
+    else PetscCall(PetscSNPrintf(name, sizeof name, "-cpl_substeps %d x -dem_dt %g s", (int)cpl->substeps, (double)dtd));
+    PetscCall(FluidSetTimeStepName(cpl->fl, name));
+  }
+  {
     CplStats st;
     PetscCall(CplProjectPorosity(cpl, &st));
     cpl->eps_min0 = st.eps_min;
   }
+  if (cpl->mode == CPL_MODE_ONEWAY) { /* the solid volume above stays the diagnostics' figure */
+    Vec eps;
+    PetscCall(FluidGetPorosity(cpl->fl, &eps));
+    PetscCall(VecSet(eps, 1.0));
+    cpl->eps_min0 = 1;
+  }
   PetscCall(FluidInitPorosity(cpl->fl));
   PetscCall(CplPreflight(cpl, NULL, PETSC_TRUE));
+  if (!cpl->restarting) PetscCall(CplInitFluidState(cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -176,7 +202,12 @@ PetscErrorCode CplRedistribute(Cpl cpl)
 PetscErrorCode CplView(Cpl cpl, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->law], (int)cpl->substeps, (double)cpl->dt, (double)cpl->kscale, (double)cpl->eps_floor, cpl->frozen ? ", frozen bed (no DEM steps)" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->law], (int)cpl->substeps, (double)(cpl->adaptive ? (cpl->frozen ? cpl->dtf : cpl->substeps * cpl->dtd) : cpl->dt), (double)cpl->kscale, (double)cpl->eps_floor, cpl->frozen ? ", frozen bed (no DEM steps)" : ""));
+  if (cpl->mode == CPL_MODE_ONEWAY) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: one-way (-cpl_mode oneway): the fluid acts on the particles only; the fluid is single phase (porosity 1, no drag reaction)\n"));
+  if (cpl->adaptive && cpl->frozen) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): at most -fluid_dt %g s, within 0.9 of the fluid's stability limit\n", (double)cpl->dtf));
+  else if (cpl->adaptive) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): 1 to %d DEM steps of %g s per fluid step, within 0.9 of the fluid's stability limit\n", (int)cpl->substeps, (double)cpl->dtd));
+  if (cpl->init != CPL_INIT_REST) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: initial fluid %s%s\n", CplInitNames[cpl->init], cpl->restarting ? " (not applied: the fluid comes from the checkpoint)" : ""));
+  if (cpl->init == CPL_INIT_STEADY && !cpl->restarting) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: the steady start converged in %d pseudo steps of %g s (-cpl_init_fluid_rtol %g)\n", (int)cpl->init_its, (double)(cpl->frozen ? cpl->dt : cpl->substeps * cpl->dtd), (double)cpl->init_rtol));
   PetscCall(CplPreflight(cpl, viewer, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -222,6 +253,27 @@ PetscErrorCode CplGetClippedCount(Cpl cpl, PetscInt *count)
 {
   PetscFunctionBeginUser;
   *count = cpl->clipped_total;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetStepQuantum(Cpl cpl, PetscReal *dq)
+{
+  PetscFunctionBeginUser;
+  *dq = cpl->adaptive ? (cpl->frozen ? 1e-9 * cpl->dtf : cpl->dtd) : cpl->dt;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplSetRestarting(Cpl cpl, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  cpl->restarting = on;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetMode(Cpl cpl, CplMode *mode)
+{
+  PetscFunctionBeginUser;
+  *mode = cpl->mode;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -5,7 +5,8 @@
  *     staggered grid the drag coefficient and the momentum exchange; the fluid velocity at a
  *     particle is the same weighted average (the transpose of the spreading);
  *   - drag F = K (u - U), K = 3 pi mu d F(eps, Re_p), Re_p = rho_f d eps |u - U| / mu, with F from
- *     Beetstra et al. (eq. 15, default), Di Felice or Gidaspow (Ergun / Wen-Yu), -cpl_drag;
+ *     Beetstra et al. (eq. 15, default), Di Felice, Gidaspow (Ergun / Wen-Yu) or Schiller-Naumann
+ *     (single sphere), -cpl_drag;
  *   - particles: M dU/dt = M (1 - rho_f/rho_p) g + contacts + F (eq. 11); fluid: -F (eq. 10);
  *   - one fluid step per -cpl_substeps DEM steps; drag implicit on both sides; the momentum the
  *     particles receive equals the momentum the fluid loses (couple.c explains how).
@@ -20,8 +21,25 @@ typedef struct _p_Cpl *Cpl;
 typedef enum {
   CPL_DRAG_BEETSTRA,
   CPL_DRAG_DIFELICE,
-  CPL_DRAG_GIDASPOW
+  CPL_DRAG_GIDASPOW,
+  CPL_DRAG_SCHILLER
 } CplDragLaw;
+
+/* -cpl_mode: twoway (the fluid and the particles act on each other) or oneway (the fluid acts
+ * on the particles only: porosity 1, no drag reaction, a single-phase fluid). */
+typedef enum {
+  CPL_MODE_TWOWAY,
+  CPL_MODE_ONEWAY
+} CplMode;
+
+/* -cpl_init_fluid: the fluid velocity before the first coupling step. rest: zero (the inlet's
+ * value on its faces); uniform: the inlet's superficial velocity over the porosity at every
+ * face along the inlet's axis; steady: a steady solve through the initial bed, held fixed. */
+typedef enum {
+  CPL_INIT_REST,
+  CPL_INIT_UNIFORM,
+  CPL_INIT_STEADY
+} CplInitFluid;
 
 /* What one coupling step did. */
 typedef struct {
@@ -34,13 +52,14 @@ typedef struct {
 
 /* Collective. dom, dem and fluid must outlive the coupling. */
 PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fluid, Cpl *cpl);
-/* Collective. Reads -cpl_drag, -cpl_substeps, -cpl_kernel_scale, -cpl_porosity_floor,
- * -cpl_relaxation_ratio_max (the run's length and probes belong to the coupled driver); takes
+/* Collective. Reads -cpl_drag, -cpl_mode, -cpl_init_fluid (and its _rtol, _max_steps),
+ * -cpl_substeps, -cpl_kernel_scale, -cpl_porosity_floor, -cpl_relaxation_ratio_max (the run's length and probes belong to the coupled driver); takes
  * the fluid's density and viscosity from the Fluid (call after FluidSetFromOptions), whose
  * -fluid_gravity must be 0,0,0 (gravity acts on the particles). */
 PetscErrorCode CplSetFromOptions(Cpl cpl);
 /* Collective. After DemSetUp and FluidSetUp: attaches the drag arrays to the DEM, projects
- * the initial porosity, runs the pre-flight checks (a hard violation is an error). */
+ * the initial porosity (one-way: sets it to 1), runs the pre-flight checks (a hard violation
+ * is an error), then sets the initial fluid state of -cpl_init_fluid. */
 PetscErrorCode CplSetUp(Cpl cpl);
 /* Collective. The coupling's part of an exact checkpoint (checkpoint.c, datasets cpl/...): the
  * momentum owed to the fluid, the clock and the counters. Read after CplSetUp (and after
@@ -56,11 +75,20 @@ PetscErrorCode CplRedistribute(Cpl cpl);
 PetscErrorCode CplDestroy(Cpl *cpl);
 
 /* Collective. One fluid step of length substeps x dt_dem (frozen bed: -fluid_dt), with the DEM
- * sub-cycled inside it. */
+ * sub-cycled inside it; with -fluid_adaptive_dt (a moving bed) the step is n x dt_dem, n the
+ * largest whole number up to substeps within the fluid's stability limit (CplGetTimeStep gives
+ * the step last taken). */
 PetscErrorCode CplStep(Cpl cpl, CplStats *st);
 PetscErrorCode CplGetTime(Cpl cpl, PetscReal *t, PetscInt *step);
 PetscErrorCode CplGetTimeStep(Cpl cpl, PetscReal *dt);
-/* DEM steps per coupling step (-cpl_substeps). */
+/* The times the coupling steps end on are multiples of this (s): the coupling step itself, or
+ * with adaptive steps (-fluid_adaptive_dt) the DEM step. Cadence tolerances use it. */
+PetscErrorCode CplGetStepQuantum(Cpl cpl, PetscReal *dq);
+/* Before CplSetUp: the fluid and the coupling will be read from a checkpoint, so set-up skips
+ * the initial fluid state (-cpl_init_fluid). */
+PetscErrorCode CplSetRestarting(Cpl cpl, PetscBool on);
+PetscErrorCode CplGetMode(Cpl cpl, CplMode *mode);
+/* DEM steps per coupling step (-cpl_substeps; with adaptive steps the most per step). */
 PetscErrorCode CplGetSubsteps(Cpl cpl, PetscInt *substeps);
 /* Cell-steps whose porosity was raised to -cpl_porosity_floor since set-up (same on every rank). */
 PetscErrorCode CplGetClippedCount(Cpl cpl, PetscInt *count);

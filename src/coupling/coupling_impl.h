@@ -19,16 +19,25 @@ struct _p_Cpl {
   Fluid    fl;
   DM       cda, fda;
   /* options */
-  CplDragLaw law;
-  PetscInt   substeps;
-  PetscReal  kscale, eps_floor, relax_max;
-  PetscBool  substeps_set;
-  PetscReal *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
-  PetscInt   nshape;
+  CplDragLaw   law;
+  CplMode      mode;
+  CplInitFluid init;
+  PetscReal    init_rtol;  /* -cpl_init_fluid_rtol */
+  PetscInt     init_max;   /* -cpl_init_fluid_max_steps */
+  PetscInt     init_its;   /* pseudo steps the steady start took */
+  PetscBool    restarting; /* CplSetRestarting: the fluid comes from a checkpoint, no initial state */
+  PetscInt     substeps;
+  PetscReal    kscale, eps_floor, relax_max;
+  PetscBool    substeps_set;
+  PetscReal   *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
+  PetscInt     nshape;
   /* fluid properties (the fluid's options) */
   PetscReal rho, mu, g[3];
   /* state */
   PetscBool      frozen, correct;
+  PetscBool      adaptive; /* -fluid_adaptive_dt: nsub DEM steps of dtd per step (frozen: the fluid's step) */
+  PetscInt       nsub;     /* DEM steps of the current step (substeps unless adaptive) */
+  PetscReal      dtd, dtf; /* the DEM step, -fluid_dt (s) */
   PetscReal      dt, t, cell_vol, eps_min0;
   PetscInt       step;
   PetscInt       clipped_total;
@@ -87,5 +96,10 @@ typedef struct {
   Vec              out; /* global face Vec */
 } CplSpread;
 PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[]);
+/* exchange.c: the two halves of the drag set-up of a step (the steady start uses them too) */
+PetscErrorCode CplSetParticleDrag(Cpl cpl);
+PetscErrorCode CplSetFluidDrag(Cpl cpl);
+/* start.c: the fluid's initial state (-cpl_init_fluid) */
+PetscErrorCode CplInitFluidState(Cpl cpl);
 /* preflight.c */
 PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce);

@@ -12,7 +12,11 @@
  *     particle, K = beta V_p / ((1 - eps) eps):
  *     eps < 0.8:  F = (150 phi + 1.75 Re) / (18 eps^2)
  *     eps >= 0.8: F = Cd Re eps^-3.65 / 24, Cd = 24/Re (1 + 0.15 Re^0.687) (Re < 1000), 0.44 above.
- * All three tend to Stokes drag (F = 1; Di Felice 0.96) for a single sphere at low Re. */
+ *   Schiller & Naumann (1933), as given by Clift, Grace & Weber (1978), Table 5.2: the single
+ *     sphere law without a voidage function, for dilute flows and one-way coupling:
+ *     F = Cd Re / 24 = 1 + 0.15 Re^0.687 (Re < 1000), 0.44 Re / 24 above (Newton's range);
+ *     Gidaspow at eps = 1 is the same law.
+ * All four tend to Stokes drag (F = 1; Di Felice 0.96) for a single sphere at low Re. */
 #include "coupling/coupling_impl.h"
 
 PetscReal CplDragFactor(CplDragLaw law, PetscReal eps, PetscReal re)
@@ -36,6 +40,8 @@ PetscReal CplDragFactor(CplDragLaw law, PetscReal eps, PetscReal re)
     const PetscReal chi = 3.7 - 0.65 * PetscExpReal(-0.5 * PetscSqr(1.5 - PetscLog10Real(r)));
     return cd * r * PetscPowReal(eps, -chi) / 24;
   }
+  case CPL_DRAG_SCHILLER:
+    return re < 1000 ? 1 + 0.15 * PetscPowReal(re, 0.687) : 0.44 * re / 24;
   case CPL_DRAG_GIDASPOW:
   default:
     if (eps < 0.8) return (150 * phi + 1.75 * re) / (18 * eps * eps);

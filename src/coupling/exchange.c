@@ -4,7 +4,7 @@
 #include "coupling/coupling_impl.h"
 
 /* Drag coefficient, fluid velocity and buoyancy at the particles; zeroes the impulses. */
-static PetscErrorCode CplSetParticleDrag(Cpl cpl)
+PetscErrorCode CplSetParticleDrag(Cpl cpl)
 {
   DemArrays   pa;
   DemExternal ex;
@@ -16,6 +16,8 @@ static PetscErrorCode CplSetParticleDrag(Cpl cpl)
   PetscCall(DemGetExternal(cpl->dem, &ex));
   PetscCall(PetscMalloc1(pa.nlocal + 1, &eps));
   PetscCall(CplInterpolate(cpl, ex.u, eps));
+  if (cpl->mode == CPL_MODE_ONEWAY) /* single phase: exactly 1, not the kernel sum's 1 +- roundoff (Beetstra's sqrt(1 - eps)) */
+    for (PetscInt p = 0; p < pa.nlocal; p++) eps[p] = 1;
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
@@ -36,7 +38,7 @@ static PetscErrorCode CplSetParticleDrag(Cpl cpl)
 /* beta and u_s on the faces from K and the particle velocities at the new positions, and the
  * impulses of the DEM substeps just taken (for the momentum owed after the fluid step), in one
  * pass; the source is the momentum owed from the previous step. */
-static PetscErrorCode CplSetFluidDrag(Cpl cpl)
+PetscErrorCode CplSetFluidDrag(Cpl cpl)
 {
   DemArrays          pa;
   DemExternal        ex;
@@ -128,28 +130,69 @@ static PetscErrorCode CplDragTotal(Cpl cpl, PetscReal drag[3])
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CplStep(Cpl cpl, CplStats *st)
+/* Adaptive steps (-fluid_adaptive_dt). A frozen bed asks for -fluid_dt and takes what the fluid
+ * takes. A moving bed: the step is the largest whole number of DEM
+ * steps, at most -cpl_substeps, within 0.9 of the fluid's stability limit at the step's start
+ * (the margin the fluid's own adaptive step takes). The DEM step stays -dem_dt, so the
+ * particles' clock stays on its grid. The step depends on the fields only, never on the run's
+ * end or cadences (a run may end up to one step past -cpl_t_end, as with fixed steps): so a run
+ * stopped at a checkpoint takes the uninterrupted run's steps, and a restart needs nothing
+ * beyond the clocks and fields already in the checkpoint. */
+static PetscErrorCode CplChooseStep(Cpl cpl)
 {
+  PetscReal dtmax, fit;
+  PetscInt  n = cpl->substeps;
+
   PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(st, sizeof *st));
-  PetscCall(CplSetParticleDrag(cpl));
-  if (!cpl->frozen) {
-    PetscCall(PetscLogEventBegin(cpl->ev_dem, 0, 0, 0, 0));
-    for (PetscInt s = 0; s < cpl->substeps; s++) PetscCall(DemStep(cpl->dem));
-    PetscCall(PetscLogEventEnd(cpl->ev_dem, 0, 0, 0, 0));
+  if (cpl->frozen) { /* no DEM steps: ask for -fluid_dt; the fluid cuts it */
+    cpl->dt = cpl->dtf;
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(CplProjectPorosity(cpl, st));
-  PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
-  PetscCall(CplSetFluidDrag(cpl));
-  PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
+  PetscCall(FluidGetStableTimeStep(cpl->fl, &dtmax));
+  fit = 0.9 * dtmax / cpl->dtd;
+  if (fit < (PetscReal)n) n = (PetscInt)PetscFloorReal(fit);
+  PetscCheck(n >= 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "at t = %g s the fluid's stability limit %g s (-fluid_cfl_max, -fluid_viscous_number_max) is below one DEM step -dem_dt %g s: lower -dem_dt, or use -fluid_viscous implicit if the viscous limit binds", (double)cpl->t, (double)dtmax, (double)cpl->dtd);
+  cpl->nsub = n;
+  cpl->dt   = n * cpl->dtd;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The fluid's step: the drag fields and the owed momentum in two-way coupling; in one-way
+ * coupling the fluid is single phase (porosity 1, no drag fields: they stay 0). */
+static PetscErrorCode CplFluidPart(Cpl cpl, CplStats *st)
+{
   PetscLogDouble f0, f1;
+
+  PetscFunctionBeginUser;
+  if (cpl->mode == CPL_MODE_TWOWAY) {
+    PetscCall(CplProjectPorosity(cpl, st));
+    PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
+    PetscCall(CplSetFluidDrag(cpl));
+    PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
+  } else st->eps_min = 1;
   PetscCall(PetscTime(&f0));
   PetscCall(FluidStep(cpl->fl, cpl->dt, &st->fluid));
   PetscCall(PetscTime(&f1));
   cpl->t_fluid += f1 - f0;
-  PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "the fluid cut its step to %g s (-fluid_adaptive_dt); a coupled run needs the fixed step %g s: lower -dem_dt or -cpl_substeps instead", (double)st->fluid.dt, (double)cpl->dt);
+  if (cpl->frozen) cpl->dt = st->fluid.dt; /* no particle moved: the step the fluid took is the step */
+  PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "the fluid cut the coupling step %g s to %g s after the DEM substeps had run (the new porosity raised the viscous number beyond the 10%% margin of -fluid_adaptive_dt): lower -cpl_substeps or use -fluid_viscous implicit", (double)cpl->dt, (double)st->fluid.dt);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplStep(Cpl cpl, CplStats *st)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(st, sizeof *st));
+  if (cpl->adaptive) PetscCall(CplChooseStep(cpl));
+  PetscCall(CplSetParticleDrag(cpl));
+  if (!cpl->frozen) {
+    PetscCall(PetscLogEventBegin(cpl->ev_dem, 0, 0, 0, 0));
+    for (PetscInt s = 0; s < cpl->nsub; s++) PetscCall(DemStep(cpl->dem));
+    PetscCall(PetscLogEventEnd(cpl->ev_dem, 0, 0, 0, 0));
+  }
+  PetscCall(CplFluidPart(cpl, st));
   PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
-  PetscCall(CplComputeOwed(cpl, &st->owed_norm));
+  if (cpl->mode == CPL_MODE_TWOWAY) PetscCall(CplComputeOwed(cpl, &st->owed_norm));
   PetscCall(CplDragTotal(cpl, st->drag));
   PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
   cpl->t += cpl->dt;

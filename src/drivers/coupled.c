@@ -9,6 +9,10 @@
  * its porosity between the 5% and 95% heights, the minimum fluidization velocity of the drag law
  * at that porosity and of Wen & Yu, and the inlet's superficial velocity over them; at the end,
  * the height at the start, its mean over the progress lines of the second half, and at the end.
+ * A one-way run (-cpl_mode oneway) has no bed lines: its fluid sees no porosity.
+ * With -fluid_adaptive_dt the coupling steps vary in whole DEM steps (coupling/exchange.c): the
+ * loop's end and cadences are then judged to half a DEM step (the run ends at the first step
+ * end from -cpl_t_end on, as the steps do not look at the end: restarts stay exact).
  * A run is coupled when any -cpl_ or -fluid_ option is given (DriverIsCoupled).
  * Checkpoints (-io_checkpoint_interval, simulated seconds; drivers/checkpoint.c): the DEM's, the
  * fluid's and the coupling's exact state, and the driver's own (run/coupled: the sums of the
@@ -264,8 +268,11 @@ static PetscErrorCode CoupledBedStart(Coupled *c)
   CplFluidization f;
   PetscReal       h5, h95, mean, u;
   char            inlet[128] = "";
+  CplMode         mode;
 
   PetscFunctionBeginUser;
+  PetscCall(CplGetMode(c->cpl, &mode));
+  if (mode == CPL_MODE_ONEWAY) PetscFunctionReturn(PETSC_SUCCESS); /* no bed in the fluid: porosity 1 */
   if (!c->r->ckpt.restart[0]) {
     PetscCall(DemGetBedHeights(c->dem, 0.05, &h5, &mean));
     PetscCall(DemGetBedHeights(c->dem, 0.95, &h95, &mean));
@@ -310,7 +317,7 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
   PetscCall(CoupledBedWeight(c->cpl, &c->col, &w));
   PetscCall(CplGetTime(c->cpl, &t, &c->s0));
   step = c->s0;
-  PetscCall(CplGetTimeStep(c->cpl, &dt));
+  PetscCall(CplGetStepQuantum(c->cpl, &dt)); /* the step, or the DEM step with adaptive steps */
   PetscCall(PetscTime(&t0));
   PetscCall(IoDue(c->io, t, &due));
   if (due) PetscCall(CoupledOutput(c));
@@ -415,6 +422,7 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
     PetscCall(BalanceCheckpointRead(c->lb, f)); /* the checkpoint's cuts first: the per-rank state lives on them */
     PetscCall(DemSetRestart(c->dem, f));
     PetscCall(DemSetExternal(c->dem, PETSC_TRUE));
+    PetscCall(CplSetRestarting(c->cpl, PETSC_TRUE)); /* the fluid is the checkpoint's: no -cpl_init_fluid */
   }
   PetscCall(DemSetUp(c->dem));
   PetscCall(BalanceDecompose(c->lb)); /* the process grid and cuts from the particles, before the fluid's layout */

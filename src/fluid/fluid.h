@@ -62,6 +62,28 @@ PetscErrorCode FluidCheckpointReadVec(IoCkpt ck, const char *name, Vec v);
  * -fluid_adaptive_dt is on, in which case it takes a smaller step reported in stats->dt. */
 PetscErrorCode FluidStep(Fluid fluid, PetscReal dt, FluidStats *stats);
 
+/* Collective. The largest step (s) the current velocity and porosity allow: the CFL limit
+ * -fluid_cfl_max and, with the explicit viscous term, -fluid_viscous_number_max (PETSC_MAX_REAL
+ * for a fluid at rest with the implicit viscous term). A caller that picks its own step from it
+ * (the coupling's adaptive step) takes a margin below it. */
+PetscErrorCode FluidGetStableTimeStep(Fluid fluid, PetscReal *dtmax);
+/* Not collective. How the caller sets the step (an option text such as "-cpl_substeps 5 x
+ * -dem_dt 0.001 s"): the stability errors then advise lowering it by name. */
+PetscErrorCode FluidSetTimeStepName(Fluid fluid, const char *name);
+/* Whether -fluid_adaptive_dt is on. Not collective. */
+PetscErrorCode FluidGetAdaptive(Fluid fluid, PetscBool *on);
+/* Initial states (init.c). Not collective: the inlets' velocity U (m/s, the superficial
+ * velocity of -fluid_bc_<face>_velocity now) and how many inlet faces there are (U = 0 with
+ * none); two inlets of different velocities are an error. */
+PetscErrorCode FluidGetInletVelocity(Fluid fluid, PetscReal U[3], PetscInt *ninlet);
+/* Collective. u_f = U_d / eps_f at every active face of component d (eps_f the mean of the two
+ * cells' porosity eps^{n+1}), then the boundary values. */
+PetscErrorCode FluidSetSuperficialVelocity(Fluid fluid, const PetscReal U[3]);
+/* Not collective. The fluid's clock (s, the inlet tables' time) and its step count (0: the next
+ * step advects with forward Euler, not Adams-Bashforth); Set puts them back after pseudo steps. */
+PetscErrorCode FluidGetClock(Fluid fluid, PetscReal *t, PetscInt *nsteps);
+PetscErrorCode FluidSetClock(Fluid fluid, PetscReal t, PetscInt nsteps);
+
 /* Grids: cell DMDA (one dof: p, eps) with the ownership of the domain, face DMDA (three dofs:
  * component d is the velocity normal to the lower d-face of the cell with the same index; along
  * a non-periodic axis it has one point more than the cells, owned by the last rank). */

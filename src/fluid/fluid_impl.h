@@ -46,7 +46,8 @@ struct _p_Fluid {
   DM             cda, fda;
   FluidBC        bc[3][2];
   PetscReal      rho, mu, dt, gravity[3], dpdx[3], p_out;
-  PetscBool      dt_set; /* -fluid_dt given */
+  PetscBool      dt_set;      /* -fluid_dt given */
+  char           dt_name[96]; /* FluidSetTimeStepName: how the caller sets dt, for the stability errors' advice */
   FluidAdvection adv;
   FluidViscous   visc;
   PetscReal      cfl_max, visc_max;

@@ -98,8 +98,39 @@ static PetscErrorCode FluidCheckStability(Fluid fl, PetscReal *dt, FluidStats *s
     st->visc_number *= scale;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCheck(st->cfl <= fl->cfl_max, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step dt = %g s gives CFL number %g in cell (%d,%d,%d), above the limit -fluid_cfl_max %g: lower dt below %g s or use -fluid_adaptive_dt", (double)*dt, (double)st->cfl, (int)cc[0], (int)cc[1], (int)cc[2], (double)fl->cfl_max, (double)(*dt * fl->cfl_max / st->cfl));
-  PetscCheck(st->visc_number <= fl->visc_max, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step dt = %g s gives explicit viscous number %g in cell (%d,%d,%d), above the limit -fluid_viscous_number_max %g: lower dt below %g s, use -fluid_viscous implicit or -fluid_adaptive_dt", (double)*dt, (double)st->visc_number, (int)vc[0], (int)vc[1], (int)vc[2], (double)fl->visc_max, (double)(*dt * fl->visc_max / st->visc_number));
+  PetscCheck(st->cfl <= fl->cfl_max, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step dt = %g s gives CFL number %g in cell (%d,%d,%d), above the limit -fluid_cfl_max %g: lower dt%s below %g s or use -fluid_adaptive_dt", (double)*dt, (double)st->cfl, (int)cc[0], (int)cc[1], (int)cc[2], (double)fl->cfl_max, fl->dt_name, (double)(*dt * fl->cfl_max / st->cfl));
+  PetscCheck(st->visc_number <= fl->visc_max, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step dt = %g s gives explicit viscous number %g in cell (%d,%d,%d), above the limit -fluid_viscous_number_max %g: lower dt%s below %g s, use -fluid_viscous implicit or -fluid_adaptive_dt", (double)*dt, (double)st->visc_number, (int)vc[0], (int)vc[1], (int)vc[2], (double)fl->visc_max, fl->dt_name, (double)(*dt * fl->visc_max / st->visc_number));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidSetTimeStepName(Fluid fl, const char *name)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(fl->dt_name, sizeof fl->dt_name, " (%s)", name));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidGetStableTimeStep(Fluid fl, PetscReal *dtmax)
+{
+  const PetscScalar *u, *eps;
+  FluidLimits        lim;
+  PetscInt           cell[3];
+  PetscReal          cfl, vis;
+
+  PetscFunctionBeginUser;
+  PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidGetStableTimeStep");
+  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+  PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
+  PetscCall(VecGetArrayRead(fl->uloc, &u));
+  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
+  FluidLocalLimits(fl, 1.0, u, eps, &lim); /* both numbers are proportional to dt */
+  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
+  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(FluidMaxLoc(fl, lim.cfl, lim.ccell, &cfl, cell));
+  PetscCall(FluidMaxLoc(fl, lim.vis, lim.vcell, &vis, cell));
+  *dtmax = PETSC_MAX_REAL;
+  if (cfl > 0) *dtmax = fl->cfl_max / cfl;
+  if (fl->visc == FLUID_VISC_EXPLICIT && vis > 0) *dtmax = PetscMin(*dtmax, fl->visc_max / vis);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -29,6 +29,13 @@ check substeps '-cpl_substeps 0 must be >= 1' -cpl_substeps 0
 check bad_drag_name 'Unknown option stokes for -cpl_drag. Available options: beetstra difelice gidaspow' -cpl_drag stokes
 check fluid_gravity '-fluid_gravity .* must be 0,0,0 in a coupled run' -fluid_gravity 0,0,-1
 check misspelled_option 'option -cpl_substep 3 was given but nothing reads it' -cpl_substep 3
+check bad_mode 'Unknown option both for -cpl_mode. Available options: twoway oneway' -cpl_mode both
+CASE=cases/packed_bed/packed_bed.opts; check oneway_frozen '-cpl_mode oneway with -dem_frozen: .*nothing would be coupled' -cpl_mode oneway
+CASE=
+CASE=tests/coupling/test_conserve.opts; check init_uniform_no_inlet '-cpl_init_fluid uniform: the fluid has no inlet face' -cpl_init_fluid uniform
+CASE=
+check init_steady_unconverged '-cpl_init_fluid steady: a pseudo step still changed the velocity by .* after -cpl_init_fluid_max_steps 2' -cpl_init_fluid steady -cpl_init_fluid_max_steps 2
+check init_rtol '-cpl_init_fluid_rtol 0\.? must be in \(0,1\)' -cpl_init_fluid_rtol 0
 
 ${BIN:-bin}/sable -options_file $case -io_dir "$out.d" -cpl_t_end 0.5 >"$out" 2>&1; rc=$?
 if [ "$rc" -eq 0 ] && grep -q '^modules: DEM on; fluid on; coupling on' "$out" && grep -q '^pre-flight: coupling step / particle relaxation time' "$out" && grep -q '^pre-flight: cell / diameter' "$out"; then

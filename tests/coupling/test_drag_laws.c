@@ -8,7 +8,10 @@
  *     particle K = beta V_p / ((1 - eps) eps).
  * Each is expressed as F = force / (3 pi mu d w), the form CplDragFactor returns, at d = rho_f =
  * mu = 1. Checks: all 48 values (4 porosities x 4 Re_p x 3 laws) to 1e-12 relative, and
- * Beetstra's single-sphere Stokes limit F(eps = 1, Re = 0) = 1 exactly. */
+ * Beetstra's single-sphere Stokes limit F(eps = 1, Re = 0) = 1 exactly. Schiller & Naumann
+ * (1933) as in Clift, Grace & Weber (1978), Cd = 24/Re (1 + 0.15 Re^0.687) below Re = 1000, 0.44
+ * from there, F = Cd Re / 24, at 7 Re_p on both sides of the switch (no porosity dependence:
+ * the values hold at eps 0.5 and 1) to 1e-12. */
 #include "check.h"
 #include "coupling/coupling.h"
 
@@ -32,6 +35,17 @@ static const double Ref[16][5] = {
   {0.95, 1000, 38.70226854669847, 30.457204375232191, 22.108041720220918},
 };
 
+/* Re_p, Schiller-Naumann F */
+static const double RefSN[7][2] = {
+  {0.01, 1.0063400292139841},
+  {1, 1.15},
+  {10, 1.7296108085371922},
+  {100, 4.548879546228638},
+  {999, 18.250144979412532},
+  {1000, 18.333333333333332},
+  {3000, 55.0},
+};
+
 int main(int argc, char **argv)
 {
   const CplDragLaw law[3]  = {CPL_DRAG_BEETSTRA, CPL_DRAG_DIFELICE, CPL_DRAG_GIDASPOW};
@@ -46,6 +60,16 @@ int main(int argc, char **argv)
     }
     CheckDetail("at eps %g, Re_p %g", at[0], at[1]);
     PetscCall(CheckBelow(CheckName("drag law %s: 16 points eps 0.4-0.95, Re_p 0.01-1000, worst rel. error", name[l]), worst, 1e-12));
+  }
+  {
+    double worst = 0, at = 0;
+    for (int k = 0; k < 7; k++)
+      for (int e = 0; e < 2; e++) {
+        const double err = fabs(CplDragFactor(CPL_DRAG_SCHILLER, e ? 1.0 : 0.5, RefSN[k][0]) / RefSN[k][1] - 1);
+        if (!(err <= worst)) worst = err, at = RefSN[k][0];
+      }
+    CheckDetail("at Re_p %g", at);
+    PetscCall(CheckBelow("drag law Schiller-Naumann: 7 points Re_p 0.01-3000 at eps 0.5 and 1, worst rel. error", worst, 1e-12));
   }
   {
     const double F = CplDragFactor(CPL_DRAG_BEETSTRA, 1, 0);
