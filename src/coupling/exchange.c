@@ -130,15 +130,20 @@ static PetscErrorCode CplDragTotal(Cpl cpl, PetscReal drag[3])
 
 PetscErrorCode CplStep(Cpl cpl, CplStats *st)
 {
+  DemFlowStats fl0, fl1;
+
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(st, sizeof *st));
   PetscCall(CplSetParticleDrag(cpl));
+  PetscCall(DemGetFlow(cpl->dem, &fl0));
   if (!cpl->frozen) {
     PetscCall(PetscLogEventBegin(cpl->ev_dem, 0, 0, 0, 0));
     for (PetscInt s = 0; s < cpl->substeps; s++) PetscCall(DemStep(cpl->dem));
     PetscCall(PetscLogEventEnd(cpl->ev_dem, 0, 0, 0, 0));
   }
+  PetscCall(DemGetFlow(cpl->dem, &fl1));
   PetscCall(CplProjectPorosity(cpl, st));
+  if (fl1.inserted != fl0.inserted) PetscCall(CplAdmitNewParticles(cpl)); /* the same count on every rank */
   PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
   PetscCall(CplSetFluidDrag(cpl));
   PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
