@@ -162,6 +162,17 @@ void CplInvalidateStencils(Cpl cpl)
   cpl->stc_valid = PETSC_FALSE;
 }
 
+/* Adds the solid fraction f W of one particle's stencil to the local cell array a. */
+static inline void cpl_spread_cells(const CplBox *b, const CplStencil *st1, double f, PetscScalar *a)
+{
+  for (int k = 0; k < st1->nc[2]; k++)
+    for (int j = 0; j < st1->nc[1]; j++) {
+      const double wjk = f * st1->wc[2][k] * st1->wc[1][j];
+      PetscInt     o   = cpl_off(b, st1->c0[0], st1->c0[1] + j, st1->c0[2] + k);
+      for (int i = 0; i < st1->nc[0]; i++) a[o + i] += wjk * st1->wc[0][i];
+    }
+}
+
 /* Collective. solid (a global cell Vec) <- the solid fraction of the local particles by the
  * kernel, of all of them (only == NULL) or of those with only[p] == 0. */
 static PetscErrorCode CplSpreadSolid(Cpl cpl, const PetscReal *only, Vec solid)
@@ -177,17 +188,11 @@ static PetscErrorCode CplSpreadSolid(Cpl cpl, const PetscReal *only, Vec solid)
   PetscCall(CplBoxOf(cpl->cda, &b));
   PetscCall(VecZeroEntries(cpl->cloc));
   PetscCall(VecGetArray(cpl->cloc, &a));
-  for (PetscInt p = 0; p < pa.nlocal; p++) {
-    const CplStencil *st1 = &stc[p];
-    const PetscReal   f   = CplVolumeOf(cpl, &pa, p) / cpl->cell_vol;
-    if (only && only[p] != 0) continue;
-    for (int k = 0; k < st1->nc[2]; k++)
-      for (int j = 0; j < st1->nc[1]; j++) {
-        const double wjk = f * st1->wc[2][k] * st1->wc[1][j];
-        PetscInt     o   = cpl_off(&b, st1->c0[0], st1->c0[1] + j, st1->c0[2] + k);
-        for (int i = 0; i < st1->nc[0]; i++) a[o + i] += wjk * st1->wc[0][i];
-      }
-  }
+  if (only) { /* two loops: the every-step one tests nothing */
+    for (PetscInt p = 0; p < pa.nlocal; p++)
+      if (only[p] == 0) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->cell_vol, a);
+  } else
+    for (PetscInt p = 0; p < pa.nlocal; p++) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->cell_vol, a);
   PetscCall(VecRestoreArray(cpl->cloc, &a));
   PetscCall(VecZeroEntries(solid));
   PetscCall(DMLocalToGlobal(cpl->cda, cpl->cloc, ADD_VALUES, solid));
