@@ -246,8 +246,9 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
  * start) take the place of the fluid they cover: their solid fraction is taken from the previous
  * porosity too (raised to the floor), so (eps - eps_old)/dt in the continuity equation sees only
  * the motion of the particles, not their appearance. Counted as a flux, a particle of volume V
- * appearing in one step would push V/dt of fluid out of its cell (a pressure spike of the
- * order of the bed's weight at every batch). The covered fluid leaves the run with its momentum. */
+ * appearing in one step would push V/dt of fluid out of its cell (at every batch a pressure
+ * spike of about 100 times the weight of the particles present, coupling/test_pour_coupled).
+ * The covered fluid leaves the run with its momentum. */
 PetscErrorCode CplAdmitNewParticles(Cpl cpl)
 {
   DemExternal        ex;
