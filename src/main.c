@@ -156,8 +156,10 @@ static int SableIsKey(const char *t)
 }
 
 /* The bytes of line n (len bytes, newline removed) before it is split: a NUL or another
- * control byte means a file that is not text (an HDF5 or image file given by mistake), a
- * byte-order mark an editor's UTF-8 header that PETSc would read as part of the first name.
+ * control byte (any but a tab or CR, which PETSc's reader blanks; a vertical tab or form feed
+ * would stay in a token there) means a file that is not text (an HDF5 or image file given by
+ * mistake), a byte-order mark an editor's UTF-8 header that PETSc would read as part of the first
+ * name.
  * Returns 1 after printing the error. */
 static int SableCheckLineBytes(const char *path, int n, const char *line, size_t len)
 {
@@ -171,7 +173,7 @@ static int SableCheckLineBytes(const char *path, int n, const char *line, size_t
   }
   for (size_t k = 0; k < len; k++) {
     const unsigned char c = (unsigned char)line[k];
-    if ((c < 0x20 && !isspace(c)) || c == 0x7f) {
+    if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
       SableEarlyError("-options_file %s, line %d: contains the control byte 0x%02x at column %d (not a text file?)", path, n, c, (int)k + 1);
       return 1;
     }

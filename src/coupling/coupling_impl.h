@@ -89,6 +89,7 @@ static inline PetscReal CplMassOf(Cpl cpl, const DemArrays *pa, PetscInt p)
 PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplStencil *s);
 PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal *vol, PetscReal *diam);
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st);
+PetscErrorCode CplAdmitNewParticles(Cpl cpl);
 void           CplInvalidateStencils(Cpl cpl);
 typedef struct {
   const PetscReal *val; /* 3 per local particle, or 1 if scalar */

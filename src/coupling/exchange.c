@@ -159,13 +159,14 @@ static PetscErrorCode CplChooseStep(Cpl cpl)
 
 /* The fluid's step: the drag fields and the owed momentum in two-way coupling; in one-way
  * coupling the fluid is single phase (porosity 1, no drag fields: they stay 0). */
-static PetscErrorCode CplFluidPart(Cpl cpl, CplStats *st)
+static PetscErrorCode CplFluidPart(Cpl cpl, PetscBool inserted, CplStats *st)
 {
   PetscLogDouble f0, f1;
 
   PetscFunctionBeginUser;
   if (cpl->mode == CPL_MODE_TWOWAY) {
     PetscCall(CplProjectPorosity(cpl, st));
+    if (inserted) PetscCall(CplAdmitNewParticles(cpl)); /* the same on every rank */
     PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
     PetscCall(CplSetFluidDrag(cpl));
     PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
@@ -181,16 +182,20 @@ static PetscErrorCode CplFluidPart(Cpl cpl, CplStats *st)
 
 PetscErrorCode CplStep(Cpl cpl, CplStats *st)
 {
+  DemFlowStats fl0, fl1;
+
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(st, sizeof *st));
   if (cpl->adaptive) PetscCall(CplChooseStep(cpl));
   PetscCall(CplSetParticleDrag(cpl));
+  PetscCall(DemGetFlow(cpl->dem, &fl0));
   if (!cpl->frozen) {
     PetscCall(PetscLogEventBegin(cpl->ev_dem, 0, 0, 0, 0));
     for (PetscInt s = 0; s < cpl->nsub; s++) PetscCall(DemStep(cpl->dem));
     PetscCall(PetscLogEventEnd(cpl->ev_dem, 0, 0, 0, 0));
   }
-  PetscCall(CplFluidPart(cpl, st));
+  PetscCall(DemGetFlow(cpl->dem, &fl1));
+  PetscCall(CplFluidPart(cpl, (PetscBool)(fl1.inserted != fl0.inserted), st));
   PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
   if (cpl->mode == CPL_MODE_TWOWAY) PetscCall(CplComputeOwed(cpl, &st->owed_norm));
   PetscCall(CplDragTotal(cpl, st->drag));

@@ -162,14 +162,48 @@ void CplInvalidateStencils(Cpl cpl)
   cpl->stc_valid = PETSC_FALSE;
 }
 
+/* Adds the solid fraction f W of one particle's stencil to the local cell array a. */
+static inline void cpl_spread_cells(const CplBox *b, const CplStencil *st1, double f, PetscScalar *a)
+{
+  for (int k = 0; k < st1->nc[2]; k++)
+    for (int j = 0; j < st1->nc[1]; j++) {
+      const double wjk = f * st1->wc[2][k] * st1->wc[1][j];
+      PetscInt     o   = cpl_off(b, st1->c0[0], st1->c0[1] + j, st1->c0[2] + k);
+      for (int i = 0; i < st1->nc[0]; i++) a[o + i] += wjk * st1->wc[0][i];
+    }
+}
+
+/* Collective. solid (a global cell Vec) <- the solid fraction of the local particles by the
+ * kernel, of all of them (only == NULL) or of those with only[p] == 0. */
+static PetscErrorCode CplSpreadSolid(Cpl cpl, const PetscReal *only, Vec solid)
+{
+  DemArrays         pa;
+  CplBox            b;
+  const CplStencil *stc;
+  PetscScalar      *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(CplStencils(cpl, &pa, &stc));
+  PetscCall(CplBoxOf(cpl->cda, &b));
+  PetscCall(VecZeroEntries(cpl->cloc));
+  PetscCall(VecGetArray(cpl->cloc, &a));
+  if (only) { /* two loops: the every-step one tests nothing */
+    for (PetscInt p = 0; p < pa.nlocal; p++)
+      if (only[p] == 0) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->cell_vol, a);
+  } else
+    for (PetscInt p = 0; p < pa.nlocal; p++) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->cell_vol, a);
+  PetscCall(VecRestoreArray(cpl->cloc, &a));
+  PetscCall(VecZeroEntries(solid));
+  PetscCall(DMLocalToGlobal(cpl->cda, cpl->cloc, ADD_VALUES, solid));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Collective. Porosity eps^{n+1} of the fluid from the current particle positions: solid
  * fraction by the kernel, eps = 1 - solid, raised to -cpl_porosity_floor where below it. */
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
 {
-  DemArrays          pa;
-  CplBox             b;
-  const CplStencil  *stc;
-  PetscScalar       *a, *e;
+  PetscScalar       *e;
   const PetscScalar *s;
   Vec                solid, eps;
   PetscInt           n, clipped = 0, cnt[2];
@@ -177,25 +211,8 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(cpl->ev_project, 0, 0, 0, 0));
-  PetscCall(DemGetArrays(cpl->dem, &pa));
-  PetscCall(CplStencils(cpl, &pa, &stc));
-  PetscCall(CplBoxOf(cpl->cda, &b));
-  PetscCall(VecZeroEntries(cpl->cloc));
-  PetscCall(VecGetArray(cpl->cloc, &a));
-  for (PetscInt p = 0; p < pa.nlocal; p++) {
-    const CplStencil *st1 = &stc[p];
-    const PetscReal   f   = CplVolumeOf(cpl, &pa, p) / cpl->cell_vol;
-    for (int k = 0; k < st1->nc[2]; k++)
-      for (int j = 0; j < st1->nc[1]; j++) {
-        const double wjk = f * st1->wc[2][k] * st1->wc[1][j];
-        PetscInt     o   = cpl_off(&b, st1->c0[0], st1->c0[1] + j, st1->c0[2] + k);
-        for (int i = 0; i < st1->nc[0]; i++) a[o + i] += wjk * st1->wc[0][i];
-      }
-  }
-  PetscCall(VecRestoreArray(cpl->cloc, &a));
   PetscCall(DMGetGlobalVector(cpl->cda, &solid));
-  PetscCall(VecZeroEntries(solid));
-  PetscCall(DMLocalToGlobal(cpl->cda, cpl->cloc, ADD_VALUES, solid));
+  PetscCall(CplSpreadSolid(cpl, NULL, solid));
   PetscCall(VecSum(solid, &sum));
   cpl->solid_grid = sum * cpl->cell_vol;
   PetscCall(FluidGetPorosity(cpl->fl, &eps));
@@ -220,6 +237,39 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
     st->clipped = cnt[1];
     PetscCall(MPIU_Allreduce(&emin, &st->eps_min, 1, MPIU_REAL, MPIU_MIN, cpl->comm));
   }
+  PetscCall(PetscLogEventEnd(cpl->ev_project, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Particles a source added during the last DEM substeps (their drag coefficient
+ * is still the 0 that DemAddParticle gives; every other particle has K > 0 from this step's
+ * start) take the place of the fluid they cover: their solid fraction is taken from the previous
+ * porosity too (raised to the floor), so (eps - eps_old)/dt in the continuity equation sees only
+ * the motion of the particles, not their appearance. Counted as a flux, a particle of volume V
+ * appearing in one step would push V/dt of fluid out of its cell (at every batch a pressure
+ * spike of about 100 times the weight of the particles present, coupling/test_pour_coupled).
+ * The covered fluid leaves the run with its momentum. */
+PetscErrorCode CplAdmitNewParticles(Cpl cpl)
+{
+  DemExternal        ex;
+  Vec                solid, old;
+  PetscScalar       *e;
+  const PetscScalar *s;
+  PetscInt           n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(cpl->ev_project, 0, 0, 0, 0));
+  PetscCall(DemGetExternal(cpl->dem, &ex));
+  PetscCall(DMGetGlobalVector(cpl->cda, &solid));
+  PetscCall(CplSpreadSolid(cpl, ex.k, solid));
+  PetscCall(FluidGetPorosityOld(cpl->fl, &old));
+  PetscCall(VecGetLocalSize(old, &n));
+  PetscCall(VecGetArrayRead(solid, &s));
+  PetscCall(VecGetArray(old, &e));
+  for (PetscInt c = 0; c < n; c++) e[c] = PetscMax(e[c] - s[c], cpl->eps_floor);
+  PetscCall(VecRestoreArray(old, &e));
+  PetscCall(VecRestoreArrayRead(solid, &s));
+  PetscCall(DMRestoreGlobalVector(cpl->cda, &solid));
   PetscCall(PetscLogEventEnd(cpl->ev_project, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

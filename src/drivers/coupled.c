@@ -3,8 +3,10 @@
  * -cpl_progress_interval, writes particles and fluid in the same output frames, and reports the
  * column figures: the pressure drop across the domain along gravity against the bed's buoyant
  * weight per cross-section area (the fluidization check) and the drag on the particles against
- * the same weight, averaged over the second half of the run; with -cpl_probe_z, the packed-bed
- * figures (dp/L between two heights, the porosity there and the drag law's own prediction).
+ * the same weight, averaged over the second half of the run (the weight is taken again whenever
+ * sources or outlets changed the particle set: the means use the weight at the end); with
+ * -cpl_probe_z, the packed-bed figures (dp/L between two heights, the porosity there and the
+ * drag law's own prediction).
  * The bed: at the start, its height (95% of the solids mass below, the monitor's bed_height_95),
  * its porosity between the 5% and 95% heights, the minimum fluidization velocity of the drag law
  * at that porosity and of Wen & Yu, and the inlet's superficial velocity over them; at the end,
@@ -143,6 +145,7 @@ typedef struct {
   PetscReal  h0, eps0, hsum, hn; /* bed at the start: height (m), porosity; height sum (m) and count over the second half's progress lines */
   PetscReal  next, next_ckpt;    /* simulated times of the next progress line and checkpoint */
   PetscInt   s0;                 /* the step the loop started from (the progress line's rate) */
+  PetscInt   wflow;              /* particles inserted + removed when the bed's weight was last taken */
 } Coupled;
 
 #define COUPLED_CKPT_NRUN 10 /* run/coupled: avg, davg, navg, next, next_ckpt, the window's start, h0, eps0, hsum, hn */
@@ -303,6 +306,20 @@ static PetscErrorCode CoupledBedEnd(const Coupled *c)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. The bed's buoyant weight per area again when sources or outlets changed the
+ * particle set since it was last taken (a run that starts empty and is poured into). */
+static PetscErrorCode CoupledBedWeightUpdate(Coupled *c, PetscReal *w)
+{
+  DemFlowStats f;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetFlow(c->dem, &f));
+  if (f.inserted + f.removed == c->wflow) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(CoupledBedWeight(c->cpl, &c->col, w));
+  c->wflow = f.inserted + f.removed;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode CoupledRunLoop(Coupled *c)
 {
   const CoupledRun r = c->r;
@@ -311,10 +328,13 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
   PetscInt         step, clipped;
   PetscBool        due;
   CplStats         st;
+  DemFlowStats     flow;
 
   PetscFunctionBeginUser;
   PetscCall(CoupledCheckRunLength(c));
   PetscCall(CoupledBedWeight(c->cpl, &c->col, &w));
+  PetscCall(DemGetFlow(c->dem, &flow));
+  c->wflow = flow.inserted + flow.removed;
   PetscCall(CplGetTime(c->cpl, &t, &c->s0));
   step = c->s0;
   PetscCall(CplGetStepQuantum(c->cpl, &dt)); /* the step, or the DEM step with adaptive steps */
@@ -328,6 +348,7 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
     if (sig) PetscCall(DriverCkptStop(&r->ckpt, c->io, sig, t, step, CoupledCheckpointWrite, c)); /* a checkpoint of this step, then the stop */
     PetscCall(CplStep(c->cpl, &st));
     PetscCall(CplGetTime(c->cpl, &t, &step));
+    PetscCall(CoupledBedWeightUpdate(c, &w));
     PetscCall(BalanceCheck(c->lb, PETSC_FALSE, NULL));
     PetscCall(DriverAvgSample(r->avg, t));
     PetscCall(IoDue(c->io, t, &due));
@@ -451,7 +472,7 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
 PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBool help)
 {
   Domain        *dom = r->dom;
-  Coupled        c   = {r, dem, NULL, NULL, lb, io, PETSC_FALSE, {2, -1, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  Coupled        c   = {r, dem, NULL, NULL, lb, io, PETSC_FALSE, {2, -1, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   PetscBool      convex;
   PetscReal      g[3], t;
   PetscInt       step;
