@@ -15,7 +15,10 @@
  * 206:269, doi:10.1016/j.powtec.2010.09.030, model A):
  *   constant: M_r = -mu_r R* |Fn| w_rel/|w_rel|                     (mu_r dimensionless)
  *   viscous:  M_r = -mu_r R* |Fn| |V_w| w_rel/|w_rel|,  V_w = (r_i w_i + r_j w_j) x n   (mu_r s/m)
- * Both are capped at I* |w_rel| / dt, I* = I_i I_j / (I_i + I_j) (I_i for a wall): the torque
+ * and Grains3D's k_ms (the HO-D-C model of Wachs et al. 2012, Powder Technol. 224:374, as its
+ * source HODCContactForceModel.cpp computes it; w_n = (w_rel.n) n, w_t = w_rel - w_n):
+ *   kms:      M_r = -k_ms |Fn| (w_t + 1e-3 w_n)                    (k_ms m s; no R*, no unit vector)
+ * All are capped at I* |w_rel| / dt, I* = I_i I_j / (I_i + I_j) (I_i for a wall): the torque
  * alone cannot reverse w_rel within one step, so the constant model does not chatter as w_rel
  * -> 0 (Ai et al.'s objection to model A) and decays |w_rel| geometrically once the cap binds.
  * No per-contact history (an elastic-plastic rolling spring, Ai's model C, would need a second
@@ -35,7 +38,8 @@ typedef enum {
 typedef enum {
   DEM_ROLL_NONE,
   DEM_ROLL_CONSTANT,
-  DEM_ROLL_VISCOUS
+  DEM_ROLL_VISCOUS,
+  DEM_ROLL_KMS
 } DemRoll;
 
 /* Parameters of one (shape, shape) or (shape, wall) pair, precomputed at set-up. */
@@ -142,13 +146,18 @@ static inline double dem_pair_inertia(double mi, double ri, double mj, double rj
 }
 
 /* Rolling-resistance torque mr on i (j receives -mr) of model roll (not NONE): wrel = w_i - w_j,
- * vw = V_w (the viscous model's rotational contact velocity), ieff the pair's I*. */
-static inline void dem_rolling_torque(DemRoll roll, const DemPairParams *p, double fn, double ieff, const double *wrel, const double *vw, double dt, double *mr)
+ * vw = V_w (the viscous model's rotational contact velocity), nrm the normal, ieff the pair's I*. */
+static inline void dem_rolling_torque(DemRoll roll, const DemPairParams *p, double fn, double ieff, const double *wrel, const double *vw, const double *nrm, double dt, double *mr)
 {
   const double wn  = sqrt(dem_dot(wrel, wrel));
   double       mag = p->mur * p->reff * fabs(fn);
   if (!(wn > 0.0)) {
     mr[0] = mr[1] = mr[2] = 0.0;
+    return;
+  }
+  if (roll == DEM_ROLL_KMS) { /* linear in w: the cap binds only when k_ms |Fn| dt > I* */
+    const double c = fmin(p->mur * fabs(fn), ieff / dt), wnn = dem_dot(wrel, nrm);
+    for (int k = 0; k < 3; k++) mr[k] = -c * (wrel[k] - (1.0 - 1e-3) * wnn * nrm[k]);
     return;
   }
   if (roll == DEM_ROLL_VISCOUS) mag *= sqrt(dem_dot(vw, vw));
@@ -165,5 +174,5 @@ static inline void dem_rolling_pair(DemRoll roll, const DemPairParams *p, double
     ws[k]   = ri * wi[k] + rj * wj[k];
   }
   dem_cross(ws, nrm, vw);
-  dem_rolling_torque(roll, p, fn, ieff, wrel, vw, dt, mr);
+  dem_rolling_torque(roll, p, fn, ieff, wrel, vw, nrm, dt, mr);
 }

@@ -78,7 +78,7 @@ static PetscErrorCode DemMaterialOptions(PetscOptionItems *PetscOptionsObject, D
 /* Rolling resistance (contact_laws.h): the model and the coefficients of the particles and the
  * walls (the walls take the particles' unless given). A coefficient without a model, or a model
  * without a coefficient, is refused: one of them would be ignored. */
-static const char *DemRollNames[] = {"none", "constant", "viscous", "DemRoll", "DEM_ROLL_", NULL};
+static const char *DemRollNames[] = {"none", "constant", "viscous", "kms", "DemRoll", "DEM_ROLL_", NULL};
 
 static PetscErrorCode DemRollingOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
 {
@@ -86,9 +86,9 @@ static PetscErrorCode DemRollingOptions(PetscOptionItems *PetscOptionsObject, De
   PetscBool pset, wset;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsEList("-dem_rolling_model", "Rolling resistance of every contact: none, constant (torque mu_r R* |Fn|) or viscous (mu_r R* |Fn| |V_omega|), as Lethe's", NULL, DemRollNames, 3, DemRollNames[roll], &roll, NULL));
+  PetscCall(PetscOptionsEList("-dem_rolling_model", "Rolling resistance of every contact: none, constant (torque mu_r R* |Fn|) or viscous (mu_r R* |Fn| |V_omega|), as Lethe's; kms (k_ms |Fn| (w_t + 1e-3 w_n)), as Grains3D's", NULL, DemRollNames, 4, DemRollNames[roll], &roll, NULL));
   dem->contact.roll = (DemRoll)roll;
-  PetscCall(PetscOptionsReal("-dem_rolling_friction", "Rolling friction coefficient mu_r, >= 0 (constant: -, viscous: s/m)", NULL, dem->contact.mat.mur, &dem->contact.mat.mur, &pset));
+  PetscCall(PetscOptionsReal("-dem_rolling_friction", "Rolling friction coefficient mu_r, >= 0 (constant: -, viscous: s/m, kms: k_ms in m s)", NULL, dem->contact.mat.mur, &dem->contact.mat.mur, &pset));
   dem->contact.wmat.mur = dem->contact.mat.mur;
   PetscCall(PetscOptionsReal("-dem_wall_rolling_friction", "Rolling friction coefficient against the walls, >= 0; default -dem_rolling_friction", NULL, dem->contact.wmat.mur, &dem->contact.wmat.mur, &wset));
   PetscCheck(dem->contact.roll != DEM_ROLL_NONE || !(pset || wset), dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_rolling_model none: give -dem_rolling_model constant or viscous", pset ? "-dem_rolling_friction" : "-dem_wall_rolling_friction");

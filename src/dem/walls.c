@@ -192,7 +192,7 @@ static inline void dem_walls_body(DemParticles *pt, const double *rad, const Dem
         for (int k = 0; k < 3; k++) wrel[k] = wi_[k] - w->omega * w->ax_u[k];
         dem_cross(wi_, nrm, vw);
         for (int k = 0; k < 3; k++) vw[k] *= r;
-        dem_rolling_torque(cm->roll, p, fn, poly ? dem_pair_inertia(pt->m[i], r, 0, 0) : p->ieff, wrel, vw, dt, mr);
+        dem_rolling_torque(cm->roll, p, fn, poly ? dem_pair_inertia(pt->m[i], r, 0, 0) : p->ieff, wrel, vw, nrm, dt, mr);
         for (int k = 0; k < 3; k++) pt->tq[3 * i + k] += mr[k];
       }
       for (int k = 0; k < 3; k++) pt->f[3 * i + k] += F[k];

@@ -13,6 +13,8 @@
  * (perpendicular to n) and w_j = 0: the normal impulse J = delta0 sqrt(kn m*) turns spin by
  * -mu_r R* J / I_i on i and +mu_r R* J / I_j on j (constant model; viscous: times |V_w| = r_i w_i,
  * nearly constant over the contact); I_i w_i + I_j w_j is conserved to round-off.
+ * Grains3D's k_ms, M = -k_ms |Fn| (w_t + 1e-3 w_n): rolling v ~ exp(-5/7 k_ms g t / r^2), a spin
+ * about the normal w ~ exp(-1e-3 k_ms m g t / I).
  * Linear and Hertz laws, one size per shape and spheres of their own sizes. */
 #include "dem_common.h"
 
@@ -21,12 +23,13 @@
 typedef struct {
   const char *law, *model;
   double      mur, tan_th, v0; /* v0: launched rolling without slip along +x */
+  double      wz0;             /* initial spin about the wall's normal (rad/s) */
   PetscBool   own;             /* spheres of their own sizes */
   double      tend;
 } RollCase;
 
 typedef struct {
-  double v[NS], x[NS]; /* v_x and x each ms */
+  double v[NS], x[NS], wz[NS]; /* v_x, x and the spin about the normal each ms */
   double vend, wend;
 } RollRun;
 
@@ -47,14 +50,15 @@ static PetscErrorCode Run(const RollCase *c, RollRun *o)
   PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -1,-1,-0.1 -domain_hi 4,1,0.1 -dem_radius %g -dem_density %g -dem_contact_law %s %s -dem_restitution 0.5 -dem_friction 0.5 -dem_gravity %.17g,0,%.17g -dem_dt %g -dem_impact_velocity 0.1 -dem_plane_0 0,0,0,0,0,1 -dem_rolling_model %s -dem_rolling_friction %g", R, RHO, c->law, stiff, G * sin(th), -G * cos(th), DT, c->model, c->mur));
   PetscCall(TestDemCreate(opts, &dom, &dem));
   if (c->own) PetscCall(DemSetOwnSizes(dem, 0.5 * R, R));
-  DemParticle p = {.id = 7, .shape = 0, .x = {0, 0, R - m * G * cos(th) / KN}, .v = {c->v0, 0, 0}, .w = {0, c->v0 / R, 0}, .q = {1, 0, 0, 0}, .r = c->own ? R : 0};
+  DemParticle p = {.id = 7, .shape = 0, .x = {0, 0, R - m * G * cos(th) / KN}, .v = {c->v0, 0, 0}, .w = {0, c->v0 / R, c->wz0}, .q = {1, 0, 0, 0}, .r = c->own ? R : 0};
   PetscCall(DemAddParticle(dem, &p));
   PetscCall(DemSetUp(dem));
   while (t < c->tend - 1e-9) {
     const DemParticle q = TestGet(dem, 7);
     if (s % 200 == 0 && s / 200 < NS) {
-      o->v[s / 200] = q.v[0];
-      o->x[s / 200] = q.x[0];
+      o->v[s / 200]  = q.v[0];
+      o->x[s / 200]  = q.x[0];
+      o->wz[s / 200] = q.w[2];
     }
     PetscCall(DemStep(dem));
     PetscCall(DemGetTime(dem, &t, NULL));
@@ -70,7 +74,7 @@ static PetscErrorCode Run(const RollCase *c, RollRun *o)
 static PetscErrorCode FlatConstant(const char *law, PetscBool own)
 {
   const double   mur = 0.05, v0 = 0.05, a = 5.0 / 7.0 * mur * G, ts = v0 / a; /* stop at 0.143 s */
-  const RollCase c = {law, "constant", mur, 0, v0, own, 0.3};
+  const RollCase c = {law, "constant", mur, 0, v0, 0, own, 0.3};
   RollRun        o;
 
   PetscFunctionBeginUser;
@@ -94,7 +98,7 @@ static PetscErrorCode Slope(const char *law)
   PetscFunctionBeginUser;
   for (int k = 0; k < 4; k++) {
     const double   th = atan(f[k] * mur);
-    const RollCase c  = {law, "constant", mur, f[k] * mur, 0, PETSC_FALSE, 0.2};
+    const RollCase c  = {law, "constant", mur, f[k] * mur, 0, 0, PETSC_FALSE, 0.2};
     RollRun        o;
     PetscCall(Run(&c, &o));
     if (f[k] < 1) {
@@ -115,15 +119,36 @@ static PetscErrorCode Viscous(const char *law)
 
   PetscFunctionBeginUser;
   {
-    const RollCase c = {law, "viscous", mur, 0, v0, PETSC_FALSE, 0.2};
+    const RollCase c = {law, "viscous", mur, 0, v0, 0, PETSC_FALSE, 0.2};
     PetscCall(Run(&c, &o));
     PetscCall(CheckClose(CheckName("%s viscous: v(0.15 s) / v(0.05 s) vs exp(-5/7 mu_r g 0.1 s)", law), o.v[150] / o.v[50], exp(-k * 0.1), 0.01));
   }
   {
     const double   muv = 5, tn = 0.1; /* relaxes at 5/7 muv g = 35 /s: terminal within 0.3 s */
-    const RollCase c = {law, "viscous", muv, tn, 0, PETSC_FALSE, 0.3};
+    const RollCase c = {law, "viscous", muv, tn, 0, 0, PETSC_FALSE, 0.3};
     PetscCall(Run(&c, &o));
     PetscCall(CheckClose(CheckName("%s viscous on tan(theta) = %g: terminal speed [m/s] vs tan(theta) / mu_r", law, tn), o.vend, tn / muv, 0.01));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Grains3D's k_ms: rolling decays at 5/7 k_ms g / r^2, a spin about the normal at 1e-3 k_ms m g / I. */
+static PetscErrorCode Kms(const char *law)
+{
+  const double kms = 1e-5, v0 = 0.05, k = 5.0 / 7.0 * kms * G / (R * R); /* 2.8 /s */
+  const double kt = 1e-2, W = 10, kz = 1e-3 * kt * G / (0.4 * R * R);    /* 9.8 /s */
+  RollRun      o;
+
+  PetscFunctionBeginUser;
+  {
+    const RollCase c = {law, "kms", kms, 0, v0, 0, PETSC_FALSE, 0.2};
+    PetscCall(Run(&c, &o));
+    PetscCall(CheckClose(CheckName("%s kms: v(0.15 s) / v(0.05 s) vs exp(-5/7 k_ms g / r^2 0.1 s)", law), o.v[150] / o.v[50], exp(-k * 0.1), 0.01));
+  }
+  {
+    const RollCase c = {law, "kms", kt, 0, 0, W, PETSC_FALSE, 0.2};
+    PetscCall(Run(&c, &o));
+    PetscCall(CheckClose(CheckName("%s kms: spin about the normal w(0.15 s) / w(0.05 s) vs exp(-1e-3 k_ms m g / I 0.1 s)", law), o.wz[150] / o.wz[50], exp(-kz * 0.1), 0.01));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -133,7 +158,7 @@ static PetscErrorCode Pair(const char *model, PetscBool own)
 {
   const double ri = R, rj = own ? 0.8 * R : R, mi = RHO * 4.0 / 3.0 * PETSC_PI * ri * ri * ri, mj = RHO * 4.0 / 3.0 * PETSC_PI * rj * rj * rj;
   const double Ii = 0.4 * mi * ri * ri, Ij = 0.4 * mj * rj * rj, ms = mi * mj / (mi + mj), rs = ri * rj / (ri + rj);
-  const double d0 = 1e-5, W = 10, mur = 0.05, J = d0 * sqrt(KN * ms);
+  const double d0 = 1e-5, W = 10, mur = strcmp(model, "kms") ? 0.05 : 1e-5, J = d0 * sqrt(KN * ms);
   char         opts[1024];
   Domain       dom;
   Dem          dem;
@@ -153,8 +178,10 @@ static PetscErrorCode Pair(const char *model, PetscBool own)
   if (!strcmp(model, "constant")) {
     PetscCall(CheckClose(CheckName("pair%s constant: spin change of i [rad/s] vs -mu_r R* J / I_i", tag), pa.w[2] - W, -mur * rs * J / Ii, 1e-3));
     PetscCall(CheckClose(CheckName("pair%s constant: spin change of j [rad/s] vs +mu_r R* J / I_j", tag), pb.w[2], mur * rs * J / Ij, 1e-3));
-  } else /* |V_w| = r_i W, frozen over the contact: the spin itself changes by 0.4% */
+  } else if (!strcmp(model, "viscous")) /* |V_w| = r_i W, frozen over the contact: the spin itself changes by 0.4% */
     PetscCall(CheckClose(CheckName("pair%s viscous: spin change of i [rad/s] vs -mu_r R* J r_i W / I_i", tag), pa.w[2] - W, -mur * rs * J * ri * W / Ii, 1e-2));
+  else /* linear in w_rel: w_rel' = -k_ms Fn (1/I_i + 1/I_j) w_rel */
+    PetscCall(CheckClose(CheckName("pair%s kms: w_i - w_j [rad/s] vs W exp(-k_ms J (1/I_i + 1/I_j))", tag), pa.w[2] - pb.w[2], W * exp(-mur * J * (1 / Ii + 1 / Ij)), 1e-3));
   PetscCall(CheckBelow(CheckName("pair%s %s: spin angular momentum I_i w_i + I_j w_j, relative change", tag, model), PetscAbsReal((Ii * pa.w[2] + Ij * pb.w[2]) / (Ii * W) - 1), 1e-13));
   PetscCall(TestDemDestroy(&dom, &dem));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -169,11 +196,13 @@ int main(int argc, char **argv)
     PetscCall(FlatConstant(laws[l], PETSC_FALSE));
     PetscCall(Slope(laws[l]));
     PetscCall(Viscous(laws[l]));
+    PetscCall(Kms(laws[l]));
   }
   PetscCall(FlatConstant("linear", PETSC_TRUE));
   PetscCall(Pair("constant", PETSC_FALSE));
   PetscCall(Pair("constant", PETSC_TRUE));
   PetscCall(Pair("viscous", PETSC_FALSE));
+  PetscCall(Pair("kms", PETSC_TRUE));
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;
 }
