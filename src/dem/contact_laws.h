@@ -25,7 +25,7 @@
  * spring per list entry); the price: a sphere held by the torque below its threshold creeps at
  * an angular speed of order (driving torque) dt / I*, which vanishes with dt (src/dem/README.md).
  * Forces returned act on the partner; i receives the opposite (Newton's third law).
- * Units SI. No allocation, no branching on options other than the law. */
+ * Units SI. No allocation, no branching on options other than the law and the rolling model. */
 #pragma once
 #include <math.h>
 
