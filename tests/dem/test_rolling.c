@@ -13,6 +13,8 @@
  * (perpendicular to n) and w_j = 0: the normal impulse J = delta0 sqrt(kn m*) turns spin by
  * -mu_r R* J / I_i on i and +mu_r R* J / I_j on j (constant model; viscous: times |V_w| = r_i w_i,
  * nearly constant over the contact); I_i w_i + I_j w_j is conserved to round-off.
+ * A frictionless sphere in a drum turning at omega spins up at 5/2 mu_r g / r to omega (w_rel
+ * counts the wall's rotation) and stays there.
  * Grains3D's k_ms, M = -k_ms |Fn| (w_t + 1e-3 w_n): rolling v ~ exp(-5/7 k_ms g t / r^2), a spin
  * about the normal w ~ exp(-1e-3 k_ms m g t / I).
  * Linear and Hertz laws, one size per shape and spheres of their own sizes. */
@@ -153,6 +155,33 @@ static PetscErrorCode Kms(const char *law)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A frictionless sphere resting in a drum turning at omega about y: w_rel = w - omega u, so the
+ * constant model spins it up at 5/2 mu_r g / r until w = omega u, then holds it there. */
+static PetscErrorCode Drum(void)
+{
+  const double mur = 0.01, om = 1.0, Rd = 0.05, m = RHO * 4.0 / 3.0 * PETSC_PI * R * R * R, al = 2.5 * mur * G / R; /* 49 rad/s^2 */
+  char         opts[1024];
+  Domain       dom;
+  Dem          dem;
+  double       t = 0, w1 = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo -0.06,-0.06,-0.06 -domain_hi 0.06,0.06,0.06 -dem_radius %g -dem_density %g -dem_kn %g -dem_restitution 0.5 -dem_friction 0 -dem_dt %g -dem_cylinder 0,0,0,0,1,0,%g -dem_cylinder_omega %g -dem_rolling_model constant -dem_rolling_friction %g", R, RHO, KN, DT, Rd, om, mur));
+  PetscCall(TestDemCreate(opts, &dom, &dem));
+  DemParticle p = {.id = 7, .shape = 0, .x = {0, 0, -Rd + R - m * G / KN}, .q = {1, 0, 0, 0}};
+  PetscCall(DemAddParticle(dem, &p));
+  PetscCall(DemSetUp(dem));
+  while (t < 0.1 - 1e-9) {
+    if (PetscAbsReal(t - 0.01) < 0.5 * DT) w1 = TestGet(dem, 7).w[1];
+    PetscCall(DemStep(dem));
+    PetscCall(DemGetTime(dem, &t, NULL));
+  }
+  PetscCall(CheckClose(CheckName("drum at omega, frictionless sphere: spin at 0.01 s [rad/s] vs 5/2 mu_r g t / r"), w1, al * 0.01, 0.01));
+  PetscCall(CheckBelow(CheckName("drum at omega: |w - omega| / omega at 0.1 s (spun up to the wall's rotation, no overshoot)"), PetscAbsReal(TestGet(dem, 7).w[1] - om) / om, 1e-6));
+  PetscCall(TestDemDestroy(&dom, &dem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Two spheres pushed apart from an overlap, spinning about z (n along x). */
 static PetscErrorCode Pair(const char *model, PetscBool own)
 {
@@ -199,6 +228,7 @@ int main(int argc, char **argv)
     PetscCall(Kms(laws[l]));
   }
   PetscCall(FlatConstant("linear", PETSC_TRUE));
+  PetscCall(Drum());
   PetscCall(Pair("constant", PETSC_FALSE));
   PetscCall(Pair("constant", PETSC_TRUE));
   PetscCall(Pair("viscous", PETSC_FALSE));
