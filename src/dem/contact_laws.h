@@ -18,12 +18,15 @@
  * and Grains3D's k_ms (the HO-D-C model of Wachs et al. 2012, Powder Technol. 224:374, as its
  * source HODCContactForceModel.cpp computes it; w_n = (w_rel.n) n, w_t = w_rel - w_n):
  *   kms:      M_r = -k_ms |Fn| (w_t + 1e-3 w_n)                    (k_ms m s; no R*, no unit vector)
- * All are capped at I* |w_rel| / dt, I* = I_i I_j / (I_i + I_j) (I_i for a wall): the torque
- * alone cannot reverse w_rel within one step, so the constant model does not chatter as w_rel
- * -> 0 (Ai et al.'s objection to model A) and decays |w_rel| geometrically once the cap binds.
+ * All are capped at I* |w_rel| / (12 dt), I* = I_i I_j / (I_i + I_j) (I_i for a wall): the
+ * torque alone cannot reverse w_rel within one step, so the constant model does not chatter as
+ * w_rel -> 0 (Ai et al.'s objection to model A) and decays |w_rel| geometrically once the cap
+ * binds; the 12 keeps the summed torques of a sphere's contacts (at most 12 equal neighbours)
+ * within the explicit step's stability limit, which a cap of I* |w_rel| / dt per contact does not
+ * (a dense bed with a large k_ms diverged with it).
  * No per-contact history (an elastic-plastic rolling spring, Ai's model C, would need a second
  * spring per list entry); the price: a sphere held by the torque below its threshold creeps at
- * an angular speed of order (driving torque) dt / I*, which vanishes with dt (src/dem/README.md).
+ * an angular speed of order 12 (driving torque) dt / I*, which vanishes with dt (README.md).
  * Forces returned act on the partner; i receives the opposite (Newton's third law).
  * Units SI. No allocation, no branching on options other than the law and the rolling model. */
 #pragma once
@@ -138,6 +141,11 @@ static inline void dem_tangential_force(const DemPairParams *p, double fn, doubl
   }
 }
 
+/* The rolling torque of one contact is capped at I* |w_rel| / (12 dt): alone it removes at most
+ * 1/12 of w_rel per step (no reversal), and the 12 contacts a sphere can have keep the explicit
+ * step of their summed damping stable (Gershgorin: dt * 2 * 12 / 12 per I < 2). */
+#define DEM_ROLL_CAP_CONTACTS 12.0
+
 /* I* of two solid spheres (I = 2/5 m r^2) of masses mi, mj and radii ri, rj; mj = 0: a wall (I_i). */
 static inline double dem_pair_inertia(double mi, double ri, double mj, double rj)
 {
@@ -155,13 +163,13 @@ static inline void dem_rolling_torque(DemRoll roll, const DemPairParams *p, doub
     mr[0] = mr[1] = mr[2] = 0.0;
     return;
   }
-  if (roll == DEM_ROLL_KMS) { /* linear in w: the cap binds only when k_ms |Fn| dt > I* */
-    const double c = fmin(p->mur * fabs(fn), ieff / dt), wnn = dem_dot(wrel, nrm);
+  if (roll == DEM_ROLL_KMS) { /* linear in w: the cap binds only when k_ms |Fn| dt > I* / 12 */
+    const double c = fmin(p->mur * fabs(fn), ieff / (DEM_ROLL_CAP_CONTACTS * dt)), wnn = dem_dot(wrel, nrm);
     for (int k = 0; k < 3; k++) mr[k] = -c * (wrel[k] - (1.0 - 1e-3) * wnn * nrm[k]);
     return;
   }
   if (roll == DEM_ROLL_VISCOUS) mag *= sqrt(dem_dot(vw, vw));
-  mag = fmin(mag, ieff * wn / dt) / wn; /* cannot reverse w_rel within the step */
+  mag = fmin(mag, ieff * wn / (DEM_ROLL_CAP_CONTACTS * dt)) / wn; /* cannot reverse w_rel within the step */
   for (int k = 0; k < 3; k++) mr[k] = -mag * wrel[k];
 }
 
