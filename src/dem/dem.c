@@ -91,7 +91,7 @@ static PetscErrorCode DemRollingOptions(PetscOptionItems *PetscOptionsObject, De
   PetscCall(PetscOptionsReal("-dem_rolling_friction", "Rolling friction coefficient mu_r, >= 0 (constant: -, viscous: s/m, kms: k_ms in m s)", NULL, dem->contact.mat.mur, &dem->contact.mat.mur, &pset));
   dem->contact.wmat.mur = dem->contact.mat.mur;
   PetscCall(PetscOptionsReal("-dem_wall_rolling_friction", "Rolling friction coefficient against the walls, >= 0; default -dem_rolling_friction", NULL, dem->contact.wmat.mur, &dem->contact.wmat.mur, &wset));
-  PetscCheck(dem->contact.roll != DEM_ROLL_NONE || !(pset || wset), dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_rolling_model none: give -dem_rolling_model constant or viscous", pset ? "-dem_rolling_friction" : "-dem_wall_rolling_friction");
+  PetscCheck(dem->contact.roll != DEM_ROLL_NONE || !(pset || wset), dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_rolling_model none: give -dem_rolling_model constant, viscous or kms", pset ? "-dem_rolling_friction" : "-dem_wall_rolling_friction");
   PetscCheck(dem->contact.roll == DEM_ROLL_NONE || pset || wset, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_rolling_model %s needs -dem_rolling_friction (and optionally -dem_wall_rolling_friction)", DemRollNames[dem->contact.roll]);
   PetscCheck(dem->contact.mat.mur >= 0 && PetscIsNormalReal(dem->contact.mat.mur + 1), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_rolling_friction %g must be finite and >= 0", (double)dem->contact.mat.mur);
   PetscCheck(dem->contact.wmat.mur >= 0 && PetscIsNormalReal(dem->contact.wmat.mur + 1), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_wall_rolling_friction %g must be finite and >= 0", (double)dem->contact.wmat.mur);
