@@ -101,6 +101,8 @@ static PetscErrorCode DemPairFill(Dem dem, const DemMaterial *a, const DemMateri
   p->zeta     = dem_zeta(e); /* sizes of their own: dem_pair_sized (contact_laws.h) */
   p->vimp     = b->kn_set ? 0 : dem->contact.vimpact;
   p->kt_given = b->kt_set;
+  p->mur      = b->mur; /* the particles' for a pair, the walls' for a wall */
+  p->ieff     = dem_pair_inertia(ma, ra, mb, rb);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -10,8 +10,25 @@
  *   no history (Grains3D): Ft = -min(mu |Fn|, gt m* |vt|) vt/|vt|;
  *   history (linear / Mindlin): xi projected on the tangent plane, xi += vt dt, Ft = -kt xi - gt m* vt,
  *            capped at mu |Fn| with xi reset to the capped spring (Cundall-Strack slip).
+ * Rolling resistance (torque on i; w_rel = w_i - w_j, a wall's angular velocity for j), as Lethe
+ * defines its two models (Lethe docs, DEM "rolling resistance"; Ai et al. 2011, Powder Technol.
+ * 206:269, doi:10.1016/j.powtec.2010.09.030, model A):
+ *   constant: M_r = -mu_r R* |Fn| w_rel/|w_rel|                     (mu_r dimensionless)
+ *   viscous:  M_r = -mu_r R* |Fn| |V_w| w_rel/|w_rel|,  V_w = (r_i w_i + r_j w_j) x n   (mu_r s/m)
+ * and Grains3D's k_ms (the HO-D-C model of Wachs et al. 2012, Powder Technol. 224:374, as its
+ * source HODCContactForceModel.cpp computes it; w_n = (w_rel.n) n, w_t = w_rel - w_n):
+ *   kms:      M_r = -k_ms |Fn| (w_t + 1e-3 w_n)                    (k_ms m s; no R*, no unit vector)
+ * All are capped at I* |w_rel| / (12 dt), I* = I_i I_j / (I_i + I_j) (I_i for a wall): the
+ * torque alone cannot reverse w_rel within one step, so the constant model does not chatter as
+ * w_rel -> 0 (Ai et al.'s objection to model A) and decays |w_rel| geometrically once the cap
+ * binds; the 12 keeps the summed torques of a sphere's contacts (at most 12 equal neighbours)
+ * within the explicit step's stability limit, which a cap of I* |w_rel| / dt per contact does not
+ * (a dense bed with a large k_ms diverged with it).
+ * No per-contact history (an elastic-plastic rolling spring, Ai's model C, would need a second
+ * spring per list entry); the price: a sphere held by the torque below its threshold creeps at
+ * an angular speed of order 12 (driving torque) dt / I*, which vanishes with dt (README.md).
  * Forces returned act on the partner; i receives the opposite (Newton's third law).
- * Units SI. No allocation, no branching on options other than the law. */
+ * Units SI. No allocation, no branching on options other than the law and the rolling model. */
 #pragma once
 #include <math.h>
 
@@ -20,6 +37,13 @@ typedef enum {
   DEM_LAW_LINEAR,
   DEM_LAW_HERTZ
 } DemLaw;
+
+typedef enum {
+  DEM_ROLL_NONE,
+  DEM_ROLL_CONSTANT,
+  DEM_ROLL_VISCOUS,
+  DEM_ROLL_KMS
+} DemRoll;
 
 /* Parameters of one (shape, shape) or (shape, wall) pair, precomputed at set-up. */
 typedef struct {
@@ -30,6 +54,8 @@ typedef struct {
   double mu;         /* Coulomb friction coefficient */
   double meff, reff; /* effective mass (kg) and radius (m) */
   double hratio;     /* hertz: gt/gn ratio applied to sqrt(m* S) damping */
+  double mur;        /* rolling friction coefficient (constant: -, viscous: s/m) */
+  double ieff;       /* effective moment of inertia I_i I_j / (I_i + I_j), I_i for a wall (kg m^2) */
   /* for spheres of their own sizes (dem_pair_sized): zeta of the restitution, the impact speed
      of a kn from Young's modulus (0: kn given), and whether kt was given */
   double zeta, vimp;
@@ -113,4 +139,48 @@ static inline void dem_tangential_force(const DemPairParams *p, double fn, doubl
       xi[k] = kt > 0.0 ? -(ft[k] + gt * p->meff * vt[k]) / kt : 0.0;
     }
   }
+}
+
+/* The rolling torque of one contact is capped at I* |w_rel| / (12 dt): alone it removes at most
+ * 1/12 of w_rel per step (no reversal), and the 12 contacts a sphere can have keep the explicit
+ * step of their summed damping stable (Gershgorin: dt * 2 * 12 / 12 per I < 2). */
+#define DEM_ROLL_CAP_CONTACTS 12.0
+
+/* I* of two solid spheres (I = 2/5 m r^2) of masses mi, mj and radii ri, rj; mj = 0: a wall (I_i). */
+static inline double dem_pair_inertia(double mi, double ri, double mj, double rj)
+{
+  const double Ii = 0.4 * mi * ri * ri, Ij = 0.4 * mj * rj * rj;
+  return mj > 0 ? Ii * Ij / (Ii + Ij) : Ii;
+}
+
+/* Rolling-resistance torque mr on i (j receives -mr) of model roll (not NONE): wrel = w_i - w_j,
+ * vw = V_w (the viscous model's rotational contact velocity), nrm the normal, ieff the pair's I*. */
+static inline void dem_rolling_torque(DemRoll roll, const DemPairParams *p, double fn, double ieff, const double *wrel, const double *vw, const double *nrm, double dt, double *mr)
+{
+  const double wn  = sqrt(dem_dot(wrel, wrel));
+  double       mag = p->mur * p->reff * fabs(fn);
+  if (!(wn > 0.0)) {
+    mr[0] = mr[1] = mr[2] = 0.0;
+    return;
+  }
+  if (roll == DEM_ROLL_KMS) { /* linear in w: the cap binds only when k_ms |Fn| dt > I* / 12 */
+    const double c = fmin(p->mur * fabs(fn), ieff / (DEM_ROLL_CAP_CONTACTS * dt)), wnn = dem_dot(wrel, nrm);
+    for (int k = 0; k < 3; k++) mr[k] = -c * (wrel[k] - (1.0 - 1e-3) * wnn * nrm[k]);
+    return;
+  }
+  if (roll == DEM_ROLL_VISCOUS) mag *= sqrt(dem_dot(vw, vw));
+  mag = fmin(mag, ieff * wn / (DEM_ROLL_CAP_CONTACTS * dt)) / wn; /* cannot reverse w_rel within the step */
+  for (int k = 0; k < 3; k++) mr[k] = -mag * wrel[k];
+}
+
+/* The same for a sphere pair: w_i, w_j, radii ri, rj, n from i to j. */
+static inline void dem_rolling_pair(DemRoll roll, const DemPairParams *p, double fn, double ieff, const double *wi, const double *wj, double ri, double rj, const double *nrm, double dt, double *mr)
+{
+  double wrel[3], ws[3], vw[3];
+  for (int k = 0; k < 3; k++) {
+    wrel[k] = wi[k] - wj[k];
+    ws[k]   = ri * wi[k] + rj * wj[k];
+  }
+  dem_cross(ws, nrm, vw);
+  dem_rolling_torque(roll, p, fn, ieff, wrel, vw, nrm, dt, mr);
 }

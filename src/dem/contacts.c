@@ -16,7 +16,8 @@
  * of their own, the same but for the radii and masses read per particle and the pair's m*, R*
  * and linear stiffness and damping formed per contact (dem_pair_sized) from the (shape, shape)
  * material table: a shared body with a constant flag was not specialised by the compiler for
- * the other scenes, whose loop must stay the one it was. */
+ * the other scenes, whose loop must stay the one it was. Rolling resistance (-dem_rolling_model,
+ * contact_laws.h) adds a torque on i and the opposite on j, behind one branch on the model. */
 #include <string.h>
 #include "dem/dem_impl.h"
 
@@ -65,6 +66,7 @@ static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRo
   const PetscInt       ns = P->ns, nhalf = P->nl->full_list ? 0 : P->pt->n;
   const DemLaw         law = P->cm->law;
   const PetscBool      rot = P->cm->rotation, mono = P->mono;
+  const DemRoll        roll = P->cm->roll;
   const double         dt = P->dt, *rad = P->rad;
   const DemPairParams *pp = P->cm->pp;
   PetscInt             m = 0, mn = 0, ta[DEM_PAIR_BLOCK], tn[DEM_PAIR_BLOCK];
@@ -126,6 +128,13 @@ static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRo
       }
       for (int k = 0; k < 3; k++) F[k] -= ft[k];
     }
+    if (roll) { /* rolling resistance: a torque on i, the opposite on j */
+      double mr[3];
+      dem_rolling_pair(roll, p, fn, p->ieff, wi, wj, ri, rj, nrm, dt, mr);
+      for (int k = 0; k < 3; k++) S.ti[k] += mr[k];
+      if (j < nhalf)
+        for (int k = 0; k < 3; k++) tq[3 * j + k] -= mr[k];
+    }
     for (int k = 0; k < 3; k++) S.fi[k] += F[k];
     if (j < nhalf)
       for (int k = 0; k < 3; k++) {
@@ -148,6 +157,7 @@ static void dem_pair_block_poly(const DemPairPass *P, PetscInt a0, PetscInt a1, 
   const PetscInt       ns = P->ns, nhalf = P->nl->full_list ? 0 : P->pt->n;
   const DemLaw         law = P->cm->law;
   const PetscBool      rot = P->cm->rotation, mono = P->mono;
+  const DemRoll        roll   = P->cm->roll;
   const double         dt     = P->dt;
   const DemPairParams *pp     = P->cm->pp;
   const double *restrict prad = P->pt->rad, *restrict pmass = P->pt->m;
@@ -212,6 +222,13 @@ static void dem_pair_block_poly(const DemPairPass *P, PetscInt a0, PetscInt a1, 
         for (int k = 0; k < 3; k++) S.ti[k] -= li * c[k];
       }
       for (int k = 0; k < 3; k++) F[k] -= ft[k];
+    }
+    if (roll) { /* rolling resistance: a torque on i, the opposite on j */
+      double mr[3];
+      dem_rolling_pair(roll, p, fn, dem_pair_inertia(pmass[i], ri, pmass[j], rj), wi, wj, ri, rj, nrm, dt, mr);
+      for (int k = 0; k < 3; k++) S.ti[k] += mr[k];
+      if (j < nhalf)
+        for (int k = 0; k < 3; k++) tq[3 * j + k] -= mr[k];
     }
     for (int k = 0; k < 3; k++) S.fi[k] += F[k];
     if (j < nhalf)

@@ -75,6 +75,29 @@ static PetscErrorCode DemMaterialOptions(PetscOptionItems *PetscOptionsObject, D
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Rolling resistance (contact_laws.h): the model and the coefficients of the particles and the
+ * walls (the walls take the particles' unless given). A coefficient without a model, or a model
+ * without a coefficient, is refused: one of them would be ignored. */
+static const char *DemRollNames[] = {"none", "constant", "viscous", "kms", "DemRoll", "DEM_ROLL_", NULL};
+
+static PetscErrorCode DemRollingOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
+{
+  PetscInt  roll = dem->contact.roll;
+  PetscBool pset, wset;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsEList("-dem_rolling_model", "Rolling resistance of every contact: none, constant (torque mu_r R* |Fn|) or viscous (mu_r R* |Fn| |V_omega|), as Lethe's; kms (k_ms |Fn| (w_t + 1e-3 w_n)), as Grains3D's", NULL, DemRollNames, 4, DemRollNames[roll], &roll, NULL));
+  dem->contact.roll = (DemRoll)roll;
+  PetscCall(PetscOptionsReal("-dem_rolling_friction", "Rolling friction coefficient mu_r, >= 0 (constant: -, viscous: s/m, kms: k_ms in m s)", NULL, dem->contact.mat.mur, &dem->contact.mat.mur, &pset));
+  dem->contact.wmat.mur = dem->contact.mat.mur;
+  PetscCall(PetscOptionsReal("-dem_wall_rolling_friction", "Rolling friction coefficient against the walls, >= 0; default -dem_rolling_friction", NULL, dem->contact.wmat.mur, &dem->contact.wmat.mur, &wset));
+  PetscCheck(dem->contact.roll != DEM_ROLL_NONE || !(pset || wset), dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_rolling_model none: give -dem_rolling_model constant, viscous or kms", pset ? "-dem_rolling_friction" : "-dem_wall_rolling_friction");
+  PetscCheck(dem->contact.roll == DEM_ROLL_NONE || pset || wset, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_rolling_model %s needs -dem_rolling_friction (and optionally -dem_wall_rolling_friction)", DemRollNames[dem->contact.roll]);
+  PetscCheck(dem->contact.mat.mur >= 0 && PetscIsNormalReal(dem->contact.mat.mur + 1), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_rolling_friction %g must be finite and >= 0", (double)dem->contact.mat.mur);
+  PetscCheck(dem->contact.wmat.mur >= 0 && PetscIsNormalReal(dem->contact.wmat.mur + 1), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_wall_rolling_friction %g must be finite and >= 0", (double)dem->contact.wmat.mur);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Material options that the contact law or another option would leave unread are refused,
  * naming both: hertz takes its stiffness from E and nu, not kn and kt; linear_nohist has no
  * tangential spring (kt); under the linear laws -dem_kn sets every contact's stiffness (walls
@@ -117,6 +140,7 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   dem->contact.law = (DemLaw)law;
   PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[0], &dem->contact.mat, NULL));
   PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[1], &dem->contact.wmat, &dem->contact.mat));
+  PetscCall(DemRollingOptions(PetscOptionsObject, dem));
   PetscCall(PetscOptionsReal("-dem_tangential_damping", "Tangential over normal damping ratio, >= 0", NULL, dem->contact.tdamp_ratio, &dem->contact.tdamp_ratio, NULL));
   PetscCall(PetscOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates (m/s)", NULL, dem->contact.vimpact, &dem->contact.vimpact, NULL));
   PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->clock.dt, &dem->clock.dt, &dem->clock.dt_set));
@@ -250,8 +274,9 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscCall(DemSourcesSetUp(dem)); /* needs dt and the shapes' masses */
   if (dem->nl.skin < 0) dem->nl.skin = 0.2 * rmax;
   PetscCheck(dem->nl.skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->nl.skin);
-  dem->nl.reach         = 2 * rmax + dem->nl.skin;
-  dem->contact.rotation = (PetscBool)(dem->contact.mat.mu > 0 || dem->contact.wmat.mu > 0 || dem->shapes.convex);
+  dem->nl.reach = 2 * rmax + dem->nl.skin;
+  PetscCheck(dem->contact.roll == DEM_ROLL_NONE || !dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_rolling_model %s applies to spheres; convex shapes (-dem_shape) take none", DemRollNames[dem->contact.roll]);
+  dem->contact.rotation = (PetscBool)(dem->contact.mat.mu > 0 || dem->contact.wmat.mu > 0 || dem->shapes.convex || dem->contact.roll != DEM_ROLL_NONE);
   for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->contact.rotation = (PetscBool)(dem->contact.rotation || dem->walls.wall[w].mu > 0);
   PetscCall(DemExchangeSetUp(dem));
   PetscCall(DemRebuild(dem));

@@ -179,6 +179,7 @@ static inline void dem_wall_velocity(const DemWall *w, const double *c, double v
 
 typedef struct { /* material of one side of a contact */
   PetscReal kn, kt, e, mu, E, nu;
+  PetscReal mur; /* rolling friction (-dem_rolling_friction, -dem_wall_rolling_friction) */
   PetscBool kn_set, kt_set, E_set;
 } DemMaterial;
 
@@ -268,7 +269,8 @@ typedef struct {
   DemLaw        law;
   PetscReal     tdamp_ratio, vimpact;
   DemPairParams pp[DEM_MAX_SHAPES * DEM_MAX_SHAPES], pw[DEM_MAX_SHAPES];
-  PetscBool     rotation; /* any friction: torques and spins are integrated */
+  PetscBool     rotation; /* any friction or rolling resistance: torques and spins are integrated */
+  DemRoll       roll;     /* -dem_rolling_model (contact_laws.h) */
 } DemContactModel;
 
 /* The narrow phase of convex pairs (convex_contacts.c): its settings and its caches. */

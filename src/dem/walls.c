@@ -11,7 +11,8 @@
  * keeps a list of the particles within r + skin, rebuilt with the Verlet list, and their
  * tangential springs. A plane may be removed at a time (-dem_plane_<k>_remove_time: a silo's
  * plate under the orifice): from the step whose forces act at that time on (dem.c, DemStep) it
- * has no list, no contacts and no travel (removed).
+ * has no list, no contacts and no travel (removed). Rolling resistance against a wall takes
+ * w_rel = w_i - omega u (a turning drum's angular velocity; 0 for the other walls).
  * Edges: a rectangle or a polygon is touched only where the sphere's centre (the contact point)
  * projects inside it and lies in front of it; a sphere overhanging a joint edge feels no force
  * from that face (the neighbouring face takes over, as in a box corner or a hopper's corners).
@@ -185,6 +186,14 @@ static inline void dem_walls_body(DemParticles *pt, const double *rad, const Dem
           for (int k = 0; k < 3; k++) pt->tq[3 * i + k] -= l * c[k];
         }
         for (int k = 0; k < 3; k++) F[k] -= ft[k];
+      }
+      if (cm->roll) { /* w_rel = w_i - the wall's angular velocity; V_w = r w_i x n */
+        double wrel[3], vw[3], mr[3];
+        for (int k = 0; k < 3; k++) wrel[k] = wi_[k] - w->omega * w->ax_u[k];
+        dem_cross(wi_, nrm, vw);
+        for (int k = 0; k < 3; k++) vw[k] *= r;
+        dem_rolling_torque(cm->roll, p, fn, poly ? dem_pair_inertia(pt->m[i], r, 0, 0) : p->ieff, wrel, vw, nrm, dt, mr);
+        for (int k = 0; k < 3; k++) pt->tq[3 * i + k] += mr[k];
       }
       for (int k = 0; k < 3; k++) pt->f[3 * i + k] += F[k];
     }

@@ -1,6 +1,6 @@
 /* ranks: 1 2 4 */
 /* Parallel DEM against itself on one rank: the same scene run on PETSC_COMM_SELF (rank 0) and
- * on all ranks must give the same trajectories. Four scenes, each in the default mode (half
+ * on all ranks must give the same trajectories. Five scenes, each in the default mode (half
  * list; local-ghost pairs computed on both sides, so sums differ in order and results agree to
  * roundoff amplified by the dynamics; bound 1e-10 of the box after 2000 steps) and in
  * -dem_deterministic mode (full rows summed in id order: bitwise equal, bound 0):
@@ -8,13 +8,14 @@
  *   shear:  a fully periodic frictional box sheared by its initial velocity field (2000 steps);
  *   corner: a gas crossing the corner shared by 4 ranks and the periodic x and y sides at half
  *           the skin per step (planes close z);
- *   icosahedra: convex particles (libccd narrow phase) thrown into a box (gravity 60 m/s^2).
+ *   icosahedra: convex particles (libccd narrow phase) thrown into a box (gravity 60 m/s^2);
+ *   rolling: the settle scene with constant rolling resistance on pairs and walls.
  * On 1 rank the serial half list is checked against the full rows (bound 1e-4 of the box: the
  * scene's chaotic amplification of roundoff, far below a lost pair's effect). Every run checks
  * the global count and id checksum every step (-dem_check_every 1). Also:
  * total momentum of the periodic shear box conserved to roundoff over 10^4 steps, and a single
  * particle crossing periodic boundaries keeps its velocity bitwise. On 4 ranks the process grid
- * is 2 x 2 x 1. The scenes: test_parallel_{settle,shear,corner,icosahedra}.opts. */
+ * is 2 x 2 x 1. The scenes: test_parallel_{settle,shear,corner,icosahedra,rolling}.opts. */
 #include "dem_common.h"
 
 /* Runs the scene file on comm with the options extra; positions by id, contacts at the end. */
@@ -160,6 +161,7 @@ int main(int argc, char **argv)
   PetscCall(Compare("periodic shear box", "test_parallel_shear.opts", 216, 0.0828, 2000));
   PetscCall(Compare("corner crossing at skin/2 per step", "test_parallel_corner.opts", 576, 0.1, 1000));
   PetscCall(Compare("bed of icosahedra (libccd)", "test_parallel_icosahedra.opts", 150, 0.12, 3000));
+  PetscCall(Compare("settle with rolling resistance", "test_parallel_rolling.opts", 640, 0.2, 4000));
   PetscCall(Momentum());
   PetscCall(Crossing());
   PetscCall(PetscFinalize());
