@@ -57,6 +57,62 @@ typedef struct {
   double                 dt;
 } DemPairPass;
 
+/* A row's sums are complete: add them to its particle and start row i. */
+static inline void dem_row_flush(DemRowSum *S, PetscInt i, double *f, double *tq)
+{
+  if (S->cur >= 0)
+    for (int k = 0; k < 3; k++) {
+      f[3 * S->cur + k] += S->fi[k];
+      tq[3 * S->cur + k] += S->ti[k];
+    }
+  S->cur = i;
+  for (int k = 0; k < 3; k++) S->fi[k] = S->ti[k] = 0;
+}
+
+/* One touching sphere pair (d = x_j - x_i, d2 = |d|^2 < (ri + rj)^2), shared by the loops of one
+ * size per shape and of own sizes: the force and torques on i go to its row sums S, the opposite
+ * ones on j (a local particle of the half list, j < nhalf) straight to f and tq. */
+static inline __attribute__((always_inline)) void dem_pair_force(DemLaw law, const DemPairParams *p, double ieff, PetscBool rot, DemRoll roll, double dt, double ri, double rj, const double d[3], double d2, const double *vi, const double *wi, const double *vj, const double *wj, double *xi_t, DemRowSum *S, PetscInt j, PetscInt nhalf, double *f, double *tq)
+{
+  const double dist = sqrt(d2), inv = 1.0 / dist, delta = ri + rj - dist;
+  const double nrm[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
+  const double li = ri - 0.5 * delta, lj = rj - 0.5 * delta; /* lever arms */
+  double       vr[3], kt, gt, F[3], c[3] = {0, 0, 0};        /* c: n x ft, the torque's direction */
+  /* partner's contact-point velocity relative to i's: v_j - v_i + (w_j l_j + w_i l_i) x (-n)... */
+  {
+    double wsum[3], cw[3];
+    for (int k = 0; k < 3; k++) wsum[k] = li * wi[k] + lj * wj[k];
+    dem_cross(wsum, nrm, cw); /* w_i x (l_i n) - w_j x (-l_j n) = (l_i w_i + l_j w_j) x n */
+    for (int k = 0; k < 3; k++) vr[k] = vj[k] - vi[k] - cw[k];
+  }
+  const double vn = dem_dot(vr, nrm);
+  const double fn = dem_normal_force(law, p, delta, vn, &kt, &gt);
+  for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k]; /* on i */
+  if (p->mu > 0) {
+    double vt[3], ft[3];
+    for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
+    dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft); /* ft acts on the partner */
+    if (rot) {
+      dem_cross(nrm, ft, c); /* torque on i: (l_i n) x (-ft); on j: (-l_j n) x ft */
+      for (int k = 0; k < 3; k++) S->ti[k] -= li * c[k];
+    }
+    for (int k = 0; k < 3; k++) F[k] -= ft[k];
+  }
+  if (roll) { /* rolling resistance: a torque on i, the opposite on j */
+    double mr[3];
+    dem_rolling_pair(roll, p, fn, ieff, wi, wj, ri, rj, nrm, dt, mr);
+    for (int k = 0; k < 3; k++) S->ti[k] += mr[k];
+    if (j < nhalf)
+      for (int k = 0; k < 3; k++) tq[3 * j + k] -= mr[k];
+  }
+  for (int k = 0; k < 3; k++) S->fi[k] += F[k];
+  if (j < nhalf)
+    for (int k = 0; k < 3; k++) {
+      f[3 * j + k] -= F[k];
+      tq[3 * j + k] -= lj * c[k];
+    }
+}
+
 static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRowSum *sum)
 {
   DemRowSum S              = *sum; /* a local copy, kept in registers */
@@ -91,56 +147,11 @@ static void dem_pair_block(const DemPairPass *P, PetscInt a0, PetscInt a1, DemRo
   for (PetscInt t = 0; t < m; t++) { /* pass 2 */
     const PetscInt       a = ta[t], i = own[a], j = nbr[a];
     const double         d[3] = {td[t][0], td[t][1], td[t][2]}, d2 = td[t][3];
-    const double         ri = mono ? rad[0] : rad[shape[i]], rj = mono ? rad[0] : rad[shape[j]], rs = ri + rj;
+    const double         ri = mono ? rad[0] : rad[shape[i]], rj = mono ? rad[0] : rad[shape[j]];
     const DemPairParams *p    = mono ? pp : pp + shape[i] * ns + shape[j];
     double              *xi_t = hist ? hist + 3 * a : NULL;
-    if (i != S.cur) { /* the previous row is complete */
-      if (S.cur >= 0)
-        for (int k = 0; k < 3; k++) {
-          f[3 * S.cur + k] += S.fi[k];
-          tq[3 * S.cur + k] += S.ti[k];
-        }
-      S.cur = i;
-      for (int k = 0; k < 3; k++) S.fi[k] = S.ti[k] = 0;
-    }
-    const double *vi = v + 3 * i, *wi = w + 3 * i, *vj = v + 3 * j, *wj = w + 3 * j;
-    const double  dist = sqrt(d2), inv = 1.0 / dist, delta = rs - dist;
-    const double  nrm[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
-    const double  li = ri - 0.5 * delta, lj = rj - 0.5 * delta; /* lever arms */
-    double        vr[3], kt, gt, F[3], c[3] = {0, 0, 0};        /* c: n x ft, the torque's direction */
-    /* partner's contact-point velocity relative to i's: v_j - v_i + (w_j l_j + w_i l_i) x (-n)... */
-    {
-      double wsum[3], cw[3];
-      for (int k = 0; k < 3; k++) wsum[k] = li * wi[k] + lj * wj[k];
-      dem_cross(wsum, nrm, cw); /* w_i x (l_i n) - w_j x (-l_j n) = (l_i w_i + l_j w_j) x n */
-      for (int k = 0; k < 3; k++) vr[k] = vj[k] - vi[k] - cw[k];
-    }
-    const double vn = dem_dot(vr, nrm);
-    const double fn = dem_normal_force(law, p, delta, vn, &kt, &gt);
-    for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k]; /* on i */
-    if (p->mu > 0) {
-      double vt[3], ft[3];
-      for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
-      dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft); /* ft acts on the partner */
-      if (rot) {
-        dem_cross(nrm, ft, c); /* torque on i: (l_i n) x (-ft); on j: (-l_j n) x ft */
-        for (int k = 0; k < 3; k++) S.ti[k] -= li * c[k];
-      }
-      for (int k = 0; k < 3; k++) F[k] -= ft[k];
-    }
-    if (roll) { /* rolling resistance: a torque on i, the opposite on j */
-      double mr[3];
-      dem_rolling_pair(roll, p, fn, p->ieff, wi, wj, ri, rj, nrm, dt, mr);
-      for (int k = 0; k < 3; k++) S.ti[k] += mr[k];
-      if (j < nhalf)
-        for (int k = 0; k < 3; k++) tq[3 * j + k] -= mr[k];
-    }
-    for (int k = 0; k < 3; k++) S.fi[k] += F[k];
-    if (j < nhalf)
-      for (int k = 0; k < 3; k++) {
-        f[3 * j + k] -= F[k];
-        tq[3 * j + k] -= lj * c[k];
-      }
+    if (i != S.cur) dem_row_flush(&S, i, f, tq); /* the previous row is complete */
+    dem_pair_force(law, p, p->ieff, rot, roll, dt, ri, rj, d, d2, v + 3 * i, w + 3 * i, v + 3 * j, w + 3 * j, xi_t, &S, j, nhalf, f, tq);
   }
   *sum = S;
 }
@@ -183,59 +194,14 @@ static void dem_pair_block_poly(const DemPairPass *P, PetscInt a0, PetscInt a1, 
   for (PetscInt t = 0; t < m; t++) { /* pass 2 */
     const PetscInt       a = ta[t], i = own[a], j = nbr[a];
     const double         d[3] = {td[t][0], td[t][1], td[t][2]}, d2 = td[t][3];
-    const double         ri = prad[i], rj = prad[j], rs = ri + rj;
+    const double         ri = prad[i], rj = prad[j];
     const DemPairParams *p = mono ? pp : pp + shape[i] * ns + shape[j];
     DemPairParams        sized;
     dem_pair_sized(law, p, pmass[i], ri, pmass[j], rj, &sized); /* m* and R* of the two spheres */
     p            = &sized;
     double *xi_t = hist ? hist + 3 * a : NULL;
-    if (i != S.cur) { /* the previous row is complete */
-      if (S.cur >= 0)
-        for (int k = 0; k < 3; k++) {
-          f[3 * S.cur + k] += S.fi[k];
-          tq[3 * S.cur + k] += S.ti[k];
-        }
-      S.cur = i;
-      for (int k = 0; k < 3; k++) S.fi[k] = S.ti[k] = 0;
-    }
-    const double *vi = v + 3 * i, *wi = w + 3 * i, *vj = v + 3 * j, *wj = w + 3 * j;
-    const double  dist = sqrt(d2), inv = 1.0 / dist, delta = rs - dist;
-    const double  nrm[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
-    const double  li = ri - 0.5 * delta, lj = rj - 0.5 * delta; /* lever arms */
-    double        vr[3], kt, gt, F[3], c[3] = {0, 0, 0};        /* c: n x ft, the torque's direction */
-    /* partner's contact-point velocity relative to i's: v_j - v_i + (w_j l_j + w_i l_i) x (-n)... */
-    {
-      double wsum[3], cw[3];
-      for (int k = 0; k < 3; k++) wsum[k] = li * wi[k] + lj * wj[k];
-      dem_cross(wsum, nrm, cw); /* w_i x (l_i n) - w_j x (-l_j n) = (l_i w_i + l_j w_j) x n */
-      for (int k = 0; k < 3; k++) vr[k] = vj[k] - vi[k] - cw[k];
-    }
-    const double vn = dem_dot(vr, nrm);
-    const double fn = dem_normal_force(law, p, delta, vn, &kt, &gt);
-    for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k]; /* on i */
-    if (p->mu > 0) {
-      double vt[3], ft[3];
-      for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
-      dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft); /* ft acts on the partner */
-      if (rot) {
-        dem_cross(nrm, ft, c); /* torque on i: (l_i n) x (-ft); on j: (-l_j n) x ft */
-        for (int k = 0; k < 3; k++) S.ti[k] -= li * c[k];
-      }
-      for (int k = 0; k < 3; k++) F[k] -= ft[k];
-    }
-    if (roll) { /* rolling resistance: a torque on i, the opposite on j */
-      double mr[3];
-      dem_rolling_pair(roll, p, fn, dem_pair_inertia(pmass[i], ri, pmass[j], rj), wi, wj, ri, rj, nrm, dt, mr);
-      for (int k = 0; k < 3; k++) S.ti[k] += mr[k];
-      if (j < nhalf)
-        for (int k = 0; k < 3; k++) tq[3 * j + k] -= mr[k];
-    }
-    for (int k = 0; k < 3; k++) S.fi[k] += F[k];
-    if (j < nhalf)
-      for (int k = 0; k < 3; k++) {
-        f[3 * j + k] -= F[k];
-        tq[3 * j + k] -= lj * c[k];
-      }
+    if (i != S.cur) dem_row_flush(&S, i, f, tq); /* the previous row is complete */
+    dem_pair_force(law, p, dem_pair_inertia(pmass[i], ri, pmass[j], rj), rot, roll, dt, ri, rj, d, d2, v + 3 * i, w + 3 * i, v + 3 * j, w + 3 * j, xi_t, &S, j, nhalf, f, tq);
   }
   *sum = S;
 }
