@@ -8,7 +8,8 @@
  *     [x_f - h/2, x_f + h/2] along d and the cell extent along the other axes;
  *   value at a particle: u_p = sum_f W^d_pf u_f  (the transpose of the spreading).
  * Along a non-periodic axis the cube is shifted inside the domain (a particle touching a wall
- * keeps all its volume in the fluid grid); along a periodic axis it wraps. Each rank spreads its
+ * keeps all its volume in the fluid grid); along a periodic axis it wraps, to the image nearest
+ * the rank's box (whose ghost cells hold the other side's cells). Each rank spreads its
  * own particles into ghosted local arrays; DMLocalToGlobal with ADD_VALUES sums the parts that
  * fall in a neighbour's cells (so ghost particles, once the DEM has them, are not spread: their
  * owner does it). The stencils are computed once per particle configuration and cached. Units
@@ -60,7 +61,13 @@ PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplSt
   for (int e = 0; e < 3; e++) {
     const double ih = 1.0 / dom->h[e], l = side * ih, il = 1.0 / l;
     double       xc = x[e], a;
-    if (dom->periodic[e]) xc = dom->lo[e] + (xc - dom->lo[e]) - dom->len[e] * PetscFloorReal((xc - dom->lo[e]) / dom->len[e]);
+    if (dom->periodic[e]) { /* the image nearest this rank's box: a particle that crossed a
+                               periodic side since the last rebuild is still ours, on the far side */
+      const double mid = 0.5 * (dom->sublo[e] + dom->subhi[e]);
+      xc               = dom->lo[e] + (xc - dom->lo[e]) - dom->len[e] * PetscFloorReal((xc - dom->lo[e]) / dom->len[e]);
+      if (xc - mid > 0.5 * dom->len[e]) xc -= dom->len[e];
+      else if (xc - mid < -0.5 * dom->len[e]) xc += dom->len[e];
+    }
     a = xc - 0.5 * side;
     if (!dom->periodic[e]) a = PetscMin(PetscMax(a, dom->lo[e]), dom->hi[e] - side);
     { /* cells from lo, face control volumes from lo - h/2: the same u shifted by a half */
