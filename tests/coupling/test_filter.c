@@ -12,7 +12,8 @@
  *  3. conservation (test_conserve's periodic box of 64 moving spheres, W = 4): solid volume on
  *     the grid = the particles' to 1e-12 at the start and after 40 steps, particle + fluid + owed
  *     momentum constant to 1e-10 of sum |m v|; in a walled box the solid volume to 1e-12 with
- *     spheres against the walls. On 1 and 2 ranks (the unit cell sits on the rank boundary). */
+ *     spheres against the walls. On 1 and 2 ranks (cell 12 of 24: on the rank boundary when an
+ *     axis is split in two). */
 /* ranks: 1 2 */
 #include "cpl_common.h"
 #include "coupling/coupling_impl.h"
