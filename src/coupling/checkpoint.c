@@ -2,7 +2,8 @@
  * the momentum owed to the fluid (cpl/owed, a face field in the grid's natural ordering, given
  * back as the next step's source) and the clock and counters (cpl/state: time, step, porosity
  * cells clipped so far, the solid volume of the last projection, the initial smallest porosity
- * of the pre-flight figures). Everything else a step uses is computed afresh from the particles
+ * of the pre-flight figures) and, with -cpl_filter_width, the mean diameter the filter's width
+ * was set from (cpl/filter_diameter: the particles of the restart are not those of the start). Everything else a step uses is computed afresh from the particles
  * at its start (the drag at the particles, the cached kernel stencils, the face fields); the
  * per-particle drag arrays live in the DEM and are its checkpoint's (dem/ext_..., external.c). */
 #include "coupling/coupling_impl.h"
@@ -16,6 +17,7 @@ PetscErrorCode CplCheckpointWrite(Cpl cpl, IoCkpt ck)
   PetscFunctionBeginUser;
   PetscCall(FluidCheckpointWriteVec(ck, "cpl/owed", cpl->owed));
   PetscCall(IoCkptWriteShared(ck, "cpl/state", IO_CKPT_REAL, CPL_CKPT_NSTATE, s));
+  if (cpl->filter_n > 0) PetscCall(IoCkptWriteShared(ck, "cpl/filter_diameter", IO_CKPT_REAL, 1, &cpl->filter_d));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -32,6 +34,14 @@ PetscErrorCode CplCheckpointRead(Cpl cpl, IoCkpt ck)
   cpl->clipped_total = (PetscInt)s[2];
   cpl->solid_grid    = s[3];
   cpl->eps_min0      = s[4];
+  if (cpl->filter_n > 0) { /* the filter's width from the mean diameter at the run's start */
+    PetscBool has;
+    PetscReal d;
+    PetscCall(IoCkptHas(ck, "cpl/filter_diameter", &has));
+    PetscCheck(has, cpl->comm, PETSC_ERR_FILE_UNEXPECTED, "-cpl_filter_width %g: the checkpoint was written without the filter; restart without -cpl_filter_width", (double)cpl->filter_width);
+    PetscCall(IoCkptReadShared(ck, "cpl/filter_diameter", IO_CKPT_REAL, 1, &d));
+    PetscCall(CplFilterSetUp(cpl, d));
+  }
   CplInvalidateStencils(cpl);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -25,7 +25,7 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
 {
   static PetscBool     done = PETSC_FALSE;
   static PetscClassId  cid;
-  static PetscLogEvent ev[4];
+  static PetscLogEvent ev[5];
   Cpl                  c;
 
   PetscFunctionBeginUser;
@@ -35,6 +35,7 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
     PetscCall(PetscLogEventRegister("CplDrag", cid, &ev[1]));
     PetscCall(PetscLogEventRegister("CplExchange", cid, &ev[2]));
     PetscCall(PetscLogEventRegister("CplDemSubsteps", cid, &ev[3]));
+    PetscCall(PetscLogEventRegister("CplFilter", cid, &ev[4]));
     done = PETSC_TRUE;
   }
   PetscCall(PetscNew(&c));
@@ -53,6 +54,7 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   c->ev_drag     = ev[1];
   c->ev_exchange = ev[2];
   c->ev_dem      = ev[3];
+  c->ev_filter   = ev[4];
   *cpl           = c;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -95,6 +97,7 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(SableOptionsInt("-cpl_init_fluid_max_steps", "-cpl_init_fluid steady: most pseudo steps (of the coupling step) before the run stops unconverged", NULL, "[1,inf)", cpl->init_max, &cpl->init_max, NULL));
   PetscCall(SableOptionsInt("-cpl_substeps", "DEM steps per fluid step; the fluid step is this times -dem_dt", NULL, "[1,inf)", cpl->substeps, &cpl->substeps, &cpl->substeps_set));
   PetscCall(SableOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d", NULL, "(0,inf)", cpl->kscale, &cpl->kscale, NULL));
+  PetscCall(SableOptionsReal("-cpl_filter_width", "Diffusion filter of the solid fraction and the drag fields: Gaussian full width at half maximum, in mean particle diameters (0: off)", NULL, "[0,inf)", cpl->filter_width, &cpl->filter_width, NULL));
   PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->eps_floor, &cpl->eps_floor, NULL));
   PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->relax_max, &cpl->relax_max, NULL));
   PetscCall(PetscOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", NULL, remove, &remove, NULL));
@@ -140,6 +143,7 @@ PetscErrorCode CplSetUp(Cpl cpl)
   cpl->correct = (PetscBool)!cpl->frozen;
   PetscCall(DemSetExternal(cpl->dem, PETSC_TRUE));
   PetscCall(CplSetUpShapes(cpl));
+  PetscCall(CplFilterSetUp(cpl, 0));
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
   PetscCall(FluidGetTimeStep(cpl->fl, &dtf, &fset));
   /* a frozen bed takes no DEM steps: the coupling step is the fluid's */
@@ -203,6 +207,7 @@ PetscErrorCode CplView(Cpl cpl, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->law], (int)cpl->substeps, (double)(cpl->adaptive ? (cpl->frozen ? cpl->dtf : cpl->substeps * cpl->dtd) : cpl->dt), (double)cpl->kscale, (double)cpl->eps_floor, cpl->frozen ? ", frozen bed (no DEM steps)" : ""));
+  if (cpl->filter_n > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: diffusion filter -cpl_filter_width %g x mean diameter %g m: Gaussian sigma %g m, %d sweeps per field\n", (double)cpl->filter_width, (double)cpl->filter_d, (double)PetscSqrtReal(cpl->filter_var), (int)cpl->filter_n));
   if (cpl->mode == CPL_MODE_ONEWAY) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: one-way (-cpl_mode oneway): the fluid acts on the particles only; the fluid is single phase (porosity 1, no drag reaction)\n"));
   if (cpl->adaptive && cpl->frozen) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): at most -fluid_dt %g s, within 0.9 of the fluid's stability limit\n", (double)cpl->dtf));
   else if (cpl->adaptive) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): 1 to %d DEM steps of %g s per fluid step, within 0.9 of the fluid's stability limit\n", (int)cpl->substeps, (double)cpl->dtd));

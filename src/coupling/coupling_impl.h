@@ -48,7 +48,13 @@ struct _p_Cpl {
   PetscInt       stc_n, stc_cap, stc_state; /* stc_state: DemGetState when the stencils were computed */
   PetscBool      stc_valid;
   PetscLogDouble t_fluid; /* wall time in fluid steps (s): the measured cell weight */
-  PetscLogEvent  ev_project, ev_drag, ev_exchange, ev_dem;
+  PetscLogEvent  ev_project, ev_drag, ev_exchange, ev_dem, ev_filter;
+  /* the diffusion filter (filter.c) */
+  double    filter_var;    /* the filter's added Gaussian variance per direction (m^2); 0: off */
+  PetscReal filter_width;  /* -cpl_filter_width: full width at half maximum in mean diameters */
+  PetscReal filter_d;      /* the mean diameter it uses (m) */
+  PetscReal filter_lam[3]; /* diffusion number of one sweep per axis, <= 1/6 */
+  PetscInt  filter_n;      /* sweeps per filtered field; 0: off */
 };
 
 /* Whether face point idx, component d, is shared by two cells: not on the boundary of a
@@ -97,6 +103,9 @@ typedef struct {
   Vec              out; /* global face Vec */
 } CplSpread;
 PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[]);
+/* filter.c */
+PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean);
+PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces);
 /* exchange.c: the two halves of the drag set-up of a step (the steady start uses them too) */
 PetscErrorCode CplSetParticleDrag(Cpl cpl);
 PetscErrorCode CplSetFluidDrag(Cpl cpl);

@@ -181,7 +181,8 @@ static inline void cpl_spread_cells(const CplBox *b, const CplStencil *st1, doub
 }
 
 /* Collective. solid (a global cell Vec) <- the solid fraction of the local particles by the
- * kernel, of all of them (only == NULL) or of those with only[p] == 0. */
+ * kernel, of all of them (only == NULL) or of those with only[p] == 0, then filtered
+ * (-cpl_filter_width, filter.c). */
 static PetscErrorCode CplSpreadSolid(Cpl cpl, const PetscReal *only, Vec solid)
 {
   DemArrays         pa;
@@ -203,6 +204,7 @@ static PetscErrorCode CplSpreadSolid(Cpl cpl, const PetscReal *only, Vec solid)
   PetscCall(VecRestoreArray(cpl->cloc, &a));
   PetscCall(VecZeroEntries(solid));
   PetscCall(DMLocalToGlobal(cpl->cda, cpl->cloc, ADD_VALUES, solid));
+  PetscCall(CplFilter(cpl, solid, PETSC_FALSE)); /* -cpl_filter_width; nothing when off */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -283,7 +285,7 @@ PetscErrorCode CplAdmitNewParticles(Cpl cpl)
 
 /* Collective. For each of n <= 3 fields: out (a global face Vec) <- sum_p val_p^d W^d_pf / V_cell
  * per component d, val with 3 values per local particle or one (scalar) used for all three
- * components. The fields share one pass over the particles and their stencils; each field is
+ * components, then filtered (-cpl_filter_width, filter.c). The fields share one pass over the particles and their stencils; each field is
  * summed in the same order as alone. */
 PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
 {
@@ -323,6 +325,7 @@ PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
     PetscCall(VecRestoreArray(cpl->floc[s], &a[s]));
     PetscCall(VecZeroEntries(sp[s].out));
     PetscCall(DMLocalToGlobal(cpl->fda, cpl->floc[s], ADD_VALUES, sp[s].out));
+    PetscCall(CplFilter(cpl, sp[s].out, PETSC_TRUE)); /* works in floc[0], whose field is summed */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,0 +1,112 @@
+/* Diffusion filter of the spread particle fields (-cpl_filter_width W, in mean particle
+ * diameters d; 0: off). After the kernel has spread the particles to the grid, the cell solid
+ * fraction and the face fields of the drag (beta = sum K W / V_cell, sum K U W / V_cell and the
+ * impulses sum J W / V_cell) are smoothed by n explicit diffusion sweeps in flux form,
+ *   a_i <- a_i + sum_e lam_e [(a_{i+e} - a_i) - (a_i - a_{i-e})],  lam_e = sigma^2 / (2 n h_e^2),
+ * which add the variance 2 lam_e h_e^2 per sweep along axis e, sigma^2 in all (m^2, the same on
+ * every axis: anisotropic cells take their own lam_e), i.e. the convolution with a Gaussian of
+ * full width at half maximum W d, sigma = W d / sqrt(8 ln 2) (Capecelatro & Desjardins, J.
+ * Comput. Phys. 238 (2013) 1-31, doi:10.1016/j.jcp.2012.12.015; Sun & Xiao, Int. J. Multiphase
+ * Flow 72 (2015) 233-247, doi:10.1016/j.ijmultiphaseflow.2015.02.014). n is the least with
+ * lam_e <= 1/6 on every axis (each sweep positive and stable). Each flux lam (a_j - a_i) is given
+ * to one point and taken from the other, so the sums (solid volume, momentum) are those of the
+ * unfiltered fields to roundoff. No flux crosses a wall, inlet or outlet: cells take part up to
+ * the domain's faces; a face field of component d takes part on the interior faces only (the
+ * exchange's own, CplInteriorFace), the boundary faces keep their values. Periodic axes wrap
+ * through the DMDA's ghost points, which also carry the values across ranks. The mean diameter
+ * is that of the particles at set-up (shape 0's if there are none) and is kept in checkpoints. */
+#include "coupling/coupling_impl.h"
+
+/* Collective. The filter's variance, sweeps and coefficients from -cpl_filter_width and the
+ * particles present (a restart calls it again with the checkpoint's mean diameter, dmean > 0). */
+PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean)
+{
+  const Domain *dom  = cpl->dom;
+  PetscReal     hmin = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  cpl->filter_var = 0;
+  cpl->filter_n   = 0;
+  if (cpl->filter_width <= 0) PetscFunctionReturn(PETSC_SUCCESS);
+  if (dmean <= 0) {
+    DemArrays pa;
+    PetscReal s[2] = {0, 0};
+    PetscCall(DemGetArrays(cpl->dem, &pa));
+    for (PetscInt p = 0; p < pa.nlocal; p++) s[0] += CplDiameterOf(cpl, &pa, p);
+    s[1] = (PetscReal)pa.nlocal;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, cpl->comm));
+    dmean = s[1] > 0 ? s[0] / s[1] : cpl->diam[0];
+  }
+  cpl->filter_d   = dmean;
+  cpl->filter_var = PetscSqr(cpl->filter_width * dmean) / (8 * PetscLogReal(2.0));
+  for (int e = 0; e < 3; e++) hmin = PetscMin(hmin, dom->h[e]);
+  cpl->filter_n = (PetscInt)PetscCeilReal(3 * cpl->filter_var / (hmin * hmin) * (1 - 1e-12));
+  cpl->filter_n = PetscMax(cpl->filter_n, 1);
+  for (int e = 0; e < 3; e++) cpl->filter_lam[e] = cpl->filter_var / (2.0 * cpl->filter_n * dom->h[e] * dom->h[e]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Whether point idx (global indices, possibly one beyond the owned box) takes part in the
+ * filter of component d of a face field (faces) or of a cell field: inside the grid along
+ * non-periodic axes and, for faces, an interior face of the exchange. */
+static inline PetscBool cpl_filter_point(const Domain *dom, PetscBool faces, int d, const PetscInt idx[3])
+{
+  for (int e = 0; e < 3; e++) {
+    if (dom->periodic[e]) continue;
+    if (idx[e] < 0 || idx[e] >= dom->cells[e] + (faces ? 1 : 0)) return PETSC_FALSE;
+  }
+  return faces ? CplInteriorFace(dom, d, idx) : PETSC_TRUE;
+}
+
+/* One sweep: g (owned points) <- loc (the same field with its ghosts) + the fluxes. */
+static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3], const PetscInt xs[3], const PetscInt xm[3], PetscInt dof, const PetscScalar *a, PetscScalar *g)
+{
+  const Domain   *dom   = cpl->dom;
+  const PetscBool faces = (PetscBool)(dof == 3);
+  const PetscInt  st[3] = {dof, dof * gm[0], dof * gm[0] * gm[1]};
+  PetscInt        idx[3], c = 0;
+
+  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
+    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
+      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++)
+        for (int d = 0; d < dof; d++, c++) {
+          const PetscInt o = dof * (((idx[2] - gs[2]) * gm[1] + (idx[1] - gs[1])) * gm[0] + (idx[0] - gs[0])) + d;
+          double         f = 0;
+          if (!cpl_filter_point(dom, faces, d, idx)) continue;
+          for (int e = 0; e < 3; e++)
+            for (int s = -1; s <= 1; s += 2) {
+              PetscInt nb[3] = {idx[0], idx[1], idx[2]};
+              nb[e] += s;
+              if (cpl_filter_point(dom, faces, d, nb)) f += cpl->filter_lam[e] * (a[o + s * st[e]] - a[o]);
+            }
+          g[c] = a[o] + f;
+        }
+}
+
+/* Collective. Filters the global Vec g of the cell DMDA (cells) or the face DMDA (faces) in
+ * place: filter_n sweeps, each a ghost update into the work local Vec and one flux pass.
+ * Nothing when the filter is off. */
+PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces)
+{
+  DM           da  = faces ? cpl->fda : cpl->cda;
+  Vec          loc = faces ? cpl->floc[0] : cpl->cloc;
+  PetscInt     gs[3], gm[3], xs[3], xm[3];
+  PetscScalar *ga;
+
+  PetscFunctionBeginUser;
+  if (cpl->filter_n == 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(cpl->ev_filter, 0, 0, 0, 0));
+  PetscCall(DMDAGetGhostCorners(da, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
+  PetscCall(DMDAGetCorners(da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  for (PetscInt s = 0; s < cpl->filter_n; s++) {
+    const PetscScalar *a;
+    PetscCall(DMGlobalToLocal(da, g, INSERT_VALUES, loc));
+    PetscCall(VecGetArrayRead(loc, &a));
+    PetscCall(VecGetArray(g, &ga));
+    cpl_filter_sweep(cpl, gs, gm, xs, xm, faces ? 3 : 1, a, ga);
+    PetscCall(VecRestoreArray(g, &ga));
+    PetscCall(VecRestoreArrayRead(loc, &a));
+  }
+  PetscCall(PetscLogEventEnd(cpl->ev_filter, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
