@@ -266,7 +266,7 @@ static PetscErrorCode StlParse(StlRead *r)
   else if (!memchr(r->buf, 0, r->size)) PetscCall(StlParseAscii(r)); /* text */
   else if (r->size < 84) StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "not STL: %zu bytes with NUL bytes, shorter than the 84-byte binary header", r->size);
   else if (need > r->size) StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "truncated binary STL: the header counts %u triangles (%llu bytes), the file has %zu: triangle %llu is incomplete", (unsigned)n, (unsigned long long)need, r->size, (unsigned long long)(r->size - 84) / 50 + 1);
-  else StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "binary STL whose header counts %u triangles (%llu bytes) but the file has %zu bytes (room for %zu triangles after triangle %u)", (unsigned)n, (unsigned long long)need, r->size, (r->size - 84) / 50, (unsigned)n);
+  else StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "binary STL: the header counts %u triangles (%llu bytes) but the file has %zu bytes, room for %zu: the count disagrees with the size after triangle %u", (unsigned)n, (unsigned long long)need, r->size, (r->size - 84) / 50, (unsigned)n);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
