@@ -386,12 +386,41 @@ static PetscErrorCode TestClosest(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* test_stl FILE (used by geom/test_make_stl.sh): reads FILE and prints
+ * "mesh <triangles> <zero-area> <duplicates> <area> <enclosed volume>" (SI), nothing checked. */
+static PetscErrorCode MeshSummary(const char *path)
+{
+  TriMesh m;
+  double  area = 0, vol = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(TriMeshReadSTL(PETSC_COMM_WORLD, path, &m));
+  for (PetscInt t = 0; t < m.ntri; t++) {
+    const double *a = m.v + 9 * t, *b = a + 3, *c = a + 6;
+    const double  x[3] = {b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]};
+    double        u[3], w[3], y[3];
+
+    for (int k = 0; k < 3; k++) u[k] = b[k] - a[k], w[k] = c[k] - a[k];
+    y[0] = u[1] * w[2] - u[2] * w[1], y[1] = u[2] * w[0] - u[0] * w[2], y[2] = u[0] * w[1] - u[1] * w[0];
+    area += 0.5 * PetscSqrtReal(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
+    vol += (a[0] * x[0] + a[1] * x[1] + a[2] * x[2]) / 6;
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mesh %" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT " %.17g %.17g\n", m.ntri, m.ndegen, m.nduplicate, area, vol));
+  PetscCall(TriMeshDestroy(&m));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   int         pid;
   PetscMPIInt rank;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "STL reader, mesh transform and closest point test"));
+  if (argc > 1 && argv[1][0] != '-') {
+    PetscCall(MeshSummary(argv[1]));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   pid = (int)getpid();
   PetscCallMPI(MPI_Bcast(&pid, 1, MPI_INT, 0, PETSC_COMM_WORLD));
