@@ -2,23 +2,25 @@
  *
  * Rank 0 reads the whole file, decides its form from the content and parses it into a local
  * soup; the status, the error line and the triangles are then broadcast, so every rank gets
- * the same mesh or stops with the same one-line error (never a hang). The form: a file with
+ * the same mesh or stops with the same one-line error (never a hang). The form: a file of
  * 84 + 50 n bytes, n the little-endian count at byte 80, is binary (even when its header
- * begins with "solid", as many CAD exports do); any other file without a NUL byte is parsed
- * as ASCII ("solid", then "facet normal nx ny nz / outer loop / vertex x y z (3 times) /
- * endloop / endfacet" blocks, "endsolid"; several solids may follow each other); the rest
- * is a binary file whose count disagrees with its size, or not STL. The stored facet normals
- * are ignored: TriMeshFinish takes them from the vertex order. Kept triangles keep the file's
- * order; zero-area ones (area <= 1e-12 longest edge^2) and exact duplicates (the same three
- * vertices in any order, found by sorting the sorted vertex triples: O(n log n)) are dropped
- * and counted. Errors name the file, the triangle (1-based, in file order) and for ASCII the
- * line. Binary coordinates are IEEE floats, read byte by byte (little-endian on any host).
+ * begins with "solid", as many CAD exports do); any other file without a NUL byte is ASCII
+ * ("solid", then "facet normal nx ny nz / outer loop / vertex x y z (3 times) / endloop /
+ * endfacet" blocks, "endsolid"; keywords in any case; several solids may follow each other);
+ * the rest is a binary file whose count disagrees with its size, or not STL. Stored facet
+ * normals are ignored: TriMeshFinish takes them from the vertex order. Kept triangles keep the
+ * file's order; zero-area ones (area <= 1e-12 longest edge^2) and exact duplicates (the same
+ * three vertices in any order, found by sorting the sorted vertex triples: O(n log n)) are
+ * dropped and counted. Errors name the file, the triangle (1-based, in file order) and, for
+ * ASCII, the line. Binary coordinates are IEEE floats read byte by byte (little-endian on any
+ * host).
  */
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
 #include "sable.h" /* PETSC_SUCCESS on PETSc 3.18 */
 #include "geom/trimesh.h"
 
@@ -145,8 +147,8 @@ static int stl_expect(StlRead *r, StlLex *x, const char *w, PetscInt tri)
   char *s = stl_next(x);
 
   if (!s) StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "truncated: end of file inside triangle %" PetscInt_FMT " (after line %" PetscInt_FMT ", expected '%s')", tri, x->at, w);
-  else if (strcmp(s, w)) StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "triangle %" PetscInt_FMT " (line %" PetscInt_FMT "): expected '%s', found '%s'", tri, x->at, w, x->tok);
-  return s && !strcmp(s, w);
+  else if (strcasecmp(s, w)) StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "triangle %" PetscInt_FMT " (line %" PetscInt_FMT "): expected '%s', found '%s'", tri, x->at, w, x->tok);
+  return s && !strcasecmp(s, w);
 }
 
 /* Three numbers of triangle tri into c (finite when vertex; the normal is read and ignored). */
@@ -182,7 +184,7 @@ static PetscErrorCode StlParseFacet(StlRead *r, StlLex *x, PetscInt tri)
   PetscFunctionBegin;
   if (!stl_expect(r, x, "normal", tri) || !stl_numbers(r, x, tri, 0, c)) PetscFunctionReturn(PETSC_SUCCESS);
   if (!stl_expect(r, x, "outer", tri) || !stl_expect(r, x, "loop", tri)) PetscFunctionReturn(PETSC_SUCCESS);
-  while ((s = stl_next(x)) && !strcmp(s, "vertex")) {
+  while ((s = stl_next(x)) && !strcasecmp(s, "vertex")) {
     if (!stl_numbers(r, x, tri, nv + 1, c)) PetscFunctionReturn(PETSC_SUCCESS);
     if (nv < 3) PetscCall(PetscArraycpy(t + 3 * nv, c, 3));
     nv++;
@@ -191,7 +193,7 @@ static PetscErrorCode StlParseFacet(StlRead *r, StlLex *x, PetscInt tri)
     StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "truncated: end of file inside triangle %" PetscInt_FMT " (after line %" PetscInt_FMT ", %d vertices read)", tri, x->at, nv);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  if (strcmp(s, "endloop")) {
+  if (strcasecmp(s, "endloop")) {
     StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "triangle %" PetscInt_FMT " (line %" PetscInt_FMT "): expected 'vertex' or 'endloop', found '%s'", tri, x->at, x->tok);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -210,7 +212,7 @@ static PetscErrorCode StlParseAscii(StlRead *r)
   char  *s = stl_next(&x);
 
   PetscFunctionBegin;
-  if (!s || strcmp(s, "solid")) {
+  if (!s || strcasecmp(s, "solid")) {
     StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "not STL: text that does not begin with 'solid', and %zu bytes are not a binary STL (84 + 50 n)", r->size);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -218,12 +220,12 @@ static PetscErrorCode StlParseAscii(StlRead *r)
   while (!r->msg[0]) {
     s = stl_next(&x);
     if (!s) StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "truncated: end of file after triangle %" PetscInt_FMT " (after line %" PetscInt_FMT ") without 'endsolid'", r->ntri, x.at);
-    else if (!strcmp(s, "facet")) PetscCall(StlParseFacet(r, &x, r->ntri + 1));
-    else if (!strcmp(s, "endsolid")) {
+    else if (!strcasecmp(s, "facet")) PetscCall(StlParseFacet(r, &x, r->ntri + 1));
+    else if (!strcasecmp(s, "endsolid")) {
       stl_skip_line(&x);
       s = stl_next(&x);
       if (!s) break;
-      if (strcmp(s, "solid")) StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "line %" PetscInt_FMT ", after triangle %" PetscInt_FMT ": expected 'solid' or the end of the file after 'endsolid', found '%s'", x.at, r->ntri, x.tok);
+      if (strcasecmp(s, "solid")) StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "line %" PetscInt_FMT ", after triangle %" PetscInt_FMT ": expected 'solid' or the end of the file after 'endsolid', found '%s'", x.at, r->ntri, x.tok);
       else stl_skip_line(&x);
     } else StlFail(r, PETSC_ERR_FILE_UNEXPECTED, "line %" PetscInt_FMT ", after triangle %" PetscInt_FMT ": expected 'facet' or 'endsolid', found '%s'", x.at, r->ntri, x.tok);
   }
@@ -379,7 +381,7 @@ static PetscErrorCode StlReadLocal(StlRead *r)
 PetscErrorCode TriMeshReadSTL(MPI_Comm comm, const char *path, TriMesh *m)
 {
   StlRead     r;
-  PetscMPIInt rank;
+  PetscMPIInt rank, count;
   PetscInt    head[4]; /* error class, triangles, zero-area, duplicates */
 
   PetscFunctionBegin;
@@ -398,10 +400,11 @@ PetscErrorCode TriMeshReadSTL(MPI_Comm comm, const char *path, TriMesh *m)
     PetscCall(PetscFree(r.v));
     SETERRQ(comm, (PetscErrorCode)head[0], "%s", r.msg);
   }
+  PetscCall(PetscMPIIntCast(9 * head[1], &count));
   PetscCall(TriMeshCreate(head[1], m));
   if (rank == 0) PetscCall(PetscArraycpy(m->v, r.v, 9 * (size_t)head[1]));
   PetscCall(PetscFree(r.v));
-  PetscCallMPI(MPI_Bcast(m->v, (PetscMPIInt)(9 * head[1]), MPI_DOUBLE, 0, comm));
+  PetscCallMPI(MPI_Bcast(m->v, count, MPI_DOUBLE, 0, comm));
   m->ndegen     = head[2];
   m->nduplicate = head[3];
   PetscCall(TriMeshFinish(m));
