@@ -59,8 +59,8 @@ int main(int argc, char **argv)
     tend = 20 * tau + 10 * tf;
     dt   = PetscMin(PetscMin(tau, 0.5 * h / ut), tend / 200);
   }
-  nx  = (PetscInt)(width / h + 0.5);
-  nz  = (PetscInt)(height / h + 0.5);
+  nx = (PetscInt)(width / h + 0.5);
+  nz = (PetscInt)(height / h + 0.5);
   PetscCall(PetscSNPrintf(opts, sizeof opts,
                           "-domain_lo 0,0,0 -domain_hi %g,%g,%g -domain_periodic_x -domain_periodic_y -da_grid_x %d -da_grid_y %d -da_grid_z %d -dem_radius 0.5 -dem_density 2 -dem_kn 1e-2 -dem_gravity 0,0,-1 -dem_lattice 1,1,1 -dem_lattice_spacing 1 -dem_lattice_origin %.17g,%.17g,%.17g -fluid_density 1 -fluid_viscosity %.17g -fluid_viscous implicit -fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,%.17g -fluid_bc_zhi outlet -cpl_init_fluid uniform -cpl_relaxation_ratio_max 10 -dem_dt %.17g -cpl_substeps %d",
                           (double)(nx * h), (double)(nx * h), (double)(nz * h), (int)nx, (int)nx, (int)nz, (double)((nx / 2 + off) * h), (double)((nx / 2 + off) * h), (double)((PetscFloorReal(nz / 3.0) + 0.5) * h), (double)mu, (double)ut, (double)(dt / nsub), (int)nsub));

@@ -28,6 +28,8 @@ struct _p_Cpl {
   PetscBool    restarting; /* CplSetRestarting: the fluid comes from a checkpoint, no initial state */
   PetscInt     substeps;
   PetscReal    kscale, eps_floor, relax_max;
+  PetscBool    self_eps, self_u;      /* -cpl_self_porosity, -cpl_self_velocity */
+  PetscReal    self_beta, self_oseen; /* -cpl_self_beta, -cpl_self_oseen */
   PetscBool    substeps_set;
   PetscReal   *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
   PetscInt     nshape;
@@ -91,6 +93,7 @@ PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st);
 PetscErrorCode CplAdmitNewParticles(Cpl cpl);
 void           CplInvalidateStencils(Cpl cpl);
+PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscReal *self);
 typedef struct {
   const PetscReal *val; /* 3 per local particle, or 1 if scalar */
   PetscBool        scalar;
