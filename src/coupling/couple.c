@@ -103,6 +103,7 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(PetscOptionsBool("-cpl_self_velocity", "The drag law sees the undisturbed fluid: the particle's own regularized Stokeslet (Gaussian, sigma^2 = a^2/12 + beta^2 h^2) is removed, K' = K / (1 - G K)", NULL, cpl->self_u, &cpl->self_u, NULL));
   PetscCall(SableOptionsReal("-cpl_self_beta", "-cpl_self_velocity: the grid's share of the disturbance's width, beta h", NULL, "(0,inf)", cpl->self_beta, &cpl->self_beta, NULL));
   PetscCall(SableOptionsReal("-cpl_self_oseen", "-cpl_self_velocity: the disturbance is divided by 1 + this x Re_sigma (advection, Oseen)", NULL, "[0,inf)", cpl->self_oseen, &cpl->self_oseen, NULL));
+  PetscCall(SableOptionsReal("-cpl_self_fade", "-cpl_self_porosity/-cpl_self_velocity: both fade linearly to nothing as the other particles' solid fraction reaches this (0: no fade)", NULL, "[0,1)", cpl->self_fade, &cpl->self_fade, NULL));
   PetscCall(PetscOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", NULL, remove, &remove, NULL));
   PetscOptionsEnd();
   PetscCall(CplOutletFaces(cpl, remove));

@@ -28,8 +28,8 @@ struct _p_Cpl {
   PetscBool    restarting; /* CplSetRestarting: the fluid comes from a checkpoint, no initial state */
   PetscInt     substeps;
   PetscReal    kscale, eps_floor, relax_max;
-  PetscBool    self_eps, self_u;      /* -cpl_self_porosity, -cpl_self_velocity */
-  PetscReal    self_beta, self_oseen; /* -cpl_self_beta, -cpl_self_oseen */
+  PetscBool    self_eps, self_u;                 /* -cpl_self_porosity, -cpl_self_velocity */
+  PetscReal    self_beta, self_oseen, self_fade; /* -cpl_self_beta, -cpl_self_oseen */
   PetscBool    substeps_set;
   PetscReal   *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
   PetscInt     nshape;

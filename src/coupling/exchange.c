@@ -12,7 +12,7 @@
  * F = K / (1 - G K) (u_seen - v): an effective coefficient on the seen slip, linear in v (the
  * DEM's implicit drag and the exact exchange keep working). K depends on the undisturbed slip
  * |w_seen| / (1 - G K): a fixed point. G K is capped at 0.9. */
-static PetscReal CplUndisturbedK(Cpl cpl, PetscReal d, PetscReal side, PetscReal eps, PetscReal w)
+static PetscReal CplUndisturbedK(Cpl cpl, PetscReal d, PetscReal side, PetscReal eps, PetscReal w, PetscReal fade)
 {
   const PetscReal h = PetscCbrtReal(cpl->cell_vol), sig = PetscSqrtReal(side * side / 12 + PetscSqr(cpl->self_beta * h));
   const PetscReal g0 = PetscSqrtReal(2 * PETSC_PI) / (6 * PETSC_PI * PETSC_PI * cpl->mu * sig);
@@ -21,7 +21,7 @@ static PetscReal CplUndisturbedK(Cpl cpl, PetscReal d, PetscReal side, PetscReal
   for (int it = 0; it < 30; it++) {
     const PetscReal re = cpl->rho * d * eps * wt / cpl->mu, rs = cpl->rho * sig * wt / cpl->mu;
     k  = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps, re);
-    gk = PetscMin(0.9, g0 * k / (1 + cpl->self_oseen * rs));
+    gk = PetscMin(0.9, fade * g0 * k / (1 + cpl->self_oseen * rs));
     if (PetscAbsReal(w / (1 - gk) - wt) <= 1e-12 * wt) break;
     wt = w / (1 - gk);
   }
@@ -33,25 +33,30 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
 {
   DemArrays       pa;
   DemExternal     ex;
-  PetscReal      *eps, *self;
+  PetscReal      *eps, *self, *fade;
   const PetscBool oneway = (PetscBool)(cpl->mode == CPL_MODE_ONEWAY);
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(cpl->ev_drag, 0, 0, 0, 0));
   PetscCall(DemGetArrays(cpl->dem, &pa));
   PetscCall(DemGetExternal(cpl->dem, &ex));
-  PetscCall(PetscMalloc2(pa.nlocal + 1, &eps, pa.nlocal + 1, &self));
+  PetscCall(PetscMalloc3(pa.nlocal + 1, &eps, pa.nlocal + 1, &self, pa.nlocal + 1, &fade));
+  for (PetscInt p = 0; p < pa.nlocal; p++) fade[p] = 1;
   PetscCall(CplInterpolateSelf(cpl, ex.u, eps, cpl->self_eps && !oneway ? self : NULL));
   if (oneway) /* single phase: exactly 1, not the kernel sum's 1 +- roundoff (Beetstra's sqrt(1 - eps)) */
     for (PetscInt p = 0; p < pa.nlocal; p++) eps[p] = 1;
-  else if (cpl->self_eps)
-    for (PetscInt p = 0; p < pa.nlocal; p++) eps[p] = PetscMin(1, eps[p] + self[p]);
+  else if (cpl->self_eps) /* faded out where the others' solid fraction reaches -cpl_self_fade (beds: Beetstra's eps includes the particle) */
+    for (PetscInt p = 0; p < pa.nlocal; p++) {
+      const PetscReal f = cpl->self_fade > 0 ? PetscMax(0, 1 - (1 - eps[p] - self[p]) / cpl->self_fade) : 1;
+      fade[p]           = f;
+      eps[p]            = PetscMin(1, eps[p] + f * self[p]);
+    }
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
     for (int k = 0; k < 3; k++) w2 += PetscSqr(ex.u[3 * p + k] - pa.v[3 * p + k]);
     const PetscReal re = cpl->rho * d * eps[p] * PetscSqrtReal(w2) / cpl->mu;
-    if (cpl->self_u && !oneway) ex.k[p] = CplUndisturbedK(cpl, d, CplSideOf(cpl, &pa, p), eps[p], PetscSqrtReal(w2));
+    if (cpl->self_u && !oneway) ex.k[p] = CplUndisturbedK(cpl, d, CplSideOf(cpl, &pa, p), eps[p], PetscSqrtReal(w2), fade[p]);
     else ex.k[p] = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps[p], re);
     PetscCheck(PetscIsNormalReal(ex.k[p]), PETSC_COMM_SELF, PETSC_ERR_FP, "particle %" PetscInt_FMT ": drag coefficient %g at porosity %g, Re_p %g is not finite", pa.id[p], (double)ex.k[p], (double)eps[p], (double)re);
     for (int k = 0; k < 3; k++) {
@@ -59,7 +64,7 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
       ex.j[3 * p + k]    = 0;
     }
   }
-  PetscCall(PetscFree2(eps, self));
+  PetscCall(PetscFree3(eps, self, fade));
   PetscCall(PetscLogEventEnd(cpl->ev_drag, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
