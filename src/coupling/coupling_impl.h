@@ -29,7 +29,8 @@ struct _p_Cpl {
   PetscInt     substeps;
   PetscReal    kscale, eps_floor, relax_max;
   PetscBool    self_eps, self_u;                 /* -cpl_self_porosity, -cpl_self_velocity */
-  PetscReal    self_beta, self_oseen, self_fade; /* -cpl_self_beta, -cpl_self_oseen */
+  PetscReal    self_beta, self_oseen, self_fade; /* -cpl_self_beta, -cpl_self_oseen, -cpl_self_fade */
+  double       filter_var;                       /* the filter's added Gaussian variance per direction (m^2; 0: no filter) */
   PetscBool    substeps_set;
   PetscReal   *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
   PetscInt     nshape;
@@ -103,6 +104,9 @@ PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[]);
 /* exchange.c: the two halves of the drag set-up of a step (the steady start uses them too) */
 PetscErrorCode CplSetParticleDrag(Cpl cpl);
 PetscErrorCode CplSetFluidDrag(Cpl cpl);
+/* self.c: the drag sees the fluid without the particle's own disturbance */
+PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps, PetscReal *fade);
+PetscReal      CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const PetscReal u[3], const PetscReal v[3], PetscReal fade);
 /* start.c: the fluid's initial state (-cpl_init_fluid) */
 PetscErrorCode CplInitFluidState(Cpl cpl);
 /* preflight.c */

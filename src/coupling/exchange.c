@@ -3,60 +3,25 @@
  * momentum owed to the fluid for the next step. */
 #include "coupling/coupling_impl.h"
 
-/* The drag coefficient on the undisturbed slip (-cpl_self_velocity). The particle's force -F on
- * the fluid, spread by the kernel and the grid, moves the fluid at the particle by -G F, G the
- * centre velocity of a Gaussian-regularized Stokeslet of width sigma per axis,
- * G = sqrt(2 pi) / (6 pi^2 mu sigma) (Evrard, Denner & van Wachem, J. Comput. Phys. X 8 (2020)
- * 100067; sigma^2 = a^2/12 + (beta h)^2: the cube kernel's own variance and the grid's share), divided by
- * 1 + oseen Re_sigma for advection. F = K (u_und - v) = K (u_seen - v + G F) gives
- * F = K / (1 - G K) (u_seen - v): an effective coefficient on the seen slip, linear in v (the
- * DEM's implicit drag and the exact exchange keep working). K depends on the undisturbed slip
- * |w_seen| / (1 - G K): a fixed point. G K is capped at 0.9. */
-static PetscReal CplUndisturbedK(Cpl cpl, PetscReal d, PetscReal side, PetscReal eps, PetscReal w, PetscReal fade)
-{
-  const PetscReal h = PetscCbrtReal(cpl->cell_vol), sig = PetscSqrtReal(side * side / 12 + PetscSqr(cpl->self_beta * h));
-  const PetscReal g0 = PetscSqrtReal(2 * PETSC_PI) / (6 * PETSC_PI * PETSC_PI * cpl->mu * sig);
-  PetscReal       wt = w, k = 0, gk = 0;
-
-  for (int it = 0; it < 30; it++) {
-    const PetscReal re = cpl->rho * d * eps * wt / cpl->mu, rs = cpl->rho * sig * wt / cpl->mu;
-    k  = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps, re);
-    gk = PetscMin(0.9, fade * g0 * k / (1 + cpl->self_oseen * rs));
-    if (PetscAbsReal(w / (1 - gk) - wt) <= 1e-12 * wt) break;
-    wt = w / (1 - gk);
-  }
-  return k / (1 - gk);
-}
-
 /* Drag coefficient, fluid velocity and buoyancy at the particles; zeroes the impulses. */
 PetscErrorCode CplSetParticleDrag(Cpl cpl)
 {
-  DemArrays       pa;
-  DemExternal     ex;
-  PetscReal      *eps, *self, *fade;
-  const PetscBool oneway = (PetscBool)(cpl->mode == CPL_MODE_ONEWAY);
+  DemArrays   pa;
+  DemExternal ex;
+  PetscReal  *eps, *fade;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(cpl->ev_drag, 0, 0, 0, 0));
   PetscCall(DemGetArrays(cpl->dem, &pa));
   PetscCall(DemGetExternal(cpl->dem, &ex));
-  PetscCall(PetscMalloc3(pa.nlocal + 1, &eps, pa.nlocal + 1, &self, pa.nlocal + 1, &fade));
-  for (PetscInt p = 0; p < pa.nlocal; p++) fade[p] = 1;
-  PetscCall(CplInterpolateSelf(cpl, ex.u, eps, cpl->self_eps && !oneway ? self : NULL));
-  if (oneway) /* single phase: exactly 1, not the kernel sum's 1 +- roundoff (Beetstra's sqrt(1 - eps)) */
-    for (PetscInt p = 0; p < pa.nlocal; p++) eps[p] = 1;
-  else if (cpl->self_eps) /* faded out where the others' solid fraction reaches -cpl_self_fade (beds: Beetstra's eps includes the particle) */
-    for (PetscInt p = 0; p < pa.nlocal; p++) {
-      const PetscReal f = cpl->self_fade > 0 ? PetscMax(0, 1 - (1 - eps[p] - self[p]) / cpl->self_fade) : 1;
-      fade[p]           = f;
-      eps[p]            = PetscMin(1, eps[p] + f * self[p]);
-    }
+  PetscCall(PetscMalloc2(pa.nlocal + 1, &eps, pa.nlocal + 1, &fade));
+  PetscCall(CplSeenPorosity(cpl, pa.nlocal, ex.u, eps, fade));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
     for (int k = 0; k < 3; k++) w2 += PetscSqr(ex.u[3 * p + k] - pa.v[3 * p + k]);
     const PetscReal re = cpl->rho * d * eps[p] * PetscSqrtReal(w2) / cpl->mu;
-    if (cpl->self_u && !oneway) ex.k[p] = CplUndisturbedK(cpl, d, CplSideOf(cpl, &pa, p), eps[p], PetscSqrtReal(w2), fade[p]);
+    if (cpl->self_u && fade[p] > 0) ex.k[p] = CplUndisturbedK(cpl, p, d, eps[p], ex.u + 3 * p, pa.v + 3 * p, fade[p]);
     else ex.k[p] = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps[p], re);
     PetscCheck(PetscIsNormalReal(ex.k[p]), PETSC_COMM_SELF, PETSC_ERR_FP, "particle %" PetscInt_FMT ": drag coefficient %g at porosity %g, Re_p %g is not finite", pa.id[p], (double)ex.k[p], (double)eps[p], (double)re);
     for (int k = 0; k < 3; k++) {
@@ -64,7 +29,7 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
       ex.j[3 * p + k]    = 0;
     }
   }
-  PetscCall(PetscFree3(eps, self, fade));
+  PetscCall(PetscFree2(eps, fade));
   PetscCall(PetscLogEventEnd(cpl->ev_drag, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
