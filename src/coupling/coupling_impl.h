@@ -28,6 +28,8 @@ struct _p_Cpl {
   PetscBool    restarting; /* CplSetRestarting: the fluid comes from a checkpoint, no initial state */
   PetscInt     substeps;
   PetscReal    kscale, eps_floor, relax_max;
+  PetscBool    self_eps, self_u;                 /* -cpl_self_porosity, -cpl_self_velocity */
+  PetscReal    self_beta, self_oseen, self_fade; /* -cpl_self_beta, -cpl_self_oseen, -cpl_self_fade */
   PetscBool    substeps_set;
   PetscReal   *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
   PetscInt     nshape;
@@ -97,6 +99,7 @@ PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st);
 PetscErrorCode CplAdmitNewParticles(Cpl cpl);
 void           CplInvalidateStencils(Cpl cpl);
+PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscReal *self);
 typedef struct {
   const PetscReal *val; /* 3 per local particle, or 1 if scalar */
   PetscBool        scalar;
@@ -109,6 +112,9 @@ PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces);
 /* exchange.c: the two halves of the drag set-up of a step (the steady start uses them too) */
 PetscErrorCode CplSetParticleDrag(Cpl cpl);
 PetscErrorCode CplSetFluidDrag(Cpl cpl);
+/* self.c: the drag sees the fluid without the particle's own disturbance */
+PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps, PetscReal *fade);
+PetscReal      CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const PetscReal u[3], const PetscReal v[3], PetscReal fade);
 /* start.c: the fluid's initial state (-cpl_init_fluid) */
 PetscErrorCode CplInitFluidState(Cpl cpl);
 /* preflight.c */

@@ -8,29 +8,28 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
 {
   DemArrays   pa;
   DemExternal ex;
-  PetscReal  *eps;
+  PetscReal  *eps, *fade;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(cpl->ev_drag, 0, 0, 0, 0));
   PetscCall(DemGetArrays(cpl->dem, &pa));
   PetscCall(DemGetExternal(cpl->dem, &ex));
-  PetscCall(PetscMalloc1(pa.nlocal + 1, &eps));
-  PetscCall(CplInterpolate(cpl, ex.u, eps));
-  if (cpl->mode == CPL_MODE_ONEWAY) /* single phase: exactly 1, not the kernel sum's 1 +- roundoff (Beetstra's sqrt(1 - eps)) */
-    for (PetscInt p = 0; p < pa.nlocal; p++) eps[p] = 1;
+  PetscCall(PetscMalloc2(pa.nlocal + 1, &eps, pa.nlocal + 1, &fade));
+  PetscCall(CplSeenPorosity(cpl, pa.nlocal, ex.u, eps, fade));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
     for (int k = 0; k < 3; k++) w2 += PetscSqr(ex.u[3 * p + k] - pa.v[3 * p + k]);
     const PetscReal re = cpl->rho * d * eps[p] * PetscSqrtReal(w2) / cpl->mu;
-    ex.k[p]            = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps[p], re);
+    if (cpl->self_u && fade[p] > 0) ex.k[p] = CplUndisturbedK(cpl, p, d, eps[p], ex.u + 3 * p, pa.v + 3 * p, fade[p]);
+    else ex.k[p] = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps[p], re);
     PetscCheck(PetscIsNormalReal(ex.k[p]), PETSC_COMM_SELF, PETSC_ERR_FP, "particle %" PetscInt_FMT ": drag coefficient %g at porosity %g, Re_p %g is not finite", pa.id[p], (double)ex.k[p], (double)eps[p], (double)re);
     for (int k = 0; k < 3; k++) {
       ex.fext[3 * p + k] = -cpl->rho * vol * cpl->g[k];
       ex.j[3 * p + k]    = 0;
     }
   }
-  PetscCall(PetscFree(eps));
+  PetscCall(PetscFree2(eps, fade));
   PetscCall(PetscLogEventEnd(cpl->ev_drag, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -335,6 +335,17 @@ PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
  * boundary values) and of the current cell porosity. */
 PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps)
 {
+  PetscFunctionBeginUser;
+  PetscCall(CplInterpolateSelf(cpl, u, eps, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* As CplInterpolate; self (may be NULL; 1 per particle) gets the particle's own share of the
+ * porosity dip it sees, V_p sum_c W_pc^2 / V_cell (separable: the product over the axes of the
+ * sums of the squared 1-D weights), so eps + self is the porosity of the other particles (but
+ * for the floor). */
+PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscReal *self)
+{
   DemArrays          pa;
   CplBox             bf, bc;
   Vec                uloc, e;
@@ -358,6 +369,15 @@ PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps)
       for (int j = 0; j < st1->nc[1]; j++)
         for (int i = 0; i < st1->nc[0]; i++) s += st1->wc[2][k] * st1->wc[1][j] * st1->wc[0][i] * ea[cpl_off(&bc, st1->c0[0] + i, st1->c0[1] + j, st1->c0[2] + k)];
     eps[p] = s;
+    if (self) {
+      double w2 = CplVolumeOf(cpl, &pa, p) / cpl->cell_vol;
+      for (int e = 0; e < 3; e++) {
+        double q = 0;
+        for (int i = 0; i < st1->nc[e]; i++) q += st1->wc[e][i] * st1->wc[e][i];
+        w2 *= q;
+      }
+      self[p] = w2;
+    }
     for (int d = 0; d < 3; d++) {
       PetscInt      first[3];
       int           n[3];
