@@ -129,6 +129,20 @@ PetscErrorCode DemMaterialsSetUp(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The (shape, wall) pair parameters of a wall of material wm (a mesh's own material). */
+PetscErrorCode DemWallPairsFill(Dem dem, const DemMaterial *wm, DemPairParams *pw)
+{
+  double ch = 0, tau;
+
+  PetscFunctionBeginUser;
+  if (dem->contact.law == DEM_LAW_HERTZ) PetscCall(DemHertzRestitutionMap(PetscMin(dem->contact.mat.e, wm->e), &ch, &tau));
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    const DemShape *a = &dem->shapes.shp[s];
+    PetscCall(DemPairFill(dem, &dem->contact.mat, wm, a->m, a->req, 0, 0, ch, &pw[s]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Contact time at impact speed v of the pair parameters p of restitution ee. */
 static PetscErrorCode DemPairFigures(Dem dem, const DemPairParams *p, double ee, PetscReal v, PetscReal *tc)
 {

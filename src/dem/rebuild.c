@@ -5,7 +5,8 @@
  *   springs find no partner) -> migration of the particles that left the box, to a
  *   neighbour (exchange.c) or, after a remap, to any rank (redistribute.c) -> re-sort of the
  *   locals every -dem_sort_interval builds (neighbours.c) -> ghost creation (exchange.c) -> bins
- *   and pair list (neighbours.c) -> springs restored by id pair -> wall lists (walls.c) -> the
+ *   and pair list (neighbours.c) -> springs restored by id pair -> wall lists (walls.c) and mesh
+ *   candidates (walls_mesh.c) -> the
  *   reference positions of the rebuild check (x0, the walls' travel) reset.
  * It sits above the files it calls; none of them calls it back. */
 #include "dem/dem_impl.h"
@@ -31,6 +32,7 @@ PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt 
   PetscCall(DemNeighBuildList(dem));
   if (dem->contact.law != DEM_LAW_LINEAR_NOHIST) PetscCall(DemSpringsRestore(dem, recs, nrec));
   PetscCall(DemWallsBuildLists(&dem->walls, &dem->p, &dem->shapes, dem->nl.skin, recs, nrec));
+  if (dem->meshes.n) PetscCall(DemMeshesBuildLists(dem, recs, nrec)); /* walls_mesh.c */
   PetscCall(PetscArraycpy(dem->p.x0, dem->p.x, 3 * dem->p.n));
   for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->walls.wall[w].moved = 0;
   dem->need_build = PETSC_FALSE;
