@@ -1,7 +1,7 @@
 /* The rebuild: everything that changes the local particles' order and the lists at once, run by
  * DemSetUp, by DemStep when a particle or a wall moved more than skin/2 since the last one (all
  * ranks agree, dem.c), and by DemRedistribute after the decomposition changed:
- *   springs saved by id pair (springs.c) -> the particles outlets took removed (sinks.c: their
+ *   springs saved by id pair (springs.c; the mesh walls' slots, walls_mesh.c) -> the particles outlets took removed (sinks.c: their
  *   springs find no partner) -> migration of the particles that left the box, to a
  *   neighbour (exchange.c) or, after a remap, to any rank (redistribute.c) -> re-sort of the
  *   locals every -dem_sort_interval builds (neighbours.c) -> ghost creation (exchange.c) -> bins
@@ -49,7 +49,8 @@ PetscErrorCode DemRebuild(Dem dem)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));
   PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
-  PetscCall(DemSourcesAddPending(dem)); /* a source's batch joins once the springs are saved */
+  if (dem->meshes.n) PetscCall(DemMeshesSaveSprings(dem, &recs, &nrec, &caprec)); /* walls_mesh.c */
+  PetscCall(DemSourcesAddPending(dem));                                           /* a source's batch joins once the springs are saved */
   PetscCall(DemRebuildFrom(dem, recs, nrec, caprec));
   PetscCall(PetscLogEventEnd(DEM_Neighbours, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

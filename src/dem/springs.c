@@ -6,8 +6,7 @@
  * entry takes its spring back by a binary search. In the half list a pair listed under (j, i)
  * takes the opposite of the spring saved under (i, j); when particles may move to another rank a
  * pair listed once is saved from both sides, so that each particle takes its own side along.
- * A mesh wall's springs are two records per slot (walls_mesh.c: DEM_MESH_PARTNER). This file
- * calls no other of the DEM but walls_mesh.c's saver: it reads the lists and writes the springs. */
+ * This file calls no other of the DEM: it reads the lists and writes the springs only. */
 #include "dem/dem_impl.h"
 
 static int dem_spring_cmp(const void *a, const void *b)
@@ -75,7 +74,6 @@ PetscErrorCode DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, PetscIn
           if (pass) (*recs)[n] = (DemSpring){dem->p.id[dem->walls.wall[w].idx[a]], -1 - w, {h[0], h[1], h[2]}};
           n++;
         }
-    if (dem->contact.law != DEM_LAW_LINEAR_NOHIST && dem->meshes.n) n += DemMeshesSaveSprings(dem, pass ? *recs + n : NULL); /* walls_mesh.c */
   }
   *nrec = n;
   PetscCall(DemSpringsSort(*recs, n));

@@ -387,11 +387,14 @@ PetscErrorCode DemContactsMeshes(Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The loaded slots as id-keyed records, two per slot (spring, normal), written to recs if not
- * NULL; returns their count. */
-PetscInt DemMeshesSaveSprings(Dem dem, DemSpring *recs)
+/* Not collective. Appends the loaded slots to the id-keyed records of DemSpringsSave (springs.c),
+ * two per slot (spring, normal), and sorts them again. */
+PetscErrorCode DemMeshesSaveSprings(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap)
 {
-  PetscInt n = 0;
+  PetscInt n = *nrec;
+
+  PetscFunctionBeginUser;
+  if (dem->contact.law == DEM_LAW_LINEAR_NOHIST) PetscFunctionReturn(PETSC_SUCCESS);
   for (PetscInt k = 0; k < dem->meshes.n; k++) {
     const DemMesh *m = &dem->meshes.m[k];
     if (!m->slot || !m->cstart) continue;
@@ -399,14 +402,17 @@ PetscInt DemMeshesSaveSprings(Dem dem, DemSpring *recs)
       for (int s = 0; s < DEM_MESH_SLOTS; s++) {
         const double *sl = m->slot + 6 * (DEM_MESH_SLOTS * i + s);
         if (sl[3] == 0 && sl[4] == 0 && sl[5] == 0) continue;
-        if (recs) {
-          recs[n]     = (DemSpring){dem->p.id[i], DEM_MESH_PARTNER(k, s, 0), {sl[3], sl[4], sl[5]}};
-          recs[n + 1] = (DemSpring){dem->p.id[i], DEM_MESH_PARTNER(k, s, 1), {sl[0], sl[1], sl[2]}};
+        if (n + 2 > *cap) {
+          *cap = 2 * *cap + 64;
+          PetscCall(PetscRealloc(sizeof(DemSpring) * (size_t)*cap, recs));
         }
-        n += 2;
+        (*recs)[n++] = (DemSpring){dem->p.id[i], DEM_MESH_PARTNER(k, s, 0), {sl[3], sl[4], sl[5]}};
+        (*recs)[n++] = (DemSpring){dem->p.id[i], DEM_MESH_PARTNER(k, s, 1), {sl[0], sl[1], sl[2]}};
       }
   }
-  return n;
+  if (n > *nrec) PetscCall(DemSpringsSort(*recs, n));
+  *nrec = n;
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Collective, same rank count. The meshes' travel (shared), local triangles and candidates
