@@ -507,7 +507,7 @@ PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const
 PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                    /* walls_polygon.c */
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                   /* walls_cylinder.c */
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                                                                                                         /* walls_options.c */
-PetscErrorCode DemWallPairsFill(Dem dem, const DemMaterial *wm, DemPairParams *pw);                                                                     /* contact_laws.c: (shape, wall) pairs of material wm */
+PetscErrorCode DemWallPairsFill(Dem dem, const DemMaterial *wm, DemPairParams *pw, PetscReal *tc);                                                      /* contact_laws.c: (shape, wall) pairs of material wm */
 PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                  /* walls_mesh_options.c */
 PetscErrorCode DemMeshesSetUp(Dem dem);                                                                                                                 /* walls_mesh_options.c: materials, after DemMaterialsSetUp */
 PetscErrorCode DemMeshesDestroy(Dem dem);                                                                                                               /* walls_mesh_options.c */

@@ -158,6 +158,7 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
   PetscCall(DemGetStats(dem, &st));
   if (dem->clock.dt_tc > 0 && dem->clock.dt_set) PetscCall(PetscViewerASCIIPrintf(v, "time step: -dem_dt_tc %g gives dt = %g s, replacing -dem_dt %g s\n", (double)dem->clock.dt_tc, (double)dem->clock.dt, (double)dem->clock.dt_given));
   PetscCall(PetscViewerASCIIPrintf(v, "DEM: %" PetscInt_FMT " %s, %" PetscInt_FMT " shape(s), %s; rotation %s; %" PetscInt_FMT " wall(s)\n", st.n, dem->shapes.convex ? "convex particles" : "spheres", dem->shapes.nshape, law[dem->contact.law], dem->contact.rotation ? "on" : "off (no friction)", dem->walls.nwall));
+  if (dem->meshes.n) PetscCall(PetscViewerASCIIPrintf(v, "  %" PetscInt_FMT " mesh wall(s) (-dem_mesh_<k>_file)\n", dem->meshes.n));
   for (PetscInt s = 0; s < dem->shapes.nshape; s++)
     for (PetscInt t = -1; t < dem->shapes.nshape; t++) {
       PetscReal tc, e;

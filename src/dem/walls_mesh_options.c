@@ -151,7 +151,10 @@ PetscErrorCode DemMeshesSetUp(Dem dem)
   for (PetscInt k = 0; k < dem->meshes.n; k++) {
     DemMesh *m = &dem->meshes.m[k];
     PetscCheck(dem->contact.law != DEM_LAW_HERTZ || m->mat.E_set, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_contact_law hertz needs the Young's modulus of mesh %s (-dem_wall_youngs_modulus or %s_youngs_modulus)", m->name, m->name);
-    PetscCall(DemWallPairsFill(dem, &m->mat, m->pw));
+    PetscReal tc[DEM_MAX_SHAPES];
+    PetscCall(DemWallPairsFill(dem, &m->mat, m->pw, tc));
+    for (PetscInt s = 0; s < dem->shapes.nshape; s++)
+      PetscCheck(dem->clock.dt <= dem->clock.dt_frac * tc[s], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt %g s exceeds -dem_dt_max_fraction %g x the contact time %g s with mesh %s (radius %g m): use -dem_dt <= %g or a softer %s material", (double)dem->clock.dt, (double)dem->clock.dt_frac, (double)tc[s], m->name, (double)dem->shapes.shp[s].r, (double)(dem->clock.dt_frac * tc[s]), m->name);
     if (m->mat.mu > 0 || m->mat.mur > 0) dem->contact.rotation = PETSC_TRUE;
     m->raxis = 0;
     for (PetscInt v = 0; v < 3 * m->ref.ntri; v++) {

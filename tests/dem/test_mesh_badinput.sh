@@ -38,6 +38,7 @@ expect "kn under hertz" "-dem_mesh_0_kn is ignored by -dem_contact_law hertz" -d
 expect "Young's modulus under kn" "-dem_mesh_0_youngs_modulus is ignored: the wall stiffness is given by" $M -dem_mesh_0_youngs_modulus 1e7
 expect "rolling friction without a model" "-dem_mesh_0_rolling_friction is ignored by -dem_rolling_model none" $M -dem_mesh_0_rolling_friction 0.1
 expect "convex shapes" "mesh walls take spheres" $M -dem_shape cube -dem_shape_size 0.01
+expect "mesh too stiff for dt" "-dem_dt 1e-05 s exceeds -dem_dt_max_fraction 0.1 x the contact time .* with mesh -dem_mesh_0" $M -dem_mesh_0_kn 1e8
 # good input: a duplicate and a zero-area triangle are skipped with a counted warning
 { sed '$d' "$W/box.stl"; sed -n '2,8p' "$W/box.stl"; printf 'facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\nvertex 0.05 0 0\nendloop\nendfacet\nendsolid box\n'; } >"$W/extra.stl"
 out=$($S $OK -dem_mesh_0_file "$W/extra.stl" -dem_mesh_0_omega 0.5 -dem_mesh_0_axis_point 0.05,0.05,0 -dem_mesh_0_friction 0.2 2>&1); rc=$?
