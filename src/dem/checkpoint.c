@@ -15,7 +15,8 @@
  * of the pair loop (narrow.rot) are formed from q in every pass before they are read, whichever
  * of the eager or lazy ways rot_pairs picks, and libccd and geom/ keep nothing between calls.
  * Wall motion (DemCkptWriteWalls): a translating plane's position and travel are in wall_state; a
- * removed plane's flag is dem/wall_removed. The particles that entered and left (dem->flow) and
+ * removed plane's flag is dem/wall_removed. Mesh walls (walls_mesh.c): their travel, local
+ * triangles, candidates and spring slots; their pose is a function of the time. The particles that entered and left (dem->flow) and
  * the outlets' totals are dem/flow (sinks.c). A drum (cylinder and caps turning at omega) has no
  *  angle: its geometry is invariant under its rotation and its surface velocity is given.
  * Read on another rank count or process grid, the state is redistributed (checkpoint_remap.c). */
@@ -152,6 +153,7 @@ PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
   PetscCall(DemCkptWriteLists(dem, ck));
   PetscCall(DemCkptWriteConvex(dem, ck));
   PetscCall(DemCkptWriteWalls(dem, ck));
+  PetscCall(DemMeshesCheckpoint(dem, ck, PETSC_TRUE)); /* walls_mesh.c */
   PetscCall(DemSinksCheckpoint(dem, ck, PETSC_TRUE));
   PetscCall(DemSourcesCheckpoint(dem, ck, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -277,6 +279,7 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscCall(DemCheckpointNeedsRemap(dem, ck, &remap));
   PetscCall(DemSourcesCheckpoint(dem, ck, PETSC_FALSE)); /* first: the remap checks the count with it */
   if (remap) {                                           /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
+    PetscCheck(!dem->meshes.n, dem->comm, PETSC_ERR_SUP, "-restart %s: a case with mesh walls (-dem_mesh_<k>_file) continues on the rank count and process grid that wrote it", path);
     PetscCall(DemExternalCheckpointCheck(dem, ck));
     PetscCall(DemCkptPolyCheck(dem, ck, path));
     PetscCall(DemSinksCheckpoint(dem, ck, PETSC_FALSE)); /* the remap checks the count against it */
@@ -304,6 +307,7 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscCall(DemCkptReadLists(dem, ck, path));
   PetscCall(DemCkptReadConvex(dem, ck));
   PetscCall(DemCkptReadWalls(dem, ck));
+  PetscCall(DemMeshesCheckpoint(dem, ck, PETSC_FALSE)); /* walls_mesh.c */
   PetscCall(DemSinksCheckpoint(dem, ck, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

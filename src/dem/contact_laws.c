@@ -145,6 +145,22 @@ static PetscErrorCode DemPairFigures(Dem dem, const DemPairParams *p, double ee,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The (shape, wall) pair parameters of a wall of material wm (a mesh's own material) and their
+ * contact times at -dem_impact_velocity (s). */
+PetscErrorCode DemWallPairsFill(Dem dem, const DemMaterial *wm, DemPairParams *pw, PetscReal *tc)
+{
+  double ch = 0, tau;
+
+  PetscFunctionBeginUser;
+  if (dem->contact.law == DEM_LAW_HERTZ) PetscCall(DemHertzRestitutionMap(PetscMin(dem->contact.mat.e, wm->e), &ch, &tau));
+  for (PetscInt s = 0; s < dem->shapes.nshape; s++) {
+    const DemShape *a = &dem->shapes.shp[s];
+    PetscCall(DemPairFill(dem, &dem->contact.mat, wm, a->m, a->req, 0, 0, ch, &pw[s]));
+    PetscCall(DemPairFigures(dem, &pw[s], PetscMin(dem->contact.mat.e, wm->e), dem->contact.vimpact, &tc[s]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode DemGetContactFigures(Dem dem, PetscInt s, PetscInt t, PetscReal v, PetscReal *tc, PetscReal *e)
 {
   PetscFunctionBeginUser;

@@ -246,6 +246,7 @@ static PetscErrorCode DemComputeForces(Dem dem)
   } else {
     PetscCall(DemContactsPairs(&dem->p, &dem->shapes, &dem->contact, &dem->nl, dem->clock.dt));
     PetscCall(DemContactsWalls(&dem->p, &dem->shapes, &dem->contact, &dem->walls, dem->clock.dt));
+    if (dem->meshes.n) PetscCall(DemContactsMeshes(dem)); /* walls_mesh.c */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -278,6 +279,7 @@ PetscErrorCode DemSetUp(Dem dem)
   PetscCheck(dem->contact.roll == DEM_ROLL_NONE || !dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_rolling_model %s applies to spheres; convex shapes (-dem_shape) take none", DemRollNames[dem->contact.roll]);
   dem->contact.rotation = (PetscBool)(dem->contact.mat.mu > 0 || dem->contact.wmat.mu > 0 || dem->shapes.convex || dem->contact.roll != DEM_ROLL_NONE);
   for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->contact.rotation = (PetscBool)(dem->contact.rotation || dem->walls.wall[w].mu > 0);
+  if (dem->meshes.n) PetscCall(DemMeshesSetUp(dem)); /* walls_mesh_options.c: materials, pose */
   PetscCall(DemExchangeSetUp(dem));
   PetscCall(DemRebuild(dem));
   PetscCall(DemCheckPlacement(dem)); /* needs the ghosts: pairs across ranks */
@@ -313,6 +315,11 @@ PetscErrorCode DemStep(Dem dem)
     for (int k = 0; k < 3; k++) wl->p[k] += wl->v[k] * dem->clock.dt;
     wl->moved += sqrt(dem_dot(wl->v, wl->v)) * dem->clock.dt;
     wmax = PetscMax(wmax, wl->moved);
+  }
+  if (dem->meshes.n) { /* a moving mesh's travel bound counts as a wall's (walls_mesh.c) */
+    double mmax;
+    PetscCall(DemMeshesMove(dem, dem->clock.t + dem->clock.dt, &mmax));
+    wmax = PetscMax(wmax, mmax);
   }
   if (dem->sinks.nout) PetscCall(DemSinksMark(dem)); /* a particle taken by an outlet asks for a rebuild */
   /* every rank rebuilds when one needs to: the ghosts must be re-created everywhere */
@@ -378,6 +385,7 @@ PetscErrorCode DemDestroy(Dem *dem)
   PetscCall(DemShapesDestroy(*dem));
   PetscCall(DemSinksDestroy(*dem));
   PetscCall(DemSourcesDestroy(*dem));
+  PetscCall(DemMeshesDestroy(*dem));
   for (PetscInt w = 0; w < (*dem)->walls.nwall; w++) {
     PetscCall(PetscFree((*dem)->walls.wall[w].idx));
     PetscCall(PetscFree((*dem)->walls.wall[w].hist));

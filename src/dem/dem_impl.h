@@ -10,6 +10,7 @@
 #include "dem/contact_laws.h"
 #include "geom/convex.h"
 #include "geom/sat.h"
+#include "geom/trimesh.h"
 #include "dem/psd.h"
 
 #define DEM_MAX_SHAPES 32
@@ -292,6 +293,43 @@ typedef struct {
   PetscInt nwall;
 } DemWalls;
 
+/* Triangle-mesh walls (walls_mesh.c, walls_mesh_options.c): -dem_mesh_<k>_file, k < 8. A mesh
+ * is placed at t = 0 (ref) and moves rigidly: x(t) = a + v t + Rot(u, theta(t)) (x_ref - a),
+ * theta the integral of omega (a constant or a table in time); the pose is a function of t only.
+ * Per rank: the triangles near the rank's box (loc), their vertices at the pose of the forces
+ * (cur: the reference's for a mesh at rest), per local particle the candidate triangles of the
+ * last list build (CSR), and per particle a few tangential springs matched by normal (slot: n,
+ * xi). A spring saved across a rebuild is two records, partner DEM_MESH_PARTNER(k, s, 0) (xi)
+ * and (k, s, 1) (its normal). */
+#define DEM_MAX_MESHES               8
+#define DEM_MESH_SLOTS               4
+#define DEM_MESH_MAXC                16
+#define DEM_MESH_PARTNER(k, s, half) (-1 - DEM_MAX_WALLS - 2 * ((k)*DEM_MESH_SLOTS + (s)) - (half))
+#define DEM_MESH_PARTNER_MIN         DEM_MESH_PARTNER(DEM_MAX_MESHES - 1, DEM_MESH_SLOTS - 1, 1)
+typedef struct {
+  char          name[32];                        /* -dem_mesh_<k>, for messages */
+  char          file[PETSC_MAX_PATH_LEN];        /* the STL file */
+  TriMesh       ref;                             /* the triangles at t = 0 (scaled, rotated, translated) */
+  double        vel[3], omega, ax_p[3], ax_u[3]; /* motion: translation (m/s), rotation (rad/s) about a + v t, u */
+  double       *tab;                             /* -dem_mesh_<k>_omega_table t0,w0,t1,w1,... (s, rad/s); NULL: omega */
+  PetscInt      ntab;                            /* points of the table */
+  double        raxis;                           /* largest distance of a vertex from the axis (m): the travel bound */
+  PetscBool     moving;
+  DemMaterial   mat;                           /* -dem_mesh_<k>_friction, ... (default the -dem_wall_* material) */
+  DemPairParams pw[DEM_MAX_SHAPES];            /* (shape, mesh) pair parameters */
+  double        theta, w_now, tpose;           /* the pose of cur: angle (rad), angular velocity (rad/s), time (s) */
+  double        moved;                         /* travel bound since the last list build (m) */
+  PetscInt     *loc, nloc, caploc;             /* triangles near this rank's box */
+  double       *cur;                           /* 9 per triangle (only loc's are current); ref.v at rest */
+  PetscInt     *cstart, *ctri, capstart, capc; /* candidate triangles per local particle (CSR) */
+  double       *slot;                          /* 6 DEM_MESH_SLOTS per local particle: normal, spring */
+  PetscInt      capslot;
+} DemMesh;
+typedef struct {
+  DemMesh  m[DEM_MAX_MESHES];
+  PetscInt n;
+} DemMeshes;
+
 /* Time (dem.c). */
 typedef struct {
   PetscReal dt, t, dt_frac, dt_tc;
@@ -400,6 +438,7 @@ struct _p_Dem {
   DemContactModel  contact;
   DemConvexNarrow  narrow;
   DemWalls         walls;
+  DemMeshes        meshes; /* triangle-mesh walls (walls_mesh.c) */
   DemNeigh         nl;
   DemExchange      ex;
   DemClock         clock;
@@ -468,6 +507,15 @@ PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const
 PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                    /* walls_polygon.c */
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                   /* walls_cylinder.c */
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                                                                                                         /* walls_options.c */
+PetscErrorCode DemWallPairsFill(Dem dem, const DemMaterial *wm, DemPairParams *pw, PetscReal *tc);                                                      /* contact_laws.c: (shape, wall) pairs of material wm */
+PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                  /* walls_mesh_options.c */
+PetscErrorCode DemMeshesSetUp(Dem dem);                                                                                                                 /* walls_mesh_options.c: materials, after DemMaterialsSetUp */
+PetscErrorCode DemMeshesDestroy(Dem dem);                                                                                                               /* walls_mesh_options.c */
+PetscErrorCode DemMeshesMove(Dem dem, double t, double *moved);                                                                                         /* walls_mesh.c: the pose at t; the largest travel since the build */
+PetscErrorCode DemMeshesBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec);                                                                      /* walls_mesh.c */
+PetscErrorCode DemContactsMeshes(Dem dem);                                                                                                              /* walls_mesh.c */
+PetscErrorCode DemMeshesSaveSprings(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap);                                                          /* walls_mesh.c: appends the slots' records, sorted */
+PetscErrorCode DemMeshesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                                                                                /* walls_mesh.c: same rank count */
 PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const DemContactModel *cm, DemNeigh *nl, double dt);                          /* contacts.c */
 PetscErrorCode DemContactsPairsConvex(Dem dem);                                                                                                         /* convex_contacts.c */
 /* A body in a pair test (convex_contacts.c): shape, centre, quaternion and its

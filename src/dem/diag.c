@@ -162,6 +162,7 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
     const char *roll[] = {"", "constant torque, mu_r", "viscous, mu_r (s/m)", "k_ms (m s)"};
     PetscCall(PetscViewerASCIIPrintf(v, "  rolling resistance: %s %g with particles, %g with walls\n", roll[dem->contact.roll], (double)dem->contact.mat.mur, (double)dem->contact.wmat.mur));
   }
+  if (dem->meshes.n) PetscCall(PetscViewerASCIIPrintf(v, "  %" PetscInt_FMT " mesh wall(s) (-dem_mesh_<k>_file)\n", dem->meshes.n));
   for (PetscInt s = 0; s < dem->shapes.nshape; s++)
     for (PetscInt t = -1; t < dem->shapes.nshape; t++) {
       PetscReal tc, e;

@@ -1,11 +1,12 @@
 /* The rebuild: everything that changes the local particles' order and the lists at once, run by
  * DemSetUp, by DemStep when a particle or a wall moved more than skin/2 since the last one (all
  * ranks agree, dem.c), and by DemRedistribute after the decomposition changed:
- *   springs saved by id pair (springs.c) -> the particles outlets took removed (sinks.c: their
+ *   springs saved by id pair (springs.c; the mesh walls' slots, walls_mesh.c) -> the particles outlets took removed (sinks.c: their
  *   springs find no partner) -> migration of the particles that left the box, to a
  *   neighbour (exchange.c) or, after a remap, to any rank (redistribute.c) -> re-sort of the
  *   locals every -dem_sort_interval builds (neighbours.c) -> ghost creation (exchange.c) -> bins
- *   and pair list (neighbours.c) -> springs restored by id pair -> wall lists (walls.c) -> the
+ *   and pair list (neighbours.c) -> springs restored by id pair -> wall lists (walls.c) and mesh
+ *   candidates (walls_mesh.c) -> the
  *   reference positions of the rebuild check (x0, the walls' travel) reset.
  * It sits above the files it calls; none of them calls it back. */
 #include "dem/dem_impl.h"
@@ -31,6 +32,7 @@ PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt 
   PetscCall(DemNeighBuildList(dem));
   if (dem->contact.law != DEM_LAW_LINEAR_NOHIST) PetscCall(DemSpringsRestore(dem, recs, nrec));
   PetscCall(DemWallsBuildLists(&dem->walls, &dem->p, &dem->shapes, dem->nl.skin, recs, nrec));
+  if (dem->meshes.n) PetscCall(DemMeshesBuildLists(dem, recs, nrec)); /* walls_mesh.c */
   PetscCall(PetscArraycpy(dem->p.x0, dem->p.x, 3 * dem->p.n));
   for (PetscInt w = 0; w < dem->walls.nwall; w++) dem->walls.wall[w].moved = 0;
   dem->need_build = PETSC_FALSE;
@@ -47,7 +49,8 @@ PetscErrorCode DemRebuild(Dem dem)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));
   PetscCall(DemSpringsSave(dem, &recs, &nrec, &caprec));
-  PetscCall(DemSourcesAddPending(dem)); /* a source's batch joins once the springs are saved */
+  if (dem->meshes.n) PetscCall(DemMeshesSaveSprings(dem, &recs, &nrec, &caprec)); /* walls_mesh.c */
+  PetscCall(DemSourcesAddPending(dem));                                           /* a source's batch joins once the springs are saved */
   PetscCall(DemRebuildFrom(dem, recs, nrec, caprec));
   PetscCall(PetscLogEventEnd(DEM_Neighbours, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

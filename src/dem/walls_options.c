@@ -4,7 +4,8 @@
  * -dem_rect_<k> x0,y0,z0,x1,y1,z1,x2,y2,z2 (m), k = 0..9: a finite rectangle with
  * corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0), facing the side (p1 - p0) x (p2 - p0)
  * points to; -dem_quad_<k> (4 vertices), -dem_hopper (walls_polygon.c); -dem_cylinder,
- * -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); -dem_<wall>_friction overrides
+ * -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); triangle meshes -dem_mesh_<k>_*
+ * (walls_mesh_options.c, not counted among the walls); -dem_<wall>_friction overrides
  * -dem_wall_friction for that wall. The walls are added to the store (walls.c) in this order. */
 #include "dem/dem_impl.h"
 
@@ -85,8 +86,9 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
     if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->walls.nwall - 1));
   }
-  PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));  /* -dem_quad_<k>, -dem_hopper */
-  PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem)); /* -dem_cylinder (drum) */
+  PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));   /* -dem_quad_<k>, -dem_hopper */
+  PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem));  /* -dem_cylinder (drum) */
+  PetscCall(DemMeshesSetFromOptions(PetscOptionsObject, dem)); /* -dem_mesh_<k>_* (walls_mesh_options.c) */
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }

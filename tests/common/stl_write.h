@@ -1,0 +1,44 @@
+/* Writes triangles (9 doubles each) as an ASCII STL file on rank 0 of comm, for the mesh-wall
+ * tests (the facet normals written are zeros: the reader takes them from the vertex order). */
+#pragma once
+#include <stdio.h>
+#include <petscsys.h>
+
+static inline PetscErrorCode TestWriteStl(MPI_Comm comm, const char *path, PetscInt ntri, const double *v)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    FILE *f = fopen(path, "w");
+    PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path);
+    fprintf(f, "solid test\n");
+    for (PetscInt t = 0; t < ntri; t++) {
+      fprintf(f, "facet normal 0 0 0\nouter loop\n");
+      for (int j = 0; j < 3; j++) fprintf(f, "vertex %.17g %.17g %.17g\n", v[9 * t + 3 * j], v[9 * t + 3 * j + 1], v[9 * t + 3 * j + 2]);
+      fprintf(f, "endloop\nendfacet\n");
+    }
+    fprintf(f, "endsolid test\n");
+    PetscCheck(fclose(f) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot write %s", path);
+  }
+  PetscCallMPI(MPI_Barrier(comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A grid of 2 nu nv triangles over the parallelogram o + s e1 + t e2, s in [0, nu], t in [0, nv]
+ * (cells of e1 x e2, each split along a diagonal that alternates): v gets 18 nu nv doubles. */
+static inline void TestGridTriangles(const double o[3], const double e1[3], const double e2[3], PetscInt nu, PetscInt nv, double *v)
+{
+  PetscInt t = 0;
+  for (PetscInt i = 0; i < nu; i++)
+    for (PetscInt j = 0; j < nv; j++) {
+      double c[4][3];
+      for (int q = 0; q < 4; q++)
+        for (int k = 0; k < 3; k++) c[q][k] = o[k] + (double)(i + (q & 1)) * e1[k] + (double)(j + (q >> 1)) * e2[k];
+      const int tri[2][2][3] = {{{0, 1, 3}, {0, 3, 2}}, {{0, 1, 2}, {1, 3, 2}}}; /* diagonal 0-3 or 1-2 */
+      for (int h = 0; h < 2; h++, t++)
+        for (int a = 0; a < 3; a++)
+          for (int k = 0; k < 3; k++) v[9 * t + 3 * a + k] = c[tri[(i + j) % 2][h][a]][k];
+    }
+}
