@@ -61,12 +61,21 @@ static void cpl_filter_box(const Domain *dom, PetscBool faces, int d, PetscInt l
 /* One sweep: g (owned points) <- loc (the same field with its ghosts) + the fluxes from the
  * neighbours inside the box. Line by line along x, the y and z neighbours decided once per line;
  * the fluxes are added in the order e = x, y, z, side - then +. */
-static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3], const PetscInt xs[3], const PetscInt xm[3], PetscInt dof, const PetscScalar *a, PetscScalar *g)
+static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3], const PetscInt xs[3], const PetscInt xm[3], PetscInt dof, const PetscScalar *a, PetscScalar *g, PetscBool *busy)
 {
   const Domain   *dom   = cpl->dom;
   const PetscBool faces = (PetscBool)(dof == 3);
   const PetscInt  st[3] = {dof, dof * gm[0], dof * gm[0] * gm[1]};
   const double    l0 = cpl->filter_lam[0], l1 = cpl->filter_lam[1], l2 = cpl->filter_lam[2];
+
+  /* busy[k]: ghosted z-plane k holds a non-zero value. A plane whose own and neighbouring planes
+   * are all zero stays zero (every flux is 0) and is skipped: the freeboard above a bed. */
+  for (PetscInt k = 0; k < gm[2]; k++) {
+    const PetscScalar *p  = a + k * st[2];
+    PetscBool          nz = PETSC_FALSE;
+    for (PetscInt q = 0; q < st[2]; q++) nz = (PetscBool)(nz | (p[q] != 0));
+    busy[k] = nz;
+  }
 
   for (int d = 0; d < dof; d++) {
     PetscInt lo[3], hi[3], b0[3], b1[3];
@@ -75,7 +84,9 @@ static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3]
       b0[e] = PetscMax(xs[e], lo[e]);
       b1[e] = PetscMin(xs[e] + xm[e] - 1, hi[e]);
     }
-    for (PetscInt k = b0[2]; k <= b1[2]; k++)
+    for (PetscInt k = b0[2]; k <= b1[2]; k++) {
+      const PetscInt kl = k - gs[2]; /* the owned plane's ghosted index: kl - 1 and kl + 1 exist */
+      if (!busy[kl] && !busy[kl - 1] && !busy[kl + 1]) continue;
       for (PetscInt j = b0[1]; j <= b1[1]; j++) {
         const PetscBool zm = (PetscBool)(k > lo[2]), zp = (PetscBool)(k < hi[2]), ym = (PetscBool)(j > lo[1]), yp = (PetscBool)(j < hi[1]);
         PetscInt        o = dof * (((k - gs[2]) * gm[1] + (j - gs[1])) * gm[0] + (b0[0] - gs[0])) + d;
@@ -83,6 +94,16 @@ static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3]
         for (PetscInt i = b0[0]; i <= b1[0]; i++, o += dof, c += dof) {
           const double ao = a[o];
           double       f  = 0;
+          if (i > lo[0] && i < hi[0] && ym && yp && zm && zp) { /* the bulk: no test per neighbour */
+            f = l0 * (a[o - st[0]] - ao);
+            f += l0 * (a[o + st[0]] - ao);
+            f += l1 * (a[o - st[1]] - ao);
+            f += l1 * (a[o + st[1]] - ao);
+            f += l2 * (a[o - st[2]] - ao);
+            f += l2 * (a[o + st[2]] - ao);
+            g[c] = ao + f;
+            continue;
+          }
           if (i > lo[0]) f += l0 * (a[o - st[0]] - ao);
           if (i < hi[0]) f += l0 * (a[o + st[0]] - ao);
           if (ym) f += l1 * (a[o - st[1]] - ao);
@@ -92,6 +113,7 @@ static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3]
           g[c] = ao + f;
         }
       }
+    }
   }
 }
 
@@ -104,21 +126,24 @@ PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces)
   Vec          loc = faces ? cpl->floc[0] : cpl->cloc;
   PetscInt     gs[3], gm[3], xs[3], xm[3];
   PetscScalar *ga;
+  PetscBool   *busy;
 
   PetscFunctionBeginUser;
   if (cpl->filter_n == 0) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(cpl->ev_filter, 0, 0, 0, 0));
   PetscCall(DMDAGetGhostCorners(da, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
   PetscCall(DMDAGetCorners(da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(PetscMalloc1(gm[2], &busy));
   for (PetscInt s = 0; s < cpl->filter_n; s++) {
     const PetscScalar *a;
     PetscCall(DMGlobalToLocal(da, g, INSERT_VALUES, loc));
     PetscCall(VecGetArrayRead(loc, &a));
     PetscCall(VecGetArray(g, &ga));
-    cpl_filter_sweep(cpl, gs, gm, xs, xm, faces ? 3 : 1, a, ga);
+    cpl_filter_sweep(cpl, gs, gm, xs, xm, faces ? 3 : 1, a, ga, busy);
     PetscCall(VecRestoreArray(g, &ga));
     PetscCall(VecRestoreArrayRead(loc, &a));
   }
+  PetscCall(PetscFree(busy));
   PetscCall(PetscLogEventEnd(cpl->ev_filter, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
