@@ -1,7 +1,8 @@
 /* U_mf from a pressure-drop sweep, as an experimentalist reads it (driven by tools/umf_sweep;
- * build: make build/tools/umf_sweep). One coupled run of the options given (tools/umf_sweep.opts:
- * a simple cubic lattice bed standing between frictionless side walls on the inlet face) with
- * the inlet ramped linearly (-fluid_bc_zlo_velocity_table, -fluid_inlet_interpolation linear).
+ * build: make build/tools/umf_sweep). One coupled run of the options given (the bed of
+ * cases/fluidized_bed/umf_sweep.opts: a simple cubic lattice standing between frictionless side
+ * walls on the inlet face) with the inlet ramped linearly (-fluid_bc_zlo_velocity_table,
+ * -fluid_inlet_interpolation linear).
  * Every fluid step records the inlet's superficial velocity U and the pressure drop across the
  * column, dp = p(z = 0) - p(top cell), p(z = 0) extrapolated linearly from the two lowest cell
  * centres (the bed starts on the inlet face: the half cell below the first centre holds bed
