@@ -126,6 +126,7 @@ int main(int argc, char **argv)
     if (print > 0 && ++step % print == 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "t %.4g U %.5g dp/W %.5f\n", (double)t, (double)U[2], (double)(dp / W)));
   }
   const PetscReal umf = SweepKnee(&sw, fit[0] * f.umf, fit[1] * f.umf, W, &np);
+  PetscCheck(np >= 2, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "umf_sweep: %d fluid steps with U in -umf_fit %g,%g x %g: the packed branch needs at least 2; ramp the inlet through that range before -cpl_t_end %g", (int)np, (double)fit[0], (double)fit[1], (double)f.umf, (double)t_end);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "result: h=%.6g umf=%.6g pred=%.6g ratio=%.5f W=%.6g fit_points=%d plateau=%.5f\n", (double)h, (double)umf, (double)f.umf, (double)(umf / f.umf), (double)W, (int)np, (double)(npl ? plateau / npl : 0)));
   PetscCall(PetscFree(sw.u));
   PetscCall(PetscFree(sw.dp));
