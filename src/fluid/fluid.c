@@ -326,5 +326,6 @@ PetscErrorCode FluidInitPorosity(Fluid fl)
 {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(fl->eps, fl->eps_old));
+  if (fl->setup) PetscCall(FluidInletFaceValues(fl, fl->u)); /* u's level is this porosity: its inlet faces U_n / eps_f */
   PetscFunctionReturn(PETSC_SUCCESS);
 }

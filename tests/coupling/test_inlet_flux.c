@@ -8,7 +8,9 @@
  *   2. the bed free to move (it rises and expands at U = 1.5): over each of 20 steps the fluid
  *      volume changes by (Q_in - Q_out) dt, to the Poisson tolerance; Q_in = U A at every step
  *      while the porosity of the inlet layer changes.
- * The first layer's mean porosity is printed (below 1: the check is about solids at the inlet).
+ * Before the first step the inlet face already carries U (the monitors' and the bed line's
+ * superficial velocity, CplGetLayer). The first layer's mean porosity is checked below 0.9 (the
+ * checks are about solids at the inlet).
  * Run on 1 and 2 ranks (2: the inlet and the outlet on different ranks). Scene: packed_bed.opts. */
 /* ranks: 1 2 */
 #include "cpl_common.h"
@@ -63,6 +65,7 @@ int main(int argc, char **argv)
   PetscCall(Fluxes(t.fl, &t.dom, &qin, &qout, &vol));
   CheckDetail("inlet layer porosity %.4f", (double)e0);
   PetscCall(CheckBelow("frozen bed: mean porosity of the inlet's cell layer", e0, 0.9));
+  PetscCall(CheckCloseAbs("before the first step: superficial velocity through the inlet face (CplGetLayer) - U", u0 - 1, 0, 1e-13));
   PetscCall(CheckCloseAbs("frozen bed on the inlet: inflow / (U A) - 1", qin / area - 1, 0, 1e-13));
   PetscCall(CheckCloseAbs("frozen bed on the inlet: outflow / (U A) - 1", qout / area - 1, 0, 1e-6));
   PetscCall(TestCplDestroy(&t));
