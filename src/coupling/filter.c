@@ -46,41 +46,75 @@ PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Whether point idx (global indices, possibly one beyond the owned box) takes part in the
- * filter of component d of a face field (faces) or of a cell field: inside the grid along
- * non-periodic axes and, for faces, an interior face of the exchange. */
-static inline PetscBool cpl_filter_point(const Domain *dom, PetscBool faces, int d, const PetscInt idx[3])
+/* The points of component d of a face field (faces) or of a cell field that take part, a box
+ * in global indices: inside the grid along non-periodic axes and, for faces, an interior face of
+ * the exchange (CplInteriorFace: not on a boundary plane, not an unused extra point); periodic
+ * axes are unbounded. */
+static void cpl_filter_box(const Domain *dom, PetscBool faces, int d, PetscInt lo[3], PetscInt hi[3])
 {
   for (int e = 0; e < 3; e++) {
-    if (dom->periodic[e]) continue;
-    if (idx[e] < 0 || idx[e] >= dom->cells[e] + (faces ? 1 : 0)) return PETSC_FALSE;
+    lo[e] = dom->periodic[e] ? PETSC_MIN_INT : (faces && e == d ? 1 : 0);
+    hi[e] = dom->periodic[e] ? PETSC_MAX_INT : dom->cells[e] - 1;
   }
-  return faces ? CplInteriorFace(dom, d, idx) : PETSC_TRUE;
 }
 
-/* One sweep: g (owned points) <- loc (the same field with its ghosts) + the fluxes. */
-static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3], const PetscInt xs[3], const PetscInt xm[3], PetscInt dof, const PetscScalar *a, PetscScalar *g)
+/* One sweep: g (owned points) <- loc (the same field with its ghosts) + the fluxes from the
+ * neighbours inside the box. Line by line along x, the y and z neighbours decided once per line;
+ * the fluxes are added in the order e = x, y, z, side - then +. */
+static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3], const PetscInt xs[3], const PetscInt xm[3], PetscInt dof, const PetscScalar *a, PetscScalar *g, PetscBool *busy)
 {
   const Domain   *dom   = cpl->dom;
   const PetscBool faces = (PetscBool)(dof == 3);
   const PetscInt  st[3] = {dof, dof * gm[0], dof * gm[0] * gm[1]};
-  PetscInt        idx[3], c = 0;
+  const double    l0 = cpl->filter_lam[0], l1 = cpl->filter_lam[1], l2 = cpl->filter_lam[2];
 
-  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
-    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
-      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++)
-        for (int d = 0; d < dof; d++, c++) {
-          const PetscInt o = dof * (((idx[2] - gs[2]) * gm[1] + (idx[1] - gs[1])) * gm[0] + (idx[0] - gs[0])) + d;
-          double         f = 0;
-          if (!cpl_filter_point(dom, faces, d, idx)) continue;
-          for (int e = 0; e < 3; e++)
-            for (int s = -1; s <= 1; s += 2) {
-              PetscInt nb[3] = {idx[0], idx[1], idx[2]};
-              nb[e] += s;
-              if (cpl_filter_point(dom, faces, d, nb)) f += cpl->filter_lam[e] * (a[o + s * st[e]] - a[o]);
-            }
-          g[c] = a[o] + f;
+  /* busy[k]: ghosted z-plane k holds a non-zero value. A plane whose own and neighbouring planes
+   * are all zero stays zero (every flux is 0) and is skipped: the freeboard above a bed. */
+  for (PetscInt k = 0; k < gm[2]; k++) {
+    const PetscScalar *p  = a + k * st[2];
+    PetscBool          nz = PETSC_FALSE;
+    for (PetscInt q = 0; q < st[2]; q++) nz = (PetscBool)(nz | (p[q] != 0));
+    busy[k] = nz;
+  }
+
+  for (int d = 0; d < dof; d++) {
+    PetscInt lo[3], hi[3], b0[3], b1[3];
+    cpl_filter_box(dom, faces, d, lo, hi);
+    for (int e = 0; e < 3; e++) {
+      b0[e] = PetscMax(xs[e], lo[e]);
+      b1[e] = PetscMin(xs[e] + xm[e] - 1, hi[e]);
+    }
+    for (PetscInt k = b0[2]; k <= b1[2]; k++) {
+      const PetscInt kl = k - gs[2]; /* the owned plane's ghosted index: kl - 1 and kl + 1 exist */
+      if (!busy[kl] && !busy[kl - 1] && !busy[kl + 1]) continue;
+      for (PetscInt j = b0[1]; j <= b1[1]; j++) {
+        const PetscBool zm = (PetscBool)(k > lo[2]), zp = (PetscBool)(k < hi[2]), ym = (PetscBool)(j > lo[1]), yp = (PetscBool)(j < hi[1]);
+        PetscInt        o = dof * (((k - gs[2]) * gm[1] + (j - gs[1])) * gm[0] + (b0[0] - gs[0])) + d;
+        PetscInt        c = dof * (((k - xs[2]) * xm[1] + (j - xs[1])) * xm[0] + (b0[0] - xs[0])) + d;
+        for (PetscInt i = b0[0]; i <= b1[0]; i++, o += dof, c += dof) {
+          const double ao = a[o];
+          double       f  = 0;
+          if (i > lo[0] && i < hi[0] && ym && yp && zm && zp) { /* the bulk: no test per neighbour */
+            f = l0 * (a[o - st[0]] - ao);
+            f += l0 * (a[o + st[0]] - ao);
+            f += l1 * (a[o - st[1]] - ao);
+            f += l1 * (a[o + st[1]] - ao);
+            f += l2 * (a[o - st[2]] - ao);
+            f += l2 * (a[o + st[2]] - ao);
+            g[c] = ao + f;
+            continue;
+          }
+          if (i > lo[0]) f += l0 * (a[o - st[0]] - ao);
+          if (i < hi[0]) f += l0 * (a[o + st[0]] - ao);
+          if (ym) f += l1 * (a[o - st[1]] - ao);
+          if (yp) f += l1 * (a[o + st[1]] - ao);
+          if (zm) f += l2 * (a[o - st[2]] - ao);
+          if (zp) f += l2 * (a[o + st[2]] - ao);
+          g[c] = ao + f;
         }
+      }
+    }
+  }
 }
 
 /* Collective. Filters the global Vec g of the cell DMDA (cells) or the face DMDA (faces) in
@@ -92,21 +126,24 @@ PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces)
   Vec          loc = faces ? cpl->floc[0] : cpl->cloc;
   PetscInt     gs[3], gm[3], xs[3], xm[3];
   PetscScalar *ga;
+  PetscBool   *busy;
 
   PetscFunctionBeginUser;
   if (cpl->filter_n == 0) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(cpl->ev_filter, 0, 0, 0, 0));
   PetscCall(DMDAGetGhostCorners(da, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
   PetscCall(DMDAGetCorners(da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(PetscMalloc1(gm[2], &busy));
   for (PetscInt s = 0; s < cpl->filter_n; s++) {
     const PetscScalar *a;
     PetscCall(DMGlobalToLocal(da, g, INSERT_VALUES, loc));
     PetscCall(VecGetArrayRead(loc, &a));
     PetscCall(VecGetArray(g, &ga));
-    cpl_filter_sweep(cpl, gs, gm, xs, xm, faces ? 3 : 1, a, ga);
+    cpl_filter_sweep(cpl, gs, gm, xs, xm, faces ? 3 : 1, a, ga, busy);
     PetscCall(VecRestoreArray(g, &ga));
     PetscCall(VecRestoreArrayRead(loc, &a));
   }
+  PetscCall(PetscFree(busy));
   PetscCall(PetscLogEventEnd(cpl->ev_filter, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

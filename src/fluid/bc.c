@@ -3,7 +3,11 @@
  * only through two ghost layers of the local arrays, filled axis by axis (x, then y over the
  * x-ghosts, then z) so that edge and corner ghosts do not depend on the decomposition:
  *   normal component, boundary face b, ghost faces b -+ m:  wall/slip: -u(b +- m) (u(b) = 0),
- *     inlet: U_n, outlet: u(b) (zero gradient; u(b) itself is an unknown of the projection);
+ *     inlet: U_n / eps_f, outlet: u(b) (zero gradient; u(b) itself is an unknown of the
+ *     projection). U_n is the SUPERFICIAL velocity (the volume flux per unit area) and eps_f the
+ *     face porosity of the mass divergence (the cell next to the face: cell ghosts are even), so
+ *     the flux eps_f u(b) through every inlet face is U_n whatever the solids next to it; the
+ *     porosity is that of the velocity's own level (FluidFillVelocityGhosts' eps);
  *   tangential components, ghost cell mirrored from interior cell m': wall: -u, slip: +u,
  *     inlet: 2 U_t - u, outlet: +u;
  *   cell fields: even mirror, except odd about the outlet value at outlets for p and phi
@@ -11,6 +15,7 @@
  * Options: -fluid_bc_{x,y,z}{lo,hi} wall|slip|inlet|outlet, -fluid_bc_{x,y,z}{lo,hi}_velocity
  * (m/s), -fluid_outlet_pressure (Pa). */
 #include "fluid/fluid_impl.h"
+#include <petsc/private/petscimpl.h> /* PetscObjectStateGet: refill eps_old's ghosts only when it changed */
 
 const char *const FluidBCNames[] = {"periodic", "wall", "slip", "inlet", "outlet", "FluidBCType", "FLUID_BC_", NULL};
 
@@ -26,6 +31,7 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
   PetscBool   set, any_outlet = PETSC_FALSE;
 
   PetscFunctionBeginUser;
+  fl->has_inlet = PETSC_FALSE;
   PetscOptionsBegin(fl->comm, NULL, "Fluid boundary conditions", NULL);
   PetscCall(SableOptionsReal("-fluid_outlet_pressure", "Pressure on outlet faces", "Pa", NULL, fl->p_out, &fl->p_out, NULL));
   for (int d = 0; d < 3; d++)
@@ -38,6 +44,7 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
       PetscCall(SableOptionsRealN(optv, "Inlet velocity on this face", "m/s", fl->bc[d][s].vel, 3, 3, &set));
       PetscCheck(!set || t == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but %s is %s, not inlet", optv, opt, FluidBCNames[t]);
       if (t == FLUID_BC_OUTLET) any_outlet = PETSC_TRUE;
+      if (t == FLUID_BC_INLET) fl->has_inlet = PETSC_TRUE;
     }
   PetscOptionsEnd();
   fl->singular = any_outlet ? PETSC_FALSE : PETSC_TRUE;
@@ -52,8 +59,20 @@ PetscErrorCode FluidGetBC(Fluid fl, int d, int side, FluidBCType *type)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The inlet's normal face value U_n / eps_f in the column of tangential indices q (q[d] unused),
+ * eps the ghosted cell porosity; columns beyond the cell ghosts (the face DMDA's extra ghost
+ * point) take the last ghost cell's. */
+static inline PetscScalar fluid_inlet_normal(const FluidGrid *g, const FluidBC *bc, const PetscScalar *eps, int d, int s, const PetscInt q[3])
+{
+  PetscInt r[3];
+  for (int e = 0; e < 3; e++) r[e] = PetscMin(PetscMax(q[e], g->gcs[e]), g->gcs[e] + g->gcm[e] - 1);
+  r[d]             = s ? g->N[d] - 1 : 0;
+  const PetscInt c = FluidCellOff(g, r[0], r[1], r[2]);
+  return bc->vel[d] / (0.5 * (eps[c] + eps[c + (s ? 1 : -1) * g->cs[d]]));
+}
+
 /* Fills the ghosts of one non-periodic face of the local face array. */
-static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, int d, int s)
+static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, const PetscScalar *eps, int d, int s)
 {
   const FluidGrid *g  = &fl->g;
   const FluidBC   *bc = &fl->bc[d][s];
@@ -68,12 +87,12 @@ static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, int d, int s)
       const PetscInt f0 = FluidFaceOff(g, q[0], q[1], q[2]), st = g->fs[d];
       /* normal component: boundary face value, then ghost faces bnd + sg*m */
       if (bc->type == FLUID_BC_WALL || bc->type == FLUID_BC_SLIP) u[f0 + d] = 0;
-      if (bc->type == FLUID_BC_INLET) u[f0 + d] = bc->vel[d];
+      if (bc->type == FLUID_BC_INLET) u[f0 + d] = fluid_inlet_normal(g, bc, eps, d, s, q);
       for (PetscInt m = 1; m <= 2; m++) {
         PetscScalar *gh = &u[f0 + sg * m * st + d], in = u[f0 - sg * m * st + d];
         switch (bc->type) {
         case FLUID_BC_INLET:
-          *gh = bc->vel[d];
+          *gh = u[f0 + d];
           break;
         case FLUID_BC_OUTLET:
           *gh = u[f0 + d];
@@ -105,16 +124,45 @@ static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, int d, int s)
     }
 }
 
-PetscErrorCode FluidFillVelocityGhosts(Fluid fl, PetscScalar *u)
+/* eps: the ghosted porosity of the velocity's level (read only at inlets; NULL without them). */
+PetscErrorCode FluidFillVelocityGhosts(Fluid fl, PetscScalar *u, const PetscScalar *eps)
 {
   const FluidGrid *g = &fl->g;
 
   PetscFunctionBeginUser;
   for (int d = 0; d < 3; d++) {
     if (FluidPeriodic(fl, d)) continue;
-    if (g->xs[d] == 0) FluidFillVelocityFace(fl, u, d, 0);
-    if (g->xs[d] + g->xm[d] == g->N[d]) FluidFillVelocityFace(fl, u, d, 1);
+    if (g->xs[d] == 0) FluidFillVelocityFace(fl, u, eps, d, 0);
+    if (g->xs[d] + g->xm[d] == g->N[d]) FluidFillVelocityFace(fl, u, eps, d, 1);
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The ghosted porosity of the level of fl->u into epsoldloc: eps_old (a step ends
+ * with eps_old = eps). Without force, filled only with inlets and when eps_old changed since the
+ * last fill (its object state). */
+PetscErrorCode FluidLocalPorosityOld(Fluid fl, PetscBool force)
+{
+  PetscObjectState st;
+
+  PetscFunctionBeginUser;
+  if (!force && !fl->has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscObjectStateGet((PetscObject)fl->eps_old, &st));
+  if (!force && st == fl->epsold_state) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(FluidLocalCell(fl, fl->eps_old, fl->epsoldloc, PETSC_FALSE, 0.0));
+  fl->epsold_state = st;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. At the end of a step, after eps_old = eps: with inlets, epsoldloc takes epsloc (the
+ * same values, no communication) and the inlet faces of fl->u the new level's U_n / eps_f. */
+PetscErrorCode FluidInletsEndStep(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  if (!fl->has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecCopy(fl->epsloc, fl->epsoldloc));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->eps_old, &fl->epsold_state));
+  PetscCall(FluidInletFaceValues(fl, fl->u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -147,14 +195,18 @@ PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *v, PetscBool odd_at_ou
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc)
+/* epsloc: the ghosted porosity of u's level, current (FluidLocalCell, FluidLocalPorosityOld). */
+PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc, Vec epsloc)
 {
-  PetscScalar *a;
+  PetscScalar       *a;
+  const PetscScalar *e = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(DMGlobalToLocal(fl->fda, u, INSERT_VALUES, uloc));
   PetscCall(VecGetArray(uloc, &a));
-  PetscCall(FluidFillVelocityGhosts(fl, a));
+  if (fl->has_inlet) PetscCall(VecGetArrayRead(epsloc, &e));
+  PetscCall(FluidFillVelocityGhosts(fl, a, e));
+  if (fl->has_inlet) PetscCall(VecRestoreArrayRead(epsloc, &e));
   PetscCall(VecRestoreArray(uloc, &a));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -171,8 +223,9 @@ PetscErrorCode FluidLocalCell(Fluid fl, Vec v, Vec vloc, PetscBool odd_at_outlet
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Sets the fixed faces of a global face Vec: wall normal components 0, inlet normal components
- * U_n, the unused extra points of tangential components 0. */
+/* Collective. Sets the fixed faces of a global face Vec of the level of eps_old (fl->u): wall
+ * normal components 0, inlet normal components U_n / eps_f, the unused extra points of
+ * tangential components 0. */
 PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u)
 {
   const FluidGrid *g = &fl->g;
@@ -186,11 +239,36 @@ PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u)
       for (idx[0] = g->xs[0]; idx[0] < g->xs[0] + g->fxm[0]; idx[0]++)
         for (int d = 0; d < 3; d++) {
           if (FluidFaceActive(fl, d, idx)) continue;
-          PetscScalar v = 0;
-          for (int s = 0; s < 2; s++)
-            if (fl->bc[d][s].type == FLUID_BC_INLET && idx[d] == (s ? g->N[d] : 0)) v = fl->bc[d][s].vel[d];
-          a[idx[2]][idx[1]][idx[0]][d] = v;
+          a[idx[2]][idx[1]][idx[0]][d] = 0;
         }
   PetscCall(DMDAVecRestoreArrayDOF(fl->fda, u, &a));
+  PetscCall(FluidInletFaceValues(fl, u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The inlet normal components U_n / eps_f of a global face Vec of the level of
+ * eps_old (only the owned boundary planes). */
+PetscErrorCode FluidInletFaceValues(Fluid fl, Vec u)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *eps;
+  PetscScalar    ****a;
+
+  PetscFunctionBeginUser;
+  if (!fl->has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(FluidLocalPorosityOld(fl, PETSC_FALSE));
+  PetscCall(VecGetArrayRead(fl->epsoldloc, &eps));
+  PetscCall(DMDAVecGetArrayDOF(fl->fda, u, &a));
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      const int a1 = (d + 1) % 3, b1 = (d + 2) % 3;
+      PetscInt  q[3];
+      if (fl->bc[d][s].type != FLUID_BC_INLET || (s ? g->xs[d] + g->xm[d] != g->N[d] : g->xs[d] != 0)) continue;
+      q[d] = s ? g->N[d] : 0;
+      for (q[b1] = g->xs[b1]; q[b1] < g->xs[b1] + g->fxm[b1]; q[b1]++)
+        for (q[a1] = g->xs[a1]; q[a1] < g->xs[a1] + g->fxm[a1]; q[a1]++) a[q[2]][q[1]][q[0]][d] = fluid_inlet_normal(g, &fl->bc[d][s], eps, d, s, q);
+    }
+  PetscCall(DMDAVecRestoreArrayDOF(fl->fda, u, &a));
+  PetscCall(VecRestoreArrayRead(fl->epsoldloc, &eps));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -140,6 +140,7 @@ PetscErrorCode FluidCreateLocals(Fluid fl)
   PetscCall(DMCreateLocalVector(fl->cda, &fl->ploc));
   PetscCall(VecDuplicate(fl->ploc, &fl->epsloc));
   PetscCall(VecDuplicate(fl->ploc, &fl->epsoldloc));
+  fl->epsold_state = -1;
   PetscCall(VecDuplicate(fl->ploc, &fl->philoc));
   PetscCall(DMCreateLocalVector(fl->fda, &fl->uloc));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -303,7 +304,8 @@ PetscErrorCode FluidGetLocalFields(Fluid fl, Vec *uloc, Vec *ploc)
 {
   PetscFunctionBeginUser;
   if (uloc) {
-    PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+    PetscCall(FluidLocalPorosityOld(fl, PETSC_FALSE));
+    PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc));
     *uloc = fl->uloc;
   }
   if (ploc) {
@@ -324,5 +326,6 @@ PetscErrorCode FluidInitPorosity(Fluid fl)
 {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(fl->eps, fl->eps_old));
+  if (fl->setup) PetscCall(FluidInletFaceValues(fl, fl->u)); /* u's level is this porosity: its inlet faces U_n / eps_f */
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -151,7 +151,8 @@ PetscErrorCode FluidSetVelocityFunction(Fluid fluid, FluidVectorFn fn, void *ctx
 /* Collective. RMS and max over all face values (unused extra points excluded) of |u - fn|. */
 PetscErrorCode FluidVelocityError(Fluid fluid, FluidVectorFn fn, void *ctx, PetscReal *l2, PetscReal *linf);
 /* Collective. Declares the current porosity eps^{n+1} also the previous one (no d(eps)/dt in the
- * next step): call once after setting the initial porosity. */
+ * next step) and the level of the velocity (its inlet faces U_n / eps_f): call once after setting
+ * the initial porosity. */
 PetscErrorCode FluidInitPorosity(Fluid fluid);
 /* Collective. Face values from cell-centred fields: component d of the face Vec (beta, u_s or
  * source) is the mean of cell[d] over the two cells of the face (the boundary cell's own value

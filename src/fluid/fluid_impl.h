@@ -53,11 +53,13 @@ struct _p_Fluid {
   PetscReal      cfl_max, visc_max;
   PetscBool      adaptive, setup;
   PetscBool      inlet_linear; /* -fluid_inlet_interpolation linear (else step) */
+  PetscBool      has_inlet;    /* some face is an inlet: velocity ghosts read the porosity */
   PetscReal      time;         /* sum of the steps taken (s): the inlet tables' clock */
   /* fields (global) */
   Vec u, p, eps, eps_old, beta, us, src;
   /* work: ghosted locals, AB2 history of the advection term, predictor, projection */
   Vec              uloc, ploc, epsloc, epsoldloc, uhat, advn, adv_old, vis, phi, rhs, philoc;
+  PetscObjectState epsold_state; /* eps_old's state when epsoldloc was filled (-1: never) */
   PetscReal        dt_old;
   PetscBool        have_adv_old;
   DM               pda; /* star-stencil copy of cda for the Poisson matrix (same ownership) */
@@ -141,10 +143,13 @@ PetscErrorCode FluidCreateLocals(Fluid fl);
 PetscErrorCode FluidSolversDestroy(Fluid fl);
 /* bc.c */
 PetscErrorCode FluidSetFromOptionsBC(Fluid fl);
-PetscErrorCode FluidFillVelocityGhosts(Fluid fl, PetscScalar *u);
+PetscErrorCode FluidFillVelocityGhosts(Fluid fl, PetscScalar *u, const PetscScalar *eps);
+PetscErrorCode FluidLocalPorosityOld(Fluid fl, PetscBool force);
+PetscErrorCode FluidInletsEndStep(Fluid fl);
+PetscErrorCode FluidInletFaceValues(Fluid fl, Vec u);
 PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *a, PetscBool odd_at_outlet, PetscReal outlet_value);
 PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u);
-PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc);
+PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc, Vec epsloc);
 PetscErrorCode FluidLocalCell(Fluid fl, Vec a, Vec aloc, PetscBool odd_at_outlet, PetscReal outlet_value);
 /* inlet.c: time tables of inlet velocities */
 PetscErrorCode FluidSetFromOptionsInlet(Fluid fl);

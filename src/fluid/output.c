@@ -10,7 +10,8 @@ PetscErrorCode FluidGetCellVelocity(Fluid fl, PetscReal *vel)
   PetscInt           idx[3], c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+  PetscCall(FluidLocalPorosityOld(fl, PETSC_FALSE));
+  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc));
   PetscCall(VecGetArrayRead(fl->uloc, &u));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {

@@ -286,7 +286,7 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(fl->ev_poisson, 0, 0, 0, 0));
-  PetscCall(FluidLocalVelocity(fl, fl->uhat, fl->uloc));
+  PetscCall(FluidLocalVelocity(fl, fl->uhat, fl->uloc, fl->epsloc)); /* the inlets at the new level's porosity */
   PetscCall(VecGetArrayRead(fl->uloc, &u));
   PetscCall(VecGetArrayRead(fl->epsloc, &eps));
   PetscCall(VecGetArrayRead(fl->epsoldloc, &eps0));
@@ -372,7 +372,7 @@ PetscErrorCode FluidDivergenceMax(Fluid fl, PetscReal dt, PetscReal *dmax)
   PetscReal          m = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsloc));
   PetscCall(VecGetArrayRead(fl->uloc, &u));
   PetscCall(VecGetArrayRead(fl->epsloc, &eps));
   PetscCall(VecGetArrayRead(fl->epsoldloc, &eps0));

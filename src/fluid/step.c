@@ -119,7 +119,8 @@ PetscErrorCode FluidGetStableTimeStep(Fluid fl, PetscReal *dtmax)
 
   PetscFunctionBeginUser;
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidGetStableTimeStep");
-  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+  PetscCall(FluidLocalPorosityOld(fl, PETSC_FALSE));
+  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc));
   PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
   PetscCall(VecGetArrayRead(fl->uloc, &u));
   PetscCall(VecGetArrayRead(fl->epsloc, &eps));
@@ -232,19 +233,20 @@ PetscErrorCode FluidStep(Fluid fl, PetscReal dt, FluidStats *st)
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidStep");
   PetscCheck(dt > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step %g must be > 0 (s)", (double)dt);
   PetscCall(PetscMemzero(st, sizeof *st));
-  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
   PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
-  PetscCall(FluidLocalCell(fl, fl->eps_old, fl->epsoldloc, PETSC_FALSE, 0.0));
+  PetscCall(FluidLocalPorosityOld(fl, PETSC_TRUE));
+  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc)); /* u^n: inlets at eps^n */
   PetscCall(FluidCheckStability(fl, &dt, st));
   /* the inlets at the end of the step actually taken (adaptive stepping may have cut dt); a
    * changed inlet refills the ghosts, and the next step's check sees its velocity */
   PetscBool changed;
   PetscCall(FluidUpdateInlets(fl, fl->time + dt, &changed));
-  if (changed) PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc));
+  if (changed) PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc));
   PetscCall(FluidPredict(fl, dt));
   PetscCall(FluidProject(fl, dt, st));
   PetscCall(FluidDivergenceMax(fl, dt, &st->div_max));
   PetscCall(VecCopy(fl->eps, fl->eps_old));
+  PetscCall(FluidInletsEndStep(fl)); /* u^{n+1}'s level is eps_old now */
   fl->dt_old = dt;
   fl->nsteps++;
   fl->time += dt;

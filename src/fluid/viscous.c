@@ -72,10 +72,13 @@ static void FluidGhostRelation(Fluid fl, int d, int e, int s, PetscScalar *alpha
   }
 }
 
-/* Value of the fixed normal face of axis d on side s (wall 0, inlet U_n). */
-static PetscScalar FluidFixedValue(Fluid fl, int d, int s)
+/* Value of the fixed normal face of axis d on side s, cb the local offset of the cell next to it
+ * (wall 0, inlet U_n / eps_f at the new level's porosity, as bc.c fills it). */
+static PetscScalar FluidFixedValue(Fluid fl, const PetscScalar *eps, PetscInt cb, int d, int s)
 {
-  return fl->bc[d][s].type == FLUID_BC_INLET ? fl->bc[d][s].vel[d] : 0;
+  const FluidGrid *g = &fl->g;
+  if (fl->bc[d][s].type != FLUID_BC_INLET) return 0;
+  return fl->bc[d][s].vel[d] / (0.5 * (eps[cb] + eps[cb + (s ? 1 : -1) * g->cs[d]]));
 }
 
 /* One row of the matrix (and its boundary right-hand side) for component d at point idx. */
@@ -113,7 +116,7 @@ static PetscErrorCode FluidViscousRow(Fluid fl, PetscReal dt, const PetscScalar 
         if (e == 1) col[n].j = nb;
         if (e == 2) col[n].k = nb;
         v[n++] = -k;
-      } else if (nb >= 0 && nb <= top) vbc[o + d] += k * FluidFixedValue(fl, d, nb ? 1 : 0); /* fixed face */
+      } else if (nb >= 0 && nb <= top) vbc[o + d] += k * FluidFixedValue(fl, eps, nb ? c : c - cd, d, nb ? 1 : 0); /* fixed face */
       else {
         PetscScalar alpha, gamma;
         FluidGhostRelation(fl, d, e, s, &alpha, &gamma);

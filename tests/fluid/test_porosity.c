@@ -8,8 +8,9 @@
  *    max |deps/dt| must be at solver tolerance.
  * 3. Uniform eps = 0.4 against eps = 1: Stokes flow (advection off) developing from an inlet, and
  *    a periodic channel with central advection. With U = eps u the equations for uniform eps are
- *    rho dU/dt = -grad p + mu lap U, those of eps = 1, so eps u at eps = 0.4 (inlet velocity
- *    U/eps) must equal u at eps = 1 and the pressures agree, to roundoff. */
+ *    rho dU/dt = -grad p + mu lap U, those of eps = 1, so eps u at eps = 0.4 must equal u at
+ *    eps = 1 and the pressures agree, to roundoff; the inlet takes the same superficial U in both
+ *    (its face value is U/eps). */
 #include "fluid_common.h"
 
 typedef struct {
@@ -200,7 +201,7 @@ int main(int argc, char **argv)
   /* Stokes through-flow from an inlet: superficial inlet velocity 0.1 m/s */
   PetscCall(ChannelOptions("0.1,0,0"));
   PetscCall(PetscOptionsSetValue(NULL, "-fluid_advection", "none"));
-  PetscCall(CompareUniform("stokes_inlet", "0.25,0,0", "0.1,0,0", 2e-3));
+  PetscCall(CompareUniform("stokes_inlet", NULL, NULL, 2e-3));
   /* periodic channel with advection, driven by a mean pressure gradient */
   PetscCall(PetscOptionsClear(NULL));
   PetscCall(PetscOptionsSetValue(NULL, "-domain_lo", "0,0,0"));
