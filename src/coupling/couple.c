@@ -46,8 +46,6 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   c->law         = CPL_DRAG_BEETSTRA;
   c->substeps    = 2;
   c->kscale      = 1;
-  c->self_beta   = 0.8;
-  c->self_oseen  = 1;
   c->self_fade   = 0.1;
   c->eps_floor   = 0.2;
   c->relax_max   = 1;
@@ -104,9 +102,7 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->eps_floor, &cpl->eps_floor, NULL));
   PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->relax_max, &cpl->relax_max, NULL));
   PetscCall(PetscOptionsBool("-cpl_self_porosity", "The drag law sees the porosity of the other particles: the particle's own kernel dip is removed", NULL, cpl->self_eps, &cpl->self_eps, NULL));
-  PetscCall(PetscOptionsBool("-cpl_self_velocity", "The drag law sees the undisturbed fluid: the particle's own regularized Stokeslet (Gaussian, widths from its stencil, coupling/self.c) is removed, K' = K / (1 - G K)", NULL, cpl->self_u, &cpl->self_u, NULL));
-  PetscCall(SableOptionsReal("-cpl_self_beta", "-cpl_self_velocity: the disturbance's width over the stencil's own, sigma_e = beta h_e / (2 sqrt(pi) sum w^2)", NULL, "(0,inf)", cpl->self_beta, &cpl->self_beta, NULL));
-  PetscCall(SableOptionsReal("-cpl_self_oseen", "-cpl_self_velocity: Oseen factor, the disturbance is divided by 1 + this x Re_sigma (advection)", NULL, "[0,inf)", cpl->self_oseen, &cpl->self_oseen, NULL));
+  PetscCall(PetscOptionsBool("-cpl_self_velocity", "The drag law sees the undisturbed fluid: its own disturbance (the exact discrete response of the grid to its stencil, coupling/self.c) is removed, K' = K / (1 - G K)", NULL, cpl->self_u, &cpl->self_u, NULL));
   PetscCall(SableOptionsReal("-cpl_self_fade", "-cpl_self_porosity/-cpl_self_velocity: both fade linearly to nothing as the other particles' solid fraction reaches this (0: no fade)", NULL, "[0,1)", cpl->self_fade, &cpl->self_fade, NULL));
   PetscCall(PetscOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", NULL, remove, &remove, NULL));
   PetscOptionsEnd();
@@ -236,6 +232,7 @@ PetscErrorCode CplDestroy(Cpl *cpl)
   PetscCall(VecDestroy(&(*cpl)->owed));
   PetscCall(PetscFree4((*cpl)->side, (*cpl)->vol, (*cpl)->diam, (*cpl)->mass));
   PetscCall(PetscFree((*cpl)->stc));
+  PetscCall(CplSelfTableDestroy(*cpl));
   PetscCall(PetscFree(*cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

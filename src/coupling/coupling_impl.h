@@ -19,20 +19,21 @@ struct _p_Cpl {
   Fluid    fl;
   DM       cda, fda;
   /* options */
-  CplDragLaw   law;
-  CplMode      mode;
-  CplInitFluid init;
-  PetscReal    init_rtol;  /* -cpl_init_fluid_rtol */
-  PetscInt     init_max;   /* -cpl_init_fluid_max_steps */
-  PetscInt     init_its;   /* pseudo steps the steady start took */
-  PetscBool    restarting; /* CplSetRestarting: the fluid comes from a checkpoint, no initial state */
-  PetscInt     substeps;
-  PetscReal    kscale, eps_floor, relax_max;
-  PetscBool    self_eps, self_u;                 /* -cpl_self_porosity, -cpl_self_velocity */
-  PetscReal    self_beta, self_oseen, self_fade; /* -cpl_self_beta, -cpl_self_oseen, -cpl_self_fade */
-  PetscBool    substeps_set;
-  PetscReal   *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
-  PetscInt     nshape;
+  CplDragLaw            law;
+  CplMode               mode;
+  CplInitFluid          init;
+  PetscReal             init_rtol;  /* -cpl_init_fluid_rtol */
+  PetscInt              init_max;   /* -cpl_init_fluid_max_steps */
+  PetscInt              init_its;   /* pseudo steps the steady start took */
+  PetscBool             restarting; /* CplSetRestarting: the fluid comes from a checkpoint, no initial state */
+  PetscInt              substeps;
+  PetscReal             kscale, eps_floor, relax_max;
+  PetscBool             self_eps, self_u; /* -cpl_self_porosity, -cpl_self_velocity */
+  PetscReal             self_fade;        /* -cpl_self_fade */
+  struct _CplSelfTable *self_tab;         /* self.c: the discrete self-response, built on first use */
+  PetscBool             substeps_set;
+  PetscReal            *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
+  PetscInt              nshape;
   /* fluid properties (the fluid's options) */
   PetscReal rho, mu, g[3];
   /* state */
@@ -114,6 +115,7 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl);
 PetscErrorCode CplSetFluidDrag(Cpl cpl);
 /* self.c: the drag sees the fluid without the particle's own disturbance */
 PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps, PetscReal *fade);
+PetscErrorCode CplSelfTableDestroy(Cpl cpl);
 PetscReal      CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const PetscReal u[3], const PetscReal v[3], PetscReal fade);
 /* start.c: the fluid's initial state (-cpl_init_fluid) */
 PetscErrorCode CplInitFluidState(Cpl cpl);
