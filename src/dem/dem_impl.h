@@ -516,6 +516,9 @@ PetscErrorCode DemMeshesBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec
 PetscErrorCode DemContactsMeshes(Dem dem);                                                                                                              /* walls_mesh.c */
 PetscErrorCode DemMeshesSaveSprings(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap);                                                          /* walls_mesh.c: appends the slots' records, sorted */
 PetscErrorCode DemMeshesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                                                                                /* walls_mesh.c: same rank count */
+PetscErrorCode DemMeshTouchConvex(Dem dem, const DemMesh *m, PetscInt i, ConvexContact cc[], int *nc);                                                  /* walls_mesh.c: the face rule */
+void           DemMeshMatchSlots(double *sl, int na, const double an[][3], int match[]);                                                                /* walls_mesh.c: springs matched by normal */
+PetscErrorCode DemContactsMeshesConvex(Dem dem);                                                                                                        /* convex_contacts.c */
 PetscErrorCode DemContactsPairs(DemParticles *p, const DemShapeTable *st, const DemContactModel *cm, DemNeigh *nl, double dt);                          /* contacts.c */
 PetscErrorCode DemContactsPairsConvex(Dem dem);                                                                                                         /* convex_contacts.c */
 /* A body in a pair test (convex_contacts.c): shape, centre, quaternion and its

@@ -280,9 +280,62 @@ static inline int dem_mesh_touch(const DemMesh *m, PetscInt i, const double *x, 
   return na;
 }
 
+/* Whether the point q of the plane of triangle (a, b, c) (unit normal n) lies in the triangle,
+ * edges included to tol. */
+static inline PetscBool dem_tri_covers(const double *a, const double *b, const double *c, const double n[3], const double q[3], double tol)
+{
+  const double *v[3] = {a, b, c};
+  for (int e = 0; e < 3; e++) {
+    const double *p = v[e], *r = v[(e + 1) % 3];
+    const double  d[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]}, w[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    double        en[3]; /* n x d points into the triangle for a right-handed (a, b, c) */
+    dem_cross(n, d, en);
+    if (dem_dot(w, en) < -tol * sqrt(dem_dot(en, en))) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+/* Not collective. The contacts of convex particle i (pose) with mesh m by the face rule of the
+ * polygon walls: for each candidate triangle, the contact with its plane (ConvexCollidePlane,
+ * the normal turned towards the particle's centre: two-sided) counts where its point lies in
+ * the triangle (edges included to 1e-10 of the bounding radius); a plane counts once (a later
+ * triangle of a plane already accepted, normal and offset equal to 1e-10, is dropped), so
+ * coplanar neighbours sharing the point's edge or vertex give one contact. A triangle's edge or
+ * vertex pressing into a particle's face is not seen (a ridge: see the README). Returns the
+ * count in *nc (at most DEM_MESH_MAXC). */
+PetscErrorCode DemMeshTouchConvex(Dem dem, const DemMesh *m, PetscInt i, ConvexContact cc[], int *nc)
+{
+  const DemShape  *s = &dem->shapes.shp[dem->p.shape[i]];
+  const double    *x = dem->p.x + 3 * i, tol = 1e-10 * s->r;
+  const ConvexPose pose = DemPose(x, dem->p.q + 4 * i);
+  double           off[DEM_MESH_MAXC];
+
+  PetscFunctionBeginUser;
+  *nc = 0;
+  for (PetscInt a = m->cstart[i]; a < m->cstart[i + 1] && *nc < DEM_MESH_MAXC; a++) {
+    const double *v = m->cur + 9 * m->ctri[a], e1[3] = {v[3] - v[0], v[4] - v[1], v[5] - v[2]}, e2[3] = {v[6] - v[0], v[7] - v[1], v[8] - v[2]};
+    const double  d[3] = {x[0] - v[0], x[1] - v[1], x[2] - v[2]};
+    double        nr[3], n[3]; /* the right-handed normal, and the one towards the centre */
+    ConvexContact c;
+    dem_cross(e1, e2, nr);
+    const double nn = sqrt(dem_dot(nr, nr)), h = dem_dot(d, nr) / nn;
+    if (!(nn > 0) || h == 0 || PetscAbsReal(h) >= s->r) continue;
+    for (int k = 0; k < 3; k++) nr[k] /= nn, n[k] = h > 0 ? nr[k] : -nr[k];
+    PetscCall(ConvexCollidePlane(s->cvx, &pose, v, n, &c));
+    if (!c.overlap || !dem_tri_covers(v, v + 3, v + 6, nr, c.point, tol)) continue;
+    const double o   = dem_dot(v, n);
+    PetscBool    dup = PETSC_FALSE;
+    for (int b = 0; b < *nc && !dup; b++) dup = (PetscBool)(dem_dot(cc[b].normal, n) < -1 + 1e-10 && PetscAbsReal(off[b] - o) <= tol);
+    if (dup) continue;
+    off[*nc]    = o;
+    cc[(*nc)++] = c;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The slot of each accepted contact (normals an): the unused slot whose normal is closest
  * (cosine > 0.7), else a free one, else -1 (no history); the slots left over are freed. */
-static inline void dem_mesh_match(double *sl, int na, const double an[][3], int match[])
+void DemMeshMatchSlots(double *sl, int na, const double an[][3], int match[])
 {
   PetscBool used[DEM_MESH_SLOTS] = {PETSC_FALSE};
   for (int a = 0; a < na; a++) {
@@ -319,7 +372,7 @@ static inline void dem_mesh_particle(Dem dem, DemMesh *m, PetscInt i, const Pets
   const int              na     = dem_mesh_touch(m, i, xi, r, an, ad);
   const double           axp[3] = {m->ax_p[0] + m->vel[0] * m->tpose, m->ax_p[1] + m->vel[1] * m->tpose, m->ax_p[2] + m->vel[2] * m->tpose};
 
-  if (sl) dem_mesh_match(sl, na, an, match);
+  if (sl) DemMeshMatchSlots(sl, na, an, match);
   for (int a = 0; a < na; a++) {
     const double        *nrm = an[a], delta = r - ad[a];
     const DemPairParams *p = &m->pw[pt->shape[i]];
