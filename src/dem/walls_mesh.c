@@ -540,3 +540,123 @@ PetscErrorCode DemMeshesCheckpoint(Dem dem, IoCkpt ck, PetscBool write)
   for (PetscInt k = 0; k < nm; k++) dem->meshes.m[k].moved = moved[k];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/* Not collective. The meshes' contacts for DemGetStats (diag.c): c[2] counts them, r[3] adds
+ * their normal elastic energy (linear 1/2 kn delta^2, hertz 8/15 E* sqrt(R*) delta^(5/2); the
+ * springs' share left out), *rmax the largest overlap over the radius. */
+PetscErrorCode DemMeshesStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < dem->meshes.n; k++) {
+    const DemMesh *m = &dem->meshes.m[k];
+    if (!m->cstart) continue;
+    for (PetscInt i = 0; i < dem->p.n; i++) {
+      double        depth[DEM_MESH_MAXC], an[DEM_MESH_MAXC][3], ad[DEM_MESH_MAXC], rr;
+      int           na = 0;
+      DemPairParams p  = m->pw[dem->p.shape[i]];
+      if (m->cstart[i] == m->cstart[i + 1]) continue;
+      if (dem->shapes.convex) {
+        ConvexContact cc[DEM_MESH_MAXC];
+        PetscCall(DemMeshTouchConvex(dem, m, i, cc, &na));
+        for (int a = 0; a < na; a++) depth[a] = cc[a].depth;
+        rr = dem->shapes.shp[dem->p.shape[i]].req;
+      } else {
+        rr = DemRadius(&dem->p, &dem->shapes, i);
+        na = dem_mesh_touch(m, i, dem->p.x + 3 * i, rr, an, ad);
+        for (int a = 0; a < na; a++) depth[a] = rr - ad[a];
+        if (dem->p.rad) dem_pair_sized(dem->contact.law, &m->pw[dem->p.shape[i]], dem->p.m[i], rr, 0, 0, &p);
+      }
+      for (int a = 0; a < na; a++) {
+        r[3] += dem->contact.law == DEM_LAW_HERTZ ? 8.0 / 15.0 * p.es * sqrt(p.reff) * pow(depth[a], 2.5) : 0.5 * p.kn * depth[a] * depth[a];
+        *rmax = PetscMax(*rmax, depth[a] / rr);
+      }
+      c[2] += na;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective (every rank holds every mesh). Whether a mesh at rest closes the domain face
+ * (d, side): the triangles of one plane parallel to the face, at the face or inside the domain,
+ * that lie within the face's rectangle (to tol) have areas summing to the face's (1e-9
+ * relative; a soup that tiles the face: no triangle counted twice, as the reader skips exact
+ * duplicates). A moving mesh closes nothing. */
+PetscErrorCode DemMeshesCloseFace(Dem dem, int d, int side, double tol, PetscBool *closed)
+{
+  const Domain *dom = dem->dom;
+  const int     a = (d + 1) % 3, b = (d + 2) % 3;
+  const double  face = dom->len[a] * dom->len[b], at = side ? dom->hi[d] : dom->lo[d];
+
+  PetscFunctionBeginUser;
+  *closed = PETSC_FALSE;
+  for (PetscInt k = 0; k < dem->meshes.n && !*closed; k++) {
+    const DemMesh *m = &dem->meshes.m[k];
+    double        *pos, *area;
+    PetscInt       n = 0, *perm;
+    if (m->moving) continue;
+    PetscCall(PetscMalloc3(m->ref.ntri, &pos, m->ref.ntri, &area, m->ref.ntri, &perm));
+    for (PetscInt t = 0; t < m->ref.ntri; t++) {
+      const double *v = m->ref.v + 9 * t, c = v[d];
+      PetscBool     in = (PetscBool)(PetscAbsReal(v[3 + d] - c) <= tol && PetscAbsReal(v[6 + d] - c) <= tol && (side ? c <= at + tol : c >= at - tol));
+      for (int j = 0; j < 3 && in; j++) in = (PetscBool)(v[3 * j + a] >= dom->lo[a] - tol && v[3 * j + a] <= dom->hi[a] + tol && v[3 * j + b] >= dom->lo[b] - tol && v[3 * j + b] <= dom->hi[b] + tol);
+      if (!in) continue;
+      pos[n]  = c;
+      area[n] = 0.5 * PetscAbsReal((v[3 + a] - v[a]) * (v[6 + b] - v[b]) - (v[6 + a] - v[a]) * (v[3 + b] - v[b]));
+      perm[n] = n;
+      n++;
+    }
+    PetscCall(PetscSortRealWithPermutation(n, pos, perm));
+    for (PetscInt s = 0, e; s < n && !*closed; s = e) { /* runs of one plane */
+      double sum = 0;
+      for (e = s; e < n && pos[perm[e]] - pos[perm[s]] <= tol; e++) sum += area[perm[e]];
+      *closed = (PetscBool)(sum >= face * (1 - 1e-9));
+    }
+    PetscCall(PetscFree3(pos, area, perm));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective. The deepest contact of local particle i with mesh k over its radius (spheres:
+ * r; convex: d_eq/2), 0 when clear: the placement check (placement.c). */
+PetscErrorCode DemMeshDepth(Dem dem, PetscInt k, PetscInt i, double *depth)
+{
+  const DemMesh *m = &dem->meshes.m[k];
+
+  PetscFunctionBeginUser;
+  *depth = 0;
+  if (!m->cstart || m->cstart[i] == m->cstart[i + 1]) PetscFunctionReturn(PETSC_SUCCESS);
+  if (dem->shapes.convex) {
+    ConvexContact cc[DEM_MESH_MAXC];
+    int           na;
+    PetscCall(DemMeshTouchConvex(dem, m, i, cc, &na));
+    for (int a = 0; a < na; a++) *depth = PetscMax(*depth, cc[a].depth / dem->shapes.shp[dem->p.shape[i]].req);
+  } else {
+    const double r = DemRadius(&dem->p, &dem->shapes, i);
+    double       an[DEM_MESH_MAXC][3], ad[DEM_MESH_MAXC];
+    const int    na = dem_mesh_touch(m, i, dem->p.x + 3 * i, r, an, ad);
+    for (int a = 0; a < na; a++) *depth = PetscMax(*depth, (r - ad[a]) / r);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective. Whether a sphere (centre x in this rank's box, radius r <= the largest
+ * radius) meets a triangle of a mesh: a source's candidate (sources.c). The rank's triangles of
+ * the last list build cover it (they meet the box grown by the largest radius + skin, and a
+ * mesh moves less than skin/2 between builds); their vertices are at the current pose. */
+PetscBool DemMeshesBlock(Dem dem, const double x[3], double r)
+{
+  for (PetscInt k = 0; k < dem->meshes.n; k++) {
+    const DemMesh *m = &dem->meshes.m[k];
+    for (PetscInt a = 0; a < m->nloc; a++) {
+      const double *v    = m->cur + 9 * m->loc[a];
+      PetscBool     near = PETSC_TRUE;
+      double        q[3];
+      for (int j = 0; j < 3 && near; j++) near = (PetscBool)(PetscMin(v[j], PetscMin(v[3 + j], v[6 + j])) < x[j] + r && PetscMax(v[j], PetscMax(v[3 + j], v[6 + j])) > x[j] - r);
+      if (!near) continue;
+      TriClosestPoint(v, v + 3, v + 6, x, q);
+      const double d[3] = {q[0] - x[0], q[1] - x[1], q[2] - x[2]};
+      if (dem_dot(d, d) < r * r) return PETSC_TRUE;
+    }
+  }
+  return PETSC_FALSE;
+}

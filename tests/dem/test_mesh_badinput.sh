@@ -37,7 +37,12 @@ expect "negative stiffness" "-dem_mesh_0_kn -3. must be > 0" $M -dem_mesh_0_kn -
 expect "kn under hertz" "-dem_mesh_0_kn is ignored by -dem_contact_law hertz" -domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_lattice 2,2,2 -dem_t_end 0.001 -dem_contact_law hertz -dem_youngs_modulus 1e7 -dem_mesh_0_file "$W/box.stl" -dem_mesh_0_kn 1e4
 expect "Young's modulus under kn" "-dem_mesh_0_youngs_modulus is ignored: the wall stiffness is given by" $M -dem_mesh_0_youngs_modulus 1e7
 expect "rolling friction without a model" "-dem_mesh_0_rolling_friction is ignored by -dem_rolling_model none" $M -dem_mesh_0_rolling_friction 0.1
-expect "convex shapes" "mesh walls take spheres" $M -dem_shape cube -dem_shape_size 0.01
+tests/common/box_stl.py "$W/small.stl" 0.02,0.02,0.02,0.08,0.08,0.08
+# a lattice across the sides of a mesh box (0.02..0.08): site (1,1,1) at 1.5 x 0.01449 = 0.021735, r = 0.0069,
+# overlaps the face x = 0.02 by (0.0069 - 0.001735)/0.0069 = 0.749 radii; a cube of side 0.01 at
+# x = 0.015 + 0.5 x 0.0181865 reaches 0.00091 past x = 0.02, over d_eq/2 = 0.0062035: 0.146
+expect "lattice of spheres across a mesh side" "lattice particle id 7 at (0.021735, 0.021735, 0.021735) overlaps a triangle of mesh -dem_mesh_0 by 0.749 radii" $OK -dem_mesh_0_file "$W/small.stl"
+expect "lattice of cubes across a mesh side" "lattice particle id 0 at (0.0240933, 0.0290933, 0.0390933) overlaps a triangle of mesh -dem_mesh_0 by 0.146 radii" $OK -dem_mesh_0_file "$W/small.stl" -dem_shape cube -dem_shape_size 0.01 -dem_lattice_origin 0.015,0.02,0.03
 expect "mesh too stiff for dt" "-dem_dt 1e-05 s exceeds -dem_dt_max_fraction 0.1 x the contact time .* with mesh -dem_mesh_0" $M -dem_mesh_0_kn 1e8
 # good input: a duplicate and a zero-area triangle are skipped with a counted warning
 { sed '$d' "$W/box.stl"; sed -n '2,8p' "$W/box.stl"; printf 'facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\nvertex 0.05 0 0\nendloop\nendfacet\nendsolid box\n'; } >"$W/extra.stl"

@@ -20,7 +20,9 @@
 static const double A = 0.01, RHO = 2500, KN = 2e4, G = 9.81, HG = 0.006; /* cube side, density, stiffness, gravity, grid spacing */
 
 typedef struct {
-  double x[NSAMP][3];
+  double   x[NSAMP][3];
+  PetscInt wc; /* DemGetStats' wall contacts at the end */
+  double   pe; /* and elastic energy */
 } Traj;
 
 /* A particle of shape (options) from x0 with velocity v0 against walls for nstep steps; samples
@@ -45,6 +47,12 @@ static PetscErrorCode Run(const char *shape, const char *walls, const double x0[
       smp++;
     }
     if (smp < NSAMP) PetscCall(DemStep(dem));
+  }
+  {
+    DemStats st;
+    PetscCall(DemGetStats(dem, &st));
+    tr->wc = st.wall_contacts;
+    tr->pe = st.pe_spring;
   }
   PetscCall(TestDemDestroy(&dom, &dem));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -111,6 +119,8 @@ int main(int argc, char **argv)
     PetscCall(Run(cube, plane, x0, v0, 20000, &tb));
     PetscCall(CheckBelow("cube at rest on a mesh floor (over a vertex of 8 triangles): |z - z_plane| / A", PetscAbsReal(ta.x[NSAMP - 1][2] - tb.x[NSAMP - 1][2]) / A, 1e-12));
     PetscCall(CheckClose("cube at rest on a mesh floor: overlap A/2 - z vs m g / kn", 0.5 * A - ta.x[NSAMP - 1][2], d0, 1e-6));
+    PetscCall(CheckEqual("cube at rest on a mesh floor: DemGetStats' wall contacts (the -dem_plane_0 run's: 1)", ta.wc, tb.wc));
+    PetscCall(CheckClose("cube at rest on a mesh floor: DemGetStats' elastic energy vs the -dem_plane_0 run's", ta.pe, tb.pe, 1e-12));
     PetscCall(CheckBelow("cube at rest on a mesh floor: sideways drift / A", PetscMax(PetscAbsReal(ta.x[NSAMP - 1][0]), PetscAbsReal(ta.x[NSAMP - 1][1])) / A, 1e-12));
   }
   { /* sliding across the grid, on a generic path */
