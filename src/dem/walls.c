@@ -18,7 +18,7 @@
  * from that face (the neighbouring face takes over, as in a box corner or a hopper's corners).
  * Only edges marked as free rims (the hopper's orifice) are touched as segments. At most
  * DEM_MAX_WALLS walls in all. A domain face is closed (DemWallsCloseFace) by a wall at it or
- * inside before it, or by a mesh at rest whose triangles of one such plane tile it. */
+ * inside before it, or by a mesh at rest whose triangles tile the face itself. */
 #include "dem/dem_impl.h"
 
 /* Adds a plane wall; name is the option that made it (messages name the wall by it). */

@@ -577,10 +577,11 @@ PetscErrorCode DemMeshesStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
 }
 
 /* Not collective (every rank holds every mesh). Whether a mesh at rest closes the domain face
- * (d, side): the triangles of one plane parallel to the face, at the face or inside the domain,
- * that lie within the face's rectangle (to tol) have areas summing to the face's (1e-9
- * relative; a soup that tiles the face: no triangle counted twice, as the reader skips exact
- * duplicates). A moving mesh closes nothing. */
+ * (d, side): its triangles in the face's plane (to tol) and within its rectangle have areas
+ * summing to the face's (1e-9 relative; a soup that tiles the face: no triangle counted twice,
+ * as the reader skips exact duplicates). Only the face's own plane: a mesh is two-sided, so a
+ * plane of triangles inside the domain has particles on either side, and those between it and
+ * the face would reach the face. A moving mesh closes nothing. */
 PetscErrorCode DemMeshesCloseFace(Dem dem, int d, int side, double tol, PetscBool *closed)
 {
   const Domain *dom = dem->dom;
@@ -590,28 +591,17 @@ PetscErrorCode DemMeshesCloseFace(Dem dem, int d, int side, double tol, PetscBoo
   PetscFunctionBeginUser;
   *closed = PETSC_FALSE;
   for (PetscInt k = 0; k < dem->meshes.n && !*closed; k++) {
-    const DemMesh *m = &dem->meshes.m[k];
-    double        *pos, *area;
-    PetscInt       n = 0, *perm;
+    const DemMesh *m   = &dem->meshes.m[k];
+    double         sum = 0;
     if (m->moving) continue;
-    PetscCall(PetscMalloc3(m->ref.ntri, &pos, m->ref.ntri, &area, m->ref.ntri, &perm));
     for (PetscInt t = 0; t < m->ref.ntri; t++) {
       const double *v = m->ref.v + 9 * t, c = v[d];
-      PetscBool     in = (PetscBool)(PetscAbsReal(v[3 + d] - c) <= tol && PetscAbsReal(v[6 + d] - c) <= tol && (side ? c <= at + tol : c >= at - tol));
+      PetscBool     in = (PetscBool)(PetscAbsReal(v[3 + d] - c) <= tol && PetscAbsReal(v[6 + d] - c) <= tol && PetscAbsReal(c - at) <= tol);
       for (int j = 0; j < 3 && in; j++) in = (PetscBool)(v[3 * j + a] >= dom->lo[a] - tol && v[3 * j + a] <= dom->hi[a] + tol && v[3 * j + b] >= dom->lo[b] - tol && v[3 * j + b] <= dom->hi[b] + tol);
       if (!in) continue;
-      pos[n]  = c;
-      area[n] = 0.5 * PetscAbsReal((v[3 + a] - v[a]) * (v[6 + b] - v[b]) - (v[6 + a] - v[a]) * (v[3 + b] - v[b]));
-      perm[n] = n;
-      n++;
+      sum += 0.5 * PetscAbsReal((v[3 + a] - v[a]) * (v[6 + b] - v[b]) - (v[6 + a] - v[a]) * (v[3 + b] - v[b]));
     }
-    PetscCall(PetscSortRealWithPermutation(n, pos, perm));
-    for (PetscInt s = 0, e; s < n && !*closed; s = e) { /* runs of one plane */
-      double sum = 0;
-      for (e = s; e < n && pos[perm[e]] - pos[perm[s]] <= tol; e++) sum += area[perm[e]];
-      *closed = (PetscBool)(sum >= face * (1 - 1e-9));
-    }
-    PetscCall(PetscFree3(pos, area, perm));
+    *closed = (PetscBool)(sum >= face * (1 - 1e-9));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

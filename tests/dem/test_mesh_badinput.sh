@@ -52,3 +52,43 @@ if [ "$rc" -eq 0 ] && printf '%s' "$out" | grep -q "mesh -dem_mesh_0: $W/extra.s
 else
   echo "FAIL good mesh input runs: exit $rc; got: $(printf '%s' "$out" | grep -i 'mesh\|error')"
 fi
+
+# malformed STL through the program, on 1 and 2 ranks: one error line naming the file and the
+# triangle, a non-zero status, no rank left waiting (time-out 60 s)
+[ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+/usr/bin/python3 - "$W" <<'PY'
+import math, struct, sys
+w = sys.argv[1]
+tris = []  # the box of box.stl as 12 binary triangles
+for line in open(w + "/box.stl"):
+    if line.split()[:1] == ["vertex"]:
+        tris.append([float(x) for x in line.split()[1:]])
+def binary(path, tri, count, cut=None):
+    b = b"binary box".ljust(80, b" ") + struct.pack("<I", count)
+    for t in range(len(tri) // 3):
+        b += struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *tri[3 * t + j]) for j in range(3)) + b"\0\0"
+    open(path, "wb").write(b[:cut] if cut else b)
+n = len(tris) // 3
+binary(w + "/trunc.stl", tris, n, 84 + 50 * 5 + 20)
+binary(w + "/count.stl", tris, n - 1)
+nan = [list(v) for v in tris]; nan[3 * 6 + 1][2] = math.nan
+binary(w + "/nanbin.stl", nan, n)
+PY
+printf 'solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 nan 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n' >"$W/nan.stl"
+for np in 1 2; do
+  for c in "trunc:triangle 6 is incomplete" "count:the count disagrees with the size after triangle 11" "nanbin:triangle 7 (binary) vertex 2 has a non-finite coordinate" "nan:triangle 1 (line 5) vertex 2 has a non-finite coordinate" "text:not STL"; do
+    f=${c%%:*}; frag=${c#*:}
+    if [ "$np" -eq 1 ]; then out=$(timeout -k 5 60 $S $OK -dem_mesh_0_file "$W/$f.stl" 2>&1 >/dev/null); rc=$?
+    else out=$(timeout -k 5 60 mpiexec --oversubscribe -n 2 $S $OK -dem_mesh_0_file "$W/$f.stl" 2>&1 >/dev/null); rc=$?; fi
+    lines=$(printf '%s\n' "$out" | grep -c 'sable: error')
+    if [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] && [ "$rc" -ne 137 ] && [ "$lines" -eq 1 ] && printf '%s' "$out" | grep 'sable: error' | grep -qF "STL file $W/$f.stl: " && printf '%s' "$out" | grep -qF "$frag"; then
+      echo "PASS malformed STL ($f) on $np ranks: exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""
+    else
+      echo "FAIL malformed STL ($f) on $np ranks: exit $rc (124/137: timed out), $lines error lines, expected 'STL file $W/$f.stl: ...$frag'; got: $out"
+    fi
+  done
+done
+out=$(timeout -k 5 60 mpiexec --oversubscribe -n 2 $S $OK -domain_cell 0.05 -dem_mesh_0_file "$W/extra.stl" 2>&1); rc=$?
+n=$(printf '%s\n' "$out" | grep -c "warning: mesh -dem_mesh_0: .*skipped 1 zero-area and 1 duplicate")
+if [ "$rc" -eq 0 ] && [ "$n" -eq 1 ]; then echo "PASS degenerate and duplicate triangles on 2 ranks: exit 0, the counted warning once"
+else echo "FAIL degenerate and duplicate triangles on 2 ranks: exit $rc, $n warnings (want 1): $(printf '%s' "$out" | grep -i 'warning\|error')"; fi
