@@ -9,13 +9,16 @@
  * dropped, so a sphere crossing its edge feels exactly one plane; a concave corner's second
  * face lies in front of it and is felt. The rule holds within one mesh; two meshes are two
  * walls. Normal from x to q, overlap r - d, contact point x + (r - overlap/2) n; surface velocity
- * v + omega u x (c - a(t)) of the mesh's rigid motion.
+ * v + omega u x (c - a(t)) of the mesh's rigid motion. Convex particles (DemMeshTouchConvex):
+ * the polygon walls' face rule per triangle, a plane counted once; a triangle's edge pressing
+ * into a particle's face is not seen (a convex ridge does not hold a convex particle).
  * Tangential springs: per particle and mesh DEM_MESH_SLOTS slots (normal, spring), each contact
  * taking the slot whose normal of the last step is closest (cosine > 0.7), so a sphere rolling
  * over an edge keeps its spring; slots are saved across list builds as id-keyed records and in
- * checkpoints. Lists: at each build, the triangles whose box meets this rank's box grown by the
- * largest radius + skin are binned, and each local particle lists those within r + skin; a
- * moving mesh counts its travel bound (|v| dt + |dtheta| raxis) as a wall's (dem.c). */
+ * checkpoints (on another rank count as the same records: checkpoint_remap.c). Lists: at each
+ * build, the triangles whose box meets this rank's box grown by the largest radius + skin are
+ * binned, and each local particle lists those within r + skin; a moving mesh counts its travel
+ * bound (|v| dt + |dtheta| raxis) as a wall's (dem.c). */
 #include "dem/dem_impl.h"
 
 /* The integral of the table's piecewise-linear omega from its first time to t (omega
