@@ -338,7 +338,7 @@ PetscErrorCode DemMeshTouchConvex(Dem dem, const DemMesh *m, PetscInt i, ConvexC
 
 /* The slot of each accepted contact (normals an): the unused slot whose normal is closest
  * (cosine > 0.7), else a free one, else -1 (no history); the slots left over are freed. */
-void DemMeshMatchSlots(double *sl, int na, const double an[][3], int match[])
+static inline void dem_mesh_match(double *sl, int na, const double an[][3], int match[])
 {
   PetscBool used[DEM_MESH_SLOTS] = {PETSC_FALSE};
   for (int a = 0; a < na; a++) {
@@ -362,6 +362,12 @@ void DemMeshMatchSlots(double *sl, int na, const double an[][3], int match[])
       for (int k = 0; k < 6; k++) sl[6 * s + k] = 0;
 }
 
+/* Not collective. The same for the convex particles (convex_contacts.c). */
+void DemMeshMatchSlots(double *sl, int na, const double an[][3], int match[])
+{
+  dem_mesh_match(sl, na, an, match);
+}
+
 /* The forces of mesh m on local particle i (as dem_walls_body in walls.c). */
 static inline void dem_mesh_particle(Dem dem, DemMesh *m, PetscInt i, const PetscBool poly)
 {
@@ -375,7 +381,7 @@ static inline void dem_mesh_particle(Dem dem, DemMesh *m, PetscInt i, const Pets
   const int              na     = dem_mesh_touch(m, i, xi, r, an, ad);
   const double           axp[3] = {m->ax_p[0] + m->vel[0] * m->tpose, m->ax_p[1] + m->vel[1] * m->tpose, m->ax_p[2] + m->vel[2] * m->tpose};
 
-  if (sl) DemMeshMatchSlots(sl, na, an, match);
+  if (sl) dem_mesh_match(sl, na, an, match);
   for (int a = 0; a < na; a++) {
     const double        *nrm = an[a], delta = r - ad[a];
     const DemPairParams *p = &m->pw[pt->shape[i]];
