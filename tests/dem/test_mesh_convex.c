@@ -1,3 +1,4 @@
+/* ranks: 1 2 */
 /* Convex particles against triangle meshes (walls_mesh.c DemMeshTouchConvex: the face rule of
  * the polygon walls, each plane counted once). References:
  *   a cube at rest on a triangulated floor (cells about half its side, split along alternating
@@ -7,6 +8,8 @@
  *   follow the -dem_plane_0 run to 1e-9 relative (positions against the distance travelled);
  *   a bed of 80 cubes settling in a closed mesh box (192 triangles) equals the -dem_box bed to
  *   1e-10 of the box after 1500 steps and its mean height within 1% after 4000;
+ *   (the single particles on 1 rank; the bed on 1 and 2 ranks, the box cut along x, count and
+ *   id checksum every step);
  *   the limit of the face rule: a cube lowered face-down onto a convex ridge (two faces at
  *   +-10 degrees) is not held: the ridge's edge pressing into its face is no face contact, and
  *   each face's plane, extended, cuts deepest into the cube's half over the other face, so no
@@ -74,13 +77,15 @@ static double TrajDiff(const Traj *a, const Traj *b)
  * (xa) and 4000 (xb). */
 static PetscErrorCode RunBed(const char *walls, double *xa, double *xb, PetscInt *count)
 {
-  char     opts[1024];
-  Domain   dom;
-  Dem      dem;
-  PetscInt cnt;
+  char        opts[1024];
+  Domain      dom;
+  Dem         dem;
+  PetscInt    cnt;
+  PetscMPIInt size;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo 0,0,0 -domain_hi 0.07,0.07,0.1 -dem_shape cube -dem_shape_size 0.009 -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 0.5 -dem_friction 0.3 -dem_lattice 4,4,5 -dem_lattice_spacing 0.017 -dem_lattice_jitter 0.3 -dem_lattice_speed 0.05 -dem_lattice_random_orientation -dem_dt 1e-5 -dem_check_every 1 %s", RHO, KN, walls));
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo 0,0,0 -domain_hi 0.07,0.07,0.1 -dem_shape cube -dem_shape_size 0.009 -dem_density %g -dem_contact_law linear -dem_kn %g -dem_restitution 0.5 -dem_friction 0.3 -dem_lattice 4,4,5 -dem_lattice_spacing 0.017 -dem_lattice_jitter 0.3 -dem_lattice_speed 0.05 -dem_lattice_random_orientation -dem_dt 1e-5 -dem_check_every 1 %s %s", RHO, KN, walls, size == 2 ? "-da_grid_x 2 -da_processors_x 2 -da_processors_y 1 -da_processors_z 1" : ""));
   PetscCall(TestDemCreate(opts, &dom, &dem));
   PetscCall(DemSetUp(dem));
   for (PetscInt s = 0; s < 4000; s++) {
@@ -101,8 +106,11 @@ int main(int argc, char **argv)
   double      *v;
   int          pid = (int)getpid();
   Traj         ta, tb;
+  PetscMPIInt  size;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCallMPI(MPI_Bcast(&pid, 1, MPI_INT, 0, PETSC_COMM_WORLD));
   PetscCall(PetscSNPrintf(floor, sizeof floor, "/tmp/sable_test_mesh_convex_floor_%d.stl", pid));
   PetscCall(PetscSNPrintf(box, sizeof box, "/tmp/sable_test_mesh_convex_box_%d.stl", pid));
   PetscCall(PetscSNPrintf(ridge, sizeof ridge, "/tmp/sable_test_mesh_convex_ridge_%d.stl", pid));
@@ -113,7 +121,7 @@ int main(int argc, char **argv)
     PetscCall(TestWriteStl(PETSC_COMM_WORLD, floor, 2 * 30 * 30, v));
   }
   PetscCall(PetscSNPrintf(walls, sizeof walls, "-dem_mesh_0_file %s", floor));
-  { /* at rest over a vertex of the grid, from just above the floor */
+  if (size == 1) { /* at rest over a vertex of the grid, from just above the floor */
     const double x0[3] = {0, 0, 0.5 * A + 1e-4}, v0[3] = {0, 0, 0};
     PetscCall(Run(cube, walls, x0, v0, 20000, &ta));
     PetscCall(Run(cube, plane, x0, v0, 20000, &tb));
@@ -123,20 +131,20 @@ int main(int argc, char **argv)
     PetscCall(CheckClose("cube at rest on a mesh floor: DemGetStats' elastic energy vs the -dem_plane_0 run's", ta.pe, tb.pe, 1e-12));
     PetscCall(CheckBelow("cube at rest on a mesh floor: sideways drift / A", PetscMax(PetscAbsReal(ta.x[NSAMP - 1][0]), PetscAbsReal(ta.x[NSAMP - 1][1])) / A, 1e-12));
   }
-  { /* sliding across the grid, on a generic path */
+  if (size == 1) { /* sliding across the grid, on a generic path */
     const double x0[3] = {-0.05, -0.031, 0.5 * A - d0}, v0[3] = {0.5, 0.37, 0};
     PetscCall(Run(cube, walls, x0, v0, 10000, &ta));
     PetscCall(Run(cube, plane, x0, v0, 10000, &tb));
     PetscCall(CheckBelow("cube sliding 0.1 s across shared edges and vertices: trajectory vs -dem_plane_0 (relative)", TrajDiff(&ta, &tb), 1e-9));
     PetscCall(CheckAbove("cube sliding: distance travelled / grid spacing (edges crossed)", sqrt(PetscSqr(tb.x[NSAMP - 1][0] - x0[0]) + PetscSqr(tb.x[NSAMP - 1][1] - x0[1])) / HG, 3));
   }
-  { /* an icosahedron thrown onto the grid: it tumbles on vertices and edges */
+  if (size == 1) { /* an icosahedron thrown onto the grid: it tumbles on vertices and edges */
     const double x0[3] = {-0.04, 0.013, 0.006}, v0[3] = {0.6, -0.2, -0.1};
     PetscCall(Run(ico, walls, x0, v0, 10000, &ta));
     PetscCall(Run(ico, plane, x0, v0, 10000, &tb));
     PetscCall(CheckBelow("icosahedron thrown onto the mesh floor, 0.1 s: trajectory vs -dem_plane_0 (relative)", TrajDiff(&ta, &tb), 1e-9));
   }
-  { /* the limit: a convex ridge along y, faces at -+10 degrees, the cube lowered face-down on it,
+  if (size == 1) { /* the limit: a convex ridge along y, faces at -+10 degrees, the cube lowered face-down on it,
        a plane 2 cm below */
     const double t = tan(10 * PETSC_PI / 180), w = 0.03;
     const double rv[4 * 9] = {-w, -w, -t * w, 0, -w, 0, 0, w, 0, -w, -w, -t * w, 0, w, 0, -w, w, -t * w, 0, -w, 0, w, -w, -t * w, w, w, -t * w, 0, -w, 0, w, w, -t * w, 0, w, 0};
@@ -170,10 +178,10 @@ int main(int argc, char **argv)
       hm += ym[3 * i + 2] / 80;
       hb += yb[3 * i + 2] / 80;
     }
-    PetscCall(CheckEqual("cube bed in a mesh box: particles at the end", cm, 80));
-    PetscCall(CheckBelow("cube bed in a mesh box: positions after 1500 steps vs -dem_box's (largest |dx| / box height)", dmax, 1e-10));
-    PetscCall(CheckBelow("cube bed in a mesh box: centres inside the box shrunk by A/4 at the end: largest excursion [m]", out, 0));
-    PetscCall(CheckClose("cube bed in a mesh box: mean centre height after 4000 steps vs -dem_box's", hm, hb, 0.01));
+    PetscCall(CheckEqual(CheckName("cube bed in a mesh box on %d ranks: particles at the end", size), cm, 80));
+    PetscCall(CheckBelow(CheckName("cube bed in a mesh box on %d ranks: positions after 1500 steps vs -dem_box's (largest |dx| / box height)", size), dmax, 1e-10));
+    PetscCall(CheckBelow(CheckName("cube bed in a mesh box on %d ranks: centres inside the box shrunk by A/4 at the end: largest excursion [m]", size), out, 0));
+    PetscCall(CheckClose(CheckName("cube bed in a mesh box on %d ranks: mean centre height after 4000 steps vs -dem_box's", size), hm, hb, 0.01));
     PetscCall(PetscFree4(xm, xb, ym, yb));
   }
   PetscCall(PetscFree(v));
