@@ -279,7 +279,6 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscCall(DemCheckpointNeedsRemap(dem, ck, &remap));
   PetscCall(DemSourcesCheckpoint(dem, ck, PETSC_FALSE)); /* first: the remap checks the count with it */
   if (remap) {                                           /* another rank count or other boxes: the state is redistributed (checkpoint_remap.c) */
-    PetscCheck(!dem->meshes.n, dem->comm, PETSC_ERR_SUP, "-restart %s: a case with mesh walls (-dem_mesh_<k>_file) continues on the rank count and process grid that wrote it", path);
     PetscCall(DemExternalCheckpointCheck(dem, ck));
     PetscCall(DemCkptPolyCheck(dem, ck, path));
     PetscCall(DemSinksCheckpoint(dem, ck, PETSC_FALSE)); /* the remap checks the count against it */

@@ -4,7 +4,9 @@
  * per-particle datasets; its ghosts are skipped), and every tangential spring keyed by ids:
  * (id_i, id_j, xi) for an entry of a rank's Verlet list, in a half list the reverse
  * (id_j, id_i, -xi) as well for a pair of two owned particles (each particle takes its own side
- * along, as DemSpringsSave does), and (id, wall) for an entry of a wall list. Reading rank k
+ * along, as DemSpringsSave does), (id, wall) for an entry of a wall list, and a mesh's loaded
+ * slots as the two records of DemMeshesSaveSprings (spring, normal); a mesh's pose is a function
+ * of the time, its local triangles and candidates are rebuilt with the lists. Reading rank k
  * takes the contiguous block of writing ranks [kR/P, (k+1)R/P), one slab per dataset; the DEM's
  * global migration (redistribute.c) sends every particle with its springs to the rank whose box
  * holds its centre (periodic positions wrapped); each rank orders its particles by id, so the
@@ -259,6 +261,36 @@ static PetscErrorCode DemRemapWallSprings(Dem dem, const DemRemap *b, DemSpring 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. The springs of the block's mesh slots (dem/mesh_slot: per writer, mesh after mesh,
+ * DEM_MESH_SLOTS slots (normal, spring) per owned particle) as the records DemMeshesSaveSprings
+ * makes, two per loaded slot: (id, DEM_MESH_PARTNER(k, s, 0)) the spring, (.., 1) its normal. */
+static PetscErrorCode DemRemapMeshSprings(Dem dem, const DemRemap *b, DemSpring **recs, PetscInt *n, PetscInt *cap)
+{
+  const PetscInt nm = dem->meshes.n, ns = 6 * DEM_MESH_SLOTS;
+  PetscInt      *rows;
+  DemSlab        sl;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(b->R, &rows));
+  for (PetscInt r = 0; r < b->R; r++) rows[r] = nm * ns * CNT(b, r, CK_N);
+  PetscCall(DemRemapSlab(b, "dem/mesh_slot", IO_CKPT_REAL, rows, PETSC_FALSE, &sl));
+  PetscCall(PetscFree(rows));
+  for (PetscInt r = b->r0; r < b->r1; r++) {
+    const PetscInt k = r - b->r0, nr = CNT(b, r, CK_N), *id = b->gid + b->goff[k];
+    const double  *v = (double *)sl.v + sl.off[k];
+    for (PetscInt m = 0; m < nm; m++)
+      for (PetscInt i = 0; i < nr; i++)
+        for (int t = 0; t < DEM_MESH_SLOTS; t++) {
+          const double *e = v + m * ns * nr + 6 * (DEM_MESH_SLOTS * i + t);
+          if (e[3] == 0 && e[4] == 0 && e[5] == 0) continue; /* an unloaded slot: no record (as DemMeshesSaveSprings) */
+          PetscCall(DemRemapPush(recs, n, cap, id[i], DEM_MESH_PARTNER(m, t, 0), 1, e + 3));
+          PetscCall(DemRemapPush(recs, n, cap, id[i], DEM_MESH_PARTNER(m, t, 1), 1, e));
+        }
+  }
+  PetscCall(DemSlabFree(&sl));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Collective. Every particle must lie where a rank's box can take it: finite, and within a
  * radius of the domain across a closed side (as DemCheckInDomain asks of a running scene) or
  * within a period across a periodic one. The first offender (lowest id) is named by every rank. */
@@ -329,12 +361,14 @@ PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck)
   if (dem->contact.law != DEM_LAW_LINEAR_NOHIST) {
     PetscCall(DemRemapPairSprings(dem, &b, &recs, &nrec, &cap));
     PetscCall(DemRemapWallSprings(dem, &b, &recs, &nrec, &cap));
+    if (dem->meshes.n) PetscCall(DemRemapMeshSprings(dem, &b, &recs, &nrec, &cap));
   }
   PetscCall(DemSpringsSort(recs, nrec));
   PetscCall(PetscFree(b.cnt));
   PetscCall(PetscFree(b.gid));
   PetscCall(PetscFree(b.goff));
   PetscCall(DemRemapCheckMap(dem, &b));
+  if (dem->meshes.n) PetscCall(DemMeshesMove(dem, dem->clock.t, NULL)); /* the pose of the restored time (walls_mesh.c) */
   /* every particle to the rank whose box holds it, then in id order there */
   PetscCall(DemNeighResetCells(dem)); /* the cell grid is sized for the particles the rank now has */
   PetscCall(PetscLogEventBegin(DEM_Neighbours, 0, 0, 0, 0));

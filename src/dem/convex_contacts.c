@@ -407,3 +407,54 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
   PetscCall(PetscLogEventEnd(DEM_Walls, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/* Not collective. The meshes' forces and torques on the local convex particles (the face rule of
+ * DemMeshTouchConvex, walls_mesh.c); the springs in the mesh's slots, matched by normal as for
+ * spheres; the surface velocity of the mesh's rigid motion at the contact point. */
+PetscErrorCode DemContactsMeshesConvex(Dem dem)
+{
+  static const double zero[3] = {0, 0, 0};
+  DemConvexIn         in      = {.law = dem->contact.law, .dt = dem->clock.dt, .wj = zero};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(DEM_Walls, 0, 0, 0, 0));
+  for (PetscInt k = 0; k < dem->meshes.n; k++) {
+    DemMesh     *m      = &dem->meshes.m[k];
+    const double axp[3] = {m->ax_p[0] + m->vel[0] * m->tpose, m->ax_p[1] + m->vel[1] * m->tpose, m->ax_p[2] + m->vel[2] * m->tpose};
+    if (!m->cstart) continue;
+    for (PetscInt i = 0; i < dem->p.n; i++) {
+      ConvexContact cc[DEM_MESH_MAXC];
+      double        an[DEM_MESH_MAXC][3], *sl = m->slot ? m->slot + 6 * DEM_MESH_SLOTS * i : NULL;
+      int           na, match[DEM_MESH_MAXC];
+      if (m->cstart[i] == m->cstart[i + 1]) continue;
+      PetscCall(DemMeshTouchConvex(dem, m, i, cc, &na));
+      for (int a = 0; a < na; a++)
+        for (int j = 0; j < 3; j++) an[a][j] = cc[a].normal[j];
+      if (sl) DemMeshMatchSlots(sl, na, an, match);
+      in.p  = &m->pw[dem->p.shape[i]];
+      in.xi = dem->p.x + 3 * i;
+      in.vi = dem->p.v + 3 * i;
+      in.wi = dem->p.w + 3 * i;
+      for (int a = 0; a < na; a++) {
+        double vw[3], d[3], none[3] = {0, 0, 0}, *xi_t = NULL, F[3], Ti[3], Tj[3];
+        if (sl && match[a] >= 0) {
+          xi_t = sl + 6 * match[a] + 3;
+          for (int j = 0; j < 3; j++) sl[6 * match[a] + j] = an[a][j];
+        } else if (sl) xi_t = none; /* more contacts than slots: this one without history */
+        for (int j = 0; j < 3; j++) d[j] = cc[a].point[j] - axp[j];
+        dem_cross(m->ax_u, d, vw);
+        for (int j = 0; j < 3; j++) vw[j] = m->vel[j] + m->w_now * vw[j];
+        in.c  = &cc[a];
+        in.xj = cc[a].point; /* a partner without spin: only its velocity enters */
+        in.vj = vw;
+        dem_convex_force(&in, xi_t, F, Ti, Tj);
+        for (int j = 0; j < 3; j++) {
+          dem->p.f[3 * i + j] += F[j];
+          dem->p.tq[3 * i + j] += Ti[j];
+        }
+      }
+    }
+  }
+  PetscCall(PetscLogEventEnd(DEM_Walls, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -243,6 +243,7 @@ static PetscErrorCode DemComputeForces(Dem dem)
   if (dem->shapes.convex) { /* convex shapes: libccd narrow phase (convex_contacts.c) */
     PetscCall(DemContactsPairsConvex(dem));
     PetscCall(DemContactsWallsConvex(dem));
+    if (dem->meshes.n) PetscCall(DemContactsMeshesConvex(dem)); /* convex_contacts.c */
   } else {
     PetscCall(DemContactsPairs(&dem->p, &dem->shapes, &dem->contact, &dem->nl, dem->clock.dt));
     PetscCall(DemContactsWalls(&dem->p, &dem->shapes, &dem->contact, &dem->walls, dem->clock.dt));

@@ -56,6 +56,7 @@ PetscErrorCode DemGetStats(Dem dem, DemStats *st)
       rmax = PetscMax(rmax, delta / rr);
     }
   }
+  if (dem->meshes.n) PetscCall(DemMeshesStatsLocal(dem, r, c, &rmax)); /* walls_mesh.c */
   r[5] = rmax;
   PetscCallMPI(MPI_Allreduce(r, g, 5, MPI_DOUBLE, MPI_SUM, dem->comm));
   PetscCallMPI(MPI_Allreduce(&r[5], &g[5], 1, MPI_DOUBLE, MPI_MAX, dem->comm));

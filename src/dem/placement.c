@@ -4,7 +4,8 @@
  * diverging overlap with advice about the time step (diag.c), which is not the cause.
  * Overlap delta over the radius (of the smaller particle of a pair; convex shapes: the narrow
  * phase's depth over d_eq/2, as in the statistics). A particle wholly behind a plane, or outside
- * a cylinder, overlaps it by 2 radii or more. Limits:
+ * a cylinder, overlaps it by 2 radii or more. A mesh's triangles (two-sided) are walls too: a
+ * particle that meets one overlaps it (a particle wholly outside a mesh vessel is not seen). Limits:
  *   a lattice particle with a wall, another lattice particle or a file particle: any overlap
  *   above round-off (DEM_PLACE_ROUNDOFF). A lattice is built apart (spacing >= the largest
  *   diameter, jitter within the gap), so an overlap means that its block crosses a wall, wraps
@@ -92,14 +93,19 @@ static double DemPlaceFileLimit(Dem dem)
   return PetscMax(DEM_PLACE_FILE_MIN, 2 * ov);
 }
 
-/* Overlap of local particle i with wall w, in radii (0: clear). */
-static PetscErrorCode DemPlaceWallDepth(Dem dem, const DemWall *w, PetscInt i, double *depth)
+/* Overlap of local particle i with wall wi, in radii (0: clear); wi >= nwall: mesh wi - nwall. */
+static PetscErrorCode DemPlaceWallDepth(Dem dem, PetscInt wi, PetscInt i, double *depth)
 {
   const DemShape *s = &dem->shapes.shp[dem->p.shape[i]];
   const double   *x = dem->p.x + 3 * i, r = DemRadius(&dem->p, &dem->shapes, i);
+  const DemWall  *w = &dem->walls.wall[wi];
 
   PetscFunctionBeginUser;
   *depth = 0;
+  if (wi >= dem->walls.nwall) {
+    PetscCall(DemMeshDepth(dem, wi - dem->walls.nwall, i, depth)); /* walls_mesh.c */
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   if (dem->shapes.convex) {
     const ConvexPose pose = DemPose(x, dem->p.q + 4 * i);
     ConvexContact    c;
@@ -139,9 +145,9 @@ static PetscErrorCode DemPlaceScan(Dem dem, double limit, DemPlaceFind *best)
   for (PetscInt i = 0; i < dem->p.n; i++) {
     const DemPlaceOrigin oi = dem_origin(dem, dem->p.id[i]);
     if (oi == PLACE_OTHER) continue;
-    for (PetscInt w = 0; w < dem->walls.nwall; w++) {
+    for (PetscInt w = 0; w < dem->walls.nwall + dem->meshes.n; w++) { /* the walls, then the meshes */
       double depth;
-      PetscCall(DemPlaceWallDepth(dem, &dem->walls.wall[w], i, &depth));
+      PetscCall(DemPlaceWallDepth(dem, w, i, &depth));
       if (depth > (oi == PLACE_LATTICE ? DEM_PLACE_ROUNDOFF : limit)) dem_place_consider(dem, oi == PLACE_LATTICE ? FIND_LATTICE_WALL : FIND_FILE_WALL, depth, i, -1, w, best);
     }
     for (PetscInt a = nl->start[i]; a < nl->start[i + 1]; a++) {
@@ -159,10 +165,16 @@ static PetscErrorCode DemPlaceScan(Dem dem, double limit, DemPlaceFind *best)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The wall by its option, and where it is when that is short to say. */
-static PetscErrorCode DemPlaceWallText(const DemWall *w, char *buf, size_t len)
+/* The wall wi (a mesh from nwall on) by its option, and where it is when that is short to say. */
+static PetscErrorCode DemPlaceWallText(Dem dem, PetscInt wi, char *buf, size_t len)
 {
+  const DemWall *w = &dem->walls.wall[wi];
+
   PetscFunctionBeginUser;
+  if (wi >= dem->walls.nwall) {
+    PetscCall(PetscSNPrintf(buf, len, "a triangle of mesh %s", dem->meshes.m[wi - dem->walls.nwall].name));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(PetscSNPrintf(buf, len, "%s", w->name));
   if (w->kind == DEM_WALL_CYLINDER) PetscCall(PetscSNPrintf(buf, len, "%s (radius %.6g)", w->name, w->R));
   else if (w->kind == DEM_WALL_PLANE)
@@ -235,13 +247,14 @@ static PetscErrorCode DemPlaceMessage(Dem dem, const DemPlaceFind *f, double lim
   if (j >= 0) dem_place_position(dem, j, xj);
   PetscCall(PetscSNPrintf(lim, sizeof lim, "more than a contact reaches (limit %.3g radii, -dem_init_file_overlap_max%s)", limit, dem->insert.init_overlap_max > 0 ? "" : ": by default twice the contact design's overlap at -dem_impact_velocity, at least 0.05"));
   if (f->wall >= 0) {
-    PetscCall(DemPlaceWallText(&dem->walls.wall[f->wall], wall, sizeof wall));
+    PetscCall(DemPlaceWallText(dem, f->wall, wall, sizeof wall));
     if (depth >= 2) PetscCall(PetscSNPrintf(how, sizeof how, "lies wholly on the wrong side of %s", wall));
     else PetscCall(PetscSNPrintf(how, sizeof how, "overlaps %s by %.3g radii", wall, depth));
   }
   switch (kind) {
   case FIND_LATTICE_WALL:
-    PetscCall(DemPlaceOriginHint(dem, &dem->walls.wall[f->wall], ext, hint, sizeof hint));
+    hint[0] = 0;
+    if (f->wall < dem->walls.nwall) PetscCall(DemPlaceOriginHint(dem, &dem->walls.wall[f->wall], ext, hint, sizeof hint));
     PetscCall(PetscSNPrintf(msg, DEM_PLACE_MSG, "lattice particle id %" PetscInt_FMT " at (%.6g, %.6g, %.6g) %s: the lattice (%s) crosses that wall; move -dem_lattice_origin so that the whole block, %.6g x %.6g x %.6g m from the origin, lies on the wall's granular side%s, or use fewer sites", dem->p.id[i], xi[0], xi[1], xi[2], how, lat, ext[0], ext[1], ext[2], hint));
     break;
   case FIND_LATTICE_LATTICE:

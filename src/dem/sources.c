@@ -188,7 +188,8 @@ static inline double dem_src_radius(Dem dem, const DemParticle *p)
   return p->r > 0 ? p->r : dem->shapes.shp[p->shape].r;
 }
 
-/* Collective. blk[i] = 1 where candidate i overlaps a particle (local or ghost) or a wall: each
+/* Collective. blk[i] = 1 where candidate i overlaps a particle (local or ghost), a wall or a mesh
+ * triangle (its bounding sphere, for a convex shape): each
  * rank tests the candidates centred in its box, one reduction joins them. */
 static PetscErrorCode DemSourceBlocked(Dem dem, const DemSource *s, PetscInt K, const DemParticle *cand, unsigned char *blk)
 {
@@ -215,6 +216,7 @@ static PetscErrorCode DemSourceBlocked(Dem dem, const DemSource *s, PetscInt K, 
     if (DemSrcGridHits(&g, cand[i].x, r)) blk[i] = 1;
     for (PetscInt w = 0; w < dem->walls.nwall && !blk[i]; w++)
       if (!dem->walls.wall[w].removed && dem_wall_sphere(&dem->walls.wall[w], cand[i].x, r, nrm) > 0) blk[i] = 1;
+    if (!blk[i] && dem->meshes.n && DemMeshesBlock(dem, cand[i].x, r)) blk[i] = 1; /* walls_mesh.c */
   }
   PetscCall(DemSrcGridDestroy(&g));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, blk, (PetscMPIInt)K, MPI_UNSIGNED_CHAR, MPI_MAX, dem->comm));

@@ -17,7 +17,8 @@
  * projects inside it and lies in front of it; a sphere overhanging a joint edge feels no force
  * from that face (the neighbouring face takes over, as in a box corner or a hopper's corners).
  * Only edges marked as free rims (the hopper's orifice) are touched as segments. At most
- * DEM_MAX_WALLS walls in all. */
+ * DEM_MAX_WALLS walls in all. A domain face is closed (DemWallsCloseFace) by a wall at it or
+ * inside before it, or by a mesh at rest whose triangles tile the face itself. */
 #include "dem/dem_impl.h"
 
 /* Adds a plane wall; name is the option that made it (messages name the wall by it). */
@@ -108,6 +109,7 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
     }
     *closed = (PetscBool)(behind && spans);
   }
+  if (!*closed && dem->meshes.n) PetscCall(DemMeshesCloseFace(dem, d, side, tol, closed)); /* walls_mesh.c */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

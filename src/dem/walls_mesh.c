@@ -9,13 +9,16 @@
  * dropped, so a sphere crossing its edge feels exactly one plane; a concave corner's second
  * face lies in front of it and is felt. The rule holds within one mesh; two meshes are two
  * walls. Normal from x to q, overlap r - d, contact point x + (r - overlap/2) n; surface velocity
- * v + omega u x (c - a(t)) of the mesh's rigid motion.
+ * v + omega u x (c - a(t)) of the mesh's rigid motion. Convex particles (DemMeshTouchConvex):
+ * the polygon walls' face rule per triangle, a plane counted once; a triangle's edge pressing
+ * into a particle's face is not seen (a convex ridge does not hold a convex particle).
  * Tangential springs: per particle and mesh DEM_MESH_SLOTS slots (normal, spring), each contact
  * taking the slot whose normal of the last step is closest (cosine > 0.7), so a sphere rolling
  * over an edge keeps its spring; slots are saved across list builds as id-keyed records and in
- * checkpoints. Lists: at each build, the triangles whose box meets this rank's box grown by the
- * largest radius + skin are binned, and each local particle lists those within r + skin; a
- * moving mesh counts its travel bound (|v| dt + |dtheta| raxis) as a wall's (dem.c). */
+ * checkpoints (on another rank count as the same records: checkpoint_remap.c). Lists: at each
+ * build, the triangles whose box meets this rank's box grown by the largest radius + skin are
+ * binned, and each local particle lists those within r + skin; a moving mesh counts its travel
+ * bound (|v| dt + |dtheta| raxis) as a wall's (dem.c). */
 #include "dem/dem_impl.h"
 
 /* The integral of the table's piecewise-linear omega from its first time to t (omega
@@ -280,6 +283,59 @@ static inline int dem_mesh_touch(const DemMesh *m, PetscInt i, const double *x, 
   return na;
 }
 
+/* Whether the point q of the plane of triangle (a, b, c) (unit normal n) lies in the triangle,
+ * edges included to tol. */
+static inline PetscBool dem_tri_covers(const double *a, const double *b, const double *c, const double n[3], const double q[3], double tol)
+{
+  const double *v[3] = {a, b, c};
+  for (int e = 0; e < 3; e++) {
+    const double *p = v[e], *r = v[(e + 1) % 3];
+    const double  d[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]}, w[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    double        en[3]; /* n x d points into the triangle for a right-handed (a, b, c) */
+    dem_cross(n, d, en);
+    if (dem_dot(w, en) < -tol * sqrt(dem_dot(en, en))) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+/* Not collective. The contacts of convex particle i (pose) with mesh m by the face rule of the
+ * polygon walls: for each candidate triangle, the contact with its plane (ConvexCollidePlane,
+ * the normal turned towards the particle's centre: two-sided) counts where its point lies in
+ * the triangle (edges included to 1e-10 of the bounding radius); a plane counts once (a later
+ * triangle of a plane already accepted, normal and offset equal to 1e-10, is dropped), so
+ * coplanar neighbours sharing the point's edge or vertex give one contact. A triangle's edge or
+ * vertex pressing into a particle's face is not seen (a ridge: see the README). Returns the
+ * count in *nc (at most DEM_MESH_MAXC). */
+PetscErrorCode DemMeshTouchConvex(Dem dem, const DemMesh *m, PetscInt i, ConvexContact cc[], int *nc)
+{
+  const DemShape  *s = &dem->shapes.shp[dem->p.shape[i]];
+  const double    *x = dem->p.x + 3 * i, tol = 1e-10 * s->r;
+  const ConvexPose pose = DemPose(x, dem->p.q + 4 * i);
+  double           off[DEM_MESH_MAXC];
+
+  PetscFunctionBeginUser;
+  *nc = 0;
+  for (PetscInt a = m->cstart[i]; a < m->cstart[i + 1] && *nc < DEM_MESH_MAXC; a++) {
+    const double *v = m->cur + 9 * m->ctri[a], e1[3] = {v[3] - v[0], v[4] - v[1], v[5] - v[2]}, e2[3] = {v[6] - v[0], v[7] - v[1], v[8] - v[2]};
+    const double  d[3] = {x[0] - v[0], x[1] - v[1], x[2] - v[2]};
+    double        nr[3], n[3]; /* the right-handed normal, and the one towards the centre */
+    ConvexContact c;
+    dem_cross(e1, e2, nr);
+    const double nn = sqrt(dem_dot(nr, nr)), h = dem_dot(d, nr) / nn;
+    if (!(nn > 0) || h == 0 || PetscAbsReal(h) >= s->r) continue;
+    for (int k = 0; k < 3; k++) nr[k] /= nn, n[k] = h > 0 ? nr[k] : -nr[k];
+    PetscCall(ConvexCollidePlane(s->cvx, &pose, v, n, &c));
+    if (!c.overlap || !dem_tri_covers(v, v + 3, v + 6, nr, c.point, tol)) continue;
+    const double o   = dem_dot(v, n);
+    PetscBool    dup = PETSC_FALSE;
+    for (int b = 0; b < *nc && !dup; b++) dup = (PetscBool)(dem_dot(cc[b].normal, n) < -1 + 1e-10 && PetscAbsReal(off[b] - o) <= tol);
+    if (dup) continue;
+    off[*nc]    = o;
+    cc[(*nc)++] = c;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The slot of each accepted contact (normals an): the unused slot whose normal is closest
  * (cosine > 0.7), else a free one, else -1 (no history); the slots left over are freed. */
 static inline void dem_mesh_match(double *sl, int na, const double an[][3], int match[])
@@ -304,6 +360,12 @@ static inline void dem_mesh_match(double *sl, int na, const double an[][3], int 
   for (int s = 0; s < DEM_MESH_SLOTS; s++)
     if (!used[s])
       for (int k = 0; k < 6; k++) sl[6 * s + k] = 0;
+}
+
+/* Not collective. The same for the convex particles (convex_contacts.c). */
+void DemMeshMatchSlots(double *sl, int na, const double an[][3], int match[])
+{
+  dem_mesh_match(sl, na, an, match);
 }
 
 /* The forces of mesh m on local particle i (as dem_walls_body in walls.c). */
@@ -486,4 +548,114 @@ PetscErrorCode DemMeshesCheckpoint(Dem dem, IoCkpt ck, PetscBool write)
   PetscCall(DemMeshesMove(dem, dem->clock.t, NULL)); /* the pose of the restored time */
   for (PetscInt k = 0; k < nm; k++) dem->meshes.m[k].moved = moved[k];
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective. The meshes' contacts for DemGetStats (diag.c): c[2] counts them, r[3] adds
+ * their normal elastic energy (linear 1/2 kn delta^2, hertz 8/15 E* sqrt(R*) delta^(5/2); the
+ * springs' share left out), *rmax the largest overlap over the radius. */
+PetscErrorCode DemMeshesStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < dem->meshes.n; k++) {
+    const DemMesh *m = &dem->meshes.m[k];
+    if (!m->cstart) continue;
+    for (PetscInt i = 0; i < dem->p.n; i++) {
+      double        depth[DEM_MESH_MAXC], an[DEM_MESH_MAXC][3], ad[DEM_MESH_MAXC], rr;
+      int           na = 0;
+      DemPairParams p  = m->pw[dem->p.shape[i]];
+      if (m->cstart[i] == m->cstart[i + 1]) continue;
+      if (dem->shapes.convex) {
+        ConvexContact cc[DEM_MESH_MAXC];
+        PetscCall(DemMeshTouchConvex(dem, m, i, cc, &na));
+        for (int a = 0; a < na; a++) depth[a] = cc[a].depth;
+        rr = dem->shapes.shp[dem->p.shape[i]].req;
+      } else {
+        rr = DemRadius(&dem->p, &dem->shapes, i);
+        na = dem_mesh_touch(m, i, dem->p.x + 3 * i, rr, an, ad);
+        for (int a = 0; a < na; a++) depth[a] = rr - ad[a];
+        if (dem->p.rad) dem_pair_sized(dem->contact.law, &m->pw[dem->p.shape[i]], dem->p.m[i], rr, 0, 0, &p);
+      }
+      for (int a = 0; a < na; a++) {
+        r[3] += dem->contact.law == DEM_LAW_HERTZ ? 8.0 / 15.0 * p.es * sqrt(p.reff) * pow(depth[a], 2.5) : 0.5 * p.kn * depth[a] * depth[a];
+        *rmax = PetscMax(*rmax, depth[a] / rr);
+      }
+      c[2] += na;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective (every rank holds every mesh). Whether a mesh at rest closes the domain face
+ * (d, side): its triangles in the face's plane (to tol) and within its rectangle have areas
+ * summing to the face's (1e-9 relative; a soup that tiles the face: no triangle counted twice,
+ * as the reader skips exact duplicates). Only the face's own plane: a mesh is two-sided, so a
+ * plane of triangles inside the domain has particles on either side, and those between it and
+ * the face would reach the face. A moving mesh closes nothing. */
+PetscErrorCode DemMeshesCloseFace(Dem dem, int d, int side, double tol, PetscBool *closed)
+{
+  const Domain *dom = dem->dom;
+  const int     a = (d + 1) % 3, b = (d + 2) % 3;
+  const double  face = dom->len[a] * dom->len[b], at = side ? dom->hi[d] : dom->lo[d];
+
+  PetscFunctionBeginUser;
+  *closed = PETSC_FALSE;
+  for (PetscInt k = 0; k < dem->meshes.n && !*closed; k++) {
+    const DemMesh *m   = &dem->meshes.m[k];
+    double         sum = 0;
+    if (m->moving) continue;
+    for (PetscInt t = 0; t < m->ref.ntri; t++) {
+      const double *v = m->ref.v + 9 * t, c = v[d];
+      PetscBool     in = (PetscBool)(PetscAbsReal(v[3 + d] - c) <= tol && PetscAbsReal(v[6 + d] - c) <= tol && PetscAbsReal(c - at) <= tol);
+      for (int j = 0; j < 3 && in; j++) in = (PetscBool)(v[3 * j + a] >= dom->lo[a] - tol && v[3 * j + a] <= dom->hi[a] + tol && v[3 * j + b] >= dom->lo[b] - tol && v[3 * j + b] <= dom->hi[b] + tol);
+      if (!in) continue;
+      sum += 0.5 * PetscAbsReal((v[3 + a] - v[a]) * (v[6 + b] - v[b]) - (v[6 + a] - v[a]) * (v[3 + b] - v[b]));
+    }
+    *closed = (PetscBool)(sum >= face * (1 - 1e-9));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective. The deepest contact of local particle i with mesh k over its radius (spheres:
+ * r; convex: d_eq/2), 0 when clear: the placement check (placement.c). */
+PetscErrorCode DemMeshDepth(Dem dem, PetscInt k, PetscInt i, double *depth)
+{
+  const DemMesh *m = &dem->meshes.m[k];
+
+  PetscFunctionBeginUser;
+  *depth = 0;
+  if (!m->cstart || m->cstart[i] == m->cstart[i + 1]) PetscFunctionReturn(PETSC_SUCCESS);
+  if (dem->shapes.convex) {
+    ConvexContact cc[DEM_MESH_MAXC];
+    int           na;
+    PetscCall(DemMeshTouchConvex(dem, m, i, cc, &na));
+    for (int a = 0; a < na; a++) *depth = PetscMax(*depth, cc[a].depth / dem->shapes.shp[dem->p.shape[i]].req);
+  } else {
+    const double r = DemRadius(&dem->p, &dem->shapes, i);
+    double       an[DEM_MESH_MAXC][3], ad[DEM_MESH_MAXC];
+    const int    na = dem_mesh_touch(m, i, dem->p.x + 3 * i, r, an, ad);
+    for (int a = 0; a < na; a++) *depth = PetscMax(*depth, (r - ad[a]) / r);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective. Whether a sphere (centre x in this rank's box, radius r <= the largest
+ * radius) meets a triangle of a mesh: a source's candidate (sources.c). The rank's triangles of
+ * the last list build cover it (they meet the box grown by the largest radius + skin, and a
+ * mesh moves less than skin/2 between builds); their vertices are at the current pose. */
+PetscBool DemMeshesBlock(Dem dem, const double x[3], double r)
+{
+  for (PetscInt k = 0; k < dem->meshes.n; k++) {
+    const DemMesh *m = &dem->meshes.m[k];
+    for (PetscInt a = 0; a < m->nloc; a++) {
+      const double *v    = m->cur + 9 * m->loc[a];
+      PetscBool     near = PETSC_TRUE;
+      double        q[3];
+      for (int j = 0; j < 3 && near; j++) near = (PetscBool)(PetscMin(v[j], PetscMin(v[3 + j], v[6 + j])) < x[j] + r && PetscMax(v[j], PetscMax(v[3 + j], v[6 + j])) > x[j] - r);
+      if (!near) continue;
+      TriClosestPoint(v, v + 3, v + 6, x, q);
+      const double d[3] = {q[0] - x[0], q[1] - x[1], q[2] - x[2]};
+      if (dem_dot(d, d) < r * r) return PETSC_TRUE;
+    }
+  }
+  return PETSC_FALSE;
 }

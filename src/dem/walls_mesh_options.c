@@ -134,7 +134,6 @@ PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem
       continue;
     }
     PetscCheck(m->file[0], dem->comm, PETSC_ERR_ARG_WRONG, "-dem_mesh_%d_file needs a file name", k);
-    PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "-dem_mesh_%d_file: mesh walls take spheres; convex shapes (-dem_shape) against triangles are not implemented", k);
     PetscCall(DemMeshMaterial(PetscOptionsObject, dem, k, m));
     PetscCall(DemMeshMotion(PetscOptionsObject, dem, k, m));
     PetscCall(DemMeshLoad(PetscOptionsObject, dem, k, m));

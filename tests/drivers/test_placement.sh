@@ -85,6 +85,9 @@ warns "inlet below a distributor moved out of the domain" 1 '-fluid_bc_zlo inlet
 warns "x faces walls, no DEM walls along x" 2 '-fluid_bc_x\(lo\|hi\) wall at x = [08] has no DEM wall there (-dem_box or -dem_plane_k): particles that reach it leave the domain' $B -domain_periodic_x 0
 warns "x faces walls with DEM planes on them" 0 . $B -domain_periodic_x 0 -dem_plane_2 0,0,0,1,0,0 -dem_plane_3 8,0,0,-1,0,0
 warns "slip faces inside a -dem_box" 0 . $B -domain_periodic_x 0 -domain_periodic_y 0 -fluid_bc_ylo slip -dem_box 0,0,0,8,4,48
+tests/common/box_stl.py "$T/box.stl" 0,0,0,8,4,48 2
+warns "x and y faces walls closed by a mesh box" 0 . $B -domain_periodic_x 0 -domain_periodic_y 0 -dem_mesh_0_file "$T/box.stl"
+warns "the mesh box moved by 1 along x: its x sides off the x faces, its y sides overhanging theirs" 4 '-fluid_bc_[xy]\(lo\|hi\) wall' $B -domain_periodic_x 0 -domain_periodic_y 0 -dem_mesh_0_file "$T/box.stl" -dem_mesh_0_translate 1,0,0
 for f in cases/*/*.opts; do
   grep -q '^-\(cpl\|fluid\)_' "$f" || continue
   grep -q '^-domain_lo' "$f" || continue # a preset: options added to a case
