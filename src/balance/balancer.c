@@ -30,7 +30,7 @@ typedef enum {
 static const char *const LbSchemeNames[] = {"none", "once", "frequent", "dynamic", "LbScheme", "LB_", NULL};
 /* -lb_mesh_cost's default: the time of one candidate triangle in the mesh contact loop over the
  * time of one particle-step without it (tools/bench_mesh.sh's bed, doc/performance.md). */
-#define BALANCE_MESH_COST 0.1
+#define BALANCE_MESH_COST 1.3
 static const char *const LbWeightNames[] = {"linear", "quadratic", "measured", "LbWeight", "LB_WEIGHT_", NULL};
 
 struct _p_Balance {
