@@ -8,7 +8,9 @@
 # alternating the three, N_RUNS times, and reports the median microseconds per particle-step
 # (wall time the run reports / (particles x steps)) and the ratio to the box. The bed is dropped
 # from a 15 x 15 x 14 lattice and settled for 0.6 s in the analytic box first. Usage:
-# tools/bench_mesh.sh [N_RUNS] (default 3). Output in bench-out/mesh/.
+# tools/bench_mesh.sh [N_RUNS] (default 3). Output in bench-out/mesh/. Last, mesh768 once more
+# with -lb_weight measured on one rank: the load balancer's c_m, the time of one candidate
+# triangle over that of a particle-step without the mesh contacts (-lb_mesh_cost's default).
 set -eu
 cd "$(dirname "$0")/.."
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -36,3 +38,6 @@ for c in box mesh12 mesh768; do
   [ -z "$ub" ] && ub=$us
   printf "%-8s %12.4f %8.3f\n" $c "$us" "$(echo "$us $ub" | awk '{print $1 / $2}')"
 done | tee $O/results.txt
+bin/sable $B -dem_mesh_0_file $O/box768.stl -dem_init_file $O/bed.h5 -dem_t_end 0.05 -io_interval 0 \
+  -lb_scheme frequent -lb_weight measured -lb_interval 1000 > $O/run_cm.log
+echo "c_m (-lb_weight measured, mesh768, last check): $(sed -n 's/.*c_m \([0-9.e+-]*\) per candidate.*/\1/p' $O/run_cm.log | tail -n 1)" | tee -a $O/results.txt

@@ -16,7 +16,9 @@
  * The per-cell particle counts are reduced onto every rank (one integer per cell), which bounds the
  * method to grids of a few million cells; the cut search itself is serial and identical on all
  * ranks. A checkpoint holds the cuts, the schedule and the counters (BalanceCheckpointWrite/Read),
- * so a restart continues on the run's decomposition and checks when the run would have. */
+ * so a restart continues on the run's decomposition and checks when the run would have.
+ * With mesh walls a cell also weighs alpha c_m n_c, n_c the candidate triangles of its particles
+ * (-lb_mesh_cost c_m; measured: the mesh contact loop's time per candidate-step over alpha). */
 #include "balance/balancer.h"
 
 typedef enum {
@@ -26,6 +28,9 @@ typedef enum {
   LB_DYNAMIC
 } LbScheme;
 static const char *const LbSchemeNames[] = {"none", "once", "frequent", "dynamic", "LbScheme", "LB_", NULL};
+/* -lb_mesh_cost's default: the time of one candidate triangle in the mesh contact loop over the
+ * time of one particle-step without it (tools/bench_mesh.sh's bed, doc/performance.md). */
+#define BALANCE_MESH_COST 1.3
 static const char *const LbWeightNames[] = {"linear", "quadratic", "measured", "LbWeight", "LB_WEIGHT_", NULL};
 
 struct _p_Balance {
@@ -41,7 +46,13 @@ struct _p_Balance {
   BalanceGrid g;
   PetscReal  *w, *load, alpha_used, beta_used;
   PetscInt   *count; /* particles per cell of the global grid */
-  PetscInt   *l[3];
+  /* mesh walls: W gains alpha c_m n_c, n_c the candidate triangles of the cell's particles */
+  PetscInt      *ncand; /* per cell of the global grid; NULL without meshes */
+  PetscReal      mesh_cost, cm_used;
+  PetscBool      mesh_clock; /* the mesh clock covers the time since the last check (not after a restore) */
+  PetscLogDouble t_mesh0;
+  PetscReal      cand0;
+  PetscInt      *l[3];
   /* measured weights: compute times and work at the last check */
   PetscLogDouble t_dem0, t_fluid0;
   PetscInt       cstep0; /* coupling step of the last check */
@@ -73,6 +84,7 @@ PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb)
   b->once_step     = 0;
   b->once_time     = -1;
   b->verbose       = PETSC_TRUE;
+  b->mesh_cost     = BALANCE_MESH_COST;
   *lb              = b;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -112,6 +124,7 @@ PetscErrorCode BalanceSetFromOptions(Balance b)
   PetscCall(SableOptionsInt("-lb_step", "once: the step after which to rebalance", NULL, "[0,inf)", b->once_step, &b->once_step, &set[1]));
   PetscCall(SableOptionsReal("-lb_time", "once: the simulated time after which to rebalance (replaces -lb_step); default none: -lb_step counts", "s", "[0,inf)", b->once_time, &b->once_time, &set[3]));
   PetscCall(SableOptionsInt("-lb_max_sweeps", "Coordinate-descent rounds of the cut search (0: the marginal cuts only get refined by the default 20)", NULL, "[0,inf)", b->max_sweeps, &b->max_sweeps, NULL));
+  PetscCall(SableOptionsReal("-lb_mesh_cost", "Weight of a particle's candidate mesh triangle relative to the particle (linear, quadratic; -lb_weight measured measures it)", NULL, "[0,inf)", b->mesh_cost, &b->mesh_cost, NULL));
   PetscCall(PetscOptionsBool("-lb_verbose", "Print one line per check", NULL, b->verbose, &b->verbose, NULL));
   PetscOptionsEnd();
   { /* the time-based option replaces the step-based one: both given, one would be ignored */
@@ -143,7 +156,7 @@ static PetscErrorCode BalanceMinWidth(Balance b, PetscInt minw[3])
 
 PetscErrorCode BalanceSetUp(Balance b)
 {
-  PetscInt ncell;
+  PetscInt ncell, nmesh;
 
   PetscFunctionBeginUser;
   for (int k = 0; k < 3; k++) {
@@ -155,6 +168,11 @@ PetscErrorCode BalanceSetUp(Balance b)
   ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
   PetscCall(PetscMalloc3(ncell, &b->count, ncell, &b->w, b->g.p[0] * b->g.p[1] * b->g.p[2], &b->load));
   for (int k = 0; k < 3; k++) PetscCall(PetscMalloc1(b->g.p[k], &b->l[k]));
+  PetscCall(DemGetMeshCount(b->dem, &nmesh));
+  if (nmesh) PetscCall(PetscMalloc1(ncell, &b->ncand));
+  PetscCall(DemGetMeshTime(b->dem, &b->t_mesh0, &b->cand0));
+  b->mesh_clock = (PetscBool)!b->restored;
+  b->cm_used    = b->mesh_cost;
   /* frequent and dynamic check after the first step (a start, or a restart on another rank
      count, may be imbalanced), then at their cadence; a restart keeps the run's schedule */
   if (!b->restored) {
@@ -173,17 +191,19 @@ PetscErrorCode BalanceDestroy(Balance *lb)
   if (!*lb) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscFree3((*lb)->count, (*lb)->w, (*lb)->load));
   for (int k = 0; k < 3; k++) PetscCall(PetscFree((*lb)->l[k]));
+  PetscCall(PetscFree((*lb)->ncand));
   PetscCall(PetscFree(*lb));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* alpha and beta of the measured mode: the mean compute time per particle-step and per
- * cell-step over all ranks since the last check (s). */
-static PetscErrorCode BalanceMeasuredWeights(Balance b, PetscReal *alpha, PetscReal *beta)
+ * cell-step over all ranks since the last check (s); with mesh walls alpha leaves out the mesh
+ * contacts' time, and c_m is their time per candidate-step over alpha. */
+static PetscErrorCode BalanceMeasuredWeights(Balance b, PetscReal *alpha, PetscReal *beta, PetscReal *cm)
 {
-  PetscLogDouble td, tf = 0;
+  PetscLogDouble td, tf = 0, tm;
   PetscInt       step, n, cstep = 0;
-  PetscReal      loc[4], glob[4];
+  PetscReal      loc[6], glob[6], cand;
 
   PetscFunctionBeginUser;
   PetscCall(DemGetComputeTime(b->dem, &td));
@@ -195,14 +215,36 @@ static PetscErrorCode BalanceMeasuredWeights(Balance b, PetscReal *alpha, PetscR
   loc[1] = tf - b->t_fluid0;
   loc[2] = (PetscReal)n * (step - b->last_step);
   loc[3] = b->cpl ? (PetscReal)b->dom->ccount[0] * b->dom->ccount[1] * b->dom->ccount[2] * (cstep - b->cstep0) : 0;
-  PetscCallMPI(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPI_SUM, b->comm));
+  PetscCall(DemGetMeshTime(b->dem, &tm, &cand));
+  loc[4] = b->mesh_clock ? tm - b->t_mesh0 : 0; /* after a restore: the fixed c_m once */
+  loc[5] = b->mesh_clock ? cand - b->cand0 : 0;
+  PetscCallMPI(MPIU_Allreduce(loc, glob, b->ncand ? 6 : 4, MPIU_REAL, MPI_SUM, b->comm));
+  if (!b->ncand) glob[4] = glob[5] = 0;
   if (glob[0] > 0 && glob[2] > 0) { /* else nothing measured yet: the -lb_alpha, -lb_beta values */
-    *alpha = glob[0] / glob[2];
+    *alpha = (glob[0] - glob[4]) / glob[2];
     *beta  = glob[3] > 0 ? glob[1] / glob[3] : 0;
+    if (glob[5] > 0 && *alpha > 0) *cm = glob[4] / glob[5] / *alpha;
   }
+  b->t_mesh0    = tm;
+  b->cand0      = cand;
+  b->mesh_clock = PETSC_TRUE;
   if (b->cpl) b->cstep0 = cstep;
   b->t_dem0   = td;
   b->t_fluid0 = tf;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Adds am n_c to each cell's weight, n_c the candidate mesh triangles of its particles
+ * summed over all ranks into ncand (am = alpha c_m: the cost of one candidate). */
+static PetscErrorCode BalanceMeshWeights(Balance b, PetscReal am, PetscInt *ncand, PetscReal *w)
+{
+  const PetscInt ncell = b->dom->cells[0] * b->dom->cells[1] * b->dom->cells[2];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(ncand, ncell));
+  PetscCall(DemGetCellMeshCounts(b->dem, ncand));
+  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, ncand, (PetscMPIInt)ncell, MPIU_INT, MPI_SUM, b->comm));
+  for (PetscInt c = 0; c < ncell; c++) w[c] += am * (PetscReal)ncand[c];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -211,19 +253,21 @@ static PetscErrorCode BalanceWeigh(Balance b, PetscReal *lmin, PetscReal *lmax, 
 {
   const PetscInt  P = b->g.p[0] * b->g.p[1] * b->g.p[2], ncell = b->g.n[0] * b->g.n[1] * b->g.n[2];
   const PetscInt *l[3];
-  PetscReal       alpha = b->alpha, beta = b->beta, sum = 0;
+  PetscReal       alpha = b->alpha, beta = b->beta, cm = b->mesh_cost, sum = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscArrayzero(b->count, ncell));
   PetscCall(DemGetCellCounts(b->dem, b->count));
   PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, b->count, (PetscMPIInt)ncell, MPIU_INT, MPI_SUM, b->comm));
-  if (b->weight == 2) PetscCall(BalanceMeasuredWeights(b, &alpha, &beta));
+  if (b->weight == 2) PetscCall(BalanceMeasuredWeights(b, &alpha, &beta, &cm));
   {
     const BalanceWeight wm = {b->weight == 1 ? BALANCE_WEIGHT_QUADRATIC : BALANCE_WEIGHT_LINEAR, alpha, beta};
     PetscCall(BalanceCellWeights(&wm, ncell, b->count, b->w));
   }
+  if (b->ncand) PetscCall(BalanceMeshWeights(b, alpha * cm, b->ncand, b->w));
   b->alpha_used = alpha;
   b->beta_used  = beta;
+  b->cm_used    = cm;
   PetscCall(DMDAGetOwnershipRanges(b->dom->da, &l[0], &l[1], &l[2]));
   for (int k = 0; k < 3; k++) PetscCall(PetscArraycpy(b->l[k], l[k], b->g.p[k]));
   PetscCall(BalanceLoads(&b->g, b->w, b->l, b->load));
@@ -290,6 +334,7 @@ PetscErrorCode BalanceCheck(Balance b, PetscBool force, PetscBool *moved)
   if (b->verbose) {
     PetscCall(PetscPrintf(b->comm, "lb: step %" PetscInt_FMT " t %.6g s  load min/avg/max %.4g/%.4g/%.4g  (Lmax-Lmin)/Lavg %.3f  Lmax/Lavg %.3f", step, (double)t, (double)lmin, (double)lavg, (double)lmax, (double)((lmax - lmin) / lavg), (double)(lmax / lavg)));
     if (b->weight == 2) PetscCall(PetscPrintf(b->comm, "  measured alpha %.3g s/particle-step, beta %.3g s/cell-step", (double)b->alpha_used, (double)b->beta_used));
+    if (b->weight == 2 && b->ncand) PetscCall(PetscPrintf(b->comm, ", c_m %.3g per candidate triangle", (double)b->cm_used));
     if (go) PetscCall(PetscPrintf(b->comm, "  -> rebalanced, predicted Lmax/Lavg %.3f, cost %.3g s\n", (double)(nmax / navg), t1 - t0));
     else PetscCall(PetscPrintf(b->comm, "  -> kept%s, cost %.3g s\n", same ? "" : " (below threshold)", t1 - t0));
   }
@@ -403,7 +448,7 @@ PetscErrorCode BalanceDecompose(Balance b)
   const BalanceWeight  wm    = {b->weight == 1 ? BALANCE_WEIGHT_QUADRATIC : BALANCE_WEIGHT_LINEAR, b->alpha, b->beta};
   BalanceDecompProblem pb;
   BalanceDecomp        best, ref;
-  PetscInt            *count, *buf, np = 0;
+  PetscInt            *count, *buf, np = 0, nmesh;
   PetscReal           *w, total     = 0;
   PetscBool            given, moved = PETSC_FALSE;
   const PetscInt      *l[3];
@@ -430,6 +475,13 @@ PetscErrorCode BalanceDecompose(Balance b)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(BalanceCellWeights(&wm, ncell, count, w));
+  PetscCall(DemGetMeshCount(b->dem, &nmesh));
+  if (nmesh) { /* the fixed c_m: nothing measured yet */
+    PetscInt *ncand;
+    PetscCall(PetscMalloc1(ncell, &ncand));
+    PetscCall(BalanceMeshWeights(b, b->alpha * b->mesh_cost, ncand, w));
+    PetscCall(PetscFree(ncand));
+  }
   for (PetscInt c = 0; c < ncell; c++) total += w[c];
   PetscCall(PetscMalloc1(6 * pb.size, &buf));
   for (int k = 0; k < 3; k++) {

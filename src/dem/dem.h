@@ -185,3 +185,11 @@ PetscErrorCode DemGetCellCounts(Dem dem, PetscInt *count);
 /* Wall time this rank spent computing forces and integrating since DemSetUp (s; no waiting for
  * other ranks): the particle cost that -lb_weight measured divides by particle-steps. */
 PetscErrorCode DemGetComputeTime(Dem dem, PetscLogDouble *t);
+/* Mesh walls for the balancer (redistribute.c; not collective). DemGetMeshCount: the number of
+ * mesh walls (the same on every rank). DemGetCellMeshCounts: adds to count[] (as DemGetCellCounts)
+ * the candidate triangles, all meshes, of the local particles whose centre lies in each cell: the
+ * triangles each one tests every step. DemGetMeshTime: the wall time this rank spent in the mesh
+ * contacts (s, part of DemGetComputeTime's) and the candidate-steps it served, since DemSetUp. */
+PetscErrorCode DemGetMeshCount(Dem dem, PetscInt *n);
+PetscErrorCode DemGetCellMeshCounts(Dem dem, PetscInt *count);
+PetscErrorCode DemGetMeshTime(Dem dem, PetscLogDouble *t, PetscReal *cand);

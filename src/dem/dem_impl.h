@@ -454,6 +454,8 @@ struct _p_Dem {
   PetscBool      need_build;
   int            stop_sig;  /* a signal any rank had caught at the last step's reduction (0: none) */
   PetscLogDouble t_compute; /* wall time in force computation and integration (s) */
+  PetscLogDouble t_mesh;    /* of which in the mesh contacts of DemStep (s) */
+  PetscReal      mesh_cand; /* candidate triangles summed over the steps of t_mesh */
   PetscInt       state;     /* changes whenever positions or the local order may have (DemGetState) */
   IoCkpt         restart;   /* DemSetRestart: a checkpoint replaces the insertion */
   DemSources     src;       /* particle sources (sources.c) */

@@ -87,19 +87,50 @@ PetscErrorCode DemGetHaloWidth(Dem dem, PetscReal *reach)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemGetCellCounts(Dem dem, PetscInt *count)
+/* The global grid cell of particle i's centre, clamped to this rank's cells (a particle a little
+ * outside its box counts in its edge cell). */
+static PetscInt dem_cell_of(const Dem dem, PetscInt i)
 {
   const Domain *dom = dem->dom;
+  PetscInt      c[3];
 
-  PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < dem->p.n; i++) {
-    PetscInt c[3];
-    for (int k = 0; k < 3; k++) { /* a particle a little outside its box counts in its edge cell */
-      c[k] = (PetscInt)PetscFloorReal((dem->p.x[3 * i + k] - dom->lo[k]) / dom->h[k]);
-      c[k] = PetscMin(PetscMax(c[k], dom->cstart[k]), dom->cstart[k] + dom->ccount[k] - 1);
-    }
-    count[c[0] + dom->cells[0] * (c[1] + dom->cells[1] * c[2])] += 1;
+  for (int k = 0; k < 3; k++) {
+    c[k] = (PetscInt)PetscFloorReal((dem->p.x[3 * i + k] - dom->lo[k]) / dom->h[k]);
+    c[k] = PetscMin(PetscMax(c[k], dom->cstart[k]), dom->cstart[k] + dom->ccount[k] - 1);
   }
+  return c[0] + dom->cells[0] * (c[1] + dom->cells[1] * c[2]);
+}
+
+PetscErrorCode DemGetCellCounts(Dem dem, PetscInt *count)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dem->p.n; i++) count[dem_cell_of(dem, i)] += 1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetMeshCount(Dem dem, PetscInt *n)
+{
+  PetscFunctionBeginUser;
+  *n = dem->meshes.n;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetCellMeshCounts(Dem dem, PetscInt *count)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < dem->meshes.n; k++) {
+    const DemMesh *m = &dem->meshes.m[k];
+    if (!m->cstart) continue; /* no triangle near this rank */
+    for (PetscInt i = 0; i < dem->p.n; i++) count[dem_cell_of(dem, i)] += m->cstart[i + 1] - m->cstart[i];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemGetMeshTime(Dem dem, PetscLogDouble *t, PetscReal *cand)
+{
+  PetscFunctionBeginUser;
+  *t    = dem->t_mesh;
+  *cand = dem->mesh_cand;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
