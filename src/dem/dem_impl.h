@@ -274,6 +274,40 @@ typedef struct {
   DemRoll       roll;     /* -dem_rolling_model (contact_laws.h) */
 } DemContactModel;
 
+/* The contact of sphere i (radius r, centre x) with a wall surface (an analytic wall or a mesh
+ * triangle): overlap delta along the unit normal nrm from the centre to the wall, the surface's
+ * velocity at the contact point vw and its angular velocity ww (rolling resistance takes
+ * w_rel = w_i - ww). Adds the force and torques to i and advances its spring xi_t (NULL: none). */
+static inline void dem_sphere_wall_force(DemParticles *pt, PetscInt i, double r, double delta, const double nrm[3], const double vw[3], const double ww[3], const DemPairParams *p, const DemContactModel *cm, double ieff, double *xi_t, double dt)
+{
+  const double l = r - 0.5 * delta, *vi = pt->v + 3 * i, *wi_ = pt->w + 3 * i;
+  double       vr[3], c[3], kt, gt, F[3];
+  dem_cross(wi_, nrm, c);
+  for (int k = 0; k < 3; k++) vr[k] = vw[k] - vi[k] - l * c[k];
+  const double vn = dem_dot(vr, nrm);
+  const double fn = dem_normal_force(cm->law, p, delta, vn, &kt, &gt);
+  for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k];
+  if (p->mu > 0) {
+    double vt[3], ft[3];
+    for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
+    dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft);
+    if (cm->rotation) {
+      dem_cross(nrm, ft, c);
+      for (int k = 0; k < 3; k++) pt->tq[3 * i + k] -= l * c[k];
+    }
+    for (int k = 0; k < 3; k++) F[k] -= ft[k];
+  }
+  if (cm->roll) { /* V_w = r w_i x n */
+    double wrel[3], vwr[3], mr[3];
+    for (int k = 0; k < 3; k++) wrel[k] = wi_[k] - ww[k];
+    dem_cross(wi_, nrm, vwr);
+    for (int k = 0; k < 3; k++) vwr[k] *= r;
+    dem_rolling_torque(cm->roll, p, fn, ieff, wrel, vwr, nrm, dt, mr);
+    for (int k = 0; k < 3; k++) pt->tq[3 * i + k] += mr[k];
+  }
+  for (int k = 0; k < 3; k++) pt->f[3 * i + k] += F[k];
+}
+
 /* The narrow phase of convex pairs (convex_contacts.c): its settings and its caches. */
 typedef struct {
   PetscBool        convex_sat;                   /* -dem_convex_sat: separating-axis narrow phase for few-axis polyhedron pairs */

@@ -155,8 +155,8 @@ static inline void dem_walls_body(DemParticles *pt, const double *rad, const Dem
     DemPairParams pwl;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt       i  = w->idx[a];
-      const double        *xi = pt->x + 3 * i, *vi = pt->v + 3 * i, *wi_ = pt->w + 3 * i;
-      const double         r = poly ? pt->rad[i] : rad[pt->shape[i]];
+      const double        *xi = pt->x + 3 * i;
+      const double         r  = poly ? pt->rad[i] : rad[pt->shape[i]];
       double               nrm[3]; /* from the particle to the wall */
       const double         delta = dem_wall_sphere(w, xi, r, nrm);
       double              *xi_t  = cm->law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
@@ -170,34 +170,12 @@ static inline void dem_walls_body(DemParticles *pt, const double *rad, const Dem
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;
       }
-      const double l = r - 0.5 * delta;
-      double       vr[3], c[3], kt, gt, F[3], vw[3];
+      const double l     = r - 0.5 * delta;
       const double pc[3] = {xi[0] + l * nrm[0], xi[1] + l * nrm[1], xi[2] + l * nrm[2]}; /* contact point */
+      const double ww[3] = {w->omega * w->ax_u[0], w->omega * w->ax_u[1], w->omega * w->ax_u[2]};
+      double       vw[3];
       dem_wall_velocity(w, pc, vw);
-      dem_cross(wi_, nrm, c);
-      for (int k = 0; k < 3; k++) vr[k] = vw[k] - vi[k] - l * c[k];
-      const double vn = dem_dot(vr, nrm);
-      const double fn = dem_normal_force(cm->law, p, delta, vn, &kt, &gt);
-      for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k];
-      if (p->mu > 0) {
-        double vt[3], ft[3];
-        for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
-        dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft);
-        if (cm->rotation) {
-          dem_cross(nrm, ft, c);
-          for (int k = 0; k < 3; k++) pt->tq[3 * i + k] -= l * c[k];
-        }
-        for (int k = 0; k < 3; k++) F[k] -= ft[k];
-      }
-      if (cm->roll) { /* w_rel = w_i - the wall's angular velocity; V_w = r w_i x n */
-        double wrel[3], vw[3], mr[3];
-        for (int k = 0; k < 3; k++) wrel[k] = wi_[k] - w->omega * w->ax_u[k];
-        dem_cross(wi_, nrm, vw);
-        for (int k = 0; k < 3; k++) vw[k] *= r;
-        dem_rolling_torque(cm->roll, p, fn, poly ? dem_pair_inertia(pt->m[i], r, 0, 0) : p->ieff, wrel, vw, nrm, dt, mr);
-        for (int k = 0; k < 3; k++) pt->tq[3 * i + k] += mr[k];
-      }
-      for (int k = 0; k < 3; k++) pt->f[3 * i + k] += F[k];
+      dem_sphere_wall_force(pt, i, r, delta, nrm, vw, ww, p, cm, poly ? dem_pair_inertia(pt->m[i], r, 0, 0) : p->ieff, xi_t, dt);
     }
   }
 }

@@ -373,7 +373,7 @@ static inline void dem_mesh_particle(Dem dem, DemMesh *m, PetscInt i, const Pets
 {
   DemParticles          *pt = &dem->p;
   const DemContactModel *cm = &dem->contact;
-  const double          *xi = pt->x + 3 * i, *vi = pt->v + 3 * i, *wi_ = pt->w + 3 * i, dt = dem->clock.dt;
+  const double          *xi = pt->x + 3 * i, dt = dem->clock.dt;
   const double           r = poly ? pt->rad[i] : dem->shapes.shp[pt->shape[i]].r;
   double                 an[DEM_MESH_MAXC][3], ad[DEM_MESH_MAXC], none[3];
   int                    match[DEM_MESH_MAXC];
@@ -398,36 +398,14 @@ static inline void dem_mesh_particle(Dem dem, DemMesh *m, PetscInt i, const Pets
       dem_pair_sized(cm->law, p, pt->m[i], r, 0, 0, &sized);
       p = &sized;
     }
-    const double l = r - 0.5 * delta;
-    double       vr[3], c[3], kt, gt, F[3], vw[3], d[3];
+    const double l     = r - 0.5 * delta;
     const double pc[3] = {xi[0] + l * nrm[0], xi[1] + l * nrm[1], xi[2] + l * nrm[2]}; /* contact point */
+    const double ww[3] = {m->w_now * m->ax_u[0], m->w_now * m->ax_u[1], m->w_now * m->ax_u[2]};
+    double       vw[3], d[3];
     for (int k = 0; k < 3; k++) d[k] = pc[k] - axp[k];
     dem_cross(m->ax_u, d, vw);
     for (int k = 0; k < 3; k++) vw[k] = m->vel[k] + m->w_now * vw[k];
-    dem_cross(wi_, nrm, c);
-    for (int k = 0; k < 3; k++) vr[k] = vw[k] - vi[k] - l * c[k];
-    const double vn = dem_dot(vr, nrm);
-    const double fn = dem_normal_force(cm->law, p, delta, vn, &kt, &gt);
-    for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k];
-    if (p->mu > 0) {
-      double vt[3], ft[3];
-      for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
-      dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft);
-      if (cm->rotation) {
-        dem_cross(nrm, ft, c);
-        for (int k = 0; k < 3; k++) pt->tq[3 * i + k] -= l * c[k];
-      }
-      for (int k = 0; k < 3; k++) F[k] -= ft[k];
-    }
-    if (cm->roll) { /* w_rel = w_i - the mesh's angular velocity; V_w = r w_i x n */
-      double wrel[3], vwr[3], mr[3];
-      for (int k = 0; k < 3; k++) wrel[k] = wi_[k] - m->w_now * m->ax_u[k];
-      dem_cross(wi_, nrm, vwr);
-      for (int k = 0; k < 3; k++) vwr[k] *= r;
-      dem_rolling_torque(cm->roll, p, fn, poly ? dem_pair_inertia(pt->m[i], r, 0, 0) : p->ieff, wrel, vwr, nrm, dt, mr);
-      for (int k = 0; k < 3; k++) pt->tq[3 * i + k] += mr[k];
-    }
-    for (int k = 0; k < 3; k++) pt->f[3 * i + k] += F[k];
+    dem_sphere_wall_force(pt, i, r, delta, nrm, vw, ww, p, cm, poly ? dem_pair_inertia(pt->m[i], r, 0, 0) : p->ieff, xi_t, dt);
   }
 }
 
