@@ -106,6 +106,7 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(SableOptionsReal("-cpl_self_fade", "-cpl_self_porosity/-cpl_self_velocity: both fade linearly to nothing as the other particles' solid fraction reaches this (0: no fade)", NULL, "[0,1)", cpl->self_fade, &cpl->self_fade, NULL));
   PetscCall(PetscOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", NULL, remove, &remove, NULL));
   PetscOptionsEnd();
+  PetscCheck(!(cpl->self_eps && cpl->filter_width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_self_porosity removes the particle's unfiltered kernel dip, which -cpl_filter_width %g changes: use one of the two (the filtered dip is not implemented)", (double)cpl->filter_width);
   PetscCall(CplOutletFaces(cpl, remove));
   PetscCall(FluidGetDensity(cpl->fl, &cpl->rho));
   PetscCall(FluidGetViscosity(cpl->fl, &cpl->mu));

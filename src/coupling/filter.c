@@ -42,6 +42,7 @@ PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean)
   for (int e = 0; e < 3; e++) hmin = PetscMin(hmin, dom->h[e]);
   cpl->filter_n = (PetscInt)PetscCeilReal(3 * cpl->filter_var / (hmin * hmin) * (1 - 1e-12));
   cpl->filter_n = PetscMax(cpl->filter_n, 1);
+  PetscCheck(cpl->filter_n <= 100, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_filter_width %g (x mean diameter %g m) takes %" PetscInt_FMT " diffusion sweeps per field and step on cells of %g m; the limit is 100 (a width up to about %.3g): lower the width or coarsen the grid", (double)cpl->filter_width, (double)dmean, cpl->filter_n, (double)hmin, (double)(PetscSqrtReal(100.0 / 3.0 * 8 * PetscLogReal(2.0)) * hmin / dmean));
   for (int e = 0; e < 3; e++) cpl->filter_lam[e] = cpl->filter_var / (2.0 * cpl->filter_n * dom->h[e] * dom->h[e]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -234,7 +234,8 @@ static PetscErrorCode DemContactsMeshesTimed(Dem dem)
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&m0));
-  PetscCall(DemContactsMeshes(dem));
+  if (dem->shapes.convex) PetscCall(DemContactsMeshesConvex(dem)); /* convex_contacts.c */
+  else PetscCall(DemContactsMeshes(dem));
   PetscCall(PetscTime(&m1));
   dem->t_mesh += m1 - m0;
   for (PetscInt k = 0; k < dem->meshes.n; k++)
@@ -259,7 +260,7 @@ static PetscErrorCode DemComputeForces(Dem dem)
   if (dem->shapes.convex) { /* convex shapes: libccd narrow phase (convex_contacts.c) */
     PetscCall(DemContactsPairsConvex(dem));
     PetscCall(DemContactsWallsConvex(dem));
-    if (dem->meshes.n) PetscCall(DemContactsMeshesConvex(dem)); /* convex_contacts.c */
+    if (dem->meshes.n) PetscCall(DemContactsMeshesTimed(dem));
   } else {
     PetscCall(DemContactsPairs(&dem->p, &dem->shapes, &dem->contact, &dem->nl, dem->clock.dt));
     PetscCall(DemContactsWalls(&dem->p, &dem->shapes, &dem->contact, &dem->walls, dem->clock.dt));

@@ -493,10 +493,22 @@ PetscErrorCode DemMeshesCheckpoint(Dem dem, IoCkpt ck, PetscBool write)
   PetscCall(IoCkptReadShared(ck, "dem/mesh_moved", IO_CKPT_REAL, nm, moved));
   PetscCall(IoCkptReadRows(ck, "dem/mesh_lists", IO_CKPT_INT, &nli, (void **)&li));
   PetscCall(IoCkptReadRows(ck, "dem/mesh_slot", IO_CKPT_REAL, &nsl, (void **)&sd));
-  PetscCheck(nsl == nm * ns, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart: the dataset dem/mesh_slot has %" PetscInt_FMT " values on this rank, expected %" PetscInt_FMT, nsl, nm * ns);
+  { /* the rows' lengths against their counts, on every rank before any rank stops */
+    PetscBool ok = (PetscBool)(nsl == nm * ns), all;
+    for (PetscInt k = 0, q = 0; k < nm && ok; k++) {
+      ok = (PetscBool)(q < nli && li[q] >= 0 && q + 1 + li[q] + n + 1 <= nli);
+      if (!ok) break;
+      q += 1 + li[q];
+      const PetscInt nc = li[q + n];
+      q += n + 1;
+      ok = (PetscBool)(nc >= 0 && q + nc <= nli);
+      q += nc;
+    }
+    PetscCall(MPIU_Allreduce(&ok, &all, 1, MPIU_BOOL, MPI_LAND, dem->comm));
+    PetscCheck(all, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint's mesh springs (datasets dem/mesh_lists, dem/mesh_slot) do not match its particles on some rank: the file is damaged or was written by another build");
+  }
   for (PetscInt k = 0; k < nm; k++) {
     DemMesh *m = &dem->meshes.m[k];
-    PetscCheck(o < nli && o + 1 + li[o] + n + 1 <= nli, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart: the dataset dem/mesh_lists is shorter than its counts say");
     PetscCall(PetscFree(m->loc));
     m->nloc   = li[o++];
     m->caploc = m->nloc + 1;
@@ -508,7 +520,6 @@ PetscErrorCode DemMeshesCheckpoint(Dem dem, IoCkpt ck, PetscBool write)
     PetscCall(PetscMalloc1(n + 1, &m->cstart));
     PetscCall(PetscArraycpy(m->cstart, li + o, n + 1));
     o += n + 1;
-    PetscCheck(o + m->cstart[n] <= nli, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart: the dataset dem/mesh_lists is shorter than its counts say");
     PetscCall(PetscFree(m->ctri));
     m->capc = m->cstart[n] + 1;
     PetscCall(PetscMalloc1(m->capc, &m->ctri));

@@ -88,7 +88,10 @@ static PetscErrorCode StlParseBinary(StlRead *r, uint32_t n)
   double               t[9];
 
   PetscFunctionBegin;
-  PetscCheck((uint64_t)n * 9 < (uint64_t)PETSC_MAX_INT, PETSC_COMM_SELF, PETSC_ERR_SUP, "STL file %s: %u triangles are more than this build's PetscInt can index", r->path, (unsigned)n);
+  if ((uint64_t)n * 9 >= (uint64_t)PETSC_MAX_INT) {
+    StlFail(r, PETSC_ERR_SUP, "%u triangles are more than this build's 32-bit PetscInt can index (at most %d): split the mesh or use a 64-bit-index PETSc", (unsigned)n, (int)(PETSC_MAX_INT / 9));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   for (uint32_t i = 0; i < n; i++, b += 50) {
     for (int k = 0; k < 9; k++) t[k] = stl_f32(b + 12 + 4 * k); /* bytes 0-11: the normal */
     for (int k = 0; k < 9; k++) {
@@ -389,7 +392,14 @@ PetscErrorCode TriMeshReadSTL(MPI_Comm comm, const char *path, TriMesh *m)
   PetscCall(PetscMemzero(m, sizeof *m));
   r.path = path;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) PetscCall(StlReadLocal(&r));
+  if (rank == 0) { /* any failure, an allocation's too, goes out through the broadcast: no rank waits for ever */
+    PetscErrorCode ierr;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = StlReadLocal(&r);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr && !r.msg[0]) StlFail(&r, (int)ierr, "could not be read (PETSc error %d: out of memory?)", (int)ierr);
+    if (ierr) PetscCall(PetscFree(r.buf));
+  }
   head[0] = r.msg[0] ? r.code : 0;
   head[1] = r.ntri;
   head[2] = r.ndegen;

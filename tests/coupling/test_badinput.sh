@@ -26,6 +26,8 @@ check relaxation_time 'coupling step .* particle relaxation times .* above -cpl_
 check inconsistent_dt '-fluid_dt 0.1 differs from -cpl_substeps 5 x -dem_dt' -fluid_dt 0.1
 check porosity_floor '-cpl_porosity_floor 1.5 must be in \(0,1\)' -cpl_porosity_floor 1.5
 check substeps '-cpl_substeps 0 must be >= 1' -cpl_substeps 0
+check filter_sweeps '-cpl_filter_width 200. .* takes 5411 diffusion sweeps .* the limit is 100' -cpl_filter_width 200
+check self_porosity_filter '-cpl_self_porosity removes the particle.s unfiltered kernel dip, which -cpl_filter_width 2. changes' -cpl_self_porosity -cpl_filter_width 2
 check bad_drag_name 'Unknown option stokes for -cpl_drag. Available options: beetstra difelice gidaspow' -cpl_drag stokes
 check fluid_gravity '-fluid_gravity .* must be 0,0,0 in a coupled run' -fluid_gravity 0,0,-1
 check misspelled_option 'option -cpl_substep 3 was given but nothing reads it' -cpl_substep 3
