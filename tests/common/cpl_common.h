@@ -68,6 +68,26 @@ static inline PetscErrorCode TestCplDestroy(TestCpl *t)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Particle + fluid + owed momentum P (the conserved total), |fluid momentum| (pf_norm, may be
+ * NULL) and sum |m v| over all particles (the scale of P's changes); one mass per shape. */
+static inline PetscErrorCode TestCplMomentum(TestCpl *t, PetscReal P[3], PetscReal *pf_norm, PetscReal *scale)
+{
+  PetscReal pp[3], pf[3], ow[3], s = 0, m;
+  DemArrays pa;
+
+  PetscFunctionBeginUser;
+  PetscCall(CplGetMomentum(t->cpl, pp, pf, ow));
+  for (int k = 0; k < 3; k++) P[k] = pp[k] + pf[k] + ow[k];
+  if (pf_norm) *pf_norm = PetscSqrtReal(pf[0] * pf[0] + pf[1] * pf[1] + pf[2] * pf[2]);
+  PetscCall(DemGetArrays(t->dem, &pa));
+  for (PetscInt p = 0; p < pa.nlocal; p++) {
+    PetscCall(DemGetShape(t->dem, pa.shape[p], NULL, &m));
+    s += m * PetscSqrtReal(pa.v[3 * p] * pa.v[3 * p] + pa.v[3 * p + 1] * pa.v[3 * p + 1] + pa.v[3 * p + 2] * pa.v[3 * p + 2]);
+  }
+  PetscCall(MPIU_Allreduce(&s, scale, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static inline PetscErrorCode TestCplRun(TestCpl *t, PetscInt nsteps, CplStats *st)
 {
   PetscFunctionBeginUser;

@@ -24,25 +24,6 @@
 /* ranks: 1 2 4 */
 #include "cpl_common.h"
 
-static PetscErrorCode Total(TestCpl *t, PetscReal P[3], PetscReal *pf_norm, PetscReal *scale)
-{
-  PetscReal pp[3], pf[3], ow[3];
-  DemArrays pa;
-  PetscReal s = 0, m;
-
-  PetscFunctionBeginUser;
-  PetscCall(CplGetMomentum(t->cpl, pp, pf, ow));
-  for (int k = 0; k < 3; k++) P[k] = pp[k] + pf[k] + ow[k];
-  *pf_norm = PetscSqrtReal(pf[0] * pf[0] + pf[1] * pf[1] + pf[2] * pf[2]);
-  PetscCall(DemGetArrays(t->dem, &pa));
-  for (PetscInt p = 0; p < pa.nlocal; p++) {
-    PetscCall(DemGetShape(t->dem, pa.shape[p], NULL, &m));
-    s += m * PetscSqrtReal(pa.v[3 * p] * pa.v[3 * p] + pa.v[3 * p + 1] * pa.v[3 * p + 1] + pa.v[3 * p + 2] * pa.v[3 * p + 2]);
-  }
-  PetscCall(MPIU_Allreduce(&s, scale, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* Largest component of the owed momentum and of P_p + P_f - P0. */
 static PetscErrorCode Transit(TestCpl *t, const PetscReal P0[3], PetscReal *owed, PetscReal *gap)
 {
@@ -67,9 +48,9 @@ static PetscErrorCode SelfCorrected(PetscReal s_plain)
 
   PetscFunctionBeginUser;
   PetscCall(TestCplCreateScene("test_conserve.opts", "-cpl_self_porosity -cpl_self_velocity -cpl_self_fade 0", NULL, &t));
-  PetscCall(Total(&t, P0, &pf, &s0));
+  PetscCall(TestCplMomentum(&t, P0, &pf, &s0));
   PetscCall(TestCplRun(&t, 40, &st));
-  PetscCall(Total(&t, P1, &pf, &s1));
+  PetscCall(TestCplMomentum(&t, P1, &pf, &s1));
   for (int k = 0; k < 3; k++) err = PetscMax(err, PetscAbsReal(P1[k] - P0[k]) / s0);
   PetscCall(CheckBelow("self corrections on: particle + fluid + owed momentum over 40 steps: max change / sum|m v|", err, 1e-10));
   CheckDetail("bound 1e-3 sum|m v|(0); with %.6g, without %.6g", (double)s1, (double)s_plain);
@@ -87,7 +68,7 @@ static PetscErrorCode OwedDecays(void)
 
   PetscFunctionBeginUser;
   PetscCall(TestCplCreateScene("test_conserve.opts", NULL, NULL, &t));
-  PetscCall(Total(&t, P0, &pn, &s0));
+  PetscCall(TestCplMomentum(&t, P0, &pn, &s0));
   PetscCall(CplGetMomentum(t.cpl, pp, pf, ow));
   for (int k = 0; k < 3; k++) P0[k] = pp[k] + pf[k];
   PetscCall(TestCplRun(&t, 1, &st));
@@ -109,10 +90,10 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(TestCplCreateScene("test_conserve.opts", NULL, NULL, &t));
   PetscCall(CplGetSolidVolume(t.cpl, &g0, &p0));
-  PetscCall(Total(&t, P0, &pf0, &s0));
+  PetscCall(TestCplMomentum(&t, P0, &pf0, &s0));
   PetscCall(TestCplRun(&t, 40, &st));
   PetscCall(CplGetSolidVolume(t.cpl, &g1, &p1));
-  PetscCall(Total(&t, P1, &pf1, &s1));
+  PetscCall(TestCplMomentum(&t, P1, &pf1, &s1));
   for (int k = 0; k < 3; k++) err = PetscMax(err, PetscAbsReal(P1[k] - P0[k]) / s0);
   PetscCall(CheckClose("solid volume on the grid vs the particles', at the start", g0, p0, 1e-12));
   PetscCall(CheckClose("solid volume on the grid vs the particles', after 40 steps", g1, p1, 1e-12));
@@ -128,10 +109,10 @@ int main(int argc, char **argv)
     PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_conserve.opts", "-dem_shape cube -dem_shape_size 0.9 -dem_lattice_random_orientation"));
     PetscCall(PetscOptionsClearValue(NULL, "-dem_radius")); /* the cubes replace the spheres' radius */
     PetscCall(TestCplBuild(NULL, &t));
-    PetscCall(Total(&t, P0, &pf0, &s0));
+    PetscCall(TestCplMomentum(&t, P0, &pf0, &s0));
     PetscCall(TestCplRun(&t, 20, &st));
     PetscCall(CplGetSolidVolume(t.cpl, &g1, &p1));
-    PetscCall(Total(&t, P1, &pf1, &s1));
+    PetscCall(TestCplMomentum(&t, P1, &pf1, &s1));
     err = 0;
     for (int k = 0; k < 3; k++) err = PetscMax(err, PetscAbsReal(P1[k] - P0[k]) / s0);
     PetscCall(CheckClose("cubes: solid volume on the grid vs the particles'", g1, p1, 1e-12));
