@@ -3,7 +3,8 @@
  * back as the next step's source) and the clock and counters (cpl/state: time, step, porosity
  * cells clipped so far, the solid volume of the last projection, the initial smallest porosity
  * of the pre-flight figures) and, with -cpl_filter_width, the mean diameter the filter's width
- * was set from (cpl/filter_diameter: the particles of the restart are not those of the start). Everything else a step uses is computed afresh from the particles
+ * was set from (cpl/filter_diameter: the particles of the restart are not those of the start), and
+ * with -cpl_porosity_width likewise its mean diameter (cpl/porosity_diameter). Everything else a step uses is computed afresh from the particles
  * at its start (the drag at the particles, the cached kernel stencils, the face fields); the
  * per-particle drag arrays live in the DEM and are its checkpoint's (dem/ext_..., external.c). */
 #include "coupling/coupling_impl.h"
@@ -18,6 +19,7 @@ PetscErrorCode CplCheckpointWrite(Cpl cpl, IoCkpt ck)
   PetscCall(FluidCheckpointWriteVec(ck, "cpl/owed", cpl->owed));
   PetscCall(IoCkptWriteShared(ck, "cpl/state", IO_CKPT_REAL, CPL_CKPT_NSTATE, s));
   if (cpl->filter_n > 0) PetscCall(IoCkptWriteShared(ck, "cpl/filter_diameter", IO_CKPT_REAL, 1, &cpl->filter_d));
+  if (cpl->pw_width > 0) PetscCall(IoCkptWriteShared(ck, "cpl/porosity_diameter", IO_CKPT_REAL, 1, &cpl->pw_d));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -41,6 +43,14 @@ PetscErrorCode CplCheckpointRead(Cpl cpl, IoCkpt ck)
     PetscCheck(has, cpl->comm, PETSC_ERR_FILE_UNEXPECTED, "-cpl_filter_width %g: the checkpoint was written without the filter; restart without -cpl_filter_width", (double)cpl->filter_width);
     PetscCall(IoCkptReadShared(ck, "cpl/filter_diameter", IO_CKPT_REAL, 1, &d));
     PetscCall(CplFilterSetUp(cpl, d));
+  }
+  if (cpl->pw_width > 0) { /* the same for the drag's porosity width */
+    PetscBool has;
+    PetscReal d;
+    PetscCall(IoCkptHas(ck, "cpl/porosity_diameter", &has));
+    PetscCheck(has, cpl->comm, PETSC_ERR_FILE_UNEXPECTED, "-cpl_porosity_width %g: the checkpoint was written without it; restart without -cpl_porosity_width", (double)cpl->pw_width);
+    PetscCall(IoCkptReadShared(ck, "cpl/porosity_diameter", IO_CKPT_REAL, 1, &d));
+    PetscCall(CplSmoothSetUp(cpl, d));
   }
   CplInvalidateStencils(cpl);
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -25,7 +25,7 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
 {
   static PetscBool     done = PETSC_FALSE;
   static PetscClassId  cid;
-  static PetscLogEvent ev[5];
+  static PetscLogEvent ev[6];
   Cpl                  c;
 
   PetscFunctionBeginUser;
@@ -36,6 +36,7 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
     PetscCall(PetscLogEventRegister("CplExchange", cid, &ev[2]));
     PetscCall(PetscLogEventRegister("CplDemSubsteps", cid, &ev[3]));
     PetscCall(PetscLogEventRegister("CplFilter", cid, &ev[4]));
+    PetscCall(PetscLogEventRegister("CplSmooth", cid, &ev[5]));
     done = PETSC_TRUE;
   }
   PetscCall(PetscNew(&c));
@@ -56,6 +57,7 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   c->ev_exchange = ev[2];
   c->ev_dem      = ev[3];
   c->ev_filter   = ev[4];
+  c->ev_smooth   = ev[5];
   *cpl           = c;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -99,6 +101,7 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(SableOptionsInt("-cpl_substeps", "DEM steps per fluid step; the fluid step is this times -dem_dt", NULL, "[1,inf)", cpl->substeps, &cpl->substeps, &cpl->substeps_set));
   PetscCall(SableOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d", NULL, "(0,inf)", cpl->kscale, &cpl->kscale, NULL));
   PetscCall(SableOptionsReal("-cpl_filter_width", "Diffusion filter of the solid fraction and the drag fields: Gaussian full width at half maximum, in mean particle diameters (0: off)", NULL, "[0,inf)", cpl->filter_width, &cpl->filter_width, NULL));
+  PetscCall(SableOptionsReal("-cpl_porosity_width", "The drag law's porosity at each particle: the particles' volumes smoothed by a Gaussian of this full width at half maximum, in mean particle diameters, on a grid finer than the fluid's, with the superficial velocity over it (0: the kernel's cell porosity and the cell's velocity)", NULL, "[0,inf)", cpl->pw_width, &cpl->pw_width, NULL));
   PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->eps_floor, &cpl->eps_floor, NULL));
   PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->relax_max, &cpl->relax_max, NULL));
   PetscCall(PetscOptionsBool("-cpl_self_porosity", "The drag law sees the porosity of the other particles: the particle's own kernel dip is removed", NULL, cpl->self_eps, &cpl->self_eps, NULL));
@@ -107,6 +110,8 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(PetscOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", NULL, remove, &remove, NULL));
   PetscOptionsEnd();
   PetscCheck(!(cpl->self_eps && cpl->filter_width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_self_porosity removes the particle's unfiltered kernel dip, which -cpl_filter_width %g changes: use one of the two (the filtered dip is not implemented)", (double)cpl->filter_width);
+  PetscCheck(!(cpl->pw_width > 0 && cpl->filter_width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_filter_width %g: both smooth over a width in diameters (the drag's porosity, the spread fields); use one of the two", (double)cpl->pw_width, (double)cpl->filter_width);
+  PetscCheck(!(cpl->pw_width > 0 && cpl->mode == CPL_MODE_ONEWAY), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_mode oneway: a one-way run's drag sees porosity 1; drop one of them", (double)cpl->pw_width);
   PetscCall(CplOutletFaces(cpl, remove));
   PetscCall(FluidGetDensity(cpl->fl, &cpl->rho));
   PetscCall(FluidGetViscosity(cpl->fl, &cpl->mu));
@@ -149,6 +154,7 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscCall(DemSetExternal(cpl->dem, PETSC_TRUE));
   PetscCall(CplSetUpShapes(cpl));
   PetscCall(CplFilterSetUp(cpl, 0));
+  PetscCall(CplSmoothSetUp(cpl, 0));
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
   PetscCall(FluidGetTimeStep(cpl->fl, &dtf, &fset));
   /* a frozen bed takes no DEM steps: the coupling step is the fluid's */
@@ -204,6 +210,7 @@ PetscErrorCode CplRedistribute(Cpl cpl)
     PetscCall(DMCreateLocalVector(cpl->fda, &cpl->floc[s]));
   }
   PetscCall(DemRedistribute(cpl->dem));
+  PetscCall(CplSmoothDestroyGrid(cpl));
   CplInvalidateStencils(cpl);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -213,6 +220,7 @@ PetscErrorCode CplView(Cpl cpl, PetscViewer viewer)
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->law], (int)cpl->substeps, (double)(cpl->adaptive ? (cpl->frozen ? cpl->dtf : cpl->substeps * cpl->dtd) : cpl->dt), (double)cpl->kscale, (double)cpl->eps_floor, cpl->frozen ? ", frozen bed (no DEM steps)" : ""));
   if (cpl->filter_n > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: diffusion filter -cpl_filter_width %g x mean diameter %g m: Gaussian sigma %g m, %d sweeps per field\n", (double)cpl->filter_width, (double)cpl->filter_d, (double)PetscSqrtReal(cpl->filter_var), (int)cpl->filter_n));
+  if (cpl->pw_width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: the drag's porosity -cpl_porosity_width %g x mean diameter %g m: Gaussian sigma %g m on a grid %d x %d x %d times finer than the fluid's\n", (double)cpl->pw_width, (double)cpl->pw_d, (double)cpl->pw_sigma, (int)cpl->pw_n[0], (int)cpl->pw_n[1], (int)cpl->pw_n[2]));
   if (cpl->mode == CPL_MODE_ONEWAY) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: one-way (-cpl_mode oneway): the fluid acts on the particles only; the fluid is single phase (porosity 1, no drag reaction)\n"));
   if (cpl->adaptive && cpl->frozen) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): at most -fluid_dt %g s, within 0.9 of the fluid's stability limit\n", (double)cpl->dtf));
   else if (cpl->adaptive) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): 1 to %d DEM steps of %g s per fluid step, within 0.9 of the fluid's stability limit\n", (int)cpl->substeps, (double)cpl->dtd));
@@ -234,6 +242,7 @@ PetscErrorCode CplDestroy(Cpl *cpl)
   PetscCall(PetscFree4((*cpl)->side, (*cpl)->vol, (*cpl)->diam, (*cpl)->mass));
   PetscCall(PetscFree((*cpl)->stc));
   PetscCall(CplSelfTableDestroy(*cpl));
+  PetscCall(CplSmoothDestroy(*cpl));
   PetscCall(PetscFree(*cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -58,6 +58,17 @@ struct _p_Cpl {
   PetscReal filter_d;      /* the mean diameter it uses (m) */
   PetscReal filter_lam[3]; /* diffusion number of one sweep per axis, <= 1/6 */
   PetscInt  filter_n;      /* sweeps per filtered field; 0: off */
+  /* the drag's porosity on a length in diameters (smooth.c) */
+  PetscReal     pw_width;   /* -cpl_porosity_width: full width at half maximum in mean diameters; 0: off */
+  PetscReal     pw_d;       /* the mean diameter it uses (m) */
+  PetscReal     pw_sigma;   /* the smoothing's standard deviation per axis (m) */
+  PetscInt      pw_n[3];    /* auxiliary cells per fluid cell along each axis */
+  PetscReal     pw_h[3];    /* auxiliary spacing (m) */
+  int           pw_half[3]; /* the 1-D kernels' half widths (nodes) */
+  double       *pw_k[3];    /* the 1-D kernels, 2 half + 1 weights summing to one */
+  DM            ada;        /* the auxiliary grid; NULL until used and after a redistribution */
+  Vec           aloc, aglob;
+  PetscLogEvent ev_smooth;
 };
 
 /* Whether face point idx, component d, is shared by two cells: not on the boundary of a
@@ -100,13 +111,21 @@ PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal
 PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st);
 PetscErrorCode CplAdmitNewParticles(Cpl cpl);
 void           CplInvalidateStencils(Cpl cpl);
-PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscReal *self);
+PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscReal *self, PetscReal *usup);
+PetscErrorCode CplFacePorosityScale(Cpl cpl, Vec beta);
 typedef struct {
   const PetscReal *val; /* 3 per local particle, or 1 if scalar */
   PetscBool        scalar;
   Vec              out; /* global face Vec */
 } CplSpread;
 PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[]);
+/* smooth.c: the drag's porosity on a length in diameters (-cpl_porosity_width) */
+PetscErrorCode CplSmoothSetUp(Cpl cpl, PetscReal dmean);
+PetscErrorCode CplSmoothProject(Cpl cpl);
+PetscErrorCode CplSmoothAt(Cpl cpl, PetscInt n, PetscReal *phi, PetscReal *own);
+PetscErrorCode CplSmoothSeen(Cpl cpl, PetscInt n, PetscReal *eps, PetscReal *fade);
+PetscErrorCode CplSmoothDestroyGrid(Cpl cpl);
+PetscErrorCode CplSmoothDestroy(Cpl cpl);
 /* filter.c */
 PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean);
 PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces);

@@ -42,8 +42,9 @@ PetscErrorCode CplSetFluidDrag(Cpl cpl)
   DemArrays          pa;
   DemExternal        ex;
   Vec                beta, us, src;
-  PetscReal         *kv;
+  PetscReal         *kv, *ka, *kb, *fd;
   PetscScalar       *u;
+  const PetscBool    smooth = (PetscBool)(cpl->pw_width > 0);
   const PetscScalar *b, *m;
   PetscInt           n;
 
@@ -53,13 +54,31 @@ PetscErrorCode CplSetFluidDrag(Cpl cpl)
   PetscCall(FluidGetDragCoefficient(cpl->fl, &beta));
   PetscCall(FluidGetSolidVelocity(cpl->fl, &us));
   PetscCall(FluidGetMomentumSource(cpl->fl, &src));
-  PetscCall(PetscMalloc1(3 * pa.nlocal + 1, &kv));
+  PetscCall(PetscMalloc4(3 * pa.nlocal + 1, &kv, pa.nlocal + 1, &ka, pa.nlocal + 1, &kb, pa.nlocal + 1, &fd));
   for (PetscInt p = 0; p < 3 * pa.nlocal; p++) kv[p] = ex.k[p / 3] * pa.v[p];
+  if (smooth) { /* smooth.c: the particles' force on the fluid, beta_f = sum (K f W + eps_f K (1 - f) / eps_p W) / V_cell */
+    PetscCall(CplSmoothSeen(cpl, pa.nlocal, kb, fd));
+    for (PetscInt p = 0; p < pa.nlocal; p++) {
+      ka[p] = ex.k[p] * fd[p];
+      kb[p] = ex.k[p] * (1 - fd[p]) / kb[p];
+    }
+  }
   {
-    const CplSpread sp[3] = {{ex.k, PETSC_TRUE, beta}, {kv, PETSC_FALSE, cpl->kv}, {ex.j, PETSC_FALSE, cpl->jf}};
+    const CplSpread sp[3] = {{smooth ? ka : ex.k, PETSC_TRUE, beta}, {kv, PETSC_FALSE, cpl->kv}, {ex.j, PETSC_FALSE, cpl->jf}};
     PetscCall(CplSpreadFaces(cpl, cpl->correct ? 3 : 2, sp));
   }
-  PetscCall(PetscFree(kv));
+  if (smooth) {
+    Vec bb;
+    PetscCall(DMGetGlobalVector(cpl->fda, &bb));
+    {
+      const CplSpread one = {kb, PETSC_TRUE, bb};
+      PetscCall(CplSpreadFaces(cpl, 1, &one));
+    }
+    PetscCall(CplFacePorosityScale(cpl, bb));
+    PetscCall(VecAXPY(beta, 1.0, bb));
+    PetscCall(DMRestoreGlobalVector(cpl->fda, &bb));
+  }
+  PetscCall(PetscFree4(kv, ka, kb, fd));
   PetscCall(VecGetLocalSize(us, &n));
   PetscCall(VecGetArrayRead(beta, &b));
   PetscCall(VecGetArrayRead(cpl->kv, &m));

@@ -116,6 +116,20 @@ static inline PetscInt cpl_off(const CplBox *b, PetscInt i, PetscInt j, PetscInt
   return ((k - b->gs[2]) * b->gm[1] + (j - b->gs[1])) * b->gm[0] + (i - b->gs[0]);
 }
 
+/* The porosity of face (i, j, k) of component d as the fluid takes it, the mean of the two cells
+ * it separates (ea: the ghosted cell porosity, box b); on a non-periodic boundary plane, and at
+ * the rank's outermost ghost layer, the one cell there is. */
+static inline double cpl_face_porosity(const Domain *dom, const CplBox *b, const PetscScalar *ea, int d, PetscInt i, PetscInt j, PetscInt k)
+{
+  const PetscInt f[3] = {i, j, k};
+  PetscInt       hi[3], lo[3];
+  for (int e = 0; e < 3; e++) hi[e] = lo[e] = dom->periodic[e] ? f[e] : PetscMin(f[e], dom->cells[e] - 1);
+  if (dom->periodic[d] || (f[d] > 0 && f[d] < dom->cells[d])) lo[d] = f[d] - 1; /* face f separates cells f - 1 and f */
+  if (lo[d] < b->gs[d]) lo[d] = hi[d];
+  if (hi[d] >= b->gs[d] + b->gm[d]) hi[d] = lo[d];
+  return 0.5 * (ea[cpl_off(b, hi[0], hi[1], hi[2])] + ea[cpl_off(b, lo[0], lo[1], lo[2])]);
+}
+
 /* The axis-d-component view of a stencil: faces along d, cells along the others. */
 static void cpl_component(const CplStencil *s, int d, PetscInt first[3], int n[3], const double *w[3])
 {
@@ -336,7 +350,7 @@ PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
 PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps)
 {
   PetscFunctionBeginUser;
-  PetscCall(CplInterpolateSelf(cpl, u, eps, NULL));
+  PetscCall(CplInterpolateSelf(cpl, u, eps, NULL, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -344,7 +358,7 @@ PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps)
  * porosity dip it sees, V_p sum_c W_pc^2 / V_cell (separable: the product over the axes of the
  * sums of the squared 1-D weights), so eps + self is the porosity of the other particles (but
  * for the floor). */
-PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscReal *self)
+PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscReal *self, PetscReal *usup)
 {
   DemArrays          pa;
   CplBox             bf, bc;
@@ -383,14 +397,48 @@ PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscRe
       int           n[3];
       const double *w[3];
       cpl_component(st1, d, first, n, w);
-      s = 0;
+      double q = 0;
+      s        = 0;
       for (int k = 0; k < n[2]; k++)
         for (int j = 0; j < n[1]; j++)
-          for (int i = 0; i < n[0]; i++) s += w[2][k] * w[1][j] * w[0][i] * ua[3 * cpl_off(&bf, first[0] + i, first[1] + j, first[2] + k) + d];
+          for (int i = 0; i < n[0]; i++) {
+            const PetscInt f = first[0] + i, g = first[1] + j, h = first[2] + k;
+            const double   a = w[2][k] * w[1][j] * w[0][i] * ua[3 * cpl_off(&bf, f, g, h) + d];
+            s += a;
+            if (usup) q += a * cpl_face_porosity(cpl->dom, &bc, ea, d, f, g, h);
+          }
       u[3 * p + d] = s;
+      if (usup) usup[3 * p + d] = q;
     }
   }
   PetscCall(VecRestoreArrayRead(cpl->cloc, &ea));
   PetscCall(VecRestoreArrayRead(uloc, &ua));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. beta (a global face Vec) times the face porosity the fluid uses (the fluid's
+ * current cell porosity, cpl_face_porosity), at every owned face. */
+PetscErrorCode CplFacePorosityScale(Cpl cpl, Vec beta)
+{
+  CplBox             bc;
+  Vec                e;
+  PetscScalar       *b;
+  const PetscScalar *ea;
+  PetscInt           xs[3], xm[3], idx[3], c = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(CplBoxOf(cpl->cda, &bc));
+  PetscCall(FluidGetPorosity(cpl->fl, &e));
+  PetscCall(DMGlobalToLocal(cpl->cda, e, INSERT_VALUES, cpl->cloc));
+  PetscCall(DMDAGetCorners(cpl->fda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArrayRead(cpl->cloc, &ea));
+  PetscCall(VecGetArray(beta, &b));
+  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
+    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
+      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c += 3)
+        for (int d = 0; d < 3; d++)
+          if (b[c + d] != 0) b[c + d] *= cpl_face_porosity(cpl->dom, &bc, ea, d, idx[0], idx[1], idx[2]);
+  PetscCall(VecRestoreArray(beta, &b));
+  PetscCall(VecRestoreArrayRead(cpl->cloc, &ea));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -139,20 +139,28 @@ PetscErrorCode CplSelfTableDestroy(Cpl cpl)
 PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps, PetscReal *fade)
 {
   const PetscBool oneway = (PetscBool)(cpl->mode == CPL_MODE_ONEWAY), any = (PetscBool)(!oneway && (cpl->self_eps || cpl->self_u));
-  PetscReal      *self = NULL;
+  const PetscBool smooth = (PetscBool)(!oneway && cpl->pw_width > 0);
+  PetscReal      *self = NULL, *usup = NULL;
 
   PetscFunctionBeginUser;
-  if (any) PetscCall(PetscMalloc1(n + 1, &self));
-  PetscCall(CplInterpolateSelf(cpl, u, eps, self));
+  if (any && !smooth) PetscCall(PetscMalloc1(n + 1, &self));
+  if (smooth) PetscCall(PetscMalloc1(3 * n + 1, &usup));
+  PetscCall(CplInterpolateSelf(cpl, u, eps, self, usup));
   for (PetscInt p = 0; p < n; p++) fade[p] = any ? 1 : 0;
   if (oneway) /* single phase: exactly 1, not the kernel sum's 1 +- roundoff (Beetstra's sqrt(1 - eps)) */
     for (PetscInt p = 0; p < n; p++) eps[p] = 1;
-  else if (any)
+  else if (smooth) { /* smooth.c: the porosity on the particle's scale; the superficial flux over it
+                        in a bed, the cell's velocity for a lone particle (the self corrections') */
+    PetscCall(CplSmoothProject(cpl));
+    PetscCall(CplSmoothSeen(cpl, n, eps, fade));
+    for (PetscInt p = 0; p < 3 * n; p++) u[p] = fade[p / 3] * u[p] + (1 - fade[p / 3]) * usup[p] / eps[p / 3];
+  } else if (any)
     for (PetscInt p = 0; p < n; p++) {
       if (cpl->self_fade > 0) fade[p] = PetscMax(0, 1 - (1 - eps[p] - self[p]) / cpl->self_fade);
       if (cpl->self_eps && fade[p] > 0) eps[p] = PetscMin(1, eps[p] + fade[p] * self[p]);
     }
   PetscCall(PetscFree(self));
+  PetscCall(PetscFree(usup));
   if (!oneway && cpl->self_u && n > 0) {
     int nm = 2;
     for (PetscInt p = 0; p < n; p++)

@@ -28,6 +28,10 @@ check porosity_floor '-cpl_porosity_floor 1.5 must be in \(0,1\)' -cpl_porosity_
 check substeps '-cpl_substeps 0 must be >= 1' -cpl_substeps 0
 check filter_sweeps '-cpl_filter_width 200. .* takes 5411 diffusion sweeps .* the limit is 100' -cpl_filter_width 200
 check self_porosity_filter '-cpl_self_porosity removes the particle.s unfiltered kernel dip, which -cpl_filter_width 2. changes' -cpl_self_porosity -cpl_filter_width 2
+check porosity_width_filter '-cpl_porosity_width 3.5 with -cpl_filter_width 2.: both smooth over a width in diameters' -cpl_porosity_width 3.5 -cpl_filter_width 2
+check porosity_width_oneway '-cpl_porosity_width 3.5 with -cpl_mode oneway: a one-way run.s drag sees porosity 1' -cpl_porosity_width 3.5 -cpl_mode oneway
+check porosity_width_negative '-cpl_porosity_width -1.? must be >= 0' -cpl_porosity_width -1
+check porosity_width_too_wide '-cpl_porosity_width 40.? .* reaches .* beyond the domain.s length' -cpl_porosity_width 40
 check bad_drag_name 'Unknown option stokes for -cpl_drag. Available options: beetstra difelice gidaspow' -cpl_drag stokes
 check fluid_gravity '-fluid_gravity .* must be 0,0,0 in a coupled run' -fluid_gravity 0,0,-1
 check misspelled_option 'option -cpl_substep 3 was given but nothing reads it' -cpl_substep 3

@@ -17,7 +17,9 @@
  *  4. checks 1-2 with cubes (edge 0.9 d, random orientations): the kernel takes the true volume;
  *  5. check 2 with the self corrections on everywhere (-cpl_self_porosity -cpl_self_velocity,
  *     no fade): the drag coefficient changes (the particles keep more momentum than without,
- *     by more than 1e-3 of sum |m v|: the correction acts) and the exchange stays exact.
+ *     by more than 1e-3 of sum |m v|: the correction acts) and the exchange stays exact;
+ *  6. the same with the drag's porosity smoothed over 2 d (-cpl_porosity_width 2: the drag sees
+ *     the superficial velocity over that porosity, the fluid's face coefficient follows).
  * The Poisson solve of a fully periodic box is singular; hypre's default Gaussian elimination on the
  * coarsest level then fails now and then on 2 ranks (a fluid-side limitation, reported), so this
  * test relaxes the coarsest level instead. The scene: test_conserve.opts. */
@@ -39,22 +41,22 @@ static PetscErrorCode Transit(TestCpl *t, const PetscReal P0[3], PetscReal *owed
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Check 5: s_plain is sum |m v| after 40 steps without the corrections. */
-static PetscErrorCode SelfCorrected(PetscReal s_plain)
+/* Checks 5 and 6: the extra options (what) on; s_plain is sum |m v| after 40 steps without them. */
+static PetscErrorCode Corrected(const char *what, const char *extra, PetscReal s_plain)
 {
   TestCpl   t;
   CplStats  st;
   PetscReal P0[3], P1[3], pf, s0, s1, err = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(TestCplCreateScene("test_conserve.opts", "-cpl_self_porosity -cpl_self_velocity -cpl_self_fade 0", NULL, &t));
+  PetscCall(TestCplCreateScene("test_conserve.opts", extra, NULL, &t));
   PetscCall(TestCplMomentum(&t, P0, &pf, &s0));
   PetscCall(TestCplRun(&t, 40, &st));
   PetscCall(TestCplMomentum(&t, P1, &pf, &s1));
   for (int k = 0; k < 3; k++) err = PetscMax(err, PetscAbsReal(P1[k] - P0[k]) / s0);
-  PetscCall(CheckBelow("self corrections on: particle + fluid + owed momentum over 40 steps: max change / sum|m v|", err, 1e-10));
+  PetscCall(CheckBelow(CheckName("%s on: particle + fluid + owed momentum over 40 steps: max change / sum|m v|", what), err, 1e-10));
   CheckDetail("bound 1e-3 sum|m v|(0); with %.6g, without %.6g", (double)s1, (double)s_plain);
-  PetscCall(CheckAbove("self corrections on: they act, |sum|m v| - uncorrected| after 40 steps", PetscAbsReal(s1 - s_plain), 1e-3 * s0));
+  PetscCall(CheckAbove(CheckName("%s on: they act, |sum|m v| - without| after 40 steps", what), PetscAbsReal(s1 - s_plain), 1e-3 * s0));
   PetscCall(TestCplDestroy(&t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -103,7 +105,8 @@ int main(int argc, char **argv)
   PetscCall(CheckAbove("momentum went to the fluid: |P_fluid| after 40 steps", pf1, 1e-2 * s0));
   PetscCall(CheckBelow("the particles slowed: sum|m v| after 40 steps (bound: at the start)", s1, s0));
   PetscCall(TestCplDestroy(&t));
-  PetscCall(SelfCorrected(s1));
+  PetscCall(Corrected("self corrections", "-cpl_self_porosity -cpl_self_velocity -cpl_self_fade 0", s1));
+  PetscCall(Corrected("-cpl_porosity_width 2", "-cpl_porosity_width 2", s1));
   PetscCall(OwedDecays());
   {
     PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_conserve.opts", "-dem_shape cube -dem_shape_size 0.9 -dem_lattice_random_orientation"));
