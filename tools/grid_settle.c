@@ -14,7 +14,8 @@
  * disturbance's diffusion or advection over the kernel's reach); the slip is averaged over the
  * last fifth (drift: its change over that fifth). Runs on any number of ranks (the particle is
  * read and held on the rank that owns it). All -cpl_ options pass through (the law:
- * -cpl_drag). Prints one line "result: key=value ...". */
+ * -cpl_drag). Prints one line "result: key=value ..." (self_capped: the particle-steps whose
+ * -cpl_self_velocity correction hit its cap). */
 #include "coupling/coupling.h"
 #include "dem/dem.h"
 
@@ -65,7 +66,7 @@ int main(int argc, char **argv)
   Cpl        cpl;
   CplStats   st;
   PetscReal *hist, drift, zmin = 1e300, zmax = -1e300;
-  PetscInt   n = 0, nx, nz;
+  PetscInt   n = 0, nx, nz, capped;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "grid settling study", NULL);
@@ -123,7 +124,8 @@ int main(int argc, char **argv)
   }
   for (PetscInt k = 4 * n / 5; k < n; k++) slip += hist[k] / (n - 4 * n / 5);
   drift = (hist[n - 1] - hist[4 * n / 5]) / ut;
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "result: law=%s re=%g cell=%g width=%g height=%g below=%g off=%g,%g,%g hold=%d init=%s mu=%.5g ut=%.6g slip=%.6g err=%+.3f%% steps=%d t=%.4g tau=%.4g drift=%+.2e z=%.3g..%.3g\n", law, (double)re, (double)h, (double)(nx * h), (double)(nz * h), (double)below, (double)off[0], (double)off[1], (double)off[2], (int)hold, init, (double)mu, (double)ut, (double)slip, (double)(100 * (slip / ut - 1)), (int)n, (double)(n * dt), (double)tau, (double)drift, (double)zmin, (double)zmax));
+  PetscCall(CplGetSelfCappedCount(cpl, &capped));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "result: law=%s re=%g cell=%g width=%g height=%g below=%g off=%g,%g,%g hold=%d init=%s mu=%.5g ut=%.6g slip=%.6g err=%+.3f%% steps=%d t=%.4g tau=%.4g drift=%+.2e z=%.3g..%.3g self_capped=%d\n", law, (double)re, (double)h, (double)(nx * h), (double)(nz * h), (double)below, (double)off[0], (double)off[1], (double)off[2], (int)hold, init, (double)mu, (double)ut, (double)slip, (double)(100 * (slip / ut - 1)), (int)n, (double)(n * dt), (double)tau, (double)drift, (double)zmin, (double)zmax, (int)capped));
   PetscCall(PetscFree(hist));
   PetscCall(CplDestroy(&cpl));
   PetscCall(FluidDestroy(&fl));

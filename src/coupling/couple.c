@@ -276,6 +276,13 @@ PetscErrorCode CplGetClippedCount(Cpl cpl, PetscInt *count)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CplGetSelfCappedCount(Cpl cpl, PetscInt *count)
+{
+  PetscFunctionBeginUser;
+  *count = cpl->self_capped_total;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CplGetStepQuantum(Cpl cpl, PetscReal *dq)
 {
   PetscFunctionBeginUser;

@@ -93,6 +93,9 @@ PetscErrorCode CplGetMode(Cpl cpl, CplMode *mode);
 PetscErrorCode CplGetSubsteps(Cpl cpl, PetscInt *substeps);
 /* Cell-steps whose porosity was raised to -cpl_porosity_floor since set-up (same on every rank). */
 PetscErrorCode CplGetClippedCount(Cpl cpl, PetscInt *count);
+/* Particle-steps whose -cpl_self_velocity correction reached its cap (G K >= 0.9: the kernel is
+ * hydrodynamically smaller than the particle) since set-up or restart (same on every rank). */
+PetscErrorCode CplGetSelfCappedCount(Cpl cpl, PetscInt *count);
 /* Collective. The particles' weight less their buoyancy, sum of (m - rho_f V) g (N). */
 PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3]);
 /* The run's drag law's packed-bed pressure gradient (Pa/m) at porosity eps and superficial

@@ -44,6 +44,7 @@ struct _p_Cpl {
   PetscReal      dt, t, cell_vol, eps_min0;
   PetscInt       step;
   PetscInt       clipped_total;
+  PetscInt       self_capped_total;         /* particle-steps whose self correction hit its cap (not in checkpoints) */
   PetscReal      solid_grid;                /* last projection, before the floor */
   Vec            cloc, floc[3];             /* work: cell local, face locals (one per field spread together) */
   Vec            kv, jf, owed;              /* face globals: sum K W v, spread impulse, momentum owed */
@@ -135,7 +136,7 @@ PetscErrorCode CplSetFluidDrag(Cpl cpl);
 /* self.c: the drag sees the fluid without the particle's own disturbance */
 PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps, PetscReal *fade);
 PetscErrorCode CplSelfTableDestroy(Cpl cpl);
-PetscReal      CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const PetscReal u[3], const PetscReal v[3], PetscReal fade);
+PetscReal      CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const PetscReal u[3], const PetscReal v[3], PetscReal fade, PetscBool *capped);
 /* start.c: the fluid's initial state (-cpl_init_fluid) */
 PetscErrorCode CplInitFluidState(Cpl cpl);
 /* preflight.c */

@@ -9,6 +9,7 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
   DemArrays   pa;
   DemExternal ex;
   PetscReal  *eps, *fade;
+  PetscInt    capped[2] = {0, 0};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(cpl->ev_drag, 0, 0, 0, 0));
@@ -21,8 +22,11 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
     PetscReal       w2 = 0;
     for (int k = 0; k < 3; k++) w2 += PetscSqr(ex.u[3 * p + k] - pa.v[3 * p + k]);
     const PetscReal re = cpl->rho * d * eps[p] * PetscSqrtReal(w2) / cpl->mu;
-    if (cpl->self_u && fade[p] > 0) ex.k[p] = CplUndisturbedK(cpl, p, d, eps[p], ex.u + 3 * p, pa.v + 3 * p, fade[p]);
-    else ex.k[p] = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps[p], re);
+    if (cpl->self_u && fade[p] > 0) {
+      PetscBool cap;
+      ex.k[p] = CplUndisturbedK(cpl, p, d, eps[p], ex.u + 3 * p, pa.v + 3 * p, fade[p], &cap);
+      capped[0] += cap;
+    } else ex.k[p] = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps[p], re);
     PetscCheck(PetscIsNormalReal(ex.k[p]), PETSC_COMM_SELF, PETSC_ERR_FP, "particle %" PetscInt_FMT ": drag coefficient %g at porosity %g, Re_p %g is not finite", pa.id[p], (double)ex.k[p], (double)eps[p], (double)re);
     for (int k = 0; k < 3; k++) {
       ex.fext[3 * p + k] = -cpl->rho * vol * cpl->g[k];
@@ -30,6 +34,12 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
     }
   }
   PetscCall(PetscFree2(eps, fade));
+  if (cpl->self_u) { /* a counted warning, printed once: the corrected drag is too low there */
+    PetscCall(MPIU_Allreduce(capped, capped + 1, 1, MPIU_INT, MPI_SUM, cpl->comm));
+    if (capped[1] > 0 && cpl->self_capped_total == 0)
+      PetscCall(PetscPrintf(cpl->comm, "warning: -cpl_self_velocity capped for %" PetscInt_FMT " particle(s): the grid's response to a particle's own drag reaches its slip (G K >= 0.9), the cube kernel is hydrodynamically smaller than the particle on cells of %g m, its drag stays too low; raise -cpl_kernel_scale (now %g; 2 holds a sphere to 2%% on cells of one diameter)\n", capped[1], (double)PetscMin(PetscMin(cpl->dom->h[0], cpl->dom->h[1]), cpl->dom->h[2]), (double)cpl->kscale));
+    cpl->self_capped_total += capped[1];
+  }
   PetscCall(PetscLogEventEnd(cpl->ev_drag, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -227,8 +227,11 @@ static PetscReal CplSelfMean(Cpl cpl, PetscInt p, const PetscReal n2[3], PetscRe
  * is the mean of G_dd over the slip direction (the advection taken along the force's axis),
  * at the slip w (1 - f G_0 K) of the fluid the particle has slowed, G_0 the response at w: the
  * linear response at w leaves +4.5% on 2 d cells at Re 10 (a cell centre), where the particle
- * slows its cell's fluid by a quarter. Not collective. */
-PetscReal CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const PetscReal u[3], const PetscReal v[3], PetscReal fade)
+ * slows its cell's fluid by a quarter. *capped: f G K reached the cap. G K >= 1 means the grid's
+ * response to the particle's own drag, G F, exceeds its whole slip F / K: no coefficient on the
+ * seen slip gives the law (a kernel hydrodynamically smaller than the sphere, e.g. cells of 1 d
+ * with -cpl_kernel_scale 1). Not collective. */
+PetscReal CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const PetscReal u[3], const PetscReal v[3], PetscReal fade, PetscBool *capped)
 {
   PetscReal n2[3], w2 = 0, ws, wt, k = 0, gk = 0;
 
@@ -245,5 +248,6 @@ PetscReal CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const
     if (PetscAbsReal(ws / (1 - gk) - wt) <= 1e-12 * wt) break;
     wt = ws / (1 - gk);
   }
+  *capped = (PetscBool)(gk >= 0.9);
   return k / (1 - gk);
 }
