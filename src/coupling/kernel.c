@@ -397,18 +397,21 @@ PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscRe
       int           n[3];
       const double *w[3];
       cpl_component(st1, d, first, n, w);
-      double q = 0;
-      s        = 0;
+      s = 0;
       for (int k = 0; k < n[2]; k++)
         for (int j = 0; j < n[1]; j++)
-          for (int i = 0; i < n[0]; i++) {
-            const PetscInt f = first[0] + i, g = first[1] + j, h = first[2] + k;
-            const double   a = w[2][k] * w[1][j] * w[0][i] * ua[3 * cpl_off(&bf, f, g, h) + d];
-            s += a;
-            if (usup) q += a * cpl_face_porosity(cpl->dom, &bc, ea, d, f, g, h);
-          }
+          for (int i = 0; i < n[0]; i++) s += w[2][k] * w[1][j] * w[0][i] * ua[3 * cpl_off(&bf, first[0] + i, first[1] + j, first[2] + k) + d];
       u[3 * p + d] = s;
-      if (usup) usup[3 * p + d] = q;
+      if (usup) { /* the superficial velocity: each face's value times its porosity */
+        s = 0;
+        for (int k = 0; k < n[2]; k++)
+          for (int j = 0; j < n[1]; j++)
+            for (int i = 0; i < n[0]; i++) {
+              const PetscInt f = first[0] + i, g = first[1] + j, h = first[2] + k;
+              s += w[2][k] * w[1][j] * w[0][i] * ua[3 * cpl_off(&bf, f, g, h) + d] * cpl_face_porosity(cpl->dom, &bc, ea, d, f, g, h);
+            }
+        usup[3 * p + d] = s;
+      }
     }
   }
   PetscCall(VecRestoreArrayRead(cpl->cloc, &ea));

@@ -220,7 +220,15 @@ PetscErrorCode CplSmoothProject(Cpl cpl)
         id[e1] = i1, id[e2] = i2, id[e] = b.gs[e];
         const PetscInt base = cpl_aoff(&b, id[0], id[1], id[2]);
         const PetscInt ob   = (i1 - xs[e1]) * ost[e1] + (i2 - xs[e2]) * ost[e2];
-        for (PetscInt j = 0; j < xm[e] + 2 * h; j++) line[j] = a[base + (cpl_reflect(cpl, e, xs[e] - h + j) - b.gs[e]) * gst[e]];
+        PetscBool      any  = PETSC_FALSE;
+        for (PetscInt j = 0; j < xm[e] + 2 * h; j++) {
+          line[j] = a[base + (cpl_reflect(cpl, e, xs[e] - h + j) - b.gs[e]) * gst[e]];
+          any     = (PetscBool)(any || line[j] != 0);
+        }
+        if (!any) { /* no solids within reach (the freeboard): nothing to add up */
+          for (PetscInt i = 0; i < xm[e]; i++) g[ob + i * ost[e]] = 0;
+          continue;
+        }
         for (PetscInt i = 0; i < xm[e]; i++) {
           double acc = 0;
           for (int m = 0; m <= 2 * h; m++) acc += kw[m] * line[i + m];
