@@ -1,25 +1,28 @@
 /* The porosity a particle's drag law sees, on a length set in particle diameters instead of the
  * fluid cell (-cpl_porosity_width W, the full width at half maximum of a Gaussian in mean
  * diameters; 0: off, the drag sees the kernel's cell porosity).
- *  - The particles' volumes are put on a fine auxiliary grid (cells of the fluid's cell split in
- *    n_e along each axis, n_e the least giving a spacing a_e <= sigma / 1.5) by linear
- *    (cloud-in-cell) weights, smoothed by a sampled Gaussian in three 1-D passes, and read back
- *    at each particle by the same linear weights. The two linear weights add the variance
- *    a_e^2 / 3, so the sampled Gaussian has sigma_g^2 = sigma^2 - a_e^2 / 3: the whole smoothing
- *    has the variance sigma^2 = (W d)^2 / (8 ln 2) on any fluid grid. The sampled kernel sums to
- *    one (a uniform solid fraction stays uniform) and spans 4 sigma_g on each side.
+ *  - The particles' volumes are put on a fine auxiliary grid (the fluid's cell split in n_e along
+ *    each axis, n_e the least giving a spacing a_e <= sigma / 1.5) by cubic B-spline weights (four
+ *    nodes per axis), smoothed by a sampled Gaussian in three 1-D passes, and read back at each
+ *    particle by the same weights. Each B-spline adds the variance a_e^2 / 3, so the sampled
+ *    Gaussian has sigma_g^2 = sigma^2 - 2 a_e^2 / 3: the whole smoothing has the variance sigma^2 =
+ *    (W d)^2 / (8 ln 2) on any fluid grid (its shape differs from the Gaussian's by 0.1% of the
+ *    peak, coupling/test_smooth). The sampled kernel sums to one (a uniform solid fraction stays
+ *    uniform) and spans 4 sigma_g on each side.
  *  - Walls mirror: the weights reaching beyond a non-periodic side come back reflected, so a
  *    uniform bed is uniform up to the wall and the smoothing keeps the solid volume exactly (the
  *    reflected kernel is symmetric). Periodic axes wrap; ranks exchange ghost layers of the
  *    auxiliary grid (a DMDA with the fluid's decomposition, each rank's part n_e times finer).
  *  - A particle's own share of the smoothed field is known exactly (a product of three 1-D sums
- *    over its own linear weights and the kernel), so -cpl_self_porosity adds it back, with the
- *    fade of the self corrections (self.c): a lone sphere sees porosity 1, a bed the smoothed one.
+ *    over its own weights and the kernel), so -cpl_self_porosity adds it back, with the fade of the
+ *    self corrections (self.c): a lone sphere sees porosity 1, a bed the smoothed one.
  *  - The drag also sees the fluid velocity that goes with that porosity: the superficial flux at
  *    the particle (the kernel's interpolation of eps_f u_f, eps_f the face porosity the fluid
- *    uses) over the particle's porosity. The fluid's face coefficient is made consistent, beta_f =
- *    eps_f sum_p (K_p / eps_p) W_pf / V_cell with sum K v W / V_cell unchanged, so the force on
- *    the fluid is that on the particles (the exchange stays exact through the owed momentum).
+ *    uses) over the particle's porosity; a lone particle under the self corrections keeps the
+ *    cell's velocity, with the same fade f: u = f u_cell + (1 - f) U_sup / eps_p. The fluid's face
+ *    coefficient follows, beta_f = sum_p (K_p f_p + eps_f K_p (1 - f_p) / eps_p) W_pf / V_cell
+ *    with sum K v W / V_cell unchanged, so the force on the fluid is that on the particles (the
+ *    exchange stays exact through the owed momentum).
  * A bed's top and floor then look the same to the drag wherever the cell faces fall. The fluid
  * itself keeps the kernel's cell porosity. Units SI. */
 #include "coupling/coupling_impl.h"

@@ -52,6 +52,29 @@ for np in 1 2; do
     echo "FAIL coupled checkpoint inlet np=$np: the inlet switch is not after the restart point"
   fi
 done
+# the same with the drag's porosity smoothed over 2 d (-cpl_porosity_width: its mean diameter is in
+# the checkpoint, the smoothed field is recomputed from the particles at every step)
+for np in 1 2; do
+  d=$W/pw.$np
+  run "$np" "$d/full" -cpl_t_end $T -io_interval $T -cpl_porosity_width 2
+  run "$np" "$d/half" -cpl_t_end $H -io_interval 0 -io_checkpoint_interval $H -cpl_porosity_width 2
+  ck=$(sed -n 's/^checkpoint: //p' "$d/half/log" | tail -n 1)
+  run "$np" "$d/rest" -cpl_t_end $T -io_interval $T -restart "../half/$ck" -cpl_porosity_width 2
+  a=$(ls "$d/full/out/"sable_*.h5 2>/dev/null | grep -v checkpoint | tail -n 1); b=$(ls "$d/rest/out/"sable_*.h5 2>/dev/null | grep -v checkpoint | tail -n 1)
+  set -- $([ -n "$ck" ] && [ -n "$a" ] && [ -n "$b" ] && tests/common/frames_equal.py "$a" "$b")
+  if [ "$#" -ge 2 ] && [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then
+    echo "PASS coupled checkpoint -cpl_porosity_width 2 np=$np: final frames at t=$T bitwise equal, $1 datasets compared, 0 differing"
+  else
+    echo "FAIL coupled checkpoint -cpl_porosity_width 2 np=$np: compared: $*; $(cat "$d"/*/log | grep 'error' | head -n 2)"
+  fi
+done
+out=$(cd "$W/pw.1" && "$S" $SCENE -cpl_t_end $T -io_interval 0 -io_dir plain -restart "half/$(sed -n 's/^checkpoint: //p' "$W/pw.1/half/log" | tail -n 1)" 2>&1 >/dev/null); rc=$?
+out2=$(cd "$W/bed.1" && "$S" $SCENE -cpl_t_end $T -io_interval 0 -io_dir pw -cpl_porosity_width 2 -restart "half/$(sed -n 's/^checkpoint: //p' "$W/bed.1/half/log" | tail -n 1)" 2>&1 >/dev/null); rc2=$?
+if [ "$rc" -eq 0 ] && [ "$rc2" -ne 0 ] && printf '%s' "$out2" | grep -q -- "-cpl_porosity_width 2.: the checkpoint was written without it; restart without -cpl_porosity_width"; then
+  echo "PASS coupled checkpoint -cpl_porosity_width: a smoothed run's checkpoint continues without it (exit 0); a plain checkpoint with it is refused: \"$(printf '%s' "$out2" | grep 'sable: error')\""
+else
+  echo "FAIL coupled checkpoint -cpl_porosity_width: continued without it: exit $rc; plain checkpoint with it: exit $rc2, $(printf '%s' "$out2" | grep 'error' | head -n 1)"
+fi
 # another rank count: each half run's checkpoint continued on the other rank count, against the
 # writer's uninterrupted run (particles matched by id). Other summation orders (the DEM's pair
 # sums, the Poisson solve's reductions) differ at round-off; a lost field or spring would differ
