@@ -53,7 +53,7 @@ typedef struct {
 /* Collective. dom, dem and fluid must outlive the coupling. */
 PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fluid, Cpl *cpl);
 /* Collective. Reads -cpl_drag, -cpl_mode, -cpl_init_fluid (and its _rtol, _max_steps),
- * -cpl_substeps, -cpl_kernel_scale, -cpl_filter_width, -cpl_porosity_floor, -cpl_relaxation_ratio_max,
+ * -cpl_substeps, -cpl_kernel_scale, -cpl_filter_width, -cpl_porosity_width, -cpl_porosity_floor, -cpl_relaxation_ratio_max,
  * -cpl_self_porosity, -cpl_self_velocity, -cpl_self_fade, -cpl_outlet_remove (the run's length and probes belong to the coupled driver); takes
  * the fluid's density and viscosity from the Fluid (call after FluidSetFromOptions), whose
  * -fluid_gravity must be 0,0,0 (gravity acts on the particles). */
