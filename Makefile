@@ -31,7 +31,7 @@ TEST_HDRS = $(wildcard tests/common/*.h)
 HDRS = $(shell find src -name '*.h')
 
 .PHONY: all deps test run bench clean
-all: $(BIN)/sable $(TEST_BIN) $(BUILD)/tools/tradeoff_run $(BUILD)/tools/umf_sweep
+all: $(BIN)/sable $(TEST_BIN) $(BUILD)/tools/tradeoff_run $(BUILD)/tools/umf_sweep $(BUILD)/tools/grid_settle
 
 deps:
 	@tools/install-deps.sh
