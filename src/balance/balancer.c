@@ -137,19 +137,21 @@ PetscErrorCode BalanceSetFromOptions(Balance b)
 }
 
 /* The thinnest box along axis k in cells: the DEM halo and the DMDA stencil when the axis is
- * split or periodic, and two cells for the fluid's stencils. */
+ * split or periodic, and the coupling's (CplGetMinBoxWidth: two cells for the fluid's stencils,
+ * more for -cpl_porosity_width's grid on a split or periodic axis). */
 static PetscErrorCode BalanceMinWidth(Balance b, PetscInt minw[3])
 {
   PetscReal reach;
-  PetscInt  sw;
+  PetscInt  sw, cw[3] = {0, 0, 0}; /* the coupling's thinnest box (cells), 0 in a dry run */
 
   PetscFunctionBeginUser;
   PetscCall(DemGetHaloWidth(b->dem, &reach));
   PetscCall(DMDAGetInfo(b->dom->da, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, &sw, NULL, NULL, NULL, NULL));
+  if (b->cpl) PetscCall(CplGetMinBoxWidth(b->cpl, cw));
   for (int k = 0; k < 3; k++) {
     minw[k] = PetscMax(1, sw);
     if (b->dom->nranks[k] > 1 || b->dom->periodic[k]) minw[k] = PetscMax(minw[k], (PetscInt)PetscCeilReal(reach / b->dom->h[k] * (1 - 1e-12)));
-    if (b->cpl) minw[k] = PetscMax(minw[k], 2);
+    minw[k] = PetscMax(minw[k], b->dom->nranks[k] > 1 || b->dom->periodic[k] ? cw[k] : PetscMin(cw[k], 2));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -376,11 +378,12 @@ static PetscErrorCode BalanceDecompProblemSet(Balance b, BalanceDecompProblem *p
 {
   const Domain *dom = b->dom;
   PetscReal     reach;
-  PetscInt      sw;
+  PetscInt      sw, cw[3] = {0, 0, 0}; /* the coupling's thinnest box (cells), 0 in a dry run */
   PetscMPIInt   size;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(b->comm, &size));
+  if (b->cpl) PetscCall(CplGetMinBoxWidth(b->cpl, cw));
   PetscCall(DemGetHaloWidth(b->dem, &reach));
   PetscCall(DMDAGetInfo(dom->da, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, &sw, NULL, NULL, NULL, NULL));
   pb->size       = size;
@@ -404,10 +407,8 @@ static PetscErrorCode BalanceDecompProblemSet(Balance b, BalanceDecompProblem *p
     pb->halo[k]         = reach / dom->h[k];
     pb->minw_split[k]   = PetscMax(PetscMax(1, sw), halo);
     pb->minw[k]         = dom->periodic[k] ? pb->minw_split[k] : PetscMax(1, sw);
-    if (b->cpl) {
-      pb->minw[k]       = PetscMax(pb->minw[k], 2);
-      pb->minw_split[k] = PetscMax(pb->minw_split[k], 2);
-    }
+    pb->minw[k]         = PetscMax(pb->minw[k], dom->periodic[k] ? cw[k] : PetscMin(cw[k], 2));
+    pb->minw_split[k]   = PetscMax(pb->minw_split[k], cw[k]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -58,6 +58,10 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fluid, Cpl *cpl);
  * the fluid's density and viscosity from the Fluid (call after FluidSetFromOptions), whose
  * -fluid_gravity must be 0,0,0 (gravity acts on the particles). */
 PetscErrorCode CplSetFromOptions(Cpl cpl);
+/* Not collective (after CplSetUp). The thinnest rank box, in fluid cells along each axis, that a
+ * split or periodic axis may have: 2 (the kernel's ghost cells), more with -cpl_porosity_width
+ * (its auxiliary grid's ghost layer). The load balancer keeps its cuts at least this wide. */
+PetscErrorCode CplGetMinBoxWidth(Cpl cpl, PetscInt cells[3]);
 /* Collective. After DemSetUp and FluidSetUp: attaches the drag arrays to the DEM, projects
  * the initial porosity (one-way: sets it to 1), runs the pre-flight checks (a hard violation
  * is an error), then sets the initial fluid state of -cpl_init_fluid. */

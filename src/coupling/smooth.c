@@ -39,6 +39,7 @@ PetscErrorCode CplSmoothSetUp(Cpl cpl, PetscReal dmean)
 
   PetscFunctionBeginUser;
   if (cpl->pw_width <= 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(CplSmoothDestroyGrid(cpl)); /* built anew at first use with these widths */
   if (dmean <= 0) {
     DemArrays pa;
     PetscReal s[2] = {0, 0};
@@ -60,11 +61,31 @@ PetscErrorCode CplSmoothSetUp(Cpl cpl, PetscReal dmean)
     cpl->pw_n[e]    = n;
     cpl->pw_h[e]    = a;
     cpl->pw_half[e] = (int)PetscCeilReal(4 * PetscSqrtReal(var) / a);
-    PetscCheck(dom->periodic[e] || cpl->pw_half[e] <= dom->cells[e] * n, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_width %g (x mean diameter %g m) reaches %g m, beyond the domain's length %g m on axis %d: lower the width", (double)cpl->pw_width, (double)dmean, (double)(4 * sg), (double)dom->len[e], e);
+    PetscCheck(dom->periodic[e] || cpl->pw_half[e] <= dom->cells[e] * n, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_width %g (x mean diameter %g m) reaches %g m, beyond the domain's length %g m on axis %d: lower the width", (double)cpl->pw_width, (double)dmean, (double)(cpl->pw_half[e] * a), (double)dom->len[e], e);
     PetscCall(PetscFree(cpl->pw_k[e]));
     PetscCall(PetscMalloc1(2 * cpl->pw_half[e] + 1, &cpl->pw_k[e]));
     for (int m = -cpl->pw_half[e]; m <= cpl->pw_half[e]; m++) sum += cpl->pw_k[e][m + cpl->pw_half[e]] = PetscExpReal(-0.5 * m * m * a * a / var);
     for (int m = 0; m <= 2 * cpl->pw_half[e]; m++) cpl->pw_k[e][m] /= sum;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The auxiliary grid's ghost width (nodes): the smoothing's reach, and a fluid cell plus the
+ * B-spline's reach for particles that strayed out of their box since the last list build. */
+static PetscInt CplSmoothStencil(Cpl cpl)
+{
+  PetscInt sw = 0;
+  for (int e = 0; e < 3; e++) sw = PetscMax(sw, PetscMax(cpl->pw_half[e], cpl->pw_n[e] + 2));
+  return sw;
+}
+
+PetscErrorCode CplGetMinBoxWidth(Cpl cpl, PetscInt cells[3])
+{
+  PetscFunctionBeginUser;
+  for (int e = 0; e < 3; e++) cells[e] = 2; /* the kernel's ghost cells */
+  if (cpl->pw_width > 0 && cpl->pw_n[0] > 0) {
+    const PetscInt sw = CplSmoothStencil(cpl);
+    for (int e = 0; e < 3; e++) cells[e] = PetscMax(2, (sw + cpl->pw_n[e] - 1) / cpl->pw_n[e]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -82,12 +103,12 @@ static PetscErrorCode CplSmoothGrid(Cpl cpl)
   PetscCall(DMDAGetInfo(cpl->cda, NULL, NULL, NULL, NULL, &np[0], &np[1], &np[2], NULL, NULL, NULL, NULL, NULL, NULL));
   PetscCall(DMDAGetOwnershipRanges(cpl->cda, &own[0], &own[1], &own[2]));
   PetscCall(DMDAGetCorners(cpl->cda, NULL, NULL, NULL, &xm[0], &xm[1], &xm[2]));
-  for (int e = 0; e < 3; e++) sw = PetscMax(sw, PetscMax(cpl->pw_half[e], cpl->pw_n[e] + 2));
+  sw = CplSmoothStencil(cpl);
   for (int e = 0; e < 3; e++) {
     PetscInt thin = xm[e] * cpl->pw_n[e];
     bt[e]         = dom->periodic[e] ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_NONE;
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &thin, 1, MPIU_INT, MPI_MIN, cpl->comm));
-    PetscCheck((np[e] == 1 && !dom->periodic[e]) || thin >= sw, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_width %g reaches %g m across ranks, more than the thinnest rank box along axis %d (%g m): lower the width or use fewer ranks along that axis", (double)cpl->pw_width, (double)(sw * cpl->pw_h[e]), e, (double)(thin * cpl->pw_h[e]));
+    PetscCheck((np[e] == 1 && !dom->periodic[e]) || thin >= sw, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_width %g reaches %g m beyond a rank's box, more than the thinnest box along axis %d (%g m; periodic on one rank: the domain): lower the width, or use fewer ranks along that axis", (double)cpl->pw_width, (double)(sw * cpl->pw_h[e]), e, (double)(thin * cpl->pw_h[e]));
     PetscCall(PetscMalloc1(np[e], &lx[e]));
     for (PetscInt r = 0; r < np[e]; r++) lx[e][r] = own[e][r] * cpl->pw_n[e];
   }
