@@ -117,8 +117,9 @@ static inline PetscInt cpl_off(const CplBox *b, PetscInt i, PetscInt j, PetscInt
 }
 
 /* The porosity of face (i, j, k) of component d as the fluid takes it, the mean of the two cells
- * it separates (ea: the ghosted cell porosity, box b); on a non-periodic boundary plane, and at
- * the rank's outermost ghost layer, the one cell there is. */
+ * it separates (ea: the ghosted cell porosity, box b); on a non-periodic boundary plane the one
+ * cell there is. CplStencils checks that both cells are in the ghost box (the last two lines only
+ * keep the reads inside it). */
 static inline double cpl_face_porosity(const Domain *dom, const CplBox *b, const PetscScalar *ea, int d, PetscInt i, PetscInt j, PetscInt k)
 {
   const PetscInt f[3] = {i, j, k};
@@ -162,6 +163,17 @@ static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil
       CplStencil *st1 = &cpl->stc[p];
       PetscCall(CplStencilOf(cpl, pa->x + 3 * p, CplSideOf(cpl, pa, p), st1));
       if (!cpl_fits_all(&bc, st1->c0, st1->nc)) PetscCall(CplCheckFits(&bc, st1->c0, st1->nc, pa->id[p]));
+      if (cpl->pw_width > 0) { /* the superficial velocity reads the cells on both sides of each face */
+        PetscInt first[3];
+        int      n[3];
+        for (int e = 0; e < 3; e++) {
+          const PetscBool below = (PetscBool)(cpl->dom->periodic[e] || st1->f0[e] > 0);
+          first[e]              = st1->f0[e] - (below ? 1 : 0);
+          n[e]                  = st1->nf[e] + (below ? 1 : 0);
+          if (!cpl->dom->periodic[e]) n[e] = (int)PetscMin(n[e], cpl->dom->cells[e] - first[e]);
+        }
+        if (!cpl_fits_all(&bc, first, n)) PetscCall(CplCheckFits(&bc, first, n, pa->id[p]));
+      }
       for (int d = 0; d < 3; d++) {
         PetscInt      first[3];
         int           n[3];

@@ -3,8 +3,10 @@
 # diameters (-cpl_porosity_width 3.5; tools/umf_sweep: 2,880 spheres on a simple cubic lattice
 # 12 x 12 x 20 standing on the inlet between frictionless side walls, the inlet ramped through
 # U_mf). References:
-#   (a) grid independence: the largest over the smallest U_mf of the three cell sizes within 2%
-#       (measured 0.00%; with the cell's porosity, the default, 6.1%: doc/validation.md);
+#   (a) grid independence: the largest over the smallest U_mf of the three cell sizes within 0.5%
+#       (the requirement is 2%; the smoothed porosity is grid independent to 0.1%,
+#       coupling/test_smooth; measured 0.00%; with the cell's porosity, the default, 6.1%:
+#       doc/validation.md);
 #   (b) the momentum balance of the fluidized bed: the plateau dp / W (the pressure drop over the
 #       bed's buoyant weight per area, above 1.3 U_mf) within 2% of 1 on every grid.
 # U_mf itself is reported beside the law's prediction at the lattice porosity (+8.0%: the top
@@ -24,4 +26,4 @@ echo "$out" | awk -F'|' '
   END {
     if (n != 3) { print "FAIL umf_grid: " n " cell sizes in the output, 3 expected"; exit }
     s = hi / lo - 1
-    printf "%s umf_grid: spread of U_mf over cells of 2, 3, 4 d, max/min - 1: %.5f (bound < 0.02)\n", s < 0.02 ? "PASS" : "FAIL", s }'
+    printf "%s umf_grid: spread of U_mf over cells of 2, 3, 4 d, max/min - 1: %.5f (bound < 0.005)\n", s < 0.005 ? "PASS" : "FAIL", s }'
