@@ -23,6 +23,19 @@ PetscErrorCode CplCheckpointWrite(Cpl cpl, IoCkpt ck)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The mean diameter a width option (name, value) was set from, dataset ds: one line if the
+ * checkpoint was written without the option. */
+static PetscErrorCode CplReadDiameter(Cpl cpl, IoCkpt ck, const char *ds, const char *name, PetscReal value, PetscReal *d)
+{
+  PetscBool has;
+
+  PetscFunctionBeginUser;
+  PetscCall(IoCkptHas(ck, ds, &has));
+  PetscCheck(has, cpl->comm, PETSC_ERR_FILE_UNEXPECTED, "%s %g: the checkpoint was written without it; restart without %s", name, (double)value, name);
+  PetscCall(IoCkptReadShared(ck, ds, IO_CKPT_REAL, 1, d));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CplCheckpointRead(Cpl cpl, IoCkpt ck)
 {
   PetscReal s[CPL_CKPT_NSTATE];
@@ -37,19 +50,13 @@ PetscErrorCode CplCheckpointRead(Cpl cpl, IoCkpt ck)
   cpl->solid_grid    = s[3];
   cpl->eps_min0      = s[4];
   if (cpl->filter_n > 0) { /* the filter's width from the mean diameter at the run's start */
-    PetscBool has;
     PetscReal d;
-    PetscCall(IoCkptHas(ck, "cpl/filter_diameter", &has));
-    PetscCheck(has, cpl->comm, PETSC_ERR_FILE_UNEXPECTED, "-cpl_filter_width %g: the checkpoint was written without the filter; restart without -cpl_filter_width", (double)cpl->filter_width);
-    PetscCall(IoCkptReadShared(ck, "cpl/filter_diameter", IO_CKPT_REAL, 1, &d));
+    PetscCall(CplReadDiameter(cpl, ck, "cpl/filter_diameter", "-cpl_filter_width", cpl->filter_width, &d));
     PetscCall(CplFilterSetUp(cpl, d));
   }
   if (cpl->pw_width > 0) { /* the same for the drag's porosity width */
-    PetscBool has;
     PetscReal d;
-    PetscCall(IoCkptHas(ck, "cpl/porosity_diameter", &has));
-    PetscCheck(has, cpl->comm, PETSC_ERR_FILE_UNEXPECTED, "-cpl_porosity_width %g: the checkpoint was written without it; restart without -cpl_porosity_width", (double)cpl->pw_width);
-    PetscCall(IoCkptReadShared(ck, "cpl/porosity_diameter", IO_CKPT_REAL, 1, &d));
+    PetscCall(CplReadDiameter(cpl, ck, "cpl/porosity_diameter", "-cpl_porosity_width", cpl->pw_width, &d));
     PetscCall(CplSmoothSetUp(cpl, d));
   }
   CplInvalidateStencils(cpl);

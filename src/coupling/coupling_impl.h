@@ -129,6 +129,7 @@ PetscErrorCode CplSmoothDestroyGrid(Cpl cpl);
 PetscErrorCode CplSmoothDestroy(Cpl cpl);
 /* filter.c */
 PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean);
+PetscErrorCode CplMeanDiameter(Cpl cpl, PetscReal *dmean);
 PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces);
 /* exchange.c: the two halves of the drag set-up of a step (the steady start uses them too) */
 PetscErrorCode CplSetParticleDrag(Cpl cpl);

@@ -17,6 +17,21 @@
  * is that of the particles at set-up (shape 0's if there are none) and is kept in checkpoints. */
 #include "coupling/coupling_impl.h"
 
+/* Collective. The number-mean diameter of the particles present (shape 0's if there are none). */
+PetscErrorCode CplMeanDiameter(Cpl cpl, PetscReal *dmean)
+{
+  DemArrays pa;
+  PetscReal s[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  for (PetscInt p = 0; p < pa.nlocal; p++) s[0] += CplDiameterOf(cpl, &pa, p);
+  s[1] = (PetscReal)pa.nlocal;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, cpl->comm));
+  *dmean = s[1] > 0 ? s[0] / s[1] : cpl->diam[0];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Collective. The filter's variance, sweeps and coefficients from -cpl_filter_width and the
  * particles present (a restart calls it again with the checkpoint's mean diameter, dmean > 0). */
 PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean)
@@ -28,15 +43,7 @@ PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean)
   cpl->filter_var = 0;
   cpl->filter_n   = 0;
   if (cpl->filter_width <= 0) PetscFunctionReturn(PETSC_SUCCESS);
-  if (dmean <= 0) {
-    DemArrays pa;
-    PetscReal s[2] = {0, 0};
-    PetscCall(DemGetArrays(cpl->dem, &pa));
-    for (PetscInt p = 0; p < pa.nlocal; p++) s[0] += CplDiameterOf(cpl, &pa, p);
-    s[1] = (PetscReal)pa.nlocal;
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, cpl->comm));
-    dmean = s[1] > 0 ? s[0] / s[1] : cpl->diam[0];
-  }
+  if (dmean <= 0) PetscCall(CplMeanDiameter(cpl, &dmean));
   cpl->filter_d   = dmean;
   cpl->filter_var = PetscSqr(cpl->filter_width * dmean) / (8 * PetscLogReal(2.0));
   for (int e = 0; e < 3; e++) hmin = PetscMin(hmin, dom->h[e]);

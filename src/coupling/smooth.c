@@ -40,15 +40,7 @@ PetscErrorCode CplSmoothSetUp(Cpl cpl, PetscReal dmean)
   PetscFunctionBeginUser;
   if (cpl->pw_width <= 0) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(CplSmoothDestroyGrid(cpl)); /* built anew at first use with these widths */
-  if (dmean <= 0) {
-    DemArrays pa;
-    PetscReal s[2] = {0, 0};
-    PetscCall(DemGetArrays(cpl->dem, &pa));
-    for (PetscInt p = 0; p < pa.nlocal; p++) s[0] += CplDiameterOf(cpl, &pa, p);
-    s[1] = (PetscReal)pa.nlocal;
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, cpl->comm));
-    dmean = s[1] > 0 ? s[0] / s[1] : cpl->diam[0];
-  }
+  if (dmean <= 0) PetscCall(CplMeanDiameter(cpl, &dmean));
   cpl->pw_d     = dmean;
   cpl->pw_sigma = cpl->pw_width * dmean / PetscSqrtReal(8 * PetscLogReal(2.0));
   for (int e = 0; e < 3; e++) {
