@@ -15,7 +15,10 @@
  * last fifth (drift: its change over that fifth). Runs on any number of ranks (the particle is
  * read and held on the rank that owns it). All -cpl_ options pass through (the law:
  * -cpl_drag). Prints one line "result: key=value ..." (self_capped: the particle-steps whose
- * -cpl_self_velocity correction hit its cap). */
+ * -cpl_self_velocity correction hit its cap). The coupling step is min(-gs_step_tau x tau, h / 2u_t,
+ * the run / 200) (-gs_step_tau up to 10, the -cpl_relaxation_ratio_max the tool sets: a longer
+ * step reaches a slow steady state, e.g. Re 0.1 in a wide box, in fewer steps); -gs_print_every
+ * N prints the slip's error every N steps ("step: n t err"). */
 #include "coupling/coupling.h"
 #include "dem/dem.h"
 
@@ -55,8 +58,8 @@ static PetscErrorCode ParticleState(Dem dem, const PetscReal *x0, PetscReal x[3]
 
 int main(int argc, char **argv)
 {
-  PetscReal  re = 10, tend, h = 2, width = 32, height = 48, below = -1, mu, ut, tau, dt, slip = 0, off[3] = {0.5, 0.5, 0.5}, x0[3], x[3] = {0}, v[3] = {0}, fac = 1, inflow = 1;
-  PetscInt   maxsteps = 4000, nsub = 10, noff = 3;
+  PetscReal  re = 10, tend, h = 2, width = 32, height = 48, below = -1, mu, ut, tau, dt, slip = 0, off[3] = {0.5, 0.5, 0.5}, x0[3], x[3] = {0}, v[3] = {0}, fac = 1, inflow = 1, steptau = 1;
+  PetscInt   maxsteps = 4000, nsub = 10, noff = 3, every = 0;
   PetscBool  hold    = PETSC_TRUE;
   char       law[32] = "beetstra", init[32] = "uniform", opts[2048];
   CplDragLaw lw;
@@ -80,9 +83,13 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsReal("-gs_inflow", "Inflow over the law's terminal velocity", NULL, inflow, &inflow, NULL));
   PetscCall(PetscOptionsReal("-gs_time_factor", "Run length over the default", NULL, fac, &fac, NULL));
   PetscCall(PetscOptionsInt("-gs_max_steps", "Most fluid steps", NULL, maxsteps, &maxsteps, NULL));
+  PetscCall(PetscOptionsReal("-gs_step_tau", "Coupling step over the particle's relaxation time tau (at most; (0,10])", NULL, steptau, &steptau, NULL));
+  PetscCall(PetscOptionsInt("-gs_print_every", "Print the slip's error every this many steps (0: never)", NULL, every, &every, NULL));
   PetscCall(PetscOptionsString("-gs_init", "Initial fluid: uniform or steady", NULL, init, init, sizeof init, NULL));
   PetscCall(PetscOptionsString("-cpl_drag", "Drag law", NULL, law, law, sizeof law, NULL));
   PetscOptionsEnd();
+  PetscCheck(steptau > 0 && steptau <= 10, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-gs_step_tau %g: the coupling step over tau must be in (0,10] (the tool sets -cpl_relaxation_ratio_max 10)", (double)steptau);
+  PetscCheck(every >= 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-gs_print_every %d: must be 0 (never) or a positive step count", (int)every);
   lw  = !strcmp(law, "schiller") ? CPL_DRAG_SCHILLER : CPL_DRAG_BEETSTRA;
   mu  = 1 / PetscSqrtReal(18 * re * CplDragFactor(CPL_DRAG_SCHILLER, 1, re));
   ut  = TerminalVelocity(lw, mu);
@@ -90,7 +97,7 @@ int main(int argc, char **argv)
   {
     const PetscReal l = 2 * PetscMax(h, 1), tf = PetscMin(l * l / mu, l / ut);
     tend = fac * (20 * tau + 10 * tf);
-    dt   = PetscMin(PetscMin(tau, 0.5 * h / ut), tend / (200 * fac));
+    dt   = PetscMin(PetscMin(steptau * tau, 0.5 * h / ut), tend / (200 * fac));
   }
   nx = (PetscInt)(width / h + 0.5);
   nz = (PetscInt)(height / h + 0.5);
@@ -119,8 +126,9 @@ int main(int argc, char **argv)
     PetscCall(CplStep(cpl, &st));
     PetscCall(ParticleState(dem, hold ? x0 : NULL, x, v));
     hist[n] = inflow * ut - v[2];
-    zmin    = PetscMin(zmin, x[2]);
-    zmax    = PetscMax(zmax, x[2]);
+    if (every > 0 && (n + 1) % every == 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step: %d %.6g %+.4f%%\n", (int)(n + 1), (double)((n + 1) * dt), (double)(100 * (hist[n] / ut - 1))));
+    zmin = PetscMin(zmin, x[2]);
+    zmax = PetscMax(zmax, x[2]);
   }
   for (PetscInt k = 4 * n / 5; k < n; k++) slip += hist[k] / (n - 4 * n / 5);
   drift = (hist[n - 1] - hist[4 * n / 5]) / ut;

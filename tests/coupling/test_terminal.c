@@ -19,9 +19,11 @@
  * centre has G K > 1 (the grid's response to the particle's own drag exceeds its slip: +63%),
  * which the coupling must report as capped. Re 0.1 is not
  * here: its self-disturbance is well corrected (-3.3% at 2, 4, 8 d at every place, the same
- * offset uncorrected vs the unbounded-grid response) but that offset is the column's own
- * (Stokes flow feels a 32 d x 48 d column: -1.1% at 64 d x 96 d, -0.6% at 128 d x 96 d), too big
- * a box for a test. */
+ * offset uncorrected vs the unbounded-grid response) but that offset is the column's own: the
+ * slip moves by -3.4%, -1.3%, -0.50%, -0.25% in columns 32, 64, 128, 256 d wide (1.5x as tall;
+ * 8 d cells, centre), so walls fall under a quarter of the bound only at 128 d, where 8 and 4 d
+ * cells are within 1% at four places (doc/validation.md) but a run takes 12-18 s (8 d) and
+ * 133-221 s (4 d) a place, far over a test's budget. */
 #include "cpl_common.h"
 
 typedef struct {
