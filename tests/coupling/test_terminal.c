@@ -23,7 +23,7 @@
  * slip moves by -3.4%, -1.3%, -0.50%, -0.25% in columns 32, 64, 128, 256 d wide (1.5x as tall;
  * 8 d cells, centre), so walls fall under a quarter of the bound only at 128 d, where 8 and 4 d
  * cells are within 1% at four places (doc/validation.md) but a run takes 12-18 s (8 d) and
- * 133-221 s (4 d) a place, far over a test's budget. */
+ * 133-221 s (4 d) a place: coupling/test_terminal_re01.sh runs the 8 d centre. */
 #include "cpl_common.h"
 
 typedef struct {
