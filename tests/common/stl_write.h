@@ -44,3 +44,23 @@ static inline void TestGridTriangles(const double o[3], const double e1[3], cons
         for (int k = 0; k < 3; k++) v[3 * t + k] = o[k] + s * e1[k] + u * e2[k];
       }
 }
+
+/* The box lo..hi as its sides (lo, then hi, of each axis; without the top z = hi[2] if open_top),
+ * each a grid of n x n cells split along alternating diagonals: v gets 18 n^2 doubles (2 n^2
+ * triangles) a side. Returns the number of triangles. */
+static inline PetscInt TestBoxTriangles(const double lo[3], const double hi[3], PetscInt n, PetscBool open_top, double *v)
+{
+  PetscInt t = 0;
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      const int a = (d + 1) % 3, b = (d + 2) % 3;
+      double    o[3] = {lo[0], lo[1], lo[2]}, e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
+      if (open_top && d == 2 && s == 1) continue;
+      o[d]  = s ? hi[d] : lo[d];
+      e1[a] = (hi[a] - lo[a]) / n;
+      e2[b] = (hi[b] - lo[b]) / n;
+      TestGridTriangles(o, e1, e2, n, n, v + 18 * n * n * t);
+      t++;
+    }
+  return 2 * n * n * t;
+}

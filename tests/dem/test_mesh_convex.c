@@ -158,16 +158,8 @@ int main(int argc, char **argv)
     const double len[3] = {0.07, 0.07, 0.1};
     double      *xm, *xb, *ym, *yb, dmax = 0, hm = 0, hb = 0, out = -1;
     PetscInt     cm, cb;
-    for (int d = 0; d < 3; d++)
-      for (int s = 0; s < 2; s++) {
-        const int a = (d + 1) % 3, b = (d + 2) % 3;
-        double    o[3] = {0, 0, 0}, e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
-        o[d]  = s ? len[d] : 0;
-        e1[a] = len[a] / 4;
-        e2[b] = len[b] / 4;
-        TestGridTriangles(o, e1, e2, 4, 4, v + 9 * 32 * (2 * d + s));
-      }
-    PetscCall(TestWriteStl(PETSC_COMM_WORLD, box, 192, v));
+    const double zero[3] = {0, 0, 0};
+    PetscCall(TestWriteStl(PETSC_COMM_WORLD, box, TestBoxTriangles(zero, len, 4, PETSC_FALSE, v), v));
     PetscCall(PetscMalloc4(240, &xm, 240, &xb, 240, &ym, 240, &yb));
     PetscCall(PetscSNPrintf(walls, sizeof walls, "-dem_mesh_0_file %s", box));
     PetscCall(RunBed(walls, xm, ym, &cm));

@@ -32,21 +32,10 @@ int main(int argc, char **argv)
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCallMPI(MPI_Bcast(&pid, 1, MPI_INT, 0, PETSC_COMM_WORLD));
   PetscCall(PetscSNPrintf(file, sizeof file, "/tmp/sable_test_mesh_sources_%d.stl", pid));
-  { /* the floor z = 0 and the four sides of the box 0.02..0.08 x 0.02..0.08 x 0..0.1 */
+  { /* the floor z = 0 and the four sides of the box 0.02..0.08 x 0.02..0.08 x 0..0.1 (open top) */
     const double lo[3] = {0.02, 0.02, 0}, hi[3] = {0.08, 0.08, 0.1};
-    int          t = 0;
-    for (int d = 0; d < 3; d++)
-      for (int s = 0; s < 2; s++) {
-        const int a = (d + 1) % 3, b = (d + 2) % 3;
-        double    o[3] = {lo[0], lo[1], lo[2]}, e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
-        if (d == 2 && s == 1) continue; /* open top */
-        o[d]  = s ? hi[d] : lo[d];
-        e1[a] = (hi[a] - lo[a]) / 4;
-        e2[b] = (hi[b] - lo[b]) / 4;
-        TestGridTriangles(o, e1, e2, 4, 4, v + 9 * 32 * t++);
-      }
+    PetscCall(TestWriteStl(PETSC_COMM_WORLD, file, TestBoxTriangles(lo, hi, 4, PETSC_TRUE, v), v));
   }
-  PetscCall(TestWriteStl(PETSC_COMM_WORLD, file, 5 * 32, v));
   PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo 0,0,0 -domain_hi 0.1,0.1,0.1 -dem_radius %g -dem_kn 1e4 -dem_restitution 0.5 -dem_friction 0.3 -dem_dt 1e-5 -dem_gravity 0,0,0 -dem_mesh_0_file %s -dem_insert_0_region box -dem_insert_0_box 0.01,0.01,0.01,0.09,0.09,0.09 -dem_insert_0_count %d -dem_insert_0_period 1 -dem_insert_0_velocity_spread 0.5 -dem_check_every 1 %s", R, file, N, size == 2 ? "-da_processors_x 2 -da_processors_y 1 -da_processors_z 1" : ""));
   PetscCall(TestDemCreate(opts, &dom, &dem));
   PetscCall(DemSetUp(dem));
