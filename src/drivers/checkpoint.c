@@ -7,9 +7,12 @@
  * run's length, output, checkpoints, progress and logging may change silently (a longer
  * -dem_t_end or -cpl_t_end extends a run). On a stop signal the drivers write a checkpoint at the
  * step the ranks agreed on before ending (DriverCkptStop). Files: <io_dir>/<prefix>_checkpoint_<step>.h5.
+ * With -io_checkpoint_interval 0 (the default) a run writes none, neither on the way nor at
+ * the end, but a stop signal still writes one (a preempted job must be able to continue).
  * Each write is announced by "checkpoint: PATH" and a line with its wall time and size, a
- * restart by "restart: PATH" and the time of reading it with the set-up (tools/bench_checkpoint.sh
- * reads both). */
+ * restart by "restart: PATH", the time of reading it with the set-up (tools/bench_checkpoint.sh
+ * reads both) and where its output goes: the same place goes on, another -io_dir, -io_prefix
+ * or -mon_file starts a new series there (IoViewRestart). */
 #include <sys/stat.h>
 
 #include "drivers/drivers.h"
@@ -30,7 +33,7 @@ PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm)
   c->keep = 2;
   c->step = -1;
   PetscOptionsBegin(comm, NULL, "Checkpoints", NULL);
-  PetscCall(SableOptionsReal("-io_checkpoint_interval", "Simulated time between exact checkpoints, and one at the end", "s; 0 = none", "[0,inf)", c->dt, &c->dt, &c->set));
+  PetscCall(SableOptionsReal("-io_checkpoint_interval", "Simulated time between exact checkpoints, and one at the end; a stop signal writes one in any case", "s; 0 = none", "[0,inf)", c->dt, &c->dt, NULL));
   PetscCall(SableOptionsInt("-io_checkpoint_keep", "Newest checkpoints of this run kept (older ones removed)", "files", "[1,64]", c->keep, &c->keep, NULL));
   PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint instead of inserting particles (the same case options)", NULL, c->restart, c->restart, sizeof c->restart, NULL));
   PetscOptionsEnd();
@@ -191,13 +194,15 @@ static PetscErrorCode DriverCompareOptions(MPI_Comm comm, char *old)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DriverCkptReadRun(MPI_Comm comm, Io io, IoCkpt ck)
+PetscErrorCode DriverCkptReadRun(DriverCkpt *c, Io io, Mon mon, IoCkpt ck)
 {
+  MPI_Comm  comm = c->comm;
   long long n;
   char     *old;
 
   PetscFunctionBeginUser;
   if (io) PetscCall(IoCheckpointRead(io, ck));
+  if (mon) PetscCall(MonCheckpointRead(mon, ck, &c->mon_resumed));
   PetscCall(IoCkptGetSize(ck, "run/options", &n));
   PetscCall(PetscCalloc1(n + 1, &old));
   PetscCall(IoCkptReadShared(ck, "run/options", IO_CKPT_BYTE, (PetscInt)n, old));
@@ -206,7 +211,7 @@ PetscErrorCode DriverCkptReadRun(MPI_Comm comm, Io io, IoCkpt ck)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DriverCkptRestarted(DriverCkpt *c, PetscLogDouble t0)
+PetscErrorCode DriverCkptRestarted(DriverCkpt *c, PetscLogDouble t0, Io io, Mon mon, PetscReal t)
 {
   PetscLogDouble t1;
   PetscMPIInt    rank;
@@ -216,5 +221,6 @@ PetscErrorCode DriverCkptRestarted(DriverCkpt *c, PetscLogDouble t0)
   PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(c->comm, "restart: %s\n", c->restart));
   PetscCall(PetscPrintf(c->comm, "  read and set up in %.3f s, %.1f MB\n", t1 - t0, rank ? 0.0 : DriverFileMB(c->restart)));
+  if (io) PetscCall(IoViewRestart(io, mon, c->mon_resumed, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

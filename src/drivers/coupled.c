@@ -16,11 +16,12 @@
  * loop's end and cadences are then judged to half a DEM step (the run ends at the first step
  * end from -cpl_t_end on, as the steps do not look at the end: restarts stay exact).
  * A run is coupled when any -cpl_ or -fluid_ option is given (DriverIsCoupled).
- * Checkpoints (-io_checkpoint_interval, simulated seconds; drivers/checkpoint.c): the DEM's, the
- * fluid's and the coupling's exact state, and the driver's own (run/coupled: the sums of the
- * column figures and the next progress and checkpoint times), every interval and at the end;
- * -restart PATH continues from one, so the restarted run's frames and summary are those of the
- * uninterrupted run. */
+ * Checkpoints (-io_checkpoint_interval, simulated seconds, 0 = none; drivers/checkpoint.c): the
+ * DEM's, the fluid's and the coupling's exact state, and the driver's own (run/coupled: the sums
+ * of the column figures and the next progress and checkpoint times), every interval and at the
+ * end, and on a stop signal; -restart PATH continues from one, so the restarted run's frames and
+ * summary are those of the uninterrupted run. Its "done:" line counts this run's fluid steps and
+ * wall time, and names the restart's time and step and the step reached. */
 #include "drivers/average.h"
 #include "drivers/drivers.h"
 
@@ -377,7 +378,7 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
   }
   PetscCall(IoDueFinal(c->io, t, &due));
   if (due) PetscCall(CoupledOutput(c));
-  if (r->ckpt.set) PetscCall(CoupledCheckpoint(c));
+  if (r->ckpt.dt > 0) PetscCall(CoupledCheckpoint(c)); /* -io_checkpoint_interval 0: none at the end either */
   PetscCall(CplGetClippedCount(c->cpl, &clipped));
   PetscCall(PetscPrintf(r->comm, "column: pressure drop / bed buoyant weight per area %.9f, drag on the particles / buoyant weight %.9f (means over the second half of the run; weight per area %.6g Pa); porosity clipped %" PetscInt_FMT " cell-steps\n", c->navg > 0 ? (double)(c->avg / c->navg / w) : 0.0, c->navg > 0 ? (double)(c->davg / c->navg / (w * c->col.area)) : 0.0, (double)w, clipped));
   if (r->probe_set) PetscCall(CoupledProbeReport(r, c->cpl));
@@ -459,12 +460,11 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
     PetscCall(CplCheckpointRead(c->cpl, f));
     PetscCall(IoCkptReadShared(f, "run/coupled", IO_CKPT_REAL, COUPLED_CKPT_NRUN, v));
     PetscCall(CoupledRestoreColumn(c, v));
-    PetscCall(DriverCkptReadRun(c->r->comm, c->io, f)); /* refuses another run's frames before running */
-    PetscCall(MonCheckpointRead(c->r->mon.mon, f));
+    PetscCall(DriverCkptReadRun(ck, c->io, c->r->mon.mon, f)); /* refuses another run's frames before running */
     PetscCall(CplGetTime(c->cpl, &t, NULL));
     PetscCall(DriverAvgCheckpointRead(c->r->avg, f, t));
     PetscCall(IoCkptClose(&f));
-    PetscCall(DriverCkptRestarted(ck, t0));
+    PetscCall(DriverCkptRestarted(ck, t0, c->io, c->r->mon.mon, t));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -474,10 +474,11 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
   Domain        *dom = r->dom;
   Coupled        c   = {r, dem, NULL, NULL, lb, io, PETSC_FALSE, {2, -1, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   PetscBool      convex;
-  PetscReal      g[3], t;
-  PetscInt       step;
+  PetscReal      g[3], t, ts;
+  PetscInt       step, step0;
   PetscLogDouble t0, t1;
   const char    *index;
+  char           seg[160] = "";
 
   PetscFunctionBeginUser;
   PetscCall(FluidCreate(dom, &c.fl));
@@ -502,12 +503,14 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
     PetscCall(CplView(c.cpl, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(CoupledBedStart(&c));
     PetscCall(BalanceSetUp(lb));
+    PetscCall(CplGetTime(c.cpl, &ts, &step0)); /* this run's segment: from here */
     PetscCall(PetscTime(&t0));
     PetscCall(CoupledRunLoop(&c));
     PetscCall(PetscTime(&t1));
     PetscCall(BalanceView(lb, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(CplGetTime(c.cpl, &t, &step));
-    PetscCall(PetscPrintf(r->comm, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s\n", (double)t, step, t1 - t0));
+    if (r->ckpt.restart[0]) PetscCall(PetscSNPrintf(seg, sizeof seg, " (this run from the restart at t = %g, step %" PetscInt_FMT ", to step %" PetscInt_FMT ")", (double)ts, step0, step));
+    PetscCall(PetscPrintf(r->comm, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s%s\n", (double)t, step - step0, t1 - t0, seg));
     PetscCall(DemFlowView(dem, PETSC_VIEWER_STDOUT_WORLD)); /* with sources or outlets: the balance */
     PetscCall(DemViewSources(c.dem, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(IoGetIndexPath(io, &index));

@@ -10,13 +10,14 @@
  * defaults for all its properties, so one fluid option is enough to ask for it). */
 PetscErrorCode DriverIsCoupled(PetscBool *on);
 
-/* Checkpoints, shared by both drivers (checkpoint.c): -io_checkpoint_interval (s, 0 = none; one
- * also at the end), -io_checkpoint_keep (newest kept), -restart PATH. */
+/* Checkpoints, shared by both drivers (checkpoint.c): -io_checkpoint_interval (s, 0 = none; a
+ * positive one also writes one at the end; a stop signal writes one in any case),
+ * -io_checkpoint_keep (newest kept), -restart PATH. */
 #define DRIVER_KEEP_MAX 64
 typedef struct {
   MPI_Comm  comm;
-  PetscReal dt; /* -io_checkpoint_interval (s; 0: none) */
-  PetscBool set;
+  PetscReal dt;          /* -io_checkpoint_interval (s; 0: none) */
+  PetscBool mon_resumed; /* at a restart: the monitor file continued (else a new series) */
   PetscInt  keep, n, step;                              /* kept, written so far, step of the last one */
   char      files[DRIVER_KEEP_MAX][PETSC_MAX_PATH_LEN]; /* the newest ones written, oldest first */
   char      restart[PETSC_MAX_PATH_LEN];                /* -restart ("" for none) */
@@ -28,21 +29,24 @@ PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm);
  * newest -io_checkpoint_keep. */
 PetscErrorCode DriverCkptWrite(DriverCkpt *c, Io io, PetscInt step, DriverCkptWriter write, void *ctx);
 /* Collective. Announces the restart ("restart: PATH") and its wall time since t0 (PetscTime
- * before the checkpoint was opened) with the file's size. */
-PetscErrorCode DriverCkptRestarted(DriverCkpt *c, PetscLogDouble t0);
+ * before the checkpoint was opened) with the file's size, then where the output goes from the
+ * checkpoint's time t on (IoViewRestart; io and mon may be NULL). */
+PetscErrorCode DriverCkptRestarted(DriverCkpt *c, PetscLogDouble t0, Io io, Mon mon, PetscReal t);
 /* Collective. A run loop's stop on the agreed signal sig at time t, step step: writes this
  * step's checkpoint through write (when c, io and write are given: the grace alarm cancelled
  * first) and ends with SableStopError naming it and the index. Never returns success. */
 PetscErrorCode DriverCkptStop(DriverCkpt *c, Io io, int sig, PetscReal t, PetscInt step, DriverCkptWriter write, void *ctx);
 /* Collective. The parts of a checkpoint that are the run's, not the physics': the output's
  * continuation (io/, IoCheckpointWrite) and the options given (run/options). A driver's write
- * callback calls DriverCkptWriteRun; its restart calls DriverCkptReadRun (io may be NULL there),
- * which restores the output (refusing another run's frames) and prints one warning line per
+ * callback calls DriverCkptWriteRun; its restart calls DriverCkptReadRun (io and mon may be NULL
+ * there), which restores the output and the monitor (IoCheckpointRead, MonCheckpointRead: the
+ * same place continues, another starts a new series; another run's frames are refused) and
+ * prints one warning line per
  * physics option changed, added or removed since the checkpoint's run ("restart: -dem_friction
  * was 0.5 in the checkpoint's run, now 0.3: ..."); the run's length, output, checkpoint,
  * progress and logging options may change silently. */
 PetscErrorCode DriverCkptWriteRun(Io io, IoCkpt ck);
-PetscErrorCode DriverCkptReadRun(MPI_Comm comm, Io io, IoCkpt ck);
+PetscErrorCode DriverCkptReadRun(DriverCkpt *c, Io io, Mon mon, IoCkpt ck);
 
 /* The monitor file's contents, shared by both drivers (monitor.c): -mon_interval, -mon_file
  * (io/monitor.c), -mon_box_<k>, and for coupled runs -mon_probe_<k>, -mon_dp_<k>. */

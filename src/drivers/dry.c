@@ -3,15 +3,17 @@
  * with a progress line (time, step, steps/s, ETA, kinetic energy, contacts, largest overlap over
  * the radius), writes the frames io asks for, stops cleanly on SIGTERM, SIGINT or SIGUSR1
  * (agreed in the DEM step's own reduction; a checkpoint of that step is written first, also
- * without -io_checkpoint_interval, when the scene can be saved), and ends with the summary lines "done:" (simulated
- * time, steps, wall time, peak memory), "bed:" (packing fraction, coordination number) and
- * "output:". Never writes a frame of a diverged state (DemCheckHealth first).
- * Checkpoints (-io_checkpoint_interval, simulated seconds): an exact checkpoint of the DEM
- * (dem/checkpoint.c) every interval and at the end, <io_dir>/<prefix>_checkpoint_<step>.h5, the
- * newest -io_checkpoint_keep of this run kept, with the balancer's cuts and schedule, the
- * output's continuation and the options (DriverCkptWriteRun); -restart PATH continues from one
- * instead of inserting the case's particles (same options), the cuts restored before the DEM is
- * set up, its frames numbered on and its index grown. */
+ * without -io_checkpoint_interval, when the scene can be saved), and ends with the summary lines
+ * "done:" (simulated time, this run's steps and wall time, after a restart the time and step it
+ * started from and the step reached, peak memory), "bed:" (packing fraction, coordination number)
+ * and "output:". Never writes a frame of a diverged state (DemCheckHealth first).
+ * Checkpoints (-io_checkpoint_interval, simulated seconds; 0, the default: none): an exact
+ * checkpoint of the DEM (dem/checkpoint.c) every interval and at the end,
+ * <io_dir>/<prefix>_checkpoint_<step>.h5, the newest -io_checkpoint_keep of this run kept, with
+ * the balancer's cuts and schedule, the output's continuation and the options
+ * (DriverCkptWriteRun); -restart PATH continues from one instead of inserting the case's
+ * particles (same options), the cuts restored before the DEM is set up; in the same output place
+ * its frames are numbered on and its index grown, in another one a new series starts. */
 #include "drivers/average.h"
 #include "drivers/drivers.h"
 #include <sys/resource.h>
@@ -201,15 +203,16 @@ PetscErrorCode DryRunLoop(DryRun r, Dem dem, Balance lb, Io io)
     PetscCall(IoDueFinal(io, t, &due));
     if (due) PetscCall(DryOutput(dem, r->avg, io));
   }
-  if (r->ckpt.set) PetscCall(DryCheckpoint(r));
+  if (r->ckpt.dt > 0) PetscCall(DryCheckpoint(r)); /* -io_checkpoint_interval 0: none at the end either */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
 {
   PetscBool      convex;
-  PetscReal      phi, coord, t;
-  PetscInt       step;
+  PetscReal      phi, coord, t, ts;
+  PetscInt       step, step0;
+  char           seg[160] = "";
   PetscLogDouble t0, t1;
   const char    *index;
   struct rusage  ru;
@@ -231,16 +234,16 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(DriverMonSetUp(&r->mon, io));
   PetscCall(DriverAvgSetUp(r->avg, dom, dem, NULL, io));
   if (ck) {
-    PetscCall(DriverCkptReadRun(r->comm, io, ck)); /* refuses another run's frames before running */
-    PetscCall(MonCheckpointRead(r->mon.mon, ck));
+    PetscCall(DriverCkptReadRun(&r->ckpt, io, r->mon.mon, ck)); /* refuses another run's frames before running */
     PetscCall(DemGetTime(dem, &t, NULL));
     PetscCall(DriverAvgCheckpointRead(r->avg, ck, t));
     PetscCall(DemSetRestart(dem, NULL));
     PetscCall(IoCkptClose(&ck));
-    PetscCall(DriverCkptRestarted(&r->ckpt, t0));
+    PetscCall(DriverCkptRestarted(&r->ckpt, t0, io, r->mon.mon, t));
   }
   PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
   if (lb) PetscCall(BalanceSetUp(lb));
+  PetscCall(DemGetTime(dem, &ts, &step0)); /* this run's segment: from here */
   PetscCall(PetscTime(&t0));
   PetscCall(DryRunLoop(r, dem, lb, io));
   PetscCall(PetscTime(&t1));
@@ -248,7 +251,8 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(DemGetTime(dem, &t, &step));
   PetscCall(DemGetBedFigures(dem, &phi, &coord));
   getrusage(RUSAGE_SELF, &ru);
-  PetscCall(PetscPrintf(r->comm, "done: t = %g s, %" PetscInt_FMT " steps in %.3f s (rank 0 peak memory %.1f MB)\n", (double)t, step, t1 - t0, ru.ru_maxrss / 1024.0));
+  if (r->ckpt.restart[0]) PetscCall(PetscSNPrintf(seg, sizeof seg, "this run from the restart at t = %g s, step %" PetscInt_FMT ", to step %" PetscInt_FMT "; ", (double)ts, step0, step));
+  PetscCall(PetscPrintf(r->comm, "done: t = %g s, %" PetscInt_FMT " steps in %.3f s (%srank 0 peak memory %.1f MB)\n", (double)t, step - step0, t1 - t0, seg, ru.ru_maxrss / 1024.0));
   PetscCall(PetscPrintf(r->comm, "bed: packing fraction %.4f, mean coordination number %.3f\n", (double)phi, (double)coord));
   PetscCall(DemFlowView(dem, PETSC_VIEWER_STDOUT_WORLD)); /* with sources or outlets: the balance */
   PetscCall(DemViewSources(dem, PETSC_VIEWER_STDOUT_WORLD));

@@ -53,6 +53,7 @@ struct _p_Fluid {
   PetscReal      cfl_max, visc_max;
   PetscBool      adaptive, setup;
   PetscBool      inlet_linear; /* -fluid_inlet_interpolation linear (else step) */
+  PetscBool      inlet_told;   /* the inlet tables' rows at the run's start were announced (inlet.c) */
   PetscBool      has_inlet;    /* some face is an inlet: velocity ghosts read the porosity */
   PetscReal      time;         /* sum of the steps taken (s): the inlet tables' clock */
   /* fields (global) */

@@ -6,7 +6,11 @@
  * interpolated linearly (linear: a ramp); after the last row it holds. The fluid's clock is the
  * sum of its steps; a step from t to t + dt uses the velocity at t + dt, the level at which the
  * projection enforces continuity, so the flux through the outlet follows the table within the
- * solver tolerance from the step that crosses a row's time on. */
+ * solver tolerance from the step that crosses a row's time on.
+ * The log: at the first step, the row each table is at when the run starts, at the fluid's true
+ * time (a restart's rows are the checkpoint's, reached before it: "is at row r ... reached at
+ * t = ..., before this run's start at t = ..."); then one line each time a step reaches a new
+ * row. */
 #include "fluid/fluid_impl.h"
 
 typedef enum {
@@ -75,16 +79,41 @@ static inline PetscInt fluid_inlet_at(const FluidBC *bc, PetscBool linear, Petsc
   return r;
 }
 
+/* Collective. Once, at the first step of a run (fresh or restarted): the row each table is at
+ * at the fluid's time, as "reaches row r ... at t = ..." when the row's time is the start's, else
+ * as a row reached earlier (a restart, or a run started after a row's time). */
+static PetscErrorCode FluidAnnounceInlets(Fluid fl)
+{
+  const char *side[2] = {"lo", "hi"}, *ax = "xyz";
+  const PetscReal t = fl->time, tol = 1e-9 * PetscMax(1.0, PetscAbsReal(t));
+
+  PetscFunctionBeginUser;
+  fl->inlet_told = PETSC_TRUE;
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      const FluidBC *bc = &fl->bc[d][s];
+      if (!bc->ntab || bc->row < 0) continue;
+      const PetscReal *row  = &bc->tab[4 * bc->row];
+      const char      *ramp = fl->inlet_linear && bc->row + 1 < bc->ntab ? ", ramping to the next row" : "";
+      if (row[0] >= t - tol) PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s reaches row %d of its table at t = %g s: velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)bc->row + 1, (double)t, (double)row[1], (double)row[2], (double)row[3], ramp));
+      else PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s is at row %d of its table (reached at t = %g s, before this run's start at t = %g s): velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)bc->row + 1, (double)row[0], (double)t, (double)row[1], (double)row[2], (double)row[3], ramp));
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Collective. Sets every tabled inlet to its velocity at t; when one changes, rewrites the
- * fixed faces of u and makes the implicit viscous operator rebuild its boundary part. A line is
- * printed when a face reaches a new row of its table; *changed_out (may be NULL) says whether
- * any inlet velocity changed. */
+ * fixed faces of u and makes the implicit viscous operator rebuild its boundary part. Before
+ * the set-up (the options' call, at the clock's 0) it says nothing: at the first step the rows
+ * at the start are announced (FluidAnnounceInlets: after a restart the clock and rows are the
+ * checkpoint's), then a line is printed when a face reaches a new row of its table;
+ * *changed_out (may be NULL) says whether any inlet velocity changed. */
 PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed_out)
 {
   const char *side[2] = {"lo", "hi"}, *ax = "xyz";
   PetscBool   changed = PETSC_FALSE;
 
   PetscFunctionBeginUser;
+  if (fl->setup && !fl->inlet_told) PetscCall(FluidAnnounceInlets(fl));
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
       FluidBC  *bc = &fl->bc[d][s];
@@ -92,7 +121,7 @@ PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed_out)
       PetscInt  r;
       if (!bc->ntab) continue;
       r = fluid_inlet_at(bc, fl->inlet_linear, t, v);
-      if (r != bc->row && r >= 0) PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s reaches row %d of its table at t = %g s: velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)r + 1, (double)t, (double)bc->tab[4 * r + 1], (double)bc->tab[4 * r + 2], (double)bc->tab[4 * r + 3], fl->inlet_linear && r + 1 < bc->ntab ? ", ramping to the next row" : ""));
+      if (r != bc->row && r >= 0 && fl->setup) PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s reaches row %d of its table at t = %g s: velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)r + 1, (double)t, (double)bc->tab[4 * r + 1], (double)bc->tab[4 * r + 2], (double)bc->tab[4 * r + 3], fl->inlet_linear && r + 1 < bc->ntab ? ", ramping to the next row" : ""));
       bc->row = r;
       for (int k = 0; k < 3; k++) {
         if (v[k] != bc->vel[k]) changed = PETSC_TRUE;

@@ -7,11 +7,14 @@
  *                           count, surface points and triangles, then "p name ncomp isint" per
  *                           particle dataset and "f name ncomp" per fluid dataset
  *   io/dir       BYTE:      the absolute -io_dir the frames were written to
- * The run_id is drawn at a fresh start (clock and pid mixed) and kept by a restart; every frame
- * file and the index carry it. A restart lists the old frames again in its index (by their
- * absolute path when -io_dir changed), numbers new frames on from them, and refuses, before
- * running, a directory holding a frame numbered from the next one on that is not of this run
- * (another run_id, or none): frames of this run recomputed after a preemption may be
+ *   io/prefix    BYTE:      the -io_prefix (absent: taken to be this run's)
+ * A restart in the same place (the same directory, by its absolute path, and prefix) continues the
+ * series: its index lists the old frames again, new frames are numbered on from them, and the
+ * run_id is kept. A restart into another place starts a new series there (a branch of a study):
+ * a new run_id is drawn, its frames are numbered from 0 as a fresh run's, the first one at the
+ * checkpoint's time, its index lists only them, and nothing of the old place is touched. Either way the restart refuses,
+ * before running, a directory holding a frame numbered from its next one on that is not of this
+ * run (another run_id, or none): frames of this run recomputed after a preemption may be
  * overwritten, another run's never. */
 #include "io/io_private.h"
 #include <ctype.h>
@@ -138,6 +141,7 @@ PetscErrorCode IoCheckpointWrite(Io io, IoCkpt ck)
   if (!realpath(io->dir, dir)) PetscCall(PetscStrncpy(dir, io->dir, sizeof dir)); /* the checkpoint lives there: it exists */
   PetscCallMPI(MPI_Bcast(dir, sizeof dir, MPI_CHAR, 0, io->comm));                /* rank 0's, as written */
   PetscCall(IoCkptWriteShared(ck, "io/dir", IO_CKPT_BYTE, (PetscInt)strlen(dir), dir));
+  PetscCall(IoCkptWriteShared(ck, "io/prefix", IO_CKPT_BYTE, (PetscInt)strlen(io->prefix), io->prefix));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -153,23 +157,19 @@ static PetscErrorCode IoCkptReadText(IoCkpt ck, const char *name, char **text)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective. The frames of io/frame_t and io/frames into io (the old frames of the run); those
- * of another directory are named by their absolute path, which the index can point to. */
+/* Collective. The frames of io/frame_t and io/frames into io (the frames of the series this
+ * restart continues, in the same directory). */
 static PetscErrorCode IoFramesRead(Io io, IoCkpt ck, PetscInt n)
 {
   PetscReal  *t;
-  char       *text, *line, *save = NULL, *olddir, here[PATH_MAX];
+  char       *text, *line, *save = NULL;
   const char *path;
-  PetscBool   moved;
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptGetPath(ck, &path));
   PetscCall(PetscMalloc1(n + 1, &t));
   PetscCall(IoCkptReadShared(ck, "io/frame_t", IO_CKPT_REAL, n, t));
   PetscCall(IoCkptReadText(ck, "io/frames", &text));
-  PetscCall(IoCkptReadText(ck, "io/dir", &olddir));
-  moved = (PetscBool)(!realpath(io->dir, here) || strcmp(here, olddir));
-  PetscCallMPI(MPI_Bcast(&moved, 1, MPIU_BOOL, 0, io->comm)); /* rank 0's view of the file system */
   io->capframes = n + 16;
   PetscCall(PetscFree(io->frames));
   PetscCall(PetscCalloc1(io->capframes, &io->frames));
@@ -178,16 +178,29 @@ static PetscErrorCode IoFramesRead(Io io, IoCkpt ck, PetscInt n)
     IoFrame *fr = &io->frames[i];
     PetscCheck(line && io_frame_decode(line, fr), io->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset io/frames does not describe frame %" PetscInt_FMT " of %" PetscInt_FMT, path, i, n);
     fr->t = t[i];
-    if (moved && fr->file[0] != '/') {
-      char rel[PETSC_MAX_PATH_LEN];
-      PetscCall(PetscStrncpy(rel, fr->file, sizeof rel));
-      PetscCall(PetscSNPrintf(fr->file, sizeof fr->file, "%s/%s", olddir, rel));
-    }
   }
   io->nframes = n;
   PetscCall(PetscFree(t));
   PetscCall(PetscFree(text));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. Whether this run writes where the checkpoint's run did: the same directory (by
+ * its absolute path, rank 0's view of the file system) and the same prefix. */
+static PetscErrorCode IoSamePlace(Io io, IoCkpt ck, PetscBool *same)
+{
+  char     *olddir, *oldprefix = NULL, here[PATH_MAX];
+  PetscBool has;
+
+  PetscFunctionBeginUser;
+  PetscCall(IoCkptReadText(ck, "io/dir", &olddir));
+  PetscCall(IoCkptHas(ck, "io/prefix", &has));
+  if (has) PetscCall(IoCkptReadText(ck, "io/prefix", &oldprefix));
+  *same = (PetscBool)(realpath(io->dir, here) && !strcmp(here, olddir) && (!oldprefix || !strcmp(oldprefix, io->prefix)));
+  PetscCallMPI(MPI_Bcast(same, 1, MPIU_BOOL, 0, io->comm));
+  PetscCall(PetscStrncpy(io->from, olddir, sizeof io->from));
   PetscCall(PetscFree(olddir));
+  PetscCall(PetscFree(oldprefix));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -224,7 +237,7 @@ static void io_find_foreign(Io io, PetscInt from, unsigned long long id, char fo
   closedir(d);
 }
 
-/* Collective. Refuses to run when -io_dir holds a frame numbered from io->nframes on of another
+/* Collective. Refuses to run when -io_dir holds a frame numbered from the next one on of another
  * run: one line naming the file and -io_dir. */
 static PetscErrorCode IoRefuseForeignFrames(Io io)
 {
@@ -251,13 +264,37 @@ static PetscErrorCode IoRefuseForeignFrames(Io io)
 PetscErrorCode IoCheckpointRead(Io io, IoCkpt ck)
 {
   long long state[2];
+  PetscBool same;
+  PetscReal next;
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptReadShared(ck, "io/state", IO_CKPT_LLONG, 2, state));
-  PetscCall(IoCkptReadShared(ck, "io/next", IO_CKPT_REAL, 1, &io->next));
+  PetscCall(IoCkptReadShared(ck, "io/next", IO_CKPT_REAL, 1, &next));
   PetscCheck(state[0] >= 0, io->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the dataset io/state holds a frame count %lld, expected >= 0", state[0]);
-  io->run_id = (unsigned long long)state[1];
-  PetscCall(IoFramesRead(io, ck, (PetscInt)state[0]));
+  PetscCall(IoSamePlace(io, ck, &same));
+  if (same) { /* the series goes on: the old frames listed again, the run_id kept */
+    io->next   = next;
+    io->run_id = (unsigned long long)state[1];
+    PetscCall(IoFramesRead(io, ck, (PetscInt)state[0]));
+  } else { /* a new series: this run's own run_id (drawn), a frame at once, numbered from 0 */
+    io->next  = -PETSC_MAX_REAL;
+    io->fresh = PETSC_TRUE;
+  }
   PetscCall(IoRefuseForeignFrames(io));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoViewRestart(Io io, Mon mon, PetscBool mon_resumed, PetscReal t)
+{
+  char        frames[PETSC_MAX_PATH_LEN + 128], monitor[PETSC_MAX_PATH_LEN + 64] = "";
+  const char *mpath = NULL;
+
+  PetscFunctionBeginUser;
+  if (io->interval > 0) PetscCall(PetscSNPrintf(frames, sizeof frames, "frames from %s_%06" PetscInt_FMT ".h5 on (index %s)", io->prefix, io->nframes, io->index));
+  else PetscCall(PetscStrcpy(frames, "no frames (-io_interval 0)"));
+  if (mon) PetscCall(MonGetPath(mon, &mpath));
+  if (mpath) PetscCall(PetscSNPrintf(monitor, sizeof monitor, "; monitor %s%s", mpath, mon_resumed ? " continued (cut back to the checkpoint's rows)" : (io->fresh ? "" : " (a new series)")));
+  if (io->fresh) PetscCall(PetscPrintf(io->comm, "restart: new output series in %s from t = %g: %s%s; the checkpoint's run's frames in %s are left as they are\n", io->dir, (double)t, frames, monitor, io->from));
+  else PetscCall(PetscPrintf(io->comm, "restart: output continued in %s from t = %g: %s%s\n", io->dir, (double)t, frames, monitor));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -63,14 +63,22 @@ PetscErrorCode IoHasDataset(const char *file, const char *name, PetscBool *has);
 PetscErrorCode IoCheckReadable(MPI_Comm comm, const char *opt, const char *file);
 
 /* The output's continuation (continue.c), under io/ of a checkpoint: the frame count, the next
- * output time, the frames written (a restarted run's index lists them, then its own) and the
- * run identity (run_id: drawn at a fresh start, kept by restarts, written as the attribute
- * "run_id" of every frame file and into the index). Collective. IoCheckpointRead refuses, in one
- * line naming the file and -io_dir, a directory holding a frame numbered from the next one on
- * that is not of this run (another run_id or none); this run's own frames may be overwritten. */
+ * output time, the frames written, the directory and prefix, and the run identity (run_id: drawn
+ * at a fresh start, written as the attribute "run_id" of every frame file and into the index).
+ * Collective. IoCheckpointRead continues the series when this run's -io_dir (by its absolute
+ * path) and -io_prefix are the checkpoint's (the index lists the old frames, then the new ones,
+ * numbered on; the run_id is kept), and otherwise starts a new series there as a fresh run would
+ * (a new run_id; frames numbered from 0, the first at once; the index lists only them). It refuses, in one line naming the file and -io_dir, a directory holding a frame
+ * numbered from the next one on that is not of this run (another run_id or none); this run's
+ * own frames may be overwritten. IoViewRestart, after it: the log line that says where the
+ * output goes from time t on ("restart: new output series in DIR from t = ...: frames from
+ * FILE on (index ...); monitor PATH; ..." or "restart: output continued in DIR ..."), the
+ * monitor (may be NULL) continued or not as MonCheckpointRead said. */
 typedef struct _p_IoCkpt *IoCkpt;
+typedef struct _p_Mon    *Mon;
 PetscErrorCode            IoCheckpointWrite(Io io, IoCkpt ck);
 PetscErrorCode            IoCheckpointRead(Io io, IoCkpt ck);
+PetscErrorCode            IoViewRestart(Io io, Mon mon, PetscBool mon_resumed, PetscReal t);
 
 /* Checkpoint files (checkpoint.c): one HDF5 file per checkpoint, written and read collectively
  * through MPI-IO. A quantity is a 1-D dataset of the ranks' rows in rank order, with <name>_n
@@ -137,8 +145,11 @@ PetscErrorCode MonDue(Mon mon, PetscReal t, PetscBool *due);
 PetscErrorCode MonWriteRow(Mon mon, const PetscReal *values);
 /* The file's path, NULL when there is none. */
 PetscErrorCode MonGetPath(Mon mon, const char **path);
-/* Collective. The monitor's place in a checkpoint (mon/state: next time, rows, file length), and
- * at a restart the file cut back to it and continued. */
+/* Collective. The monitor's place in a checkpoint (mon/state: next time, rows, file length;
+ * mon/file: its absolute path). At a restart whose monitor file is the checkpoint's, the file is
+ * cut back to the checkpoint's rows and continued (*resumed true; refused when the file is
+ * missing or shorter); with another file a new series starts there: its header, then a row at
+ * once (*resumed false). resumed may be NULL. */
 PetscErrorCode MonCheckpointWrite(Mon mon, IoCkpt ck);
-PetscErrorCode MonCheckpointRead(Mon mon, IoCkpt ck);
+PetscErrorCode MonCheckpointRead(Mon mon, IoCkpt ck, PetscBool *resumed);
 PetscErrorCode MonDestroy(Mon *mon);

@@ -2,11 +2,17 @@
  * names the columns as "name [unit]"; each row is one monitored time, written by rank 0 and
  * flushed, so a running or killed run leaves every finished row readable. Values are printed with
  * %.17g, so a row holds the doubles of the run exactly. The columns are declared by the drivers
- * before the first row; a row gives a value for every column. At a restart the file is cut back to
- * the rows of the checkpoint (MonCheckpointRead) and continued, so that a preempted run leaves one
- * series as if it had never stopped. Options: -mon_interval (s, 0 = no monitor), -mon_file. */
+ * before the first row; a row gives a value for every column. At a restart into the same file (by
+ * its absolute path, recorded in the checkpoint) the file is cut back to the rows of the
+ * checkpoint (MonCheckpointRead) and continued, so that a preempted run leaves one series as if it
+ * had never stopped; a restart into another file (another -io_dir or -io_prefix, or -mon_file)
+ * starts a new series there from the checkpoint's time, leaving the old file as it is. Options:
+ * -mon_interval (s, 0 = no monitor), -mon_file. */
 #include "io/io_private.h"
 #include <errno.h>
+#include <libgen.h>
+#include <limits.h>
+#include <stdlib.h>
 #include <unistd.h>
 #include <sys/stat.h>
 
@@ -134,9 +140,26 @@ PetscErrorCode MonGetPath(Mon mon, const char **path)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Rank 0. The absolute form of path, whether the file exists or not: its directory resolved
+ * (to "" when the directory does not exist either). */
+static void mon_abspath(const char *path, char abs[PATH_MAX])
+{
+  char d[PATH_MAX], b[PATH_MAX], dir[PATH_MAX];
+
+  abs[0] = 0;
+  if (strlen(path) >= PATH_MAX) return;
+  strcpy(d, path);
+  strcpy(b, path);
+  if (!realpath(dirname(d), dir)) return;
+  if (strlen(dir) + strlen(basename(b)) + 2 > PATH_MAX) return;
+  snprintf(abs, PATH_MAX, "%s/%s", dir, basename(b));
+}
+
 PetscErrorCode MonCheckpointWrite(Mon mon, IoCkpt ck)
 {
-  double s[4];
+  double      s[4];
+  char        abs[PATH_MAX] = "";
+  PetscMPIInt rank;
 
   PetscFunctionBeginUser;
   s[0] = mon->next;
@@ -145,22 +168,58 @@ PetscErrorCode MonCheckpointWrite(Mon mon, IoCkpt ck)
   s[3] = (double)mon->ncol;
   PetscCallMPI(MPI_Bcast(&s[2], 1, MPI_DOUBLE, 0, mon->comm)); /* rank 0 knows the length */
   PetscCall(IoCkptWriteShared(ck, "mon/state", IO_CKPT_REAL, 4, s));
+  if (mon->interval > 0) {
+    PetscCallMPI(MPI_Comm_rank(mon->comm, &rank));
+    if (!rank) mon_abspath(mon->path, abs);
+    PetscCallMPI(MPI_Bcast(abs, sizeof abs, MPI_CHAR, 0, mon->comm));
+    if (abs[0]) PetscCall(IoCkptWriteShared(ck, "mon/file", IO_CKPT_BYTE, (PetscInt)strlen(abs), abs));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode MonCheckpointRead(Mon mon, IoCkpt ck)
+/* Collective. Whether this run's monitor file is the one of the checkpoint's run: by the absolute
+ * path it recorded; a checkpoint without one (an older format) counts as the same file when this
+ * run's holds at least the checkpoint's bytes. */
+static PetscErrorCode MonSameFile(Mon mon, IoCkpt ck, long long bytes, PetscBool *same)
+{
+  PetscBool   has;
+  PetscMPIInt rank;
+  char        abs[PATH_MAX];
+  struct stat st;
+
+  PetscFunctionBeginUser;
+  PetscCall(IoCkptHas(ck, "mon/file", &has));
+  PetscCallMPI(MPI_Comm_rank(mon->comm, &rank));
+  if (has) {
+    long long n;
+    char     *old;
+    PetscCall(IoCkptGetSize(ck, "mon/file", &n));
+    PetscCall(PetscCalloc1(n + 1, &old));
+    PetscCall(IoCkptReadShared(ck, "mon/file", IO_CKPT_BYTE, (PetscInt)n, old));
+    if (!rank) mon_abspath(mon->path, abs);
+    *same = (PetscBool)(!rank && abs[0] && !strcmp(abs, old));
+    PetscCall(PetscFree(old));
+  } else *same = (PetscBool)(!rank && stat(mon->path, &st) == 0 && (long long)st.st_size >= bytes);
+  PetscCallMPI(MPI_Bcast(same, 1, MPIU_BOOL, 0, mon->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MonCheckpointRead(Mon mon, IoCkpt ck, PetscBool *resumed)
 {
   double      s[4];
-  PetscBool   has;
+  PetscBool   has, same;
   const char *path;
 
   PetscFunctionBeginUser;
+  if (resumed) *resumed = PETSC_FALSE;
   PetscCall(IoCkptHas(ck, "mon/state", &has));
   if (!has) PetscFunctionReturn(PETSC_SUCCESS); /* written without a monitor: start one now */
   PetscCall(IoCkptReadShared(ck, "mon/state", IO_CKPT_REAL, 4, s));
   if (mon->interval <= 0 || s[1] == 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MonSameFile(mon, ck, (long long)s[2], &same));
+  if (!same) PetscFunctionReturn(PETSC_SUCCESS); /* a new series: the header, then a row at once */
   PetscCall(IoCkptGetPath(ck, &path));
-  PetscCheck((PetscInt)s[3] == mon->ncol, mon->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset mon/state says %d monitor columns, this run has %d", path, (int)s[3], (int)mon->ncol);
+  PetscCheck((PetscInt)s[3] == mon->ncol, mon->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset mon/state says %d monitor columns, this run has %d (give another -mon_file to start a new series)", path, (int)s[3], (int)mon->ncol);
   {
     PetscMPIInt rank;
     int         err = 0;
@@ -168,12 +227,13 @@ PetscErrorCode MonCheckpointRead(Mon mon, IoCkpt ck)
     PetscCallMPI(MPI_Comm_rank(mon->comm, &rank));
     if (!rank && (stat(mon->path, &st) != 0 || (long long)st.st_size < (long long)s[2])) err = 1;
     PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, mon->comm));
-    PetscCheck(!err, mon->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the monitor file %s is missing or shorter than the checkpoint's %lld bytes (give the run's -mon_file, or another one to start a new series)", path, mon->path, (long long)s[2]);
+    PetscCheck(!err, mon->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the monitor file %s of the checkpoint's run is missing or shorter than the checkpoint's %lld bytes (give another -mon_file, -io_dir or -io_prefix to start a new series)", path, mon->path, (long long)s[2]);
   }
   mon->next    = s[0];
   mon->rows    = (PetscInt)s[1];
   mon->bytes   = (long long)s[2];
   mon->resumed = PETSC_TRUE;
+  if (resumed) *resumed = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
