@@ -10,8 +10,9 @@
 #     before any step, the last fluid step's eps_min and Poisson iterations); the new index lists
 #     only the new frames, from the checkpoint's time on, each bitwise the uninterrupted run's
 #     frame at its time (tests/common/frames_equal.py); the old folder is unchanged (checksums).
-#     A restart in the same -io_dir with a new -mon_file continues the frames and starts a new
-#     monitor series in that file, the old monitor unchanged.
+#     ParaView (pvpython) reads the coupled branch's index. A restart in the same -io_dir with a
+#     new -mon_file continues the frames and starts a new monitor series in that file, the old
+#     monitor unchanged.
 # (b) -io_checkpoint_interval 0 given explicitly writes no checkpoint at the end (dry and
 #     coupled); a SIGTERM still writes its checkpoint.
 # (c) A restart's log: an inlet table's row reached before the checkpoint is not announced as
@@ -104,6 +105,30 @@ branch() {
 branch dry 1 "$DRY" 0.04 0.02
 branch dry 2 "$DRY" 0.04 0.02
 branch coupled 1 "$WET" 4 2
+# ParaView (pvpython's XDMF reader) reads the coupled branch's index: its times are the new frames'
+if command -v pvpython >/dev/null; then
+  cat >"$W/pv.py" <<'PY'
+import sys
+from paraview.simple import XDMFReader, servermanager
+r = XDMFReader(FileNames=[sys.argv[1]])
+r.UpdatePipelineInformation()
+t = list(r.TimestepValues)
+ok = 0
+for tt in t:
+    r.UpdatePipeline(tt)
+    d = servermanager.Fetch(r)
+    ok += d.GetBlock(0).GetNumberOfPoints() == 384 and d.GetBlock(1).GetNumberOfCells() == 192
+print(len(t), ok, t[0] if t else -1, t[-1] if t else -1)
+PY
+  set -- $(timeout 120 pvpython "$W/pv.py" "$W/coupled.1/out/branch/sable.xmf" 2>/dev/null | tail -n 1)
+  if [ "$#" -eq 4 ] && [ "$1" -eq 5 ] && [ "$2" -eq 5 ] && awk -v a="$3" -v b="$4" 'BEGIN { exit !(a > 2 - 1e-9 && a < 2 + 1e-9 && b > 4 - 1e-9 && b < 4 + 1e-9) }'; then
+    echo "PASS branch paraview: pvpython reads the branch's index: $1 times from $3 to $4 (the checkpoint's to the end, every 0.5), each with 384 particles and 192 fluid cells"
+  else
+    echo "FAIL branch paraview: pvpython read: $* (want 5 times from 2 to 4, each with 384 particles and 192 cells)"
+  fi
+else
+  echo "NOTE branch paraview: pvpython not found, the branch's index not opened in ParaView"
+fi
 
 # a new -mon_file in the same -io_dir: the frames go on, the monitor starts a new series
 d=$W/dry.1
