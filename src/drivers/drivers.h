@@ -16,8 +16,8 @@ PetscErrorCode DriverIsCoupled(PetscBool *on);
 #define DRIVER_KEEP_MAX 64
 typedef struct {
   MPI_Comm  comm;
-  PetscReal dt;          /* -io_checkpoint_interval (s; 0: none) */
-  PetscBool mon_resumed; /* at a restart: the monitor file continued (else a new series) */
+  PetscReal dt;                                         /* -io_checkpoint_interval (s; 0: none) */
+  PetscBool mon_resumed;                                /* at a restart: the monitor continued */
   PetscInt  keep, n, step;                              /* kept, written so far, step of the last one */
   char      files[DRIVER_KEEP_MAX][PETSC_MAX_PATH_LEN]; /* the newest ones written, oldest first */
   char      restart[PETSC_MAX_PATH_LEN];                /* -restart ("" for none) */

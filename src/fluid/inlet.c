@@ -84,7 +84,7 @@ static inline PetscInt fluid_inlet_at(const FluidBC *bc, PetscBool linear, Petsc
  * as a row reached earlier (a restart, or a run started after a row's time). */
 static PetscErrorCode FluidAnnounceInlets(Fluid fl)
 {
-  const char *side[2] = {"lo", "hi"}, *ax = "xyz";
+  const char     *side[2] = {"lo", "hi"}, *ax = "xyz";
   const PetscReal t = fl->time, tol = 1e-9 * PetscMax(1.0, PetscAbsReal(t));
 
   PetscFunctionBeginUser;

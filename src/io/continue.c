@@ -8,14 +8,14 @@
  *                           particle dataset and "f name ncomp" per fluid dataset
  *   io/dir       BYTE:      the absolute -io_dir the frames were written to
  *   io/prefix    BYTE:      the -io_prefix (absent: taken to be this run's)
- * A restart in the same place (the same directory, by its absolute path, and prefix) continues the
- * series: its index lists the old frames again, new frames are numbered on from them, and the
- * run_id is kept. A restart into another place starts a new series there (a branch of a study):
- * a new run_id is drawn, its frames are numbered from 0 as a fresh run's, the first one at the
- * checkpoint's time, its index lists only them, and nothing of the old place is touched. Either way the restart refuses,
- * before running, a directory holding a frame numbered from its next one on that is not of this
- * run (another run_id, or none): frames of this run recomputed after a preemption may be
- * overwritten, another run's never. */
+ * A restart in the same place (the same directory, by its absolute path, and prefix) continues
+ * the series: its index lists the old frames again, new frames are numbered on from them, and
+ * the run_id is kept. A restart into another place starts a new series there (a branch of a
+ * study): a new run_id is drawn, its frames are numbered from 0 as a fresh run's, the first one
+ * at the checkpoint's time, its index lists only them, and nothing of the old place is touched.
+ * Either way the restart refuses, before running, a directory holding a frame numbered from its
+ * next one on that is not of this run (another run_id, or none): frames of this run recomputed
+ * after a preemption may be overwritten, another run's never. */
 #include "io/io_private.h"
 #include <ctype.h>
 #include <dirent.h>

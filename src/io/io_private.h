@@ -49,8 +49,10 @@ struct _p_Io {
   PetscBool dirmade; /* -io_dir made (and the reserve taken) before the first frame of this process */
   int       reserve; /* rank 0: the descriptor of the reserve (an unlinked file), or -1 */
   IoRunId   run_id;  /* drawn at a fresh start, kept across restarts (continue.c) */
-  PetscBool fresh;   /* a restart that started a new output series (continue.c) */
-  char      from[PETSC_MAX_PATH_LEN]; /* at a restart: the absolute -io_dir of the checkpoint's run */
+
+  /* a restart (continue.c): whether it started a new output series; the checkpoint's -io_dir */
+  PetscBool fresh;
+  char      from[PETSC_MAX_PATH_LEN];
 };
 
 /* Collective. A fresh run's identity: rank 0 mixes the clock and its pid (continue.c). */
