@@ -221,6 +221,10 @@ PetscErrorCode DriverCkptRestarted(DriverCkpt *c, PetscLogDouble t0, Io io, Mon 
   PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(c->comm, "restart: %s\n", c->restart));
   PetscCall(PetscPrintf(c->comm, "  read and set up in %.3f s, %.1f MB\n", t1 - t0, rank ? 0.0 : DriverFileMB(c->restart)));
-  if (io) PetscCall(IoViewRestart(io, mon, c->mon_resumed, t));
+  if (io) {
+    const char *mpath = NULL;
+    if (mon) PetscCall(MonGetPath(mon, &mpath));
+    PetscCall(IoViewRestart(io, mpath, c->mon_resumed, t));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

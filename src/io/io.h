@@ -73,12 +73,11 @@ PetscErrorCode IoCheckReadable(MPI_Comm comm, const char *opt, const char *file)
  * own frames may be overwritten. IoViewRestart, after it: the log line that says where the
  * output goes from time t on ("restart: new output series in DIR from t = ...: frames from
  * FILE on (index ...); monitor PATH; ..." or "restart: output continued in DIR ..."), the
- * monitor (may be NULL) continued or not as MonCheckpointRead said. */
+ * monitor file mpath (NULL: none) continued or not as MonCheckpointRead said. */
 typedef struct _p_IoCkpt *IoCkpt;
-typedef struct _p_Mon    *Mon;
 PetscErrorCode            IoCheckpointWrite(Io io, IoCkpt ck);
 PetscErrorCode            IoCheckpointRead(Io io, IoCkpt ck);
-PetscErrorCode            IoViewRestart(Io io, Mon mon, PetscBool mon_resumed, PetscReal t);
+PetscErrorCode            IoViewRestart(Io io, const char *mpath, PetscBool mon_resumed, PetscReal t);
 
 /* Checkpoint files (checkpoint.c): one HDF5 file per checkpoint, written and read collectively
  * through MPI-IO. A quantity is a 1-D dataset of the ranks' rows in rank order, with <name>_n
