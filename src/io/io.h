@@ -68,9 +68,10 @@ PetscErrorCode IoCheckReadable(MPI_Comm comm, const char *opt, const char *file)
  * Collective. IoCheckpointRead continues the series when this run's -io_dir (by its absolute
  * path) and -io_prefix are the checkpoint's (the index lists the old frames, then the new ones,
  * numbered on; the run_id is kept), and otherwise starts a new series there as a fresh run would
- * (a new run_id; frames numbered from 0, the first at once; the index lists only them). It refuses, in one line naming the file and -io_dir, a directory holding a frame
- * numbered from the next one on that is not of this run (another run_id or none); this run's
- * own frames may be overwritten. IoViewRestart, after it: the log line that says where the
+ * (a new run_id; frames numbered from 0, the first at once; the index lists only them). It
+ * refuses, in one line naming the file and -io_dir, a directory holding a frame numbered from
+ * the next one on that is not of this run (another run_id or none); this run's own frames may
+ * be overwritten. IoViewRestart, after it: the log line that says where the
  * output goes from time t on ("restart: new output series in DIR from t = ...: frames from
  * FILE on (index ...); monitor PATH; ..." or "restart: output continued in DIR ..."), the
  * monitor file mpath (NULL: none) continued or not as MonCheckpointRead said. */
