@@ -10,9 +10,9 @@
 #     before any step, the last fluid step's eps_min and Poisson iterations); the new index lists
 #     only the new frames, from the checkpoint's time on, each bitwise the uninterrupted run's
 #     frame at its time (tests/common/frames_equal.py); the old folder is unchanged (checksums).
-#     ParaView (pvpython) reads the coupled branch's index. A restart in the same -io_dir with a
-#     new -mon_file continues the frames and starts a new monitor series in that file, the old
-#     monitor unchanged.
+#     ParaView (pvpython) reads the coupled branch's index. Another -io_prefix in the same -io_dir
+#     is a new series too. A restart in the same -io_dir with a new -mon_file continues the frames
+#     and starts a new monitor series in that file, the old monitor unchanged.
 # (b) -io_checkpoint_interval 0 given explicitly writes no checkpoint at the end (dry and
 #     coupled); a SIGTERM still writes its checkpoint.
 # (c) A restart's log: an inlet table's row reached before the checkpoint is not announced as
@@ -130,9 +130,23 @@ else
   echo "NOTE branch paraview: pvpython not found, the branch's index not opened in ParaView"
 fi
 
-# a new -mon_file in the same -io_dir: the frames go on, the monitor starts a new series
+# another -io_prefix in the same -io_dir: a new series beside the old one, which is untouched
 d=$W/dry.1
 ck=$(sed -n 's/^checkpoint: //p' "$d/half.log" | tail -n 1)
+s0=$(cd "$d/half" && md5sum sable* | md5sum | cut -c1-12)
+(cd "$d" && "$S" $DRY -dem_t_end 0.04 -io_dir half -io_prefix b -restart "$ck" >prefix.log 2>&1)
+rc=$?
+nb=$(grep -c 'Name="particles" GridType="Uniform"' "$d/half/b.xmf" 2>/dev/null)
+tb=$(grep -o 'Time Value="[^"]*"' "$d/half/b.xmf" 2>/dev/null | head -n 1 | cut -d'"' -f2)
+mb=$(sed -n 2p "$d/half/b_monitor.csv" 2>/dev/null | cut -d, -f1)
+s1=$(cd "$d/half" && md5sum sable* | md5sum | cut -c1-12)
+if [ "$rc" -eq 0 ] && [ "${nb:-0}" -eq 3 ] && [ -f "$d/half/b_000000.h5" ] && [ "$tb" = "$mb" ] && [ -n "$tb" ] && [ "$s0" = "$s1" ]; then
+  echo "PASS new -io_prefix: exit 0, b.xmf lists 3 frames from t = $tb, b_monitor.csv starts there, the sable_* files unchanged (checksum $s1)"
+else
+  echo "FAIL new -io_prefix: exit $rc, b.xmf lists ${nb:-no} frames from t = '$tb', b_monitor.csv's first row at '$mb', sable_* checksum $s0 -> $s1: $(grep 'sable:' "$d/prefix.log")"
+fi
+
+# a new -mon_file in the same -io_dir: the frames go on, the monitor starts a new series
 m0=$(md5sum <"$d/half/sable_monitor.csv")
 (cd "$d" && "$S" $DRY -dem_t_end 0.04 -io_dir half -mon_file half/other.csv -restart "$ck" >mon.log 2>&1)
 rc=$?
