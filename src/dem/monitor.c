@@ -142,9 +142,9 @@ static inline double dem_below(double c, double r, double s)
 
 PetscErrorCode DemGetBedSurface(Dem dem, const PetscReal lo[3], const PetscReal hi[3], PetscReal dz, PetscReal frac, PetscReal *surface)
 {
-  int       axis;
-  double    up, s0, s1, *loc, *vol, vmax = 0;
-  PetscInt  n, top = -1;
+  int      axis;
+  double   up, s0, s1, *loc, *vol, vmax = 0;
+  PetscInt n, top = -1;
 
   PetscFunctionBeginUser;
   DemGravityAxis(dem, &axis, &up);
@@ -153,8 +153,8 @@ PetscErrorCode DemGetBedSurface(Dem dem, const PetscReal lo[3], const PetscReal 
     s0 = PetscMin(up * a, up * b);
     s1 = PetscMax(up * a, up * b);
   }
-  n  = (PetscInt)PetscCeilReal((s1 - s0) / dz - 1e-9);
-  n  = PetscMax(n, 1);
+  n = (PetscInt)PetscCeilReal((s1 - s0) / dz - 1e-9);
+  n = PetscMax(n, 1);
   PetscCall(PetscCalloc2(n, &loc, n, &vol));
   for (PetscInt i = 0; i < dem->p.n; i++) {
     double    x[3] = {dem->p.x[3 * i], dem->p.x[3 * i + 1], dem->p.x[3 * i + 2]}, r, v, c;

@@ -207,7 +207,8 @@ PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool co
     PetscCall(PetscStrcmp(fp[q], "eps", &e));
     PetscCall(PetscStrcmp(fp[q], "u", &u));
     PetscCheck(p || e || u, comm, PETSC_ERR_ARG_OUTOFRANGE, "-mon_average_fields: %s is not one of p, eps, u", fp[q]);
-    m->fields[p ? 0 : e ? 1 : 2] = PETSC_TRUE;
+    m->fields[p ? 0 : e ? 1
+                        : 2] = PETSC_TRUE;
   }
   for (PetscInt q = 0; set && q < nf; q++) PetscCall(PetscFree(fp[q])); /* PetscOptionsStringArray allocates the strings */
   PetscCheck(!set || coupled, comm, PETSC_ERR_ARG_INCOMP, "-mon_average_fields: the fields of -mon_line_<k> and -mon_plane_<k> averages; this run is dry (no -fluid_ or -cpl_ options)");
@@ -272,10 +273,10 @@ static PetscErrorCode DriverMonFillFluid(DriverMon *m, MonCols *cols, const Driv
 /* Every column, in order; values only when !cols->declare (then in is the row's input). */
 static PetscErrorCode DriverMonFill(DriverMon *m, MonCols *cols, const DriverMonInput *in)
 {
-  const PetscBool get = (PetscBool)!cols->declare;
+  const PetscBool get   = (PetscBool)!cols->declare;
   const PetscReal lo[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, hi[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* the domain */
-  DemStats        st = {0};
-  DemFlowStats    fl = {0};
+  DemStats        st  = {0};
+  DemFlowStats    fl  = {0};
   PetscReal       h95 = 0, mean = 0, surf = 0, top = 0, v = 0;
   PetscInt        cnt = 0;
   PetscLogDouble  now = 0;

@@ -111,7 +111,7 @@ static void FluidAxisWeights(const Fluid fl, int d, PetscReal a, PetscReal b, Pe
   }
   for (PetscInt i = (PetscInt)PetscFloorReal(sa); i < sb; i++) {
     const PetscReal u = PetscMax(sa, (PetscReal)i) - i, v = PetscMin(sb, (PetscReal)(i + 1)) - i; /* the piece, relative to centre i */
-    const PetscReal up = 0.5 * (v * v - u * u), len = v - u;                                       /* integrals of (s - i) and of 1 */
+    const PetscReal up = 0.5 * (v * v - u * u), len = v - u;                                      /* integrals of (s - i) and of 1 */
     if (!fl->dom->periodic[d] && i < 0) W[0] += len;
     else if (!fl->dom->periodic[d] && i >= n - 1) W[n - 1] += len;
     else {
@@ -180,8 +180,8 @@ static PetscErrorCode FluidAverageSegment(Fluid fl, const FluidSpan *sp, const F
   PetscCall(PetscCalloc2(8 * 5 * npt, &loc, 8 * 5 * npt, &all));
   for (PetscInt k = 0; k + 1 < nt; k++)
     for (int e = 0; e < 2; e++) {
-      const PetscInt  q  = 2 * k + e;
-      const PetscReal t  = 0.5 * (tau[k] + tau[k + 1]) + (e ? g : -g) * (tau[k + 1] - tau[k]), gw = 0.5 * (tau[k + 1] - tau[k]);
+      const PetscInt  q = 2 * k + e;
+      const PetscReal t = 0.5 * (tau[k] + tau[k + 1]) + (e ? g : -g) * (tau[k + 1] - tau[k]), gw = 0.5 * (tau[k + 1] - tau[k]);
       PetscInt        i0[3];
       PetscReal       w[3];
       for (int d = 0; d < 3; d++) FluidProbeAxis(fl, d, sp->a[d] + t * (sp->b[d] - sp->a[d]), &i0[d], &w[d]);
@@ -213,7 +213,7 @@ PetscErrorCode FluidAverageFields(Fluid fl, PetscInt n, const FluidSpan *sp, Pet
   if (!n) PetscFunctionReturn(PETSC_SUCCESS);
   for (PetscInt s = 0; s < n; s++)
     for (int d = 0; d < 3; d++) { /* a segment within the domain; a box's flat axes within it, its others cut to it */
-      const PetscBool in = (PetscBool)(sp[s].a[d] >= fl->dom->lo[d] && sp[s].a[d] <= fl->dom->hi[d] && sp[s].b[d] >= fl->dom->lo[d] && sp[s].b[d] <= fl->dom->hi[d]);
+      const PetscBool in  = (PetscBool)(sp[s].a[d] >= fl->dom->lo[d] && sp[s].a[d] <= fl->dom->hi[d] && sp[s].b[d] >= fl->dom->lo[d] && sp[s].b[d] <= fl->dom->hi[d]);
       const PetscBool cut = (PetscBool)(!sp[s].line && sp[s].a[d] < sp[s].b[d] && sp[s].a[d] < fl->dom->hi[d] && sp[s].b[d] > fl->dom->lo[d]);
       PetscCheck(in || cut, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: (%g, %g, %g) to (%g, %g, %g) %s the domain [%g, %g] x [%g, %g] x [%g, %g] (m)", sp[s].name, (double)sp[s].a[0], (double)sp[s].a[1], (double)sp[s].a[2], (double)sp[s].b[0], (double)sp[s].b[1], (double)sp[s].b[2], sp[s].line ? "leaves" : "lies outside", (double)fl->dom->lo[0], (double)fl->dom->hi[0], (double)fl->dom->lo[1], (double)fl->dom->hi[1], (double)fl->dom->lo[2], (double)fl->dom->hi[2]);
     }

@@ -23,8 +23,9 @@
 #   (c) a run continued from a checkpoint leaves the same monitor file as the uninterrupted run
 #       (every column but the wall-clock ones, as text);
 #   (d) tools/plot_monitor finds the frequency of a 3 Hz sine within the spectrum's resolution;
-#   (e) a probe, a line or a plane in a dry run, an empty box and a plane flat along two axes are
-#       refused in one line naming the option;
+#   (e) a probe, a line or a plane in a dry run, an empty box, a plane flat along two axes, and in
+#       a coupled run on 2 ranks a line leaving the domain and a pressure drop of a probe not
+#       given are refused in one line naming the option;
 #   (f) a lattice bed at rest: the 95% height is the centre of the lattice's layer k = ceil(0.95 nz)
 #       - 1, z0 + (k + 1/2) a, exactly, and the centre-of-mass height z0 + nz a / 2 (1e-12); with
 #       slabs one lattice spacing a thick (from z = 0 = z0), the bed surface is the lattice's top
@@ -38,7 +39,8 @@ W=$(mktemp -d)
 trap 'rm -rf "$W"' EXIT
 DRY="-options_file $ROOT/cases/settle/quick.opts -dem_t_end 0.05 -io_interval 0.01 -mon_interval 0.01 -mon_box_0 0,0,0,0.0725,0.0725,0.05 -mon_surface_3 0,0,0,0.0725,0.1449,0.24633 -mon_flux_0 z=0.1 -mon_flux_12 0.01,0.02,0.12,0.1,0.13,0.12"
 cat >"$W/monref.py" <<'PY'
-"""The monitor's particle and fluid figures recomputed from a frame's datasets (doc/output.md)."""
+# The monitor's particle and fluid figures recomputed from a frame's datasets (doc/output.md),
+# the head of dry.py and wet.py.
 import math, numpy as np
 
 def below(c, r, s):  # the fraction of a sphere (centre height c, radius r) below height s
@@ -124,11 +126,8 @@ def plane_average(F, axis, c, lo, hi):
                     tot = tot + 0.25 * wp * wq * (u1 - u0) * (v1 - v0) * F(x)
     return tot / ((hi[0] - lo[0]) * (hi[1] - lo[1]))
 PY
-cat >"$W/dry.py" <<'PY'
-#!/usr/bin/python3
+{ echo '#!/usr/bin/python3'; cat "$W/monref.py" - ; } >"$W/dry.py" <<'PY'
 import sys, os, glob, h5py, numpy as np
-sys.path.insert(0, os.path.dirname(sys.argv[0]))
-from monref import surface, flow
 d = sys.argv[1]
 if not os.path.exists(os.path.join(d, "sable_monitor.csv")): sys.exit(print("0 0 no_monitor_file"))
 rows = np.genfromtxt(os.path.join(d, "sable_monitor.csv"), delimiter=",", names=True)
@@ -174,13 +173,10 @@ for np in 1 2; do
 done
 # (b) probes, line and plane averages (the small bed is periodic in x and y)
 WET="-options_file $ROOT/cases/fluidized_bed/small.opts -cpl_t_end 2 -io_interval 0.5 -mon_interval 0.5 -mon_probe_0 4,2,0.3 -mon_probe_1 3.1,1.2,20.7 -mon_probe_2 8,4,48 -mon_probe_11 0.4,3.7,9.3 -mon_dp_0 0,1 -mon_dp_9 11,2 -mon_line_0 0.3,1.1,5.5,7.7,2.9,30.2 -mon_line_4 0,2,10,8,2,10 -mon_plane_0 z=10 -mon_plane_2 1,0.5,3,6,4,3"
-cat >"$W/wet.py" <<'PY'
-#!/usr/bin/python3
+{ echo '#!/usr/bin/python3'; cat "$W/monref.py" - ; } >"$W/wet.py" <<'PY'
 import sys, os, glob, h5py, numpy as np
 sys.path.insert(0, sys.argv[2])
-sys.path.insert(0, os.path.dirname(sys.argv[0]))
 from sable_frames import fluid_mesh
-from monref import Interp, line_average, plane_average, surface
 d = sys.argv[1]
 if not os.path.exists(os.path.join(d, "sable_monitor.csv")): sys.exit(print("0 0 no_monitor_file"))
 (lo, h) = fluid_mesh(d)
@@ -255,6 +251,12 @@ for c in "probe in a dry run|-mon_probe_0: a probe of the fluid pressure; this r
   out=$("$S" -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0 -mon_interval 0.001 $opt 2>&1); rc=$?
   if [ "$rc" -ne 0 ] && [ "$(printf '%s\n' "$out" | grep -c 'sable: error')" -eq 1 ] && printf '%s' "$out" | grep -q -- "$pat"; then echo "PASS monitor bad input, $name: exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""
   else echo "FAIL monitor bad input, $name: exit $rc; got: $out"; fi
+done
+for c in "line leaving the domain|-mon_line_2: (0., 0., 0.) to (9., 4., 48.) leaves the domain|-mon_line_2 0,0,0,9,4,48" "dp of a probe not given|-mon_dp_5 0,3: both must be probes given by -mon_probe_<k>|-mon_probe_0 1,1,1 -mon_dp_5 0,3"; do
+  name=${c%%|*}; rest=${c#*|}; pat=${rest%%|*}; opt=${rest#*|}
+  out=$(cd "$W" && mpiexec -n 2 "$S" -options_file "$ROOT/cases/fluidized_bed/small.opts" -cpl_t_end 1 -io_interval 0 -mon_interval 0.5 -io_dir bad $opt 2>&1); rc=$?
+  if [ "$rc" -ne 0 ] && [ "$(printf '%s\n' "$out" | grep -c 'sable: error')" -eq 1 ] && printf '%s' "$out" | grep -qF -- "$pat"; then echo "PASS monitor bad input, $name (coupled, 2 ranks): exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""
+  else echo "FAIL monitor bad input, $name (coupled, 2 ranks): exit $rc; got: $out"; fi
 done
 # (f) the analytic heights of a lattice
 for lat in "12 0" "15 0.002"; do
