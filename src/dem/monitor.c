@@ -4,8 +4,9 @@
  *   bed height h95: along gravity, the centre coordinate of the particle at which the solids mass
  *     counted from the bottom first reaches 95% (the smallest particle coordinate c with
  *     m(x <= c) >= 0.95 M (1 - 1e-12), "bottom" and "<=" in the sense of gravity; the slack keeps
- *     the round-off of the mass sums from choosing between two particles); exact, found by bisection
- *     on the ordered bit patterns of the coordinates (64 reductions, no gather);
+ *     the round-off of the mass sums from choosing between two particles); exact, found by radix
+ *     selection on the ordered bit patterns of the coordinates (8 bits a pass: at most 8 passes
+ *     and reductions, no gather);
  *   mean height: the mass-weighted mean centre coordinate along gravity (the centre of mass);
  *   mass and count of the particles whose centres (wrapped into periodic boxes, as the frames
  *     store them) lie in a box [lo, hi).
@@ -20,7 +21,7 @@
  *   mass flow through a plane: the slab estimator sum(m v.n) / w over the particles whose centre
  *     lies within w/2 of the plane and inside its rectangle (kg/s; a steady flow's mean is the
  *     flow for any w).
- * All collective; the bisection's sums are per rank in local order, so h95 is exact on any rank
+ * All collective; the selection's sums are per rank in local order, so h95 is exact on any rank
  * count unless a partial mass sum sits within roundoff of 0.95 M; the highest particle is exact;
  * the slab volumes and the mass flow are sums over ranks (the last bits depend on the rank
  * count). */
@@ -83,15 +84,33 @@ PetscErrorCode DemGetBedHeights(Dem dem, PetscReal frac, PetscReal *h, PetscReal
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   *mean = up * tot[1] / tot[0];
-  /* the smallest key K with m(key <= K) >= frac M lies in [glo, ghi] */
-  while (glo < ghi) {
-    const uint64_t mid   = glo + (ghi - glo) / 2;
-    double         below = 0, all;
-    for (PetscInt i = 0; i < dem->p.n; i++)
-      if (dem_order_key(up * dem->p.x[3 * i + axis]) <= mid) below += dem_mass_of(dem, i);
-    PetscCallMPI(MPI_Allreduce(&below, &all, 1, MPI_DOUBLE, MPI_SUM, dem->comm));
-    if (all >= frac * tot[0] * (1 - 1e-12)) ghi = mid; /* slack: with equal masses the count reaching frac M is exact, not its round-off */
-    else glo = mid + 1;
+  /* the smallest key K with m(key <= K) >= frac M lies in [glo, ghi]: radix selection, 8 bits a
+   * pass from the highest bit where glo and ghi differ (at most 8 passes and reductions) */
+  if (glo < ghi) {
+    const double target = frac * tot[0] * (1 - 1e-12); /* slack: with equal masses the count reaching frac M is exact, not its round-off */
+    double       below  = 0, hist[2][256];             /* below: the mass of the keys under the range */
+    uint64_t     pre    = glo;                         /* the range: the keys whose bits above 'bits' are pre's */
+    int          bits   = 64;
+    while (bits > 0 && !((glo ^ ghi) >> (bits - 1))) bits--;
+    while (bits > 0) {
+      const int nb = PetscMin(8, bits), nbin = 1 << nb;
+      int       j, last                      = 0;
+      bits -= nb;
+      PetscCall(PetscArrayzero(hist[0], nbin));
+      for (PetscInt i = 0; i < dem->p.n; i++) {
+        const uint64_t k = dem_order_key(up * dem->p.x[3 * i + axis]);
+        if (bits + nb == 64 || (k >> (bits + nb)) == (pre >> (bits + nb))) hist[0][(k >> bits) & ((1u << nb) - 1)] += dem_mass_of(dem, i);
+      }
+      PetscCallMPI(MPI_Allreduce(hist[0], hist[1], nbin, MPI_DOUBLE, MPI_SUM, dem->comm));
+      for (j = 0; j < nbin; j++) {
+        if (hist[1][j] > 0) last = j;
+        if (below + hist[1][j] >= target) break;
+        below += hist[1][j];
+      }
+      if (j == nbin) below -= hist[1][j = last]; /* not reached by round-off: the range's highest key */
+      pre = (bits + nb == 64 ? 0 : pre >> (bits + nb) << (bits + nb)) | ((uint64_t)j << bits);
+    }
+    glo = pre;
   }
   *h = up * dem_key_value(glo);
   PetscFunctionReturn(PETSC_SUCCESS);
