@@ -94,6 +94,17 @@ PetscErrorCode DemGetBedFigures(Dem dem, PetscReal *phi, PetscReal *coord);
 PetscErrorCode DemGetBedHeights(Dem dem, PetscReal frac, PetscReal *h, PetscReal *mean);
 /* Collective (monitor.c). Solids mass (kg) and particle count with centres in [lo, hi) (m). */
 PetscErrorCode DemGetMassInBox(Dem dem, const PetscReal lo[3], const PetscReal hi[3], PetscReal *mass, PetscInt *count);
+/* Collective (monitor.c). The coordinate along gravity of the top of the highest particle: centre
+ * plus radius (a convex shape's bounding radius), 0 without particles. */
+PetscErrorCode DemGetHighest(Dem dem, PetscReal *top);
+/* Collective (monitor.c). The bed surface of the particles whose centres lie in the box [lo, hi)
+ * (m): the coordinate along gravity where the solids volume profile in slabs of thickness dz
+ * (m), read from the top, first reaches frac times its densest slab (0 without particles). */
+PetscErrorCode DemGetBedSurface(Dem dem, const PetscReal lo[3], const PetscReal hi[3], PetscReal dz, PetscReal frac, PetscReal *surface);
+/* Collective (monitor.c). Solids mass flow (kg/s) along +axis through the rectangle [lo, hi) of
+ * the plane x[axis] = lo[axis]: sum(m v[axis]) / width over the particles whose centre lies
+ * within width/2 (m) of the plane and inside the rectangle. */
+PetscErrorCode DemGetMassFlow(Dem dem, const PetscReal lo[3], const PetscReal hi[3], int axis, PetscReal width, PetscReal *flow);
 PetscErrorCode DemWriteOutput(Dem dem, Io io);
 /* Whether the scene has non-spherical (convex) shapes, known after DemSetFromOptions. */
 PetscErrorCode DemHasConvexShapes(Dem dem, PetscBool *convex);

@@ -49,16 +49,28 @@ PetscErrorCode DriverCkptWriteRun(Io io, IoCkpt ck);
 PetscErrorCode DriverCkptReadRun(DriverCkpt *c, Io io, Mon mon, IoCkpt ck);
 
 /* The monitor file's contents, shared by both drivers (monitor.c): -mon_interval, -mon_file
- * (io/monitor.c), -mon_box_<k>, and for coupled runs -mon_probe_<k>, -mon_dp_<k>. */
+ * (io/monitor.c), -mon_box_<k>, -mon_surface_<k> (-mon_surface_dz, -mon_surface_fraction),
+ * -mon_flux_<k> (-mon_flux_width), and for coupled runs -mon_probe_<k>, -mon_dp_<k>,
+ * -mon_line_<k>, -mon_plane_<k> (-mon_average_fields), any number of each. */
 typedef struct {
-  MPI_Comm       comm;
-  Mon            mon;
-  PetscBool      coupled, ready; /* ready: columns declared (DriverMonSetUp with a monitor file) */
-  PetscInt       nbox, boxid[8], ndp, dpid[8], dp[8][2];
-  PetscReal      box[8][6], probe[8][3];
-  PetscBool      probe_set[8];
-  PetscLogDouble wall0, wall_last;
-  PetscInt       step_last;
+  PetscInt  k;            /* the option's index */
+  PetscReal lo[3], hi[3]; /* a box, a segment's ends, a plane's rectangle (flat along axis), a probe (lo) */
+  int       axis;         /* a plane's normal */
+  PetscInt  ab[2];        /* a pressure drop's probes (positions in DriverMon.probe) */
+  char      name[32];     /* the option */
+} DriverMonRegion;
+typedef struct {
+  MPI_Comm         comm;
+  Mon              mon;
+  PetscBool        coupled, ready; /* ready: columns declared (DriverMonSetUp with a monitor file) */
+  PetscInt         nbox, nsurf, nflux, nprobe, ndp, nline, nplane, ncol;
+  DriverMonRegion *box, *surf, *flux, *probe, *dp, *line, *plane;
+  PetscReal        surf_dz, surf_frac, flux_width; /* m, -, m (0: the default, set at the first row) */
+  PetscBool        fields[3];                      /* p, eps, u in the line and plane averages */
+  FluidSpan       *spans;                          /* the lines, then the planes */
+  PetscReal       *row;
+  PetscLogDouble   wall0, wall_last;
+  PetscInt         step_last;
 } DriverMon;
 /* What a row is made of: the time and step counter, the DEM, and for a coupled run the fluid and
  * the last coupling step's statistics (NULL before the first). */

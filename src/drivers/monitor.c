@@ -1,24 +1,187 @@
-/* What the drivers put in the monitor file (io/monitor.c), one row every -mon_interval:
- *   time [s]; step [-] (DEM steps; a coupled run's fluid steps); particles [-];
- *   kinetic_energy, rotational_energy [J]; max_overlap [radius]; contacts, wall_contacts [-];
- *   bed_height_95 [m] (the centre height below which 95% of the solids mass lies, along
- *   gravity), mean_height [m] (the centre of mass along gravity);
- *   inserted, removed [-] and inserted_mass, removed_mass [kg]: the particles sources added and
- *   outlets took since the start (particles = initial + inserted - removed);
- *   box<k>_mass [kg], box<k>_count [-] for each -mon_box_<k> lo_x,lo_y,lo_z,hi_x,hi_y,hi_z;
- *   a coupled run adds p_probe<k> [Pa] at each -mon_probe_<k> x,y,z (the cell-centred pressure
- *   interpolated trilinearly), dp<k> [Pa] = p(probe a) - p(probe b) for each -mon_dp_<k> a,b,
- *   eps_min [-], poisson_iterations [-] (of the last fluid step);
- *   wall_time [s] since the loop started and wall_time_per_step [s] over the last interval.
- * Every figure is one a user can compute again from a frame at the same time. */
+/* What the drivers put in the monitor file (io/monitor.c), one row every -mon_interval; the
+ * columns and their definitions are listed in doc/output.md ("Monitor file"). Each column is one
+ * line of DriverMonFill: MonCol(cols, name, index, unit, value) declares the column (name and
+ * unit) while the header is made and fills its value in each row, so a column's name, unit and
+ * value stay together. The indexed families (-mon_box_<k>, -mon_surface_<k>, -mon_flux_<k>, and
+ * for coupled runs -mon_probe_<k>, -mon_dp_<k>, -mon_line_<k>, -mon_plane_<k>) take any number
+ * of members: the indices given are found in the options database, and their columns follow in
+ * increasing index; nothing is computed for a family left empty. The particle figures come from
+ * the DEM's getters (dem/monitor.c), the fluid ones from the fluid's (fluid/probe.c): every
+ * figure is one a user can compute again from a frame at the same time. All collective. */
 #include "drivers/drivers.h"
+#include <ctype.h>
 
-#define DRIVER_MON_MAX 8
+/* The plane options take words ("z=0.05"); -mon_average_fields is a literal word option. */
+static const char *const DriverMonWordOptions[] = {"-mon_flux_%d", "-mon_plane_%d"};
+
+/* The indices k of the options -<family>_<k> given (sorted, without repeats), and always 0 so
+ * that -help lists the family; *idx is freed by the caller. Not collective. */
+static PetscErrorCode DriverMonIndices(const char *family, PetscInt *n, PetscInt **idx)
+{
+  char    *all, *tok, *save = NULL;
+  size_t   len;
+  PetscInt cap = 8;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(cap, idx));
+  (*idx)[0] = 0;
+  *n        = 1;
+  PetscCall(PetscOptionsGetAll(NULL, &all));
+  PetscCall(PetscStrlen(family, &len));
+  for (tok = strtok_r(all, " ", &save); tok; tok = strtok_r(NULL, " ", &save)) {
+    const char *s = tok + 1 + len + 1;
+    char       *end;
+    long        k;
+    if (tok[0] != '-' || strncmp(tok + 1, family, len) || tok[1 + len] != '_' || !isdigit((unsigned char)*s)) continue;
+    k = strtol(s, &end, 10);
+    if (*end || k > 999999) continue; /* another option of the family (-mon_surface_dz), or an index too long: the unused-option check names it */
+    if (*n == cap) PetscCall(PetscRealloc(sizeof(PetscInt) * (cap *= 2), idx));
+    (*idx)[(*n)++] = (PetscInt)k;
+  }
+  PetscCall(PetscFree(all));
+  PetscCall(PetscSortRemoveDupsInt(n, *idx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Appends region r to the list *list of *n (grown one at a time: set-up only). */
+static PetscErrorCode DriverMonAppend(DriverMonRegion **list, PetscInt *n, const DriverMonRegion *r)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscRealloc(sizeof(DriverMonRegion) * (*n + 1), list));
+  (*list)[(*n)++] = *r;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A plane option's value: "x=c", "y=c", "z=c" (a whole cross-section: the rectangle unbounded,
+ * clipped to the domain where used) or lo_x,lo_y,lo_z,hi_x,hi_y,hi_z with lo = hi on exactly one
+ * axis (a rectangle). */
+static PetscErrorCode DriverMonParsePlane(MPI_Comm comm, const char *opt, const char *val, DriverMonRegion *r)
+{
+  const char *help = "give x=c, y=c or z=c (m: the whole cross-section) or lo_x,lo_y,lo_z,hi_x,hi_y,hi_z (m) with lo = hi on exactly one axis (a rectangle)";
+  PetscReal   v[6];
+  int         n = 0, flat = 0;
+  const char *s = val;
+  char       *end;
+
+  PetscFunctionBeginUser;
+  if ((val[0] == 'x' || val[0] == 'y' || val[0] == 'z') && val[1] == '=') {
+    const PetscReal c = strtod(val + 2, &end);
+    PetscCheck(end != val + 2 && !*end && !PetscIsInfOrNanReal(c), comm, PETSC_ERR_ARG_WRONG, "%s %s: %s", opt, val, help);
+    r->axis = val[0] - 'x';
+    for (int d = 0; d < 3; d++) r->lo[d] = -PETSC_MAX_REAL, r->hi[d] = PETSC_MAX_REAL;
+    r->lo[r->axis] = r->hi[r->axis] = c;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  while (n < 6) {
+    v[n] = strtod(s, &end);
+    if (end == s) break;
+    n++;
+    s = end;
+    if (*s != ',') break;
+    s++;
+  }
+  PetscCheck(n == 6 && !*s, comm, PETSC_ERR_ARG_WRONG, "%s %s: %s", opt, val, help);
+  for (int d = 0; d < 3; d++) {
+    PetscCheck(v[d] <= v[d + 3], comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s: lo > hi on axis %c; %s", opt, val, 'x' + d, help);
+    if (v[d] == v[d + 3]) flat++, r->axis = d;
+    r->lo[d] = v[d];
+    r->hi[d] = v[d + 3];
+  }
+  PetscCheck(flat == 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s: flat along %d axes; %s", opt, val, flat, help);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The indexed families of a box or segment (six reals) into *list. */
+static PetscErrorCode DriverMonReadBoxes(PetscOptionItems *PetscOptionsObject, DriverMon *m, const char *family, const char *pattern, const char *text, PetscBool fluid, PetscBool segment, DriverMonRegion **list, PetscInt *n)
+{
+  PetscInt *idx, ni;
+  char      opt[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(DriverMonIndices(family, &ni, &idx));
+  for (PetscInt i = 0; i < ni; i++) {
+    DriverMonRegion r = {.k = idx[i]};
+    PetscReal       v[6];
+    PetscBool       set;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, pattern, (int)idx[i]));
+    PetscCall(SableOptionsRealN(opt, text, "m", v, 0, 6, &set));
+    if (!set) continue;
+    PetscCheck(!fluid || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: an average of the fluid's fields; this run is dry (no -fluid_ or -cpl_ options)", opt);
+    if (segment) PetscCheck(v[0] != v[3] || v[1] != v[4] || v[2] != v[5], m->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the two ends coincide (m)", opt, (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4], (double)v[5]);
+    else PetscCheck(v[0] < v[3] && v[1] < v[4] && v[2] < v[5], m->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: need lo < hi on every axis (m)", opt, (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4], (double)v[5]);
+    for (int d = 0; d < 3; d++) r.lo[d] = v[d], r.hi[d] = v[d + 3];
+    PetscCall(PetscStrncpy(r.name, opt, sizeof r.name));
+    PetscCall(DriverMonAppend(list, n, &r));
+  }
+  PetscCall(PetscFree(idx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The indexed families of a plane (DriverMonParsePlane) into *list. */
+static PetscErrorCode DriverMonReadPlanes(PetscOptionItems *PetscOptionsObject, DriverMon *m, const char *family, const char *pattern, const char *text, PetscBool fluid, DriverMonRegion **list, PetscInt *n)
+{
+  PetscInt *idx, ni;
+  char      opt[64], val[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(DriverMonIndices(family, &ni, &idx));
+  for (PetscInt i = 0; i < ni; i++) {
+    DriverMonRegion r = {.k = idx[i]};
+    PetscBool       set;
+    val[0] = 0;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, pattern, (int)idx[i]));
+    PetscCall(PetscOptionsString(opt, text, NULL, val, val, sizeof val, &set));
+    if (!set) continue;
+    PetscCheck(!fluid || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: an average of the fluid's fields; this run is dry (no -fluid_ or -cpl_ options)", opt);
+    PetscCall(DriverMonParsePlane(m->comm, opt, val, &r));
+    PetscCall(PetscStrncpy(r.name, opt, sizeof r.name));
+    PetscCall(DriverMonAppend(list, n, &r));
+  }
+  PetscCall(PetscFree(idx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Point probes and the pressure drops between them (coupled runs). */
+static PetscErrorCode DriverMonReadProbes(PetscOptionItems *PetscOptionsObject, DriverMon *m)
+{
+  PetscInt *idx, ni;
+  char      opt[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(DriverMonIndices("mon_probe", &ni, &idx));
+  for (PetscInt i = 0; i < ni; i++) {
+    DriverMonRegion r = {.k = idx[i]};
+    PetscBool       set;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_probe_%d", (int)idx[i]));
+    PetscCall(SableOptionsRealN(opt, "A point whose fluid pressure the monitor reports (coupled runs): x,y,z", "m", r.lo, 0, 3, &set));
+    PetscCheck(!set || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: a probe of the fluid pressure; this run is dry (no -fluid_ or -cpl_ options)", opt);
+    if (set) PetscCall(DriverMonAppend(&m->probe, &m->nprobe, &r));
+  }
+  PetscCall(PetscFree(idx));
+  PetscCall(DriverMonIndices("mon_dp", &ni, &idx));
+  for (PetscInt i = 0; i < ni; i++) {
+    DriverMonRegion r = {.k = idx[i]};
+    PetscInt        ab[2], at[2] = {-1, -1};
+    PetscBool       set;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_dp_%d", (int)idx[i]));
+    PetscCall(PetscOptionsIntArray(opt, "Pressure drop the monitor reports: p(probe a) - p(probe b), probes of -mon_probe_<a>, -mon_probe_<b>", NULL, ab, &(PetscInt){2}, &set));
+    if (!set) continue;
+    for (PetscInt p = 0; p < m->nprobe; p++)
+      for (int e = 0; e < 2; e++)
+        if (m->probe[p].k == ab[e]) at[e] = p;
+    PetscCheck(at[0] >= 0 && at[1] >= 0, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %d,%d: both must be probes given by -mon_probe_<k>", opt, (int)ab[0], (int)ab[1]);
+    r.ab[0] = at[0];
+    r.ab[1] = at[1];
+    PetscCall(DriverMonAppend(&m->dp, &m->ndp, &r));
+  }
+  PetscCall(PetscFree(idx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool coupled)
 {
-  char      opt[64];
-  PetscReal v[6];
+  char      fields[3][8], *fp[3] = {fields[0], fields[1], fields[2]};
+  PetscInt  nf = 3;
   PetscBool set;
 
   PetscFunctionBeginUser;
@@ -27,77 +190,173 @@ PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool co
   PetscCall(MonCreate(comm, &m->mon));
   PetscCall(MonSetFromOptions(m->mon));
   PetscOptionsBegin(comm, NULL, "Monitor contents", NULL);
-  for (int k = 0; k < DRIVER_MON_MAX; k++) {
-    PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_box_%d", k));
-    PetscCall(SableOptionsRealN(opt, "A box whose solids mass and particle count the monitor reports: lo_x,lo_y,lo_z,hi_x,hi_y,hi_z", "m", v, 0, 6, &set));
-    if (!set) continue;
-    PetscCheck(v[0] < v[3] && v[1] < v[4] && v[2] < v[5], comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: need lo < hi on every axis (m)", opt, (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4], (double)v[5]);
-    m->boxid[m->nbox] = k;
-    PetscCall(PetscArraycpy(m->box[m->nbox++], v, 6));
+  PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_box", "-mon_box_%d", "A box whose solids mass and particle count the monitor reports: lo_x,lo_y,lo_z,hi_x,hi_y,hi_z", PETSC_FALSE, PETSC_FALSE, &m->box, &m->nbox));
+  PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_surface", "-mon_surface_%d", "A box whose bed surface the monitor reports (the particles with centres in it; slabs along gravity): lo_x,lo_y,lo_z,hi_x,hi_y,hi_z", PETSC_FALSE, PETSC_FALSE, &m->surf, &m->nsurf));
+  PetscCall(SableOptionsReal("-mon_surface_dz", "Thickness of the slabs of the bed surfaces' solids profile; default 2 x the largest particle diameter", "m", "(0,inf)", 0, &m->surf_dz, NULL));
+  PetscCall(SableOptionsReal("-mon_surface_fraction", "A bed surface is where the solids profile, read from the top, first reaches this fraction of its densest slab", NULL, "(0,1]", 0.5, &m->surf_frac, NULL));
+  PetscCall(DriverMonReadPlanes(PetscOptionsObject, m, "mon_flux", DriverMonWordOptions[0], "A plane through which the monitor reports the solids mass flow (kg/s, along +axis): x=c, y=c, z=c (whole), or a rectangle lo_x,lo_y,lo_z,hi_x,hi_y,hi_z flat along one axis", PETSC_FALSE, &m->flux, &m->nflux));
+  PetscCall(SableOptionsReal("-mon_flux_width", "Width of the slab about a -mon_flux_<k> plane whose particles count: flow = sum(m v.n) / width; default 2 x the largest particle diameter", "m", "(0,inf)", 0, &m->flux_width, NULL));
+  PetscCall(DriverMonReadProbes(PetscOptionsObject, m));
+  PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_line", "-mon_line_%d", "A segment along which the monitor averages the fluid's fields (coupled runs): x0,y0,z0,x1,y1,z1", PETSC_TRUE, PETSC_TRUE, &m->line, &m->nline));
+  PetscCall(DriverMonReadPlanes(PetscOptionsObject, m, "mon_plane", DriverMonWordOptions[1], "A plane over which the monitor averages the fluid's fields (coupled runs): x=c, y=c, z=c (whole), or a rectangle lo_x,lo_y,lo_z,hi_x,hi_y,hi_z flat along one axis", PETSC_TRUE, &m->plane, &m->nplane));
+  PetscCall(PetscOptionsStringArray("-mon_average_fields", "Fields the -mon_line_<k> and -mon_plane_<k> averages report: p (Pa), eps (-), u (interstitial velocity, 3 columns, m/s); default p,eps,u", NULL, fp, &nf, &set));
+  for (int q = 0; q < 3; q++) m->fields[q] = (PetscBool)!set;
+  for (PetscInt q = 0; set && q < nf; q++) {
+    PetscBool p, e, u;
+    PetscCall(PetscStrcmp(fp[q], "p", &p));
+    PetscCall(PetscStrcmp(fp[q], "eps", &e));
+    PetscCall(PetscStrcmp(fp[q], "u", &u));
+    PetscCheck(p || e || u, comm, PETSC_ERR_ARG_OUTOFRANGE, "-mon_average_fields: %s is not one of p, eps, u", fp[q]);
+    m->fields[p ? 0 : e ? 1
+                        : 2] = PETSC_TRUE;
   }
-  { /* read in every run (-help lists them once); a dry run has no fluid to probe */
-    for (int k = 0; k < DRIVER_MON_MAX; k++) {
-      PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_probe_%d", k));
-      PetscCall(SableOptionsRealN(opt, "A point whose fluid pressure the monitor reports (coupled runs): x,y,z", "m", v, 0, 3, &set));
-      PetscCheck(!set || coupled, comm, PETSC_ERR_ARG_INCOMP, "%s: a probe of the fluid pressure; this run is dry (no -fluid_ or -cpl_ options)", opt);
-      m->probe_set[k] = set;
-      if (set) PetscCall(PetscArraycpy(m->probe[k], v, 3));
-    }
-    for (int k = 0; k < DRIVER_MON_MAX; k++) {
-      PetscInt ab[2];
-      PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_dp_%d", k));
-      PetscCall(PetscOptionsIntArray(opt, "Pressure drop the monitor reports: p(probe a) - p(probe b), probes of -mon_probe_<a>, -mon_probe_<b>", NULL, ab, &(PetscInt){2}, &set));
-      if (!set) continue;
-      PetscCheck(ab[0] >= 0 && ab[0] < DRIVER_MON_MAX && ab[1] >= 0 && ab[1] < DRIVER_MON_MAX && m->probe_set[ab[0]] && m->probe_set[ab[1]], comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %d,%d: both must be probes given by -mon_probe_<k> (k in [0,%d])", opt, (int)ab[0], (int)ab[1], DRIVER_MON_MAX - 1);
-      m->dpid[m->ndp]    = k;
-      m->dp[m->ndp][0]   = ab[0];
-      m->dp[m->ndp++][1] = ab[1];
-    }
-  }
+  for (PetscInt q = 0; set && q < nf; q++) PetscCall(PetscFree(fp[q])); /* PetscOptionsStringArray allocates the strings */
+  PetscCheck(!set || coupled, comm, PETSC_ERR_ARG_INCOMP, "-mon_average_fields: the fields of -mon_line_<k> and -mon_plane_<k> averages; this run is dry (no -fluid_ or -cpl_ options)");
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The columns, in the order DriverMonRow fills them. */
-static PetscErrorCode DriverMonColumns(DriverMon *m)
+/* Declaring the columns (declare) or filling a row's values (row). */
+typedef struct {
+  Mon        mon;
+  PetscBool  declare;
+  PetscReal *row;
+  PetscInt   c, ncol;
+} MonCols;
+
+/* One column: its name (a printf pattern of the index k when it has one), unit and value. */
+static PetscErrorCode MonCol(MonCols *cols, const char *name, PetscInt k, const char *unit, PetscReal v)
 {
-  const char *dem[][2] = {{"time", "s"}, {"step", "-"}, {"particles", "-"}, {"kinetic_energy", "J"}, {"rotational_energy", "J"}, {"max_overlap", "radius"}, {"contacts", "-"}, {"wall_contacts", "-"}, {"bed_height_95", "m"}, {"mean_height", "m"}, {"inserted", "-"}, {"removed", "-"}, {"inserted_mass", "kg"}, {"removed_mass", "kg"}};
-  char        name[64];
+  char buf[64];
 
   PetscFunctionBeginUser;
-  for (size_t c = 0; c < sizeof dem / sizeof dem[0]; c++) PetscCall(MonAddColumn(m->mon, dem[c][0], dem[c][1]));
-  for (PetscInt b = 0; b < m->nbox; b++) {
-    PetscCall(PetscSNPrintf(name, sizeof name, "box%d_mass", (int)m->boxid[b]));
-    PetscCall(MonAddColumn(m->mon, name, "kg"));
-    PetscCall(PetscSNPrintf(name, sizeof name, "box%d_count", (int)m->boxid[b]));
-    PetscCall(MonAddColumn(m->mon, name, "-"));
+  if (cols->declare) {
+    PetscCall(PetscSNPrintf(buf, sizeof buf, name, (int)k));
+    PetscCall(MonAddColumn(cols->mon, buf, unit));
+  } else {
+    PetscCheck(cols->c < cols->ncol, PETSC_COMM_SELF, PETSC_ERR_PLIB, "monitor: more values than the %d columns", (int)cols->ncol);
+    cols->row[cols->c] = v;
   }
-  if (m->coupled) {
-    for (int k = 0; k < DRIVER_MON_MAX; k++) {
-      if (!m->probe_set[k]) continue;
-      PetscCall(PetscSNPrintf(name, sizeof name, "p_probe%d", k));
-      PetscCall(MonAddColumn(m->mon, name, "Pa"));
-    }
-    for (PetscInt d = 0; d < m->ndp; d++) {
-      PetscCall(PetscSNPrintf(name, sizeof name, "dp%d", (int)m->dpid[d]));
-      PetscCall(MonAddColumn(m->mon, name, "Pa"));
-    }
-    PetscCall(MonAddColumn(m->mon, "eps_min", "-"));
-    PetscCall(MonAddColumn(m->mon, "poisson_iterations", "-"));
-  }
-  PetscCall(MonAddColumn(m->mon, "wall_time", "s"));
-  PetscCall(MonAddColumn(m->mon, "wall_time_per_step", "s"));
+  cols->c++;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/* The fluid's columns: probes, pressure drops, line and plane averages (coupled runs). */
+static PetscErrorCode DriverMonFillFluid(DriverMon *m, MonCols *cols, const DriverMonInput *in)
+{
+  const char *fname[5] = {"%s%d_p", "%s%d_eps", "%s%d_ux", "%s%d_uy", "%s%d_uz"}, *funit[5] = {"Pa", "-", "m/s", "m/s", "m/s"};
+  PetscReal  *p = NULL, *avg = NULL;
+  PetscInt    nspan = m->nline + m->nplane;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc2(m->nprobe, &p, 5 * nspan, &avg));
+  if (!cols->declare) {
+    for (PetscInt i = 0; i < m->nprobe; i++) PetscCall(FluidProbePressure(in->fluid, m->probe[i].lo, &p[i]));
+    if (nspan) PetscCall(FluidAverageFields(in->fluid, nspan, m->spans, m->fields[2], avg));
+  }
+  for (PetscInt i = 0; i < m->nprobe; i++) PetscCall(MonCol(cols, "p_probe%d", m->probe[i].k, "Pa", p[i]));
+  for (PetscInt d = 0; d < m->ndp; d++) PetscCall(MonCol(cols, "dp%d", m->dp[d].k, "Pa", p[m->dp[d].ab[0]] - p[m->dp[d].ab[1]]));
+  for (PetscInt s = 0; s < nspan; s++)
+    for (int q = 0; q < 5; q++) {
+      const PetscBool line = (PetscBool)(s < m->nline);
+      char            name[32];
+      if (!m->fields[q < 2 ? q : 2]) continue;
+      PetscCall(PetscSNPrintf(name, sizeof name, fname[q], line ? "line" : "plane", (int)(line ? m->line[s].k : m->plane[s - m->nline].k)));
+      PetscCall(MonCol(cols, name, 0, funit[q], avg[5 * s + q]));
+    }
+  PetscCall(PetscFree2(p, avg));
+  PetscCall(MonCol(cols, "eps_min", 0, "-", in->cst ? in->cst->eps_min : 1));
+  PetscCall(MonCol(cols, "poisson_iterations", 0, "-", in->cst ? (PetscReal)in->cst->fluid.poisson_its : 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Every column, in order; values only when !cols->declare (then in is the row's input). */
+static PetscErrorCode DriverMonFill(DriverMon *m, MonCols *cols, const DriverMonInput *in)
+{
+  const PetscBool get   = (PetscBool)!cols->declare;
+  const PetscReal lo[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, hi[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* the domain */
+  DemStats        st  = {0};
+  DemFlowStats    fl  = {0};
+  PetscReal       h95 = 0, mean = 0, surf = 0, top = 0, v = 0;
+  PetscInt        cnt = 0;
+  PetscLogDouble  now = 0;
+
+  PetscFunctionBeginUser;
+  if (get) {
+    PetscCall(DemGetStats(in->dem, &st));
+    PetscCall(DemGetBedHeights(in->dem, 0.95, &h95, &mean));
+    PetscCall(DemGetFlow(in->dem, &fl));
+    PetscCall(DemGetBedSurface(in->dem, lo, hi, m->surf_dz, m->surf_frac, &surf));
+    PetscCall(DemGetHighest(in->dem, &top));
+  }
+  PetscCall(MonCol(cols, "time", 0, "s", in->t));
+  PetscCall(MonCol(cols, "step", 0, "-", (PetscReal)in->step));
+  PetscCall(MonCol(cols, "particles", 0, "-", (PetscReal)st.n));
+  PetscCall(MonCol(cols, "kinetic_energy", 0, "J", st.ke));
+  PetscCall(MonCol(cols, "rotational_energy", 0, "J", st.ke_rot));
+  PetscCall(MonCol(cols, "max_overlap", 0, "radius", st.max_overlap));
+  PetscCall(MonCol(cols, "contacts", 0, "-", (PetscReal)st.contacts));
+  PetscCall(MonCol(cols, "wall_contacts", 0, "-", (PetscReal)st.wall_contacts));
+  PetscCall(MonCol(cols, "bed_height_95", 0, "m", h95));
+  PetscCall(MonCol(cols, "mean_height", 0, "m", mean));
+  PetscCall(MonCol(cols, "inserted", 0, "-", (PetscReal)fl.inserted));
+  PetscCall(MonCol(cols, "removed", 0, "-", (PetscReal)fl.removed));
+  PetscCall(MonCol(cols, "inserted_mass", 0, "kg", fl.m_inserted));
+  PetscCall(MonCol(cols, "removed_mass", 0, "kg", fl.m_removed));
+  PetscCall(MonCol(cols, "bed_surface", 0, "m", surf));
+  PetscCall(MonCol(cols, "highest_particle", 0, "m", top));
+  for (PetscInt b = 0; b < m->nbox; b++) {
+    if (get) PetscCall(DemGetMassInBox(in->dem, m->box[b].lo, m->box[b].hi, &v, &cnt));
+    PetscCall(MonCol(cols, "box%d_mass", m->box[b].k, "kg", v));
+    PetscCall(MonCol(cols, "box%d_count", m->box[b].k, "-", (PetscReal)cnt));
+  }
+  for (PetscInt s = 0; s < m->nsurf; s++) {
+    if (get) PetscCall(DemGetBedSurface(in->dem, m->surf[s].lo, m->surf[s].hi, m->surf_dz, m->surf_frac, &v));
+    PetscCall(MonCol(cols, "surface%d", m->surf[s].k, "m", v));
+  }
+  for (PetscInt f = 0; f < m->nflux; f++) {
+    if (get) PetscCall(DemGetMassFlow(in->dem, m->flux[f].lo, m->flux[f].hi, m->flux[f].axis, m->flux_width, &v));
+    PetscCall(MonCol(cols, "flux%d", m->flux[f].k, "kg/s", v));
+  }
+  if (m->coupled) PetscCall(DriverMonFillFluid(m, cols, in));
+  if (get) PetscCall(PetscTime(&now));
+  PetscCall(MonCol(cols, "wall_time", 0, "s", now - m->wall0));
+  PetscCall(MonCol(cols, "wall_time_per_step", 0, "s", m->step_last >= 0 && in->step > m->step_last ? (now - m->wall_last) / (in->step - m->step_last) : 0));
+  if (get) {
+    m->wall_last = now;
+    m->step_last = in->step;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscLogEvent DRIVER_MonRow = -1;
 
 PetscErrorCode DriverMonSetUp(DriverMon *m, Io io)
 {
   PetscBool on;
 
   PetscFunctionBeginUser;
+  if (DRIVER_MonRow < 0) { /* -log_view shows the monitor's time as DriverMonRow */
+    PetscClassId cid;
+    PetscCall(PetscClassIdRegister("Drivers", &cid));
+    PetscCall(PetscLogEventRegister("DriverMonRow", cid, &DRIVER_MonRow));
+  }
   PetscCall(MonSetUp(m->mon, io));
   PetscCall(MonIsActive(m->mon, &on));
-  if (on) PetscCall(DriverMonColumns(m));
+  if (on) {
+    MonCols        cols = {m->mon, PETSC_TRUE, NULL, 0, 0};
+    DriverMonInput in   = {0, 0, NULL, NULL, NULL};
+    PetscCall(DriverMonFill(m, &cols, &in));
+    PetscCall(MonGetColumnCount(m->mon, &m->ncol));
+    PetscCall(PetscMalloc1(m->ncol, &m->row));
+    PetscCall(PetscMalloc1(m->nline + m->nplane, &m->spans));
+    for (PetscInt s = 0; s < m->nline + m->nplane; s++) {
+      const DriverMonRegion *r = s < m->nline ? &m->line[s] : &m->plane[s - m->nline];
+      m->spans[s].line         = (PetscBool)(s < m->nline);
+      m->spans[s].name         = r->name;
+      for (int d = 0; d < 3; d++) m->spans[s].a[d] = r->lo[d], m->spans[s].b[d] = r->hi[d];
+    }
+  }
   m->ready = on;
   PetscCall(PetscTime(&m->wall0));
   m->wall_last = m->wall0;
@@ -107,60 +366,24 @@ PetscErrorCode DriverMonSetUp(DriverMon *m, Io io)
 
 PetscErrorCode DriverMonRow(DriverMon *m, const DriverMonInput *in)
 {
-  PetscReal      v[128], h, mean;
-  PetscInt       c = 0, ncol;
-  PetscBool      due;
-  DemStats       st;
-  DemFlowStats   fl;
-  PetscLogDouble now;
+  PetscBool due;
+  MonCols   cols = {m->mon, PETSC_FALSE, m->row, 0, m->ncol};
 
   PetscFunctionBeginUser;
   if (!m->ready) PetscFunctionReturn(PETSC_SUCCESS); /* no monitor, or a loop run without DriverMonSetUp */
   PetscCall(MonDue(m->mon, in->t, &due));
   if (!due) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(MonGetColumnCount(m->mon, &ncol));
-  PetscCheck(ncol <= (PetscInt)(sizeof v / sizeof v[0]), m->comm, PETSC_ERR_PLIB, "monitor: %d columns", (int)ncol);
-  PetscCall(DemGetStats(in->dem, &st));
-  PetscCall(DemGetBedHeights(in->dem, 0.95, &h, &mean));
-  v[c++] = in->t;
-  v[c++] = (PetscReal)in->step;
-  v[c++] = (PetscReal)st.n;
-  v[c++] = st.ke;
-  v[c++] = st.ke_rot;
-  v[c++] = st.max_overlap;
-  v[c++] = (PetscReal)st.contacts;
-  v[c++] = (PetscReal)st.wall_contacts;
-  v[c++] = h;
-  v[c++] = mean;
-  PetscCall(DemGetFlow(in->dem, &fl));
-  v[c++] = (PetscReal)fl.inserted;
-  v[c++] = (PetscReal)fl.removed;
-  v[c++] = fl.m_inserted;
-  v[c++] = fl.m_removed;
-  for (PetscInt b = 0; b < m->nbox; b++) {
-    PetscInt cnt;
-    PetscCall(DemGetMassInBox(in->dem, m->box[b], m->box[b] + 3, &v[c], &cnt));
-    v[c + 1] = (PetscReal)cnt;
-    c += 2;
+  if (m->surf_dz <= 0 || m->flux_width <= 0) { /* the defaults: two diameters of the largest particle */
+    PetscReal r;
+    PetscCall(DemGetLargestRadius(in->dem, &r));
+    if (m->surf_dz <= 0) m->surf_dz = 4 * r;
+    if (m->flux_width <= 0) m->flux_width = 4 * r;
   }
-  if (m->coupled) {
-    PetscReal p[DRIVER_MON_MAX] = {0};
-    for (int k = 0; k < DRIVER_MON_MAX; k++)
-      if (m->probe_set[k]) {
-        PetscCall(FluidProbePressure(in->fluid, m->probe[k], &p[k]));
-        v[c++] = p[k];
-      }
-    for (PetscInt d = 0; d < m->ndp; d++) v[c++] = p[m->dp[d][0]] - p[m->dp[d][1]];
-    v[c++] = in->cst ? in->cst->eps_min : 1;
-    v[c++] = in->cst ? (PetscReal)in->cst->fluid.poisson_its : 0;
-  }
-  PetscCall(PetscTime(&now));
-  v[c++]       = now - m->wall0;
-  v[c++]       = m->step_last >= 0 && in->step > m->step_last ? (now - m->wall_last) / (in->step - m->step_last) : 0;
-  m->wall_last = now;
-  m->step_last = in->step;
-  PetscCheck(c == ncol, m->comm, PETSC_ERR_PLIB, "monitor: %d values for %d columns", (int)c, (int)ncol);
-  PetscCall(MonWriteRow(m->mon, v));
+  PetscCall(PetscLogEventBegin(DRIVER_MonRow, 0, 0, 0, 0));
+  PetscCall(DriverMonFill(m, &cols, in));
+  PetscCheck(cols.c == m->ncol, m->comm, PETSC_ERR_PLIB, "monitor: %d values for %d columns", (int)cols.c, (int)m->ncol);
+  PetscCall(MonWriteRow(m->mon, m->row));
+  PetscCall(PetscLogEventEnd(DRIVER_MonRow, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -168,5 +391,14 @@ PetscErrorCode DriverMonDestroy(DriverMon *m)
 {
   PetscFunctionBeginUser;
   PetscCall(MonDestroy(&m->mon));
+  PetscCall(PetscFree(m->box));
+  PetscCall(PetscFree(m->surf));
+  PetscCall(PetscFree(m->flux));
+  PetscCall(PetscFree(m->probe));
+  PetscCall(PetscFree(m->dp));
+  PetscCall(PetscFree(m->line));
+  PetscCall(PetscFree(m->plane));
+  PetscCall(PetscFree(m->spans));
+  PetscCall(PetscFree(m->row));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

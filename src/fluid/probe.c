@@ -1,8 +1,20 @@
-/* Point probes of the fluid: the cell-centred pressure at a point x by trilinear interpolation
+/* Probes of the fluid: the cell-centred pressure at a point x by trilinear interpolation
  * between the eight cell centres around it. Along a wall, inlet or outlet axis a point within
  * half a cell of the boundary takes the value of the nearest centre row (no extrapolation);
  * along a periodic axis the centres wrap. The rank that owns the cell holding x interpolates from
- * its ghosted copy (the DMDA's stencil is at least one cell wide); the others add 0. */
+ * its ghosted copy (the DMDA's stencil is at least one cell wide); the others add 0.
+ * Averages (FluidAverageFields) of the same interpolant f of the cell-centred pressure, porosity
+ * and velocity (the frames' fields), exact, with no sampling parameter:
+ *   over a segment: f restricted to the segment is a cubic polynomial of the arc length between
+ *     the points where the segment crosses a plane of cell centres, so two Gauss-Legendre points
+ *     on each such piece integrate it exactly;
+ *   over an axis-aligned box (a rectangle: a box flat along its normal): f is a product of
+ *     piecewise-linear functions of each axis, integrated exactly axis by axis; over a whole
+ *     cross-section this is the plain mean of the cells' values, interpolated linearly between
+ *     the two layers of centres around the plane.
+ * Each term (a weight times a cell's value) is computed by the rank owning the cell into its own
+ * slot of a buffer; the buffer is summed over ranks (one non-zero per slot, so exactly) and then
+ * in a fixed order: the averages are bitwise the same on any rank count. */
 #include "fluid/fluid_impl.h"
 
 /* Lower centre index and weight of the upper one along axis d for coordinate x. */
@@ -48,5 +60,176 @@ PetscErrorCode FluidProbePressure(Fluid fl, const PetscReal x[3], PetscReal *p)
   }
   PetscCall(DMRestoreLocalVector(fl->cda, &loc));
   PetscCallMPI(MPI_Allreduce(&v, p, 1, MPIU_REAL, MPI_SUM, fl->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Global cell index along axis d: periodic indices wrapped into [0, N). */
+static inline PetscInt FluidWrapIndex(const Fluid fl, int d, PetscInt i)
+{
+  const PetscInt n = fl->g.N[d];
+  return fl->dom->periodic[d] ? ((i % n) + n) % n : i;
+}
+
+/* The owned-cell offset of global cell (i, j, k), -1 when another rank owns it. */
+static inline PetscInt FluidOwnedOffset(const Fluid fl, const PetscInt c[3])
+{
+  const FluidGrid *g = &fl->g;
+  for (int d = 0; d < 3; d++)
+    if (c[d] < g->xs[d] || c[d] >= g->xs[d] + g->xm[d]) return -1;
+  return ((c[2] - g->xs[2]) * g->xm[1] + (c[1] - g->xs[1])) * g->xm[0] + (c[0] - g->xs[0]);
+}
+
+/* The owned fields at owned-cell offset o: p, eps, u (3). */
+typedef struct {
+  const PetscScalar *p, *eps;
+  const PetscReal   *vel; /* NULL: not asked for */
+} FluidCellFields;
+
+static inline void FluidCellValues(const FluidCellFields *f, PetscInt o, PetscReal w, PetscReal *out)
+{
+  out[0] = w * PetscRealPart(f->p[o]);
+  out[1] = w * PetscRealPart(f->eps[o]);
+  for (int d = 0; d < 3; d++) out[2 + d] = f->vel ? w * f->vel[3 * o + d] : 0;
+}
+
+/* Weights W[0..N-1] of the cell centres along axis d whose sum with the centres' values is the
+ * average over [a, b] of the piecewise-linear interpolant (clamped to the end centres along a
+ * non-periodic axis, wrapped along a periodic one); a point when a == b. */
+static void FluidAxisWeights(const Fluid fl, int d, PetscReal a, PetscReal b, PetscReal *W)
+{
+  const PetscInt  n  = fl->g.N[d];
+  const PetscReal sa = (a - fl->g.lo[d]) / fl->g.h[d] - 0.5, sb = (b - fl->g.lo[d]) / fl->g.h[d] - 0.5;
+
+  for (PetscInt i = 0; i < n; i++) W[i] = 0;
+  if (b <= a) {
+    PetscInt  i0;
+    PetscReal w;
+    FluidProbeAxis(fl, d, a, &i0, &w);
+    W[FluidWrapIndex(fl, d, i0)] += 1 - w;
+    if (w != 0) W[FluidWrapIndex(fl, d, i0 + 1)] += w;
+    return;
+  }
+  for (PetscInt i = (PetscInt)PetscFloorReal(sa); i < sb; i++) {
+    const PetscReal u = PetscMax(sa, (PetscReal)i) - i, v = PetscMin(sb, (PetscReal)(i + 1)) - i; /* the piece, relative to centre i */
+    const PetscReal up = 0.5 * (v * v - u * u), len = v - u;                                      /* integrals of (s - i) and of 1 */
+    if (!fl->dom->periodic[d] && i < 0) W[0] += len;
+    else if (!fl->dom->periodic[d] && i >= n - 1) W[n - 1] += len;
+    else {
+      W[FluidWrapIndex(fl, d, i)] += len - up;
+      W[FluidWrapIndex(fl, d, i + 1)] += up;
+    }
+  }
+  for (PetscInt i = 0; i < n; i++) W[i] /= sb - sa;
+}
+
+/* The average over a box (flat along some axes; cut to the domain) into avg[5]. */
+static PetscErrorCode FluidAverageBox(Fluid fl, const FluidSpan *sp, const FluidCellFields *f, PetscReal avg[5])
+{
+  PetscReal *W[3], *loc, *all;
+  PetscInt   lo[3], hi[3], m[3], nslot, c[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc3(fl->g.N[0], &W[0], fl->g.N[1], &W[1], fl->g.N[2], &W[2]));
+  for (int d = 0; d < 3; d++) {
+    const PetscReal a = sp->a[d] < sp->b[d] ? PetscMax(sp->a[d], fl->dom->lo[d]) : sp->a[d], b = sp->a[d] < sp->b[d] ? PetscMin(sp->b[d], fl->dom->hi[d]) : sp->b[d];
+    FluidAxisWeights(fl, d, a, b, W[d]);
+    for (lo[d] = 0; W[d][lo[d]] == 0; lo[d]++) { }
+    for (hi[d] = fl->g.N[d] - 1; W[d][hi[d]] == 0; hi[d]--) { }
+    m[d] = hi[d] - lo[d] + 1;
+  }
+  nslot = m[0] * m[1] * m[2];
+  PetscCall(PetscCalloc2(5 * nslot, &loc, 5 * nslot, &all));
+  for (c[2] = lo[2]; c[2] <= hi[2]; c[2]++)
+    for (c[1] = lo[1]; c[1] <= hi[1]; c[1]++)
+      for (c[0] = lo[0]; c[0] <= hi[0]; c[0]++) {
+        const PetscInt  o = FluidOwnedOffset(fl, c), slot = ((c[2] - lo[2]) * m[1] + (c[1] - lo[1])) * m[0] + (c[0] - lo[0]);
+        const PetscReal w = W[0][c[0]] * W[1][c[1]] * W[2][c[2]];
+        if (o >= 0 && w != 0) FluidCellValues(f, o, w, loc + 5 * slot);
+      }
+  PetscCallMPI(MPI_Allreduce(loc, all, (PetscMPIInt)(5 * nslot), MPIU_REAL, MPI_SUM, fl->comm));
+  for (int q = 0; q < 5; q++) avg[q] = 0;
+  for (PetscInt k = 0; k < nslot; k++)
+    for (int q = 0; q < 5; q++) avg[q] += all[5 * k + q];
+  PetscCall(PetscFree2(loc, all));
+  PetscCall(PetscFree3(W[0], W[1], W[2]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The average over the segment a -> b into avg[5]. */
+static PetscErrorCode FluidAverageSegment(Fluid fl, const FluidSpan *sp, const FluidCellFields *f, PetscReal avg[5])
+{
+  const PetscReal g = 0.5 / PetscSqrtReal(3.0);
+  PetscReal      *tau, *loc, *all;
+  PetscInt        nt = 0, cap = 2, npt;
+
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++) cap += (PetscInt)(PetscAbsReal(sp->b[d] - sp->a[d]) / fl->g.h[d]) + 2;
+  PetscCall(PetscMalloc1(cap, &tau));
+  tau[nt++] = 0;
+  tau[nt++] = 1;
+  for (int d = 0; d < 3; d++) { /* where the segment crosses a plane of centres of axis d */
+    const PetscReal s0 = (sp->a[d] - fl->g.lo[d]) / fl->g.h[d] - 0.5, s1 = (sp->b[d] - fl->g.lo[d]) / fl->g.h[d] - 0.5;
+    if (s1 == s0) continue;
+    for (PetscInt i = (PetscInt)PetscCeilReal(PetscMin(s0, s1)); i <= PetscMax(s0, s1); i++) {
+      const PetscReal t = (i - s0) / (s1 - s0);
+      if (t > 0 && t < 1 && nt < cap) tau[nt++] = t;
+    }
+  }
+  PetscCall(PetscSortReal(nt, tau));
+  npt = 2 * (nt - 1);
+  PetscCall(PetscCalloc2(8 * 5 * npt, &loc, 8 * 5 * npt, &all));
+  for (PetscInt k = 0; k + 1 < nt; k++)
+    for (int e = 0; e < 2; e++) {
+      const PetscInt  q = 2 * k + e;
+      const PetscReal t = 0.5 * (tau[k] + tau[k + 1]) + (e ? g : -g) * (tau[k + 1] - tau[k]), gw = 0.5 * (tau[k + 1] - tau[k]);
+      PetscInt        i0[3];
+      PetscReal       w[3];
+      for (int d = 0; d < 3; d++) FluidProbeAxis(fl, d, sp->a[d] + t * (sp->b[d] - sp->a[d]), &i0[d], &w[d]);
+      for (int c = 0; c < 8; c++) {
+        const int       b[3] = {c & 1, (c >> 1) & 1, (c >> 2) & 1};
+        const PetscReal wt   = gw * (b[0] ? w[0] : 1 - w[0]) * (b[1] ? w[1] : 1 - w[1]) * (b[2] ? w[2] : 1 - w[2]);
+        PetscInt        cell[3], o;
+        if (wt == 0) continue;
+        for (int d = 0; d < 3; d++) cell[d] = FluidWrapIndex(fl, d, i0[d] + b[d]);
+        o = FluidOwnedOffset(fl, cell);
+        if (o >= 0) FluidCellValues(f, o, wt, loc + 5 * (8 * q + c));
+      }
+    }
+  PetscCallMPI(MPI_Allreduce(loc, all, (PetscMPIInt)(8 * 5 * npt), MPIU_REAL, MPI_SUM, fl->comm));
+  for (int q = 0; q < 5; q++) avg[q] = 0;
+  for (PetscInt k = 0; k < 8 * npt; k++)
+    for (int q = 0; q < 5; q++) avg[q] += all[5 * k + q];
+  PetscCall(PetscFree2(loc, all));
+  PetscCall(PetscFree(tau));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidAverageFields(Fluid fl, PetscInt n, const FluidSpan *sp, PetscBool velocity, PetscReal *avg)
+{
+  FluidCellFields f   = {NULL, NULL, NULL};
+  PetscReal      *vel = NULL;
+
+  PetscFunctionBeginUser;
+  if (!n) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt s = 0; s < n; s++)
+    for (int d = 0; d < 3; d++) { /* a segment within the domain; a box's flat axes within it, its others cut to it */
+      const PetscBool in  = (PetscBool)(sp[s].a[d] >= fl->dom->lo[d] && sp[s].a[d] <= fl->dom->hi[d] && sp[s].b[d] >= fl->dom->lo[d] && sp[s].b[d] <= fl->dom->hi[d]);
+      const PetscBool cut = (PetscBool)(!sp[s].line && sp[s].a[d] < sp[s].b[d] && sp[s].a[d] < fl->dom->hi[d] && sp[s].b[d] > fl->dom->lo[d]);
+      PetscCheck(in || cut, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: (%g, %g, %g) to (%g, %g, %g) %s the domain [%g, %g] x [%g, %g] x [%g, %g] (m)", sp[s].name, (double)sp[s].a[0], (double)sp[s].a[1], (double)sp[s].a[2], (double)sp[s].b[0], (double)sp[s].b[1], (double)sp[s].b[2], sp[s].line ? "leaves" : "lies outside", (double)fl->dom->lo[0], (double)fl->dom->hi[0], (double)fl->dom->lo[1], (double)fl->dom->hi[1], (double)fl->dom->lo[2], (double)fl->dom->hi[2]);
+    }
+  if (velocity) {
+    PetscCall(PetscMalloc1(3 * fl->g.xm[0] * fl->g.xm[1] * fl->g.xm[2], &vel));
+    PetscCall(FluidGetCellVelocity(fl, vel));
+  }
+  f.vel = vel;
+  PetscCall(VecGetArrayRead(fl->p, &f.p));
+  PetscCall(VecGetArrayRead(fl->eps, &f.eps));
+  for (PetscInt s = 0; s < n; s++) {
+    if (sp[s].line) PetscCall(FluidAverageSegment(fl, &sp[s], &f, avg + 5 * s));
+    else PetscCall(FluidAverageBox(fl, &sp[s], &f, avg + 5 * s));
+  }
+  PetscCall(VecRestoreArrayRead(fl->eps, &f.eps));
+  PetscCall(VecRestoreArrayRead(fl->p, &f.p));
+  PetscCall(PetscFree(vel));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

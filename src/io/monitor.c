@@ -16,7 +16,7 @@
 #include <unistd.h>
 #include <sys/stat.h>
 
-#define MON_MAX_COLS 128
+#define MON_MAX_COLS 1024
 
 struct _p_Mon {
   MPI_Comm  comm;
