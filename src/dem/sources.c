@@ -445,8 +445,8 @@ static PetscErrorCode DemSourceShortfall(Dem dem, DemSource *s, PetscInt placed,
   const PetscBool grows = (PetscBool)(prev > 0 && per > 0 && s->shortfall > prev && s->shortfall > 2 * per);
   s->fill               = fill;
   DemPsdRange(&s->psd, &dmin, &dmax);
-  if (dstop > 0 && dmax > dmin) PetscCall(PetscSNPrintf(why, sizeof why, "the %" PetscInt_FMT " candidates (-dem_insert_%d_attempts) of a particle of %.3g mm were all blocked, its region %.1f%% full by volume", s->attempts, k, 1e3 * dstop, 100 * fill));
-  else PetscCall(PetscSNPrintf(why, sizeof why, "its %" PetscInt_FMT " candidates per particle due (-dem_insert_%d_attempts) ran out, its region %.1f%% full by volume", s->attempts, k, 100 * fill));
+  if (dstop > 0 && dmax > dmin) PetscCall(PetscSNPrintf(why, sizeof why, "the %" PetscInt_FMT " candidates (-dem_insert_%d_attempts) of a particle of %.3g mm were all blocked, the region being %.1f%% full by volume", s->attempts, k, 1e3 * dstop, 100 * fill));
+  else PetscCall(PetscSNPrintf(why, sizeof why, "its %" PetscInt_FMT " candidates per particle due (-dem_insert_%d_attempts) ran out, the region being %.1f%% full by volume", s->attempts, k, 100 * fill));
   if ((full || grows) && !(s->said & 2)) {
     PetscCall(PetscPrintf(dem->comm, "warning: t = %g s: source -dem_insert_%d is %" PetscInt_FMT " particles behind its rate or total and not catching up (%s; %s): enlarge the region, lower the rate, or give more -dem_insert_%d_attempts\n", t, k, s->shortfall, full ? "this batch placed none, and no particle left the region since the last one" : "the shortfall grew past two batches' worth", why, k));
     s->said |= 2;
