@@ -185,18 +185,22 @@ PetscErrorCode CplGetBedDiameter(Cpl cpl, PetscReal *d32, PetscReal *rhop)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps_bed, PetscReal d, PetscReal rhop, CplFluidization *f)
+CplUmfPorosity CplGetUmfPorosity(Cpl cpl, PetscReal eps_bed, PetscReal *eps)
 {
-  const CplUmfPorosity why  = cpl->umf_eps_set ? CPL_UMF_OPTION : (eps_bed <= CPL_LOOSE_PACKING ? CPL_UMF_BED : CPL_UMF_LOOSE);
-  const PetscReal      eps  = why == CPL_UMF_BED ? eps_bed : cpl->umf_eps;
-  const PetscReal      g    = PetscSqrtReal(cpl->g[0] * cpl->g[0] + cpl->g[1] * cpl->g[1] + cpl->g[2] * cpl->g[2]);
-  const PetscReal      load = (1 - eps) * (rhop - cpl->rho) * g; /* Pa/m */
-  PetscReal            lo = 0, hi = 1;
+  const CplUmfPorosity why = cpl->umf_eps_set ? CPL_UMF_OPTION : (eps_bed <= CPL_LOOSE_PACKING ? CPL_UMF_BED : CPL_UMF_LOOSE);
+  *eps                     = why == CPL_UMF_BED ? eps_bed : cpl->umf_eps;
+  return why;
+}
+
+PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, PetscReal d, PetscReal rhop, CplFluidization *f)
+{
+  const PetscReal g    = PetscSqrtReal(cpl->g[0] * cpl->g[0] + cpl->g[1] * cpl->g[1] + cpl->g[2] * cpl->g[2]);
+  const PetscReal load = (1 - eps) * (rhop - cpl->rho) * g; /* Pa/m */
+  PetscReal       lo = 0, hi = 1;
 
   PetscFunctionBeginUser;
   f->eps    = eps;
   f->d      = d;
-  f->why    = why;
   f->ar     = cpl->rho * (rhop - cpl->rho) * g * d * d * d / (cpl->mu * cpl->mu);
   f->re_wy  = PetscSqrtReal(33.7 * 33.7 + 0.0408 * f->ar) - 33.7;
   f->umf_wy = f->re_wy * cpl->mu / (cpl->rho * d);
