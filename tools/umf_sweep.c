@@ -105,7 +105,11 @@ int main(int argc, char **argv)
   PetscCall(FluidSetUp(fl));
   PetscCall(CplSetUp(cpl));
   PetscCall(BuoyantWeightPerArea(dem, &W));
-  PetscCall(CplGetMinFluidization(cpl, eps_ref, &f));
+  {
+    PetscReal d32, rhop;
+    PetscCall(CplGetBedDiameter(cpl, &d32, &rhop));
+    PetscCall(CplGetMinFluidization(cpl, eps_ref, d32, rhop, &f));
+  }
   h   = dom.h[2];
   top = dom.hi[2] - 0.5 * h;
   while (t < t_end - 1e-9) {

@@ -1,8 +1,9 @@
 /* Exact checkpoints of the coupling: what a coupling step reads from the previous one. That is
  * the momentum owed to the fluid (cpl/owed, a face field in the grid's natural ordering, given
  * back as the next step's source) and the clock and counters (cpl/state: time, step, porosity
- * cells clipped so far, the solid volume of the last projection, the initial smallest porosity
- * of the pre-flight figures) and, with -cpl_filter_width, the mean diameter the filter's width
+ * cells clipped so far, the solid volume of the last projection, and the smallest porosity of
+ * the writer's set-up, kept in the layout but not read back: a restart's pre-flight checks the
+ * bed it restores) and, with -cpl_filter_width, the mean diameter the filter's width
  * was set from (cpl/filter_diameter: the particles of the restart are not those of the start), and
  * with -cpl_porosity_width likewise its mean diameter (cpl/porosity_diameter). Everything else a step uses is computed afresh from the particles
  * at its start (the drag at the particles, the cached kernel stencils, the face fields); the
@@ -47,9 +48,9 @@ PetscErrorCode CplCheckpointRead(Cpl cpl, IoCkpt ck)
   cpl->t             = s[0];
   cpl->step          = (PetscInt)s[1];
   cpl->clipped_total = (PetscInt)s[2];
-  cpl->solid_grid    = s[3];
-  cpl->eps_min0      = s[4];
-  if (cpl->filter_n > 0) { /* the filter's width from the mean diameter at the run's start */
+  cpl->solid_grid    = s[3]; /* s[4], the writer's start porosity, is not read back: the restart's
+                                  pre-flight is of the restored bed (CplSetUp's projection) */
+  if (cpl->filter_n > 0) {   /* the filter's width from the mean diameter at the run's start */
     PetscReal d;
     PetscCall(CplReadDiameter(cpl, ck, "cpl/filter_diameter", "-cpl_filter_width", cpl->filter_width, &d));
     PetscCall(CplFilterSetUp(cpl, d));

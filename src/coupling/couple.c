@@ -50,6 +50,7 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
   c->self_fade   = 0.1;
   c->eps_floor   = 0.2;
   c->relax_max   = 1;
+  c->umf_eps     = CPL_UMF_POROSITY;
   c->init_rtol   = 1e-4;
   c->init_max    = 1000;
   c->ev_project  = ev[0];
@@ -104,6 +105,7 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(SableOptionsReal("-cpl_porosity_width", "The drag law's porosity at each particle: the particles' volumes smoothed by a Gaussian of this full width at half maximum, in mean particle diameters, on a grid finer than the fluid's, with the superficial velocity over it (0: the kernel's cell porosity and the cell's velocity)", NULL, "[0,inf)", cpl->pw_width, &cpl->pw_width, NULL));
   PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->eps_floor, &cpl->eps_floor, NULL));
   PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->relax_max, &cpl->relax_max, NULL));
+  PetscCall(SableOptionsReal("-cpl_umf_porosity", "Porosity at which the bed: line takes U_mf (default: the bed's own when it is packed, at most 0.445, else 0.40: a packed bed at minimum fluidization)", NULL, "(0,1)", cpl->umf_eps, &cpl->umf_eps, &cpl->umf_eps_set));
   PetscCall(PetscOptionsBool("-cpl_self_porosity", "The drag law sees the porosity of the other particles: the particle's own kernel dip is removed", NULL, cpl->self_eps, &cpl->self_eps, NULL));
   PetscCall(PetscOptionsBool("-cpl_self_velocity", "The drag law sees the undisturbed fluid: its own disturbance (the exact discrete response of the grid to its stencil, coupling/self.c) is removed, K' = K / (1 - G K)", NULL, cpl->self_u, &cpl->self_u, NULL));
   PetscCall(SableOptionsReal("-cpl_self_fade", "-cpl_self_porosity/-cpl_self_velocity: both fade linearly to nothing as the other particles' solid fraction reaches this (0: no fade)", NULL, "[0,1)", cpl->self_fade, &cpl->self_fade, NULL));

@@ -105,13 +105,31 @@ PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3]);
 /* The run's drag law's packed-bed pressure gradient (Pa/m) at porosity eps and superficial
  * velocity usup (m/s) for the first shape's diameter and the fluid's properties. */
 PetscErrorCode CplGetPackedBedGradient(Cpl cpl, PetscReal eps, PetscReal usup, PetscReal *dpdl);
-/* Minimum fluidization of the first shape's bed (not collective): umf, the run's drag law's
- * superficial velocity (m/s) at which a packed bed of porosity eps carries its buoyant weight
- * (0 when nothing is to carry); Wen & Yu's ar (Archimedes number), re_wy and umf_wy (m/s). */
+/* Collective. The bed's Sauter mean diameter d32 = sum d^3 / sum d^2 over the particles present
+ * (volume-equivalent diameters for convex shapes; m) and its particle density sum m / sum V
+ * (kg/m^3); the first shape's diameter and density without particles. */
+PetscErrorCode CplGetBedDiameter(Cpl cpl, PetscReal *d32, PetscReal *rhop);
+/* The porosity at which the bed: line takes U_mf (not collective): the bed's own eps_bed when
+ * the bed is packed (at most CPL_LOOSE_PACKING), else -cpl_umf_porosity (CPL_UMF_POROSITY: a
+ * lattice or a dilute start is not the bed that fluidizes); the option, when given, whatever the
+ * bed. Returns which of the three it is. */
+#define CPL_LOOSE_PACKING 0.445 /* porosity of the loosest random packing of spheres, solids fraction 0.555: Onoda & Liniger, Phys. Rev. Lett. 64 (1990) 2727 */
+#define CPL_UMF_POROSITY  0.40  /* default: the voidage at minimum fluidization behind Wen & Yu's constants (AIChE Chem. Eng. Prog. Symp. Ser. 62 (1966) 100; Kunii & Levenspiel, Fluidization Engineering, 2nd ed., 1991, ch. 3) */
+typedef enum {
+  CPL_UMF_BED,   /* the bed's own porosity: it is packed */
+  CPL_UMF_LOOSE, /* the bed is looser than CPL_LOOSE_PACKING: -cpl_umf_porosity's default */
+  CPL_UMF_OPTION /* -cpl_umf_porosity given */
+} CplUmfPorosity;
+CplUmfPorosity CplGetUmfPorosity(Cpl cpl, PetscReal eps_bed, PetscReal *eps);
+/* Minimum fluidization of a bed of spheres of diameter d (m; a bed's d32) and density rhop
+ * (kg/m^3) at porosity eps (not collective): umf, the run's drag law's superficial velocity (m/s)
+ * at which a packed bed of porosity eps carries its buoyant weight (0 when nothing is to carry);
+ * Wen & Yu's ar (Archimedes number), re_wy and umf_wy (m/s) at d; eps and d as given. */
 typedef struct {
   PetscReal umf, ar, re_wy, umf_wy;
+  PetscReal eps, d;
 } CplFluidization;
-PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, CplFluidization *f);
+PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, PetscReal d, PetscReal rhop, CplFluidization *f);
 /* Wall time spent in the fluid solver so far (s), for the measured load-balance weights. */
 PetscErrorCode CplGetFluidTime(Cpl cpl, PetscLogDouble *t);
 

@@ -28,6 +28,8 @@ struct _p_Cpl {
   PetscBool             restarting; /* CplSetRestarting: the fluid comes from a checkpoint, no initial state */
   PetscInt              substeps;
   PetscReal             kscale, eps_floor, relax_max;
+  PetscReal             umf_eps;          /* -cpl_umf_porosity: the porosity of the bed: line's U_mf when the bed is loose */
+  PetscBool             umf_eps_set;      /* given: U_mf at it whatever the bed */
   PetscBool             self_eps, self_u; /* -cpl_self_porosity, -cpl_self_velocity */
   PetscReal             self_fade;        /* -cpl_self_fade */
   struct _CplSelfTable *self_tab;         /* self.c: the discrete self-response, built on first use */

@@ -165,14 +165,42 @@ PetscErrorCode CplGetPackedBedGradient(Cpl cpl, PetscReal eps, PetscReal usup, P
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, CplFluidization *f)
+PetscErrorCode CplGetBedDiameter(Cpl cpl, PetscReal *d32, PetscReal *rhop)
 {
-  const PetscReal d = cpl->diam[0], rhop = cpl->mass[0] / cpl->vol[0];
+  DemArrays pa;
+  PetscReal loc[4] = {0, 0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  for (PetscInt p = 0; p < pa.nlocal; p++) {
+    const PetscReal v = CplVolumeOf(cpl, &pa, p), d = PetscCbrtReal(6 * v / PETSC_PI);
+    loc[0] += d * d * d;
+    loc[1] += d * d;
+    loc[2] += CplMassOf(cpl, &pa, p);
+    loc[3] += v;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 4, MPIU_REAL, MPIU_SUM, cpl->comm));
+  *d32  = loc[1] > 0 ? loc[0] / loc[1] : cpl->diam[0];
+  *rhop = loc[3] > 0 ? loc[2] / loc[3] : cpl->mass[0] / cpl->vol[0];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+CplUmfPorosity CplGetUmfPorosity(Cpl cpl, PetscReal eps_bed, PetscReal *eps)
+{
+  const CplUmfPorosity why = cpl->umf_eps_set ? CPL_UMF_OPTION : (eps_bed <= CPL_LOOSE_PACKING ? CPL_UMF_BED : CPL_UMF_LOOSE);
+  *eps                     = why == CPL_UMF_BED ? eps_bed : cpl->umf_eps;
+  return why;
+}
+
+PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, PetscReal d, PetscReal rhop, CplFluidization *f)
+{
   const PetscReal g    = PetscSqrtReal(cpl->g[0] * cpl->g[0] + cpl->g[1] * cpl->g[1] + cpl->g[2] * cpl->g[2]);
   const PetscReal load = (1 - eps) * (rhop - cpl->rho) * g; /* Pa/m */
   PetscReal       lo = 0, hi = 1;
 
   PetscFunctionBeginUser;
+  f->eps    = eps;
+  f->d      = d;
   f->ar     = cpl->rho * (rhop - cpl->rho) * g * d * d * d / (cpl->mu * cpl->mu);
   f->re_wy  = PetscSqrtReal(33.7 * 33.7 + 0.0408 * f->ar) - 33.7;
   f->umf_wy = f->re_wy * cpl->mu / (cpl->rho * d);

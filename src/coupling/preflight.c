@@ -1,7 +1,8 @@
 /* Pre-flight checks of a coupled run, printed at start-up (CplView) and enforced at set-up:
  *  - dt_dem / contact duration (the DEM itself stops above -dem_dt_max_fraction);
  *  - coupling step / particle relaxation time tau = m / K, K from the drag law at the smallest
- *    cell porosity of the initial state and Re_p -> 0 (the viscous end). With the drag
+ *    cell porosity of the initial state (a restart's: the bed it restores) and Re_p -> 0 (the
+ *    viscous end). With the drag
  *    implicit the step stays stable beyond tau, but the particle then relaxes to the fluid
  *    within one step and the exchange lags a step: hard limit -cpl_relaxation_ratio_max (1);
  *  - cell size / diameter (below 1 the porosity of a cell fluctuates with every particle that
@@ -60,7 +61,7 @@ PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce)
   }
   if (viewer) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: dt_dem / contact time %.3g%s\n", (double)dtc, cpl->frozen ? " (frozen: no DEM steps)" : ""));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: coupling step / particle relaxation time %.3g (tau = %.4g s at porosity %.3f; limit -cpl_relaxation_ratio_max %g)\n", (double)(cpl->dt / tau), (double)tau, (double)cpl->eps_min0, (double)cpl->relax_max));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: coupling step / particle relaxation time %.3g (tau = %.4g s at porosity %.3f, the smallest cell's of the %s; limit -cpl_relaxation_ratio_max %g)\n", (double)(cpl->dt / tau), (double)tau, (double)cpl->eps_min0, cpl->restarting ? "checkpoint's bed" : "start", (double)cpl->relax_max));
     PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: cell / diameter %.3g, kernel side / cell %.3g (limit 2)\n", (double)(hmin / dmax), (double)(smax / hmin)));
     if (hmin < dmax) PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: warning: cells smaller than a particle diameter; the porosity will fluctuate cell by cell\n"));
     PetscCall(CplCheckFaces(cpl, viewer));

@@ -78,7 +78,8 @@ PetscErrorCode DemGetOutletCount(Dem dem, PetscInt *n);
 PetscErrorCode DemGetOutletFlow(Dem dem, PetscInt k, const char **name, PetscInt *removed, PetscReal *mass);
 PetscErrorCode DemFlowView(Dem dem, PetscViewer viewer);
 /* Collective. One line per particle source (-dem_insert_<k>_*): particles and mass inserted,
- * batches, and the shortfall (particles due that found no room). Nothing without sources. */
+ * batches, and the shortfall (particles due that found no room): how far behind it was and when
+ * it caught up, or its region's solids fraction. Nothing without sources. */
 PetscErrorCode DemViewSources(Dem dem, PetscViewer v);
 /* Collective. Stops a diverging run with a message: kinetic energy not finite, or the largest
  * overlap above -dem_overlap_max radii (a time step too large for the stiffness lets particles

@@ -446,9 +446,13 @@ typedef struct {
   PetscInt        shape, seed, attempts;
   DemPsd          psd;
   PetscReal       m_mean; /* mean particle mass (kg) */
+  PetscReal       vol;    /* the region's volume (m^3) */
   /* state */
-  PetscInt  inserted, cand, batch, shortfall, warn_at;
+  PetscInt  inserted, cand, batch, shortfall;
+  PetscInt  said, sh_max; /* the log's note (1) and warning (2) printed; the largest shortfall */
   PetscReal m_inserted;
+  PetscReal t_caught; /* when the shortfall last returned to 0 (s; < 0: never or not now) */
+  PetscReal fill;     /* the region's solids volume fraction after the last batch that left a shortfall */
 } DemSource;
 typedef struct {
   DemSource    s[DEM_MAX_SOURCES];

@@ -6,7 +6,8 @@
  * Batches: source k places a batch at start + j P (P = -dem_insert_<k>_period), holding what is
  * due by the end of its window, floor(rate (t_b + P - start)) particles (or, by mass, while the
  * inserted mass is below mass_rate (t_b + P - start)), capped by the total; what could not be
- * placed is carried (the target is cumulative) and reported.
+ * placed is carried (the target is cumulative) and reported: one note when a batch leaves some
+ * to the next ones, one warning when the source does not catch up (DemSourceShortfall).
  * Placement is the same on any rank count: the diameter of the n-th particle of source k is a
  * function of (seed, k, n) only, a candidate c's position, velocity and orientation of (seed, k,
  * c) and that diameter (dem_uniform), so a blocked candidate never changes the size drawn (no
@@ -223,9 +224,9 @@ static PetscErrorCode DemSourceBlocked(Dem dem, const DemSource *s, PetscInt K, 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Accepted candidates of this step, all sources, on every rank (x, y, z, r), and the next id. */
+/* Accepted candidates of this step, all sources, on every rank (x, y, z, r; volume), and the next id. */
 typedef struct {
-  double  *xr;
+  double  *xr, *vol;
   PetscInt n, cap, next_id;
 } DemSrcAccepted;
 
@@ -239,10 +240,12 @@ static PetscErrorCode DemSourceAccept(Dem dem, DemSource *s, DemParticle *p, Dem
   if (acc->n == acc->cap) {
     acc->cap = 2 * acc->cap + 64;
     PetscCall(PetscRealloc(sizeof(double) * 4 * (size_t)acc->cap, &acc->xr));
+    PetscCall(PetscRealloc(sizeof(double) * (size_t)acc->cap, &acc->vol));
   }
   for (int d = 0; d < 3; d++) acc->xr[4 * acc->n + d] = p->x[d];
-  acc->xr[4 * acc->n++ + 3] = r;
-  p->id                     = acc->next_id++;
+  acc->xr[4 * acc->n + 3] = r;
+  acc->vol[acc->n++]      = m / dem->shapes.shp[s->shape].rho;
+  p->id                   = acc->next_id++;
   s->inserted++;
   s->m_inserted += m;
   dem->flow.inserted++;
@@ -325,11 +328,13 @@ static PetscErrorCode DemSourceRound(Dem dem, DemSource *s, const DemSrcRound *r
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective. One batch of source s up to its targets. One size: one round of nwant x attempts
- * candidates. Own sizes: rounds of J particles with A candidates each, A starting at 1 and
- * doubling whenever a round ends at a particle with no free candidate, up to -attempts; the batch
- * ends once a particle has had -attempts candidates (the rest is carried). */
-static PetscErrorCode DemSourceBatch(Dem dem, DemSource *s, DemSrcAccepted *acc)
+/* Collective. One batch of source s up to its targets. One size: nwant x attempts candidates
+ * that serve every particle due, in rounds of at most DEM_SRC_MAX_CANDIDATE (the same as one
+ * list: a round sees the earlier rounds' accepted). Own sizes: rounds of J particles with A
+ * candidates each, A starting at 1 and doubling whenever a round ends at a particle with no free
+ * candidate, up to -attempts; the batch ends once a particle has had -attempts candidates (the
+ * rest is carried). *dstop: the diameter of the particle the batch ended at (0: none). */
+static PetscErrorCode DemSourceBatch(Dem dem, DemSource *s, DemSrcAccepted *acc, double *dstop)
 {
   double      dmin, dmax;
   DemSrcRound r;
@@ -338,14 +343,20 @@ static PetscErrorCode DemSourceBatch(Dem dem, DemSource *s, DemSrcAccepted *acc)
   PetscFunctionBeginUser;
   DemSourceTargets(s, &r.ntgt, &r.mtgt);
   DemPsdRange(&s->psd, &dmin, &dmax);
-  r.own = (PetscBool)(dmax > dmin);
+  r.own  = (PetscBool)(dmax > dmin);
+  *dstop = 0;
   if (!r.own) {
     double nwant = r.ntgt - s->inserted;
     if (r.mtgt < 1e300) nwant = PetscMin(nwant, PetscCeilReal((r.mtgt - s->m_inserted) / s->m_mean) + 1);
-    r.J = 1;
-    r.A = r.A0 = r.K = nwant > 0 ? (PetscInt)PetscMin((double)DEM_SRC_MAX_CANDIDATE, nwant * (double)s->attempts) : 0;
-    PetscCall(DemSourceRound(dem, s, &r, acc, &tried, &failed));
-    s->cand += tried;
+    double budget = nwant > 0 ? nwant * (double)s->attempts : 0;
+    r.J           = 1;
+    while (budget >= 1 && s->inserted < r.ntgt && s->m_inserted < r.mtgt) {
+      r.A = r.A0 = r.K = (PetscInt)PetscMin((double)DEM_SRC_MAX_CANDIDATE, budget);
+      PetscCall(DemSourceRound(dem, s, &r, acc, &tried, &failed));
+      s->cand += tried;
+      budget -= (double)tried;
+    }
+    if (s->inserted < r.ntgt && s->m_inserted < r.mtgt) *dstop = dmin;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   r.A = 1;
@@ -360,47 +371,111 @@ static PetscErrorCode DemSourceBatch(Dem dem, DemSource *s, DemSrcAccepted *acc)
     if (failed < 0) used = 0;
     else {
       used = failed == 0 ? used + r.A0 : r.A;
-      if (used >= s->attempts) break;
+      if (used >= s->attempts) {
+        *dstop = DemSourceDiameter(s, s->inserted);
+        break;
+      }
       r.A = PetscMin(2 * r.A, s->attempts);
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* After a batch: the shortfall (particles due and not placed, carried by the cumulative target)
- * and a warning each time it doubles past two batches' worth. */
-static PetscErrorCode DemSourceShortfall(Dem dem, DemSource *s)
+/* Whether x (m) lies in source s's region (the patch: its slab). */
+static PetscBool DemSourceInside(const DemSource *s, const double x[3])
 {
-  double ntgt, mtgt, sh = 0;
+  const double *g = s->g;
+  double        y[3];
+  for (int d = 0; d < 3; d++) y[d] = x[d] - g[d];
+  if (s->region == DEM_SRC_BOX) return (PetscBool)(x[0] >= g[0] && x[1] >= g[1] && x[2] >= g[2] && x[0] <= g[3] && x[1] <= g[4] && x[2] <= g[5]);
+  if (s->region == DEM_SRC_CYLINDER) {
+    const double h = dem_dot(y, g + 3), q = dem_dot(y, y) - h * h;
+    return (PetscBool)(PetscAbsReal(h) <= 0.5 * g[7] && q <= g[6] * g[6]);
+  }
+  const double a = dem_dot(y, g + 3) / dem_dot(g + 3, g + 3), b = dem_dot(y, g + 6) / dem_dot(g + 6, g + 6), h = dem_dot(y, s->n);
+  return (PetscBool)(a >= 0 && a <= 1 && b >= 0 && b <= 1 && h >= 0 && h <= s->depth);
+}
+
+/* Collective. The solids volume fraction of source s's region: the particles whose centres lie in
+ * it (the locals, and this step's accepted of every source when acc is given). */
+static PetscErrorCode DemSourceFill(Dem dem, const DemSource *s, const DemSrcAccepted *acc, double *fill)
+{
+  double v = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; j < dem->p.n; j++)
+    if (DemSourceInside(s, dem->p.x + 3 * j)) v += DemMass(&dem->p, &dem->shapes, j) / dem->shapes.shp[dem->p.shape[j]].rho;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, dem->comm));
+  for (PetscInt a = 0; acc && a < acc->n; a++)
+    if (DemSourceInside(s, acc->xr + 4 * a)) v += acc->vol[a];
+  *fill = v / s->vol;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. After a batch that placed `placed` particles and ended at a particle of diameter
+ * dstop (0: none), with its region's solids fraction `before` it (< 0: not measured, nothing was
+ * carried): the shortfall (particles due and not placed, carried by the cumulative target) and
+ * what the log says of it, each at most once per source. A batch that leaves particles due after
+ * placing others prints a note: random placement ran out of candidates for one particle (a
+ * crowded region, not necessarily a full one: a large sphere among many), and the rest follow at
+ * the next batches as the region empties. A warning says the source is not catching up: a batch
+ * placed none of the particles carried while no particle left the region since the last batch
+ * (the region is full and stays so), or a rate's shortfall grew past two batches' worth (the
+ * region does not clear as fast as the rate fills it). The summary (DemViewSources) gives the end
+ * state and refers to them. */
+static PetscErrorCode DemSourceShortfall(Dem dem, DemSource *s, PetscInt placed, double dstop, double before, const DemSrcAccepted *acc)
+{
+  double         ntgt, mtgt, sh = 0, fill = 0, dmin, dmax;
+  const PetscInt prev = s->shortfall;
+  const double   t = dem->clock.t + dem->clock.dt, per = s->rate > 0 ? s->rate * s->period : s->mass_rate * s->period / s->m_mean;
+  const int      k = (int)s->k;
+  char           why[256];
 
   PetscFunctionBeginUser;
   DemSourceTargets(s, &ntgt, &mtgt);
   if (ntgt < 1e300) sh = ntgt - s->inserted;
   if (mtgt < 1e300 && s->m_inserted < mtgt) sh = PetscMax(sh, PetscCeilReal((mtgt - s->m_inserted) / s->m_mean));
   s->shortfall = (PetscInt)sh;
-  if (s->shortfall >= s->warn_at) {
-    PetscCall(PetscPrintf(dem->comm, "warning: t = %g s: source -dem_insert_%d is %" PetscInt_FMT " particles behind its rate or total (its region is full: enlarge it, lower the rate, or give more -dem_insert_%d_attempts)\n", (double)(dem->clock.t + dem->clock.dt), (int)s->k, s->shortfall, (int)s->k));
-    s->warn_at *= 2;
-  }
+  s->sh_max    = PetscMax(s->sh_max, s->shortfall);
+  s->t_caught  = s->shortfall > 0 ? -1 : (prev > 0 ? t : s->t_caught);
   s->batch++;
+  if (!s->shortfall) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DemSourceFill(dem, s, acc, &fill));
+  const PetscBool full  = (PetscBool)(prev > 0 && placed == 0 && before >= s->fill * (1 - 1e-12));
+  const PetscBool grows = (PetscBool)(prev > 0 && per > 0 && s->shortfall > prev && s->shortfall > 2 * per);
+  s->fill               = fill;
+  DemPsdRange(&s->psd, &dmin, &dmax);
+  if (dstop > 0 && dmax > dmin) PetscCall(PetscSNPrintf(why, sizeof why, "the %" PetscInt_FMT " candidates (-dem_insert_%d_attempts) of a particle of %.3g mm were all blocked, the region being %.1f%% full by volume", s->attempts, k, 1e3 * dstop, 100 * fill));
+  else PetscCall(PetscSNPrintf(why, sizeof why, "its %" PetscInt_FMT " candidates per particle due (-dem_insert_%d_attempts) ran out, the region being %.1f%% full by volume", s->attempts, k, 100 * fill));
+  if ((full || grows) && !(s->said & 2)) {
+    PetscCall(PetscPrintf(dem->comm, "warning: t = %g s: source -dem_insert_%d is %" PetscInt_FMT " particles behind its rate or total and not catching up (%s; %s): enlarge the region, lower the rate, or give more -dem_insert_%d_attempts\n", t, k, s->shortfall, full ? "this batch placed none, and no particle left the region since the last one" : "the shortfall grew past two batches' worth", why, k));
+    s->said |= 2;
+  } else if (!(s->said & 3)) {
+    PetscCall(PetscPrintf(dem->comm, "source -dem_insert_%d: t = %g s: placed %" PetscInt_FMT " of the %" PetscInt_FMT " particles due (%s); the other %" PetscInt_FMT " are carried to the next batches, every %g s\n", k, t, placed, placed + s->shortfall, why, s->shortfall, (double)s->period));
+    s->said |= 1;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemSourcesPlace(Dem dem)
 {
-  DemSrcAccepted acc = {NULL, 0, 0, 0};
+  DemSrcAccepted acc = {NULL, NULL, 0, 0, 0};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(DEM_Placement, 0, 0, 0, 0));
   PetscCall(DemGhostsUpdate(dem)); /* the ghosts where they are now, as the locals */
   PetscCallMPI(MPI_Allreduce(&dem->p.next_id, &acc.next_id, 1, MPIU_INT, MPI_MAX, dem->comm));
   for (PetscInt i = 0; i < dem->src.n; i++) {
-    DemSource *s = &dem->src.s[i];
+    DemSource *s  = &dem->src.s[i];
+    PetscInt   n0 = s->inserted;
+    double     dstop, before = -1;
     if (!DemSourceDue(dem, s)) continue;
-    PetscCall(DemSourceBatch(dem, s, &acc));
-    PetscCall(DemSourceShortfall(dem, s));
+    if (s->shortfall > 0) PetscCall(DemSourceFill(dem, s, &acc, &before)); /* did the region empty since the last batch? */
+    PetscCall(DemSourceBatch(dem, s, &acc, &dstop));
+    PetscCall(DemSourceShortfall(dem, s, s->inserted - n0, dstop, before, &acc));
   }
   PetscCall(PetscFree(acc.xr));
+  PetscCall(PetscFree(acc.vol));
   PetscCall(PetscLogEventEnd(DEM_Placement, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -425,11 +500,13 @@ PetscErrorCode DemSourcesAddPending(Dem dem)
 
 /* Collective. The sources' state and the inserted totals of the flow, dataset dem/sources (the
  * same on every rank): n, inserted, m_inserted, id_inserted, then per source inserted,
- * candidates, batch, shortfall, warning level, mass. */
+ * candidates, batch, shortfall, the log's lines said, mass, largest shortfall, catch-up time,
+ * region's solids fraction after the last batch. */
+#define DEM_SRC_CKPT 9
 PetscErrorCode DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write)
 {
-  double         v[4 + 6 * DEM_MAX_SOURCES];
-  const PetscInt nv = 4 + 6 * dem->src.n;
+  double         v[4 + DEM_SRC_CKPT * DEM_MAX_SOURCES];
+  const PetscInt nv = 4 + DEM_SRC_CKPT * dem->src.n;
 
   PetscFunctionBeginUser;
   if (!dem->src.n) PetscFunctionReturn(PETSC_SUCCESS);
@@ -439,9 +516,9 @@ PetscErrorCode DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write)
     v[2] = dem->flow.m_inserted;
     v[3] = dem->flow.id_inserted;
     for (PetscInt i = 0; i < dem->src.n; i++) {
-      const DemSource *s    = &dem->src.s[i];
-      const double     w[6] = {(double)s->inserted, (double)s->cand, (double)s->batch, (double)s->shortfall, (double)s->warn_at, s->m_inserted};
-      for (int a = 0; a < 6; a++) v[4 + 6 * i + a] = w[a];
+      const DemSource *s               = &dem->src.s[i];
+      const double     w[DEM_SRC_CKPT] = {(double)s->inserted, (double)s->cand, (double)s->batch, (double)s->shortfall, (double)s->said, s->m_inserted, (double)s->sh_max, s->t_caught, s->fill};
+      for (int a = 0; a < DEM_SRC_CKPT; a++) v[4 + DEM_SRC_CKPT * i + a] = w[a];
     }
     PetscCall(IoCkptWriteShared(ck, "dem/sources", IO_CKPT_REAL, nv, v));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -453,23 +530,34 @@ PetscErrorCode DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write)
   dem->flow.id_inserted = v[3];
   for (PetscInt i = 0; i < dem->src.n; i++) {
     DemSource    *s = &dem->src.s[i];
-    const double *w = v + 4 + 6 * i;
+    const double *w = v + 4 + DEM_SRC_CKPT * i;
     s->inserted     = (PetscInt)w[0];
     s->cand         = (PetscInt)w[1];
     s->batch        = (PetscInt)w[2];
     s->shortfall    = (PetscInt)w[3];
-    s->warn_at      = (PetscInt)w[4];
+    s->said         = (PetscInt)w[4];
     s->m_inserted   = w[5];
+    s->sh_max       = (PetscInt)w[6];
+    s->t_caught     = w[7];
+    s->fill         = w[8];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Collective. One line per source: what it inserted and its shortfall at the end; a source that
+ * was behind says how far and when it caught up, or, still behind, how full its region is. */
 PetscErrorCode DemViewSources(Dem dem, PetscViewer v)
 {
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < dem->src.n; i++) {
-    const DemSource *s = &dem->src.s[i];
-    PetscCall(PetscViewerASCIIPrintf(v, "source -dem_insert_%d (%s): %" PetscInt_FMT " particles, %.6g kg inserted in %" PetscInt_FMT " batches; shortfall %" PetscInt_FMT " particles%s\n", (int)s->k, DemSourceRegionNames[s->region], s->inserted, (double)s->m_inserted, s->batch, s->shortfall, s->shortfall ? " (its region was full)" : ""));
+    const DemSource *s        = &dem->src.s[i];
+    char             how[256] = "";
+    if (s->shortfall > 0) {
+      double fill = 0;
+      PetscCall(DemSourceFill(dem, s, NULL, &fill));
+      PetscCall(PetscSNPrintf(how, sizeof how, " (due and not placed: its region is %.1f%% full by volume at the end%s)", 100 * fill, s->said & 2 ? "; it stopped catching up, see the warning" : ", and it was still placing the carried ones"));
+    } else if (s->sh_max > 0) PetscCall(PetscSNPrintf(how, sizeof how, " (placed over several batches: up to %" PetscInt_FMT " carried, all placed by t = %g s)", s->sh_max, (double)s->t_caught));
+    PetscCall(PetscViewerASCIIPrintf(v, "source -dem_insert_%d (%s): %" PetscInt_FMT " particles, %.6g kg inserted in %" PetscInt_FMT " batches; shortfall %" PetscInt_FMT " particles%s\n", (int)s->k, DemSourceRegionNames[s->region], s->inserted, (double)s->m_inserted, s->batch, s->shortfall, how));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -219,6 +219,8 @@ PetscErrorCode DemSourcesSetUp(Dem dem)
     PetscCheck(s->region != DEM_SRC_PATCH || vn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_velocity must leave the patch: its component %g along the patch normal (%g,%g,%g) must be > 0 (m/s)", k, vn, (double)s->n[0], (double)s->n[1], (double)s->n[2]);
     s->depth = PetscMax(vn * s->period, dmax);
     DemSourceBounds(s, s->lo, s->hi, &vol);
+    s->vol      = vol;
+    s->t_caught = -1;
     PetscCheck(DemSourceThinnest(s) >= dmax, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the region is %g m thin, less than the largest diameter %g m", go, DemSourceThinnest(s), dmax);
     for (int d = 0; d < 3; d++) {
       const double tol = 1e-12 * dem->dom->len[d];
@@ -231,7 +233,6 @@ PetscErrorCode DemSourcesSetUp(Dem dem)
       const char  *ropt  = s->rate > 0 ? "rate" : "mass_rate";
       const double value = s->rate > 0 ? s->rate : s->mass_rate;
       PetscCheck(per <= cap, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_%s %g x period %g s = %.4g particles per batch, more than the region holds at random close packing (%.4g = %g x %.4g m^3 / %.4g m^3 per particle): lower the rate or -dem_insert_%d_period, or enlarge %s", k, ropt, value, (double)s->period, per, cap, DEM_SRC_DENSE, vol, vp, k, go);
-      s->warn_at = (PetscInt)PetscMax(2.0, 2 * PetscCeilReal(per));
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);

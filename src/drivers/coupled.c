@@ -253,16 +253,19 @@ static PetscErrorCode CoupledProgress(const Coupled *c, const CplStats *st, Pets
 }
 
 /* Collective. The inlet's superficial velocity (m/s: the mean through the column's bottom face
- * layer) and the minimum fluidization velocities at the start's bed porosity. */
-static PetscErrorCode CoupledBedFluidization(const Coupled *c, PetscReal *u, CplFluidization *f)
+ * layer) and the minimum fluidization velocities of the particles present (their Sauter mean
+ * diameter and density) at the start's bed porosity if packed, else at -cpl_umf_porosity. */
+static PetscErrorCode CoupledBedFluidization(const Coupled *c, PetscReal *u, CplFluidization *f, CplUmfPorosity *why)
 {
   const Domain *dom = c->r->dom;
-  PetscReal     p, e;
+  PetscReal     p, e, d32, rhop, eps;
 
   PetscFunctionBeginUser;
   PetscCall(CplGetLayer(c->cpl, c->col.d, c->col.down < 0 ? dom->lo[c->col.d] : dom->hi[c->col.d], NULL, &p, &e, u));
   *u = PetscAbsReal(*u);
-  PetscCall(CplGetMinFluidization(c->cpl, c->eps0, f));
+  PetscCall(CplGetBedDiameter(c->cpl, &d32, &rhop));
+  *why = CplGetUmfPorosity(c->cpl, c->eps0, &eps);
+  PetscCall(CplGetMinFluidization(c->cpl, eps, d32, rhop, f));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -271,7 +274,8 @@ static PetscErrorCode CoupledBedStart(Coupled *c)
 {
   CplFluidization f;
   PetscReal       h5, h95, mean, u;
-  char            inlet[128] = "";
+  char            inlet[128] = "", at[160] = "";
+  CplUmfPorosity  why;
   CplMode         mode;
 
   PetscFunctionBeginUser;
@@ -285,9 +289,11 @@ static PetscErrorCode CoupledBedStart(Coupled *c)
     PetscCall(CplMeanPorosity(c->cpl, c->col.d, PetscMin(h5, h95), PetscMax(h5, h95), &c->eps0));
   }
   if (c->h0 == 0 && c->eps0 == 0) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(CoupledBedFluidization(c, &u, &f));
+  PetscCall(CoupledBedFluidization(c, &u, &f, &why));
   if (u > 0 && f.umf > 0) PetscCall(PetscSNPrintf(inlet, sizeof inlet, "; inlet superficial velocity %.4g m/s = %.3g U_mf (%.3g Wen-Yu)", (double)u, (double)(u / f.umf), (double)(u / f.umf_wy)));
-  PetscCall(PetscPrintf(c->r->comm, "bed: 95%% of the solids mass below %c = %.5g m, porosity %.4f between the 5%% and 95%% heights; U_mf %.4g m/s (the drag law at that porosity), Wen-Yu %.4g m/s (Ar %.4g, Re_mf %.4g)%s\n", "xyz"[c->col.d], (double)c -> h0, (double)c -> eps0, (double)f.umf, (double)f.umf_wy, (double)f.ar, (double)f.re_wy, inlet));
+  if (why == CPL_UMF_LOOSE) PetscCall(PetscSNPrintf(at, sizeof at, " (looser than a random packing, %g: U_mf is taken at the packed bed's -cpl_umf_porosity %g)", CPL_LOOSE_PACKING, (double)f.eps));
+  else if (why == CPL_UMF_OPTION) PetscCall(PetscSNPrintf(at, sizeof at, " (U_mf is taken at -cpl_umf_porosity %g)", (double)f.eps));
+  PetscCall(PetscPrintf(c->r->comm, "bed: 95%% of the solids mass below %c = %.5g m, porosity %.4f between the 5%% and 95%% heights%s; U_mf %.4g m/s at porosity %.4f and d32 %.4g m (the drag law), Wen-Yu %.4g m/s at d32 (Ar %.4g, Re_mf %.4g)%s\n", "xyz"[c->col.d], (double)c -> h0, (double)c -> eps0, at, (double)f.umf, (double)f.eps, (double)f.d, (double)f.umf_wy, (double)f.ar, (double)f.re_wy, inlet));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -295,15 +301,16 @@ static PetscErrorCode CoupledBedStart(Coupled *c)
 static PetscErrorCode CoupledBedEnd(const Coupled *c)
 {
   CplFluidization f;
+  CplUmfPorosity  why;
   PetscReal       h, mean, u;
   char            half[96] = "";
 
   PetscFunctionBeginUser;
   if (c->h0 == 0 && c->eps0 == 0) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(DemGetBedHeights(c->dem, 0.95, &h, &mean));
-  PetscCall(CoupledBedFluidization(c, &u, &f));
+  PetscCall(CoupledBedFluidization(c, &u, &f, &why));
   if (c->hn > 0) PetscCall(PetscSNPrintf(half, sizeof half, ", %.5g m mean over the second half (%.0f progress lines)", (double)(c->hsum / c->hn), (double)c->hn));
-  PetscCall(PetscPrintf(c->r->comm, "bed: 95%% of the solids mass below %c = %.5g m at the start%s, %.5g m at the end; U_mf %.4g m/s (drag law), %.4g m/s (Wen-Yu); inlet %.4g m/s\n", "xyz"[c->col.d], (double)c -> h0, half, (double)h, (double)f.umf, (double)f.umf_wy, (double)u));
+  PetscCall(PetscPrintf(c->r->comm, "bed: 95%% of the solids mass below %c = %.5g m at the start%s, %.5g m at the end; U_mf %.4g m/s (drag law at porosity %.4f and d32 %.4g m), %.4g m/s (Wen-Yu); inlet %.4g m/s\n", "xyz"[c->col.d], (double)c -> h0, half, (double)h, (double)f.umf, (double)f.eps, (double)f.d, (double)f.umf_wy, (double)u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -5,8 +5,9 @@
 #   (a) the run's Wen and Yu figures equal the correlation (Ar = rho_f (rho_p - rho_f) g d^3 /
 #       mu^2, Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7) computed here from the case's values (1e-3:
 #       the line prints 4 digits);
-#   (b) the drag law's U_mf at the lattice's porosity 1 - pi/6 equals Ergun's equation's at the
-#       same porosity (5%; Beetstra and Ergun cross near Re_p 50, measured 0.05%);
+#   (b) the drag law's U_mf at the lattice's porosity 1 - pi/6 (-cpl_umf_porosity: the line takes
+#       a lattice's U_mf at 0.40 by default) equals Ergun's equation's at the same porosity (5%;
+#       Beetstra and Ergun cross near Re_p 50, measured 0.05%);
 #   (c) hydrostatics: the monitor's probe pressure drop across the bed (probe 0 in the inlet cell
 #       below the distributor, probe 1 above the bed), averaged over the second half, over the
 #       bed's buoyant weight per area lies in [0.93, 1.02]: the fluid carries the bed but for the
@@ -25,10 +26,10 @@ trap 'rm -rf "$W"' EXIT
 "$S" -options_file "$ROOT/cases/bubbling_bed/bubbling.opts" -io_dir "$W/out" -io_interval 0 \
   -domain_hi 0.02,0.004,0.06 -da_grid_x 10 -da_grid_z 30 -dem_plane_1 0,0,0.06,0,0,-1 \
   -dem_lattice 20,4,10 -mon_probe_0 0.01,0.002,0.001 -mon_probe_1 0.01,0.002,0.05 \
-  -cpl_t_end 0.6 -cpl_progress_interval 0.05 >"$W/log" 2>&1 || { echo "FAIL si bed: the run stopped:"; tail -3 "$W/log"; exit 1; }
+  -cpl_umf_porosity 0.476401 -cpl_t_end 0.6 -cpl_progress_interval 0.05 >"$W/log" 2>&1 || { echo "FAIL si bed: the run stopped:"; tail -3 "$W/log"; exit 1; }
 # (a), (b): the start's bed line
-awk '/^bed: 95%.*porosity/ {
-  for (i = 1; i <= NF; i++) { if ($i == "U_mf" && umf == "") umf = $(i + 1); if ($i == "Wen-Yu") wy = $(i + 1); if ($i == "(Ar") ar = $(i + 1); if ($i == "porosity") eps = $(i + 1) }
+awk '/^bed: 95%.*between the 5%/ {
+  for (i = 1; i <= NF; i++) { if ($i == "U_mf" && umf == "" && $(i + 1) ~ /^[0-9]/) umf = $(i + 1); if ($i == "Wen-Yu") wy = $(i + 1); if ($i == "(Ar") ar = $(i + 1); if ($i == "porosity") eps = $(i + 1) }
   sub(/,/, "", ar)
   rf = 1.2; mu = 1.8e-5; d = 1e-3; rp = 2500; g = 9.81
   Ar = rf * (rp - rf) * g * d^3 / mu^2; re = sqrt(33.7^2 + 0.0408 * Ar) - 33.7; uw = re * mu / (rf * d)
