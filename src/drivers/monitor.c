@@ -245,7 +245,7 @@ static PetscErrorCode MonCol(MonCols *cols, const char *name, PetscInt k, const 
 static PetscErrorCode DriverMonFillFluid(DriverMon *m, MonCols *cols, const DriverMonInput *in)
 {
   const char *fname[5] = {"%s%d_p", "%s%d_eps", "%s%d_ux", "%s%d_uy", "%s%d_uz"}, *funit[5] = {"Pa", "-", "m/s", "m/s", "m/s"};
-  PetscReal  *p = NULL, *avg = NULL;
+  PetscReal  *p = NULL, *avg = NULL, emin = 1;
   PetscInt    nspan = m->nline + m->nplane;
 
   PetscFunctionBeginUser;
@@ -265,7 +265,12 @@ static PetscErrorCode DriverMonFillFluid(DriverMon *m, MonCols *cols, const Driv
       PetscCall(MonCol(cols, name, 0, funit[q], avg[5 * s + q]));
     }
   PetscCall(PetscFree2(p, avg));
-  PetscCall(MonCol(cols, "eps_min", 0, "-", in->cst ? in->cst->eps_min : 1));
+  if (!cols->declare && !in->cst) { /* before the first coupling step (a run's start, a restart's first row): the porosity set up */
+    Vec eps;
+    PetscCall(FluidGetPorosity(in->fluid, &eps));
+    PetscCall(VecMin(eps, NULL, &emin));
+  }
+  PetscCall(MonCol(cols, "eps_min", 0, "-", in->cst ? in->cst->eps_min : emin));
   PetscCall(MonCol(cols, "poisson_iterations", 0, "-", in->cst ? (PetscReal)in->cst->fluid.poisson_its : 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
