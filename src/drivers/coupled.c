@@ -66,7 +66,7 @@ PetscErrorCode DriverIsCoupled(PetscBool *on)
   if (help) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(mode != 1 || !first[0], comm, PETSC_ERR_ARG_INCOMP, "-sable_solver dry: %s is an option of coupled runs (remove it, or give -sable_solver coupled)", first);
   if (mode == 2) PetscCall(PetscStrncpy(why, "-sable_solver coupled", sizeof why));
-  else PetscCall(PetscSNPrintf(why, sizeof why, "it has %s, a -%s option; -sable_solver dry makes a run dry", first, first[1] == 'c' ? "cpl_" : "fluid_"));
+  else PetscCall(PetscSNPrintf(why, sizeof why, "it has %s: remove it for a dry run", first));
   for (int k = 0; k < 2 && *on; k++) {
     PetscBool set;
     PetscCall(PetscOptionsHasName(NULL, NULL, dry[k], &set));
