@@ -251,7 +251,6 @@ static void SableSortedWords(const char *name, char *key, size_t size)
   }
 }
 
-
 /* The known option (SableKnownOptions) closest to an unknown name: at most 2 edits away, or the
  * same words in another order; an empty string when none is. */
 static void SableSuggest(const char *name, char *best, size_t size)
@@ -316,7 +315,7 @@ PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm)
 
 PetscErrorCode SableCheckOptionsKnown(MPI_Comm comm, const char *prefix)
 {
-  char       *all, *save = NULL, *tok, *name = NULL, msg[512] = "";
+  char        *all, *save = NULL, *tok, *name = NULL, msg[512] = "";
   const size_t lp = strlen(prefix);
 
   PetscFunctionBeginUser;
