@@ -11,9 +11,13 @@
  *    help pass (SableHelpFlush, also registered to run in PetscFinalize and at exit): Sable's
  *    sections grouped by prefix (-domain_, -dem_, -fluid_, -cpl_,
  *    -lb_, -io_, -mon_, -avg_, -sable_), then PETSc's sections in the order PETSc printed them. PETSc's
- *    "(None)" (no manual page) at the end of a line is left out. Without -help the printer
- *    passes everything through at once. */
+ *    "(None)" (no manual page) at the end of a line is left out. An indexed family (a name
+ *    with an all-digit word: -dem_plane_3_velocity, -mon_probe_12) is printed once, where its
+ *    first member was, as -dem_plane_<k>_velocity with its index range, then the members the
+ *    run's options give, each with its value. Without -help the printer passes everything
+ *    through at once. */
 #include "sable.h"
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 
@@ -482,6 +486,7 @@ PetscErrorCode SableHelpFlush(void)
   int               nlines = 1;
 
   if (!SableHelp.len) return PETSC_SUCCESS;
+  signal(SIGPIPE, SIG_IGN); /* "-help | less" quit early: the rest is dropped, not a crash report */
   for (size_t i = 0; i < SableHelp.len; i++) nlines += SableHelp.text[i] == '\n';
   sec   = (SableHelpSection *)malloc(sizeof *sec * (size_t)(nlines + 1));
   lines = (char **)malloc(sizeof *lines * (size_t)(nlines + 1));

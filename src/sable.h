@@ -119,7 +119,9 @@ PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *, const char[], c
 /* The -help printer (options.c). SableHelpBegin: not collective; call it before PetscInitialize
  * (it installs Sable's PetscHelpPrintf, which keeps the help text when -help is given and
  * passes it through otherwise). SableHelpFlush: not collective; prints the kept text, Sable's
- * options first, grouped by prefix, then PETSc's; call it after every object has read its
- * options (PetscFinalize calls it too; a second call prints nothing). */
+ * options first, grouped by prefix, then PETSc's, each indexed family once (-dem_plane_<k>, its
+ * index range, the members given); call it after every object has read its options and before
+ * PetscFinalize, which calls it too (the members given are then not known; a second call prints
+ * nothing). */
 void           SableHelpBegin(void);
 PetscErrorCode SableHelpFlush(void);

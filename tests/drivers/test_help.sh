@@ -16,7 +16,9 @@
 #       the case gives, each shown under its family with the case's value;
 #   (f) the text starts with a header naming Sable, how to run a case and doc/options.md;
 #   (g) a source left incomplete (-dem_insert_0_region box alone) is no error under -help, and
-#       the size-distribution options (-dem_insert_<k>_psd...) are listed.
+#       the size-distribution options (-dem_insert_<k>_psd...) are listed;
+#   (h) -help opens no file a case names (an init frame, a mesh that do not exist: exit 0), and
+#       with no case lists the families of walls, meshes, sources and monitors not given.
 cd "$(dirname "$0")/../.." || exit 1
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 S=${BIN:-bin}/sable
@@ -143,3 +145,14 @@ $S -help -dem_insert_0_region box > "$T/src" 2>&1; rc=$?
 n=$(grep -c '^  -dem_insert_<k>_psd' "$T/src")
 if [ "$rc" -eq 0 ] && ! grep -q 'sable: error' "$T/src" && [ "$n" -ge 8 ]; then echo "PASS help -dem_insert_0_region box (no -dem_insert_0_box): exit 0, no error, $n size-distribution options listed (-dem_insert_<k>_psd*)"
 else echo "FAIL help -dem_insert_0_region box: exit $rc, $(grep 'sable: error' "$T/src" | head -n 1), $n lines -dem_insert_<k>_psd* (want >= 8)"; fi
+
+# (h) no file opened; the families of what no case gives
+$S -help -dem_init_file "$T/none.h5" -dem_mesh_0_file "$T/none.stl" > "$T/files" 2>&1; rc=$?
+if [ "$rc" -eq 0 ] && ! grep -q 'sable: error' "$T/files"; then echo "PASS help with a missing -dem_init_file and -dem_mesh_0_file: exit 0, no error (no file opened)"
+else echo "FAIL help with a missing -dem_init_file and -dem_mesh_0_file: exit $rc, $(grep 'sable: error' "$T/files" | head -n 1)"; fi
+miss=""; nfam=0
+for o in -dem_box_friction '-dem_plane_<k>_friction' '-dem_rect_<k>_friction' '-dem_quad_<k>_friction' -dem_hopper_friction -dem_cylinder_friction '-dem_mesh_<k>_scale' '-dem_mesh_<k>_omega' '-dem_outlet_<k>_side' '-dem_insert_<k>_cylinder' '-dem_insert_<k>_psd_mean' '-mon_box_<k>' '-mon_probe_<k>' '-mon_dp_<k>' -avg_start; do
+  nfam=$((nfam + 1)); grep -q -- "^  $o[ :]" "$T/none.1" || miss="$miss $o"
+done
+if [ -z "$miss" ]; then echo "PASS help none: the $nfam options and families of walls, meshes, outlets, sources and monitors that no case gives are listed"
+else echo "FAIL help none: not listed:$miss"; fi
