@@ -15,8 +15,10 @@
 #       one line with its index range and no member on a line of its own, except the members
 #       the case gives, each shown under its family with the case's value;
 #   (f) the text starts with a header naming Sable, how to run a case and doc/options.md;
-#   (g) a source left incomplete (-dem_insert_0_region box alone) is no error under -help, and
-#       the size-distribution options (-dem_insert_<k>_psd...) are listed;
+#   (g) a source left incomplete (-dem_insert_0_region box alone, a lognormal without its mean)
+#       is no error under -help, nor an option given without the one it completes (a source's rate,
+#       an outlet's start, a plane's velocity, a drum's speed, a mesh's rotation), and the
+#       size-distribution options (-dem_insert_<k>_psd...) are listed;
 #   (h) -help opens no file a case names (an init frame, a mesh that do not exist: exit 0), and
 #       with no case lists the families of walls, meshes, sources and monitors not given.
 cd "$(dirname "$0")/../.." || exit 1
@@ -145,6 +147,10 @@ $S -help -dem_insert_0_region box > "$T/src" 2>&1; rc=$?
 n=$(grep -c '^  -dem_insert_<k>_psd' "$T/src")
 if [ "$rc" -eq 0 ] && ! grep -q 'sable: error' "$T/src" && [ "$n" -ge 8 ]; then echo "PASS help -dem_insert_0_region box (no -dem_insert_0_box): exit 0, no error, $n size-distribution options listed (-dem_insert_<k>_psd*)"
 else echo "FAIL help -dem_insert_0_region box: exit $rc, $(grep 'sable: error' "$T/src" | head -n 1), $n lines -dem_insert_<k>_psd* (want >= 8)"; fi
+part="-dem_insert_0_region cylinder -dem_insert_0_psd lognormal -dem_insert_1_rate 5 -dem_outlet_0_start 1 -dem_plane_3_velocity 1,0,0 -dem_cylinder_omega 2 -dem_mesh_2_omega 1"
+$S -help $part > "$T/part" 2>&1; rc=$?
+if [ "$rc" -eq 0 ] && ! grep -q 'sable: error' "$T/part"; then echo "PASS help $part: exit 0, no error"
+else echo "FAIL help $part: exit $rc, $(grep 'sable: error' "$T/part" | head -n 1)"; fi
 
 # (h) no file opened; the families of what no case gives
 $S -help -dem_init_file "$T/none.h5" -dem_mesh_0_file "$T/none.stl" > "$T/files" 2>&1; rc=$?
