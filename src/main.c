@@ -1,6 +1,8 @@
 /* sable: the driver. Reads the options, builds the one decomposition (Domain), decides which
- * modules the scene needs and hands them to a driver (src/drivers): a case with any -cpl_ or
- * -fluid_ option is a coupled CFD-DEM run, otherwise a dry DEM run. User mistakes end with one line
+ * modules the scene needs and hands them to a driver (src/drivers): -sable_solver dry or coupled,
+ * or by default (auto) a coupled CFD-DEM run when the case gives any -cpl_ or -fluid_ option (a
+ * typo of one is named first), a dry DEM run otherwise. -help reads every driver's options and
+ * opens no file. User mistakes end with one line
  *   sable: error: <what, which option, which value, which range>
  * and exit status 1 (PETSc's traceback is kept for internal errors, with -sable_traceback). */
 #include "sable.h"
@@ -292,7 +294,8 @@ static PetscErrorCode SableRun(void)
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Sable driver", NULL);
   PetscCall(PetscOptionsBool("-sable_traceback", "Print PETSc's full traceback on errors", NULL, sable_traceback, &sable_traceback, NULL));
   PetscOptionsEnd();
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "Sable %s — CFD-DEM for fluidized beds and granular flows\n", SABLE_VERSION));
+  if (!help) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "Sable %s — CFD-DEM for fluidized beds and granular flows\n", SABLE_VERSION));
+  PetscCall(DriverIsCoupled(&coupled)); /* before any module: an unknown -fluid_ or -cpl_ name must not decide it */
   PetscCall(DomainSetFromOptions(PETSC_COMM_WORLD, &dom));
   PetscCall(DemCreate(&dom, &dem));
   PetscCall(DemSetFromOptions(dem));
@@ -304,7 +307,6 @@ static PetscErrorCode SableRun(void)
   PetscCall(DemGetLargestRadius(dem, &rmax));
   PetscCall(BalanceIsActive(lb, &balanced));
   PetscCall(DomainSetUp(&dom, (balanced ? 2.5 : 8) * rmax + 1e-300, 1));
-  PetscCall(DriverIsCoupled(&coupled));
   if (coupled || help) { /* -help lists every driver's options */
     PetscCall(CoupledRunCreate(&dom, &wet));
     PetscCall(CoupledRunSetFromOptions(wet));
@@ -324,6 +326,18 @@ static PetscErrorCode SableRun(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* What -help prints first (PETSc prints it when -help is given). */
+static const char SableHelpHeader[] = "Sable " SABLE_VERSION ": parallel CFD-DEM for fluidized beds and granular flows. Particles (DEM: spheres,\n"
+                                      "polyhedra, walls, meshes, sources, outlets) alone (a dry run), or coupled to an incompressible\n"
+                                      "fluid on a Cartesian grid (a CFD-DEM run).\n"
+                                      "Run a case:  mpiexec -n 4 bin/sable -options_file cases/settle/quick.opts [-name value ...]\n"
+                                      "A case is a file of options, one \"-name value\" a line; the command line adds to it or overrides it.\n"
+                                      "The run is coupled when any -fluid_ or -cpl_ option is given, dry otherwise (or as -sable_solver says).\n"
+                                      "Below: Sable's options by prefix, each \"-name <default>: what (unit; range)\"; a value the case\n"
+                                      "gives shows as <value (default ...)>; an indexed family (-dem_plane_<k>) is listed once with its\n"
+                                      "index range, then the members the case gives. PETSc's options follow.\n"
+                                      "The guide to the options, with examples: doc/options.md; the output files: doc/output.md.\n";
+
 int main(int argc, char **argv)
 {
   PetscErrorCode ierr;
@@ -332,7 +346,7 @@ int main(int argc, char **argv)
 
   if (SableCheckOptionsFiles(argc, argv)) return 1;
   SableHelpBegin(); /* -help: Sable's options first, grouped by prefix, then PETSc's (options.c) */
-  PetscCall(PetscInitialize(&argc, &argv, NULL, "sable: parallel CFD-DEM. Options: see -help.\n"));
+  PetscCall(PetscInitialize(&argc, &argv, NULL, SableHelpHeader));
   PetscCall(PetscPushErrorHandler(SableErrorHandler, NULL));
   PetscCallMPI(MPI_Comm_dup(MPI_COMM_WORLD, &sable_end_comm));
   ierr = SableSignalsInstall();
@@ -346,6 +360,7 @@ int main(int argc, char **argv)
     PetscFinalize();
     return status;
   }
+  PetscCall(SableHelpFlush()); /* -help: while the options are there to mark the values a case gave */
   PetscCallMPI(MPI_Comm_free(&sable_end_comm));
   PetscCall(PetscPopErrorHandler());
   PetscCall(PetscFinalize());

@@ -11,9 +11,13 @@
  *    help pass (SableHelpFlush, also registered to run in PetscFinalize and at exit): Sable's
  *    sections grouped by prefix (-domain_, -dem_, -fluid_, -cpl_,
  *    -lb_, -io_, -mon_, -avg_, -sable_), then PETSc's sections in the order PETSc printed them. PETSc's
- *    "(None)" (no manual page) at the end of a line is left out. Without -help the printer
- *    passes everything through at once. */
+ *    "(None)" (no manual page) at the end of a line is left out. An indexed family (a name
+ *    with an all-digit word: -dem_plane_3_velocity, -mon_probe_12) is printed once, where its
+ *    first member was, as -dem_plane_<k>_velocity with its index range, then the members the
+ *    run's options give, each with its value. Without -help the printer passes everything
+ *    through at once. */
 #include "sable.h"
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 
@@ -301,16 +305,6 @@ typedef struct {
   PetscBool named; /* group set from the section's first option */
 } SableHelpSection;
 
-static void SableHelpPrintSection(const SableHelpSection *s)
-{
-  for (int i = 0; i < s->n; i++) {
-    const char  *l   = s->line[i];
-    const size_t len = strlen(l);
-    if (len >= 7 && !strcmp(l + len - 7, " (None)")) printf("%.*s\n", (int)(len - 7), l);
-    else printf("%s\n", l);
-  }
-}
-
 /* The name of the option a help line shows (no dash), or an empty string. */
 static void SableHelpLineOption(const char *l, char *name, size_t size)
 {
@@ -350,32 +344,167 @@ static int SableHelpSections(char *text, SableHelpSection *sec, int max, char **
   return ns;
 }
 
+/* A help line as printed: PETSc's "(None)" (no manual page) at its end left out. */
+static void SableHelpPut(const char *l, const char *tail)
+{
+  const size_t len = strlen(l);
+  const int    cut = len >= 7 && !strcmp(l + len - 7, " (None)") ? 7 : 0;
+  printf("%.*s%s\n", (int)(len - cut), l, tail ? tail : "");
+}
+
+/* One kept line, in the order printed: its option's indexed family (the name with its first
+ * all-digit word as %d; the first member's position, -1 for none), its index, whether the run's
+ * options give it. */
+typedef struct {
+  char     *l;
+  char      pat[128];
+  long      index;
+  int       family;
+  PetscBool given;
+} SableHelpKept;
+
+/* The value a line shows, "<...>" after the option's name (empty when none), as a span of l. */
+static void SableHelpValueSpan(const char *l, const char **b, const char **e)
+{
+  const char *c = strchr(l, '-'), *lt = c ? strchr(c, '<') : NULL, *gt = lt ? strchr(lt, '>') : NULL;
+  *b = *e = l;
+  if (gt) {
+    *b = lt;
+    *e = gt + 1;
+  }
+}
+
+/* An indexed family (lines[f] its first member) printed once: the line of its first member the
+ * run's options do not give (the default), named -prefix_<k>_suffix, with the index range; then
+ * the members given, name and value, one a line. */
+static void SableHelpPrintFamily(SableHelpKept *lines, int n, int f)
+{
+  char        tail[160], range[96] = "", name[160], *pct;
+  const char *b0, *e0;
+  long        lo = -1, hi = -1, count = 0, prev = -1;
+  int         rep = -1, varies = 0;
+
+  for (int i = f; i < n; i++) { /* members' indices: contiguous "a..b" or a list */
+    if (lines[i].family != f) continue;
+    if (rep < 0 && !lines[i].given) rep = i;
+    count++;
+    lo = lo < 0 || lines[i].index < lo ? lines[i].index : lo;
+    hi = lines[i].index > hi ? lines[i].index : hi;
+  }
+  if (rep < 0) rep = f;
+  SableHelpValueSpan(lines[rep].l, &b0, &e0);
+  for (int i = f; i < n; i++) { /* a default that changes with the index (a seed k + 1) */
+    const char *b, *e;
+    if (lines[i].family != f || lines[i].given) continue;
+    SableHelpValueSpan(lines[i].l, &b, &e);
+    if (e - b != e0 - b0 || strncmp(b, b0, (size_t)(e - b))) varies = 1;
+  }
+  if (hi - lo + 1 == count) snprintf(range, sizeof range, lo == hi ? "k = %ld" : "k = %ld..%ld", lo, hi);
+  else
+    for (long k = lo; k <= hi; k++)
+      for (int i = f; i < n; i++)
+        if (lines[i].family == f && lines[i].index == k && k != prev) {
+          const size_t len = strlen(range);
+          snprintf(range + len, sizeof range - len, "%s%ld", len ? ", " : "k = ", k);
+          prev = k;
+        }
+  snprintf(tail, sizeof tail, " (%s%s)", range, varies ? "; the default shown is the first one's, it depends on k" : "");
+  /* the line with its name as a pattern: "  -dem_plane_%d_velocity <...>" -> "-dem_plane_<k>_velocity" */
+  {
+    const char *dash = strchr(lines[rep].l, '-'), *after = dash;
+    while (*after && *after != ' ' && *after != ':' && *after != '<') after++;
+    snprintf(name, sizeof name, "-%s", lines[f].pat);
+    if ((pct = strstr(name, "%d"))) {
+      memmove(pct + 3, pct + 2, strlen(pct + 2) + 1);
+      memcpy(pct, "<k>", 3);
+    }
+    printf("%.*s%s", (int)(dash - lines[rep].l), lines[rep].l, name);
+    SableHelpPut(after, tail);
+  }
+  for (int i = f; i < n; i++) { /* the members given: name and value */
+    const char *b, *e, *dash = strchr(lines[i].l, '-');
+    if (lines[i].family != f || !lines[i].given) continue;
+    SableHelpValueSpan(lines[i].l, &b, &e);
+    if (e == b) e = dash + strcspn(dash, " :");
+    printf("%.*s    %.*s\n", (int)(dash - lines[i].l), lines[i].l, (int)(e - dash), dash);
+  }
+}
+
+/* Whether the run's options give option name (no dash): only while PETSc's options exist. */
+static PetscBool SableHelpGiven(const char *name)
+{
+  char      opt[160];
+  PetscBool flg = PETSC_FALSE;
+
+  if (!PetscInitializeCalled || PetscFinalizeCalled) return PETSC_FALSE;
+  snprintf(opt, sizeof opt, "-%s", name);
+  if (PetscOptionsHasName(NULL, NULL, opt, &flg)) return PETSC_FALSE;
+  return flg;
+}
+
+/* Prints the lines in order, each indexed family once (SableHelpPrintFamily) where its first
+ * member was; PETSc's families as Sable's. */
+static void SableHelpPrintLines(SableHelpKept *lines, int from, int to)
+{
+  for (int i = from; i < to; i++) {
+    if (lines[i].family < 0) SableHelpPut(lines[i].l, NULL);
+    else if (lines[i].family == i) SableHelpPrintFamily(lines, to, i);
+  }
+}
+
+/* Fills line[i] for the n lines of the sections in sec of the groups wanted (Sable's in prefix
+ * order, or PETSc's in the order printed), starting at position at; returns the new count. */
+static int SableHelpOrder(const SableHelpSection *sec, int ns, PetscBool own, SableHelpKept *line, int at)
+{
+  for (int g = own ? 0 : -1; g < (own ? 9 : 0); g++)
+    for (int k = 0; k < ns; k++) {
+      if (sec[k].group != g) continue;
+      for (int j = 0; j < sec[k].n; j++) {
+        SableHelpKept *L = &line[at];
+        char           name[128], index[16];
+        *L = (SableHelpKept){sec[k].line[j], "", -1, -1, PETSC_FALSE};
+        SableHelpLineOption(L->l, name, sizeof name);
+        if (name[0]) SableIndexPattern(name, L->pat, sizeof L->pat, index, sizeof index);
+        if (name[0] && index[0]) {
+          L->index = atol(index);
+          L->given = SableHelpGiven(name);
+          for (int i = 0; i < at && L->family < 0; i++)
+            if (line[i].family >= 0 && !strcmp(line[i].pat, L->pat)) L->family = line[i].family;
+          if (L->family < 0) L->family = at;
+        }
+        at++;
+      }
+    }
+  return at;
+}
+
 PetscErrorCode SableHelpFlush(void)
 {
   SableHelpSection *sec;
+  SableHelpKept    *line;
   char            **lines;
   int               nlines = 1;
 
   if (!SableHelp.len) return PETSC_SUCCESS;
+  signal(SIGPIPE, SIG_IGN); /* "-help | less" quit early: the rest is dropped, not a crash report */
   for (size_t i = 0; i < SableHelp.len; i++) nlines += SableHelp.text[i] == '\n';
   sec   = (SableHelpSection *)malloc(sizeof *sec * (size_t)(nlines + 1));
   lines = (char **)malloc(sizeof *lines * (size_t)(nlines + 1));
-  if (!sec || !lines) fputs(SableHelp.text, stdout); /* no room to sort: as it came */
+  line  = (SableHelpKept *)malloc(sizeof *line * (size_t)(nlines + 1));
+  if (!sec || !lines || !line) fputs(SableHelp.text, stdout); /* no room to sort: as it came */
   else {
     const int ns  = SableHelpSections(SableHelp.text, sec, nlines + 1, lines);
-    int       own = 0;
-    for (int k = 0; k < ns; k++) own += sec[k].group >= 0;
+    const int own = SableHelpOrder(sec, ns, PETSC_TRUE, line, 0);
+    const int all = SableHelpOrder(sec, ns, PETSC_FALSE, line, own);
     if (own) printf("Sable's options, by prefix (-domain_, -dem_, -fluid_, -cpl_, -lb_, -io_, -mon_, -avg_, -sable_); PETSc's follow\n");
-    for (int g = 0; g < 9; g++) /* Sable's, by prefix */
-      for (int k = 0; k < ns; k++)
-        if (sec[k].group == g) SableHelpPrintSection(&sec[k]);
+    SableHelpPrintLines(line, 0, own);
     if (own) printf("========================================\nPETSc's options:\n");
-    for (int k = 0; k < ns; k++) /* PETSc's, in the order PETSc printed them (all of it with -help intro) */
-      if (sec[k].group < 0) SableHelpPrintSection(&sec[k]);
+    SableHelpPrintLines(line, own, all); /* in the order PETSc printed them (all of it with -help intro) */
   }
   fflush(stdout);
   free(sec);
   free(lines);
+  free(line);
   free(SableHelp.text);
   SableHelp.text = NULL;
   SableHelp.len = SableHelp.cap = 0;

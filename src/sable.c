@@ -47,7 +47,24 @@ PetscBool SableOptionIsOwn(const char *name)
 static const char *const SablePetscIntOptions[]        = {"da_grid_x", "da_grid_y", "da_grid_z", "da_processors_x", "da_processors_y", "da_processors_z", "da_overlap", "da_overlap_x", "da_overlap_y", "da_overlap_z", "da_refine", "da_refine_x", "da_refine_y", "da_refine_z", "da_refine_hierarchy_x", "da_refine_hierarchy_y", "da_refine_hierarchy_z"};
 static const char *const SablePetscSolverIntSuffixes[] = {"ksp_max_it", "ksp_gmres_restart", "pc_mg_levels", "pc_hypre_boomeramg_max_iter", "pc_hypre_boomeramg_max_levels", "pc_hypre_boomeramg_agg_nl", "pc_gamg_agg_nsmooths"};
 
-static void SableIndexPattern(const char *name, char *pat, size_t size, char *index, size_t isize);
+void SableIndexPattern(const char *name, char *pat, size_t size, char *index, size_t isize)
+{
+  const char *s = name;
+
+  index[0] = 0;
+  snprintf(pat, size, "%s", name);
+  for (; *s; s++) {
+    size_t n = 0;
+    if (s != name && s[-1] != '_') continue;
+    while (isdigit((unsigned char)s[n])) n++;
+    if (n && n < isize && (!s[n] || s[n] == '_')) {
+      memcpy(index, s, n);
+      index[n] = 0;
+      snprintf(pat, size, "%.*s%%d%s", (int)(s - name), name, s + n);
+      return;
+    }
+  }
+}
 
 /* Whether name is in the list, or is an indexed name ("dem_insert_3_psd") whose pattern
  * ("dem_insert_%d_psd") is. */
@@ -234,27 +251,6 @@ static void SableSortedWords(const char *name, char *key, size_t size)
   }
 }
 
-/* The first all-digit word of name replaced by %d (the index of -dem_plane_3_velocity), and
- * that word, so that a typo of an indexed name is compared with its pattern. */
-static void SableIndexPattern(const char *name, char *pat, size_t size, char *index, size_t isize)
-{
-  const char *s = name;
-
-  index[0] = 0;
-  snprintf(pat, size, "%s", name);
-  for (; *s; s++) {
-    size_t n = 0;
-    if (s != name && s[-1] != '_') continue;
-    while (isdigit((unsigned char)s[n])) n++;
-    if (n && n < isize && (!s[n] || s[n] == '_')) {
-      memcpy(index, s, n);
-      index[n] = 0;
-      snprintf(pat, size, "%.*s%%d%s", (int)(s - name), name, s + n);
-      return;
-    }
-  }
-}
-
 /* The known option (SableKnownOptions) closest to an unknown name: at most 2 edits away, or the
  * same words in another order; an empty string when none is. */
 static void SableSuggest(const char *name, char *best, size_t size)
@@ -283,6 +279,16 @@ static void SableSuggest(const char *name, char *best, size_t size)
   }
 }
 
+/* The error text of an option that nothing reads (value NULL: none), with the closest known name. */
+static void SableUnknownMessage(const char *name, const char *value, char *msg, size_t size)
+{
+  char guess[128], hint[160] = "a typo?";
+
+  SableSuggest(name, guess, sizeof guess);
+  if (guess[0]) snprintf(hint, sizeof hint, "did you mean -%s?", guess);
+  snprintf(msg, size, "option -%s%s%s was given but nothing reads it (%s -help lists the valid options)", name, value && value[0] ? " " : "", value && value[0] ? value : "", hint);
+}
+
 PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm)
 {
   PetscInt n, bad = -1;
@@ -298,15 +304,39 @@ PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm)
     for (size_t k = 0; k < sizeof skip / sizeof skip[0]; k++) /* whole names: -log_vieww is a typo */
       if (!strcmp(names[i], skip[k])) ok = PETSC_TRUE;
     if (!ok) {
-      char hint[128], guess[128];
       bad = i;
-      SableSuggest(names[i], guess, sizeof guess);
-      PetscCall(PetscSNPrintf(hint, sizeof hint, "did you mean -%s?", guess));
-      PetscCall(PetscSNPrintf(msg, sizeof msg, "option -%s %s was given but nothing reads it (%s -help lists the valid options)", names[i], values[i] ? values[i] : "", guess[0] ? hint : "a typo?"));
+      SableUnknownMessage(names[i], values[i], msg, sizeof msg);
     }
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   PetscCheck(bad < 0, comm, PETSC_ERR_ARG_WRONG, "%s", msg);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableCheckOptionsKnown(MPI_Comm comm, const char *prefix)
+{
+  char        *all, *save = NULL, *tok, *name = NULL, msg[512] = "";
+  const size_t lp = strlen(prefix);
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(NULL, &all));
+  /* "-name value -flag ...", as SableCheckOptionValues reads it; the first unknown name counts */
+  for (tok = strtok_r(all, " ", &save); tok && !msg[0]; tok = strtok_r(NULL, " ", &save)) {
+    PetscBool key;
+    PetscCall(PetscOptionsValidKey(tok, &key));
+    if (!key) {
+      if (name) SableUnknownMessage(name, tok, msg, sizeof msg);
+      name = NULL;
+      continue;
+    }
+    if (name) SableUnknownMessage(name, NULL, msg, sizeof msg);
+    name = NULL;
+    /* a PETSc solver's option under Sable's prefix (SableOptionGroup < 0) is PETSc's to judge */
+    if (!strncmp(tok + 1, prefix + 1, lp - 1) && SableOptionGroup(tok + 1) >= 0 && !SableInList(tok + 1, SableKnownOptions, sizeof SableKnownOptions / sizeof SableKnownOptions[0])) name = tok + 1;
+  }
+  if (name && !msg[0]) SableUnknownMessage(name, NULL, msg, sizeof msg);
+  PetscCall(PetscFree(all));
+  PetscCheck(!msg[0], comm, PETSC_ERR_ARG_WRONG, "%s", msg);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

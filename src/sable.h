@@ -14,6 +14,15 @@
 /* Collective. Errors when an option in the database was never read (a typo cannot silently run
  * the wrong physics). Call after every object has done its SetFromOptions. */
 PetscErrorCode SableCheckOptionsUsed(MPI_Comm comm);
+/* Collective. Errors when an option under prefix ("-fluid_") is not one Sable's sources name
+ * (a typo), with the closest known name ("did you mean ..."), as SableCheckOptionsUsed does at
+ * start-up; a PETSc solver's option under -fluid_poisson_ or -fluid_viscous_ is let through. For
+ * the prefixes whose mere presence decides something (the solver mode): call it before. */
+PetscErrorCode SableCheckOptionsKnown(MPI_Comm comm, const char *prefix);
+/* Not collective. The first all-digit word of an option name (no dash) replaced by %d
+ * ("dem_plane_%d_velocity" for "dem_plane_3_velocity") in pat, and that word in index (an empty
+ * string, and pat the name, when there is none). */
+void SableIndexPattern(const char *name, char *pat, size_t size, char *index, size_t isize);
 /* Collective. At the end of a run: a warning per option left unread among those the start-up
  * check has to let through (multigrid level options, read when a solver is set up). */
 PetscErrorCode SableWarnOptionsUnused(MPI_Comm comm);
@@ -110,7 +119,9 @@ PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *, const char[], c
 /* The -help printer (options.c). SableHelpBegin: not collective; call it before PetscInitialize
  * (it installs Sable's PetscHelpPrintf, which keeps the help text when -help is given and
  * passes it through otherwise). SableHelpFlush: not collective; prints the kept text, Sable's
- * options first, grouped by prefix, then PETSc's; call it after every object has read its
- * options (PetscFinalize calls it too; a second call prints nothing). */
+ * options first, grouped by prefix, then PETSc's, each indexed family once (-dem_plane_<k>, its
+ * index range, the members given); call it after every object has read its options and before
+ * PetscFinalize, which calls it too (the members given are then not known; a second call prints
+ * nothing). */
 void           SableHelpBegin(void);
 PetscErrorCode SableHelpFlush(void);

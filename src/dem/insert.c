@@ -72,9 +72,10 @@ static PetscErrorCode DemInitFileRadii(Dem dem, const PetscReal *dr, PetscInt ro
 
 PetscErrorCode DemInsertSetFromOptions(Dem dem)
 {
-  PetscBool set;
+  PetscBool set, help;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help opens no file: the init file may not exist yet */
   PetscOptionsBegin(dem->comm, NULL, "DEM insertion", NULL);
   PetscInt nl = 3;
   PetscCall(PetscOptionsIntArray("-dem_lattice", "Cubic lattice site counts nx,ny,nz (0 = no lattice)", NULL, dem->insert.lat, &nl, &set));
@@ -102,8 +103,8 @@ PetscErrorCode DemInsertSetFromOptions(Dem dem)
   if (dem->insert.lat_count < 0) dem->insert.lat_count = dem->insert.lat[0] * dem->insert.lat[1] * dem->insert.lat[2];
   PetscCheck(dem->insert.lat_jitter >= 0 && dem->insert.lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->insert.lat_jitter);
   PetscCheck(dem->insert.lat_speed >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_speed %g must be >= 0", (double)dem->insert.lat_speed);
-  if (dem->insert.init_file[0]) PetscCall(IoCheckReadable(dem->comm, "-dem_init_file", dem->insert.init_file));
-  if (dem->insert.init_file[0] && dem->insert.file_radii == 2 && !dem->shapes.convex) { /* own: declared now, so a restart has it too */
+  if (dem->insert.init_file[0] && !help) PetscCall(IoCheckReadable(dem->comm, "-dem_init_file", dem->insert.init_file));
+  if (dem->insert.init_file[0] && !help && dem->insert.file_radii == 2 && !dem->shapes.convex) { /* own: declared now, so a restart has it too */
     PetscReal *d;
     PetscInt   rows;
     PetscCall(IoReadDatasetAll(dem->comm, dem->insert.init_file, "/particles/radius", 1, &rows, &d));

@@ -339,7 +339,7 @@ PetscErrorCode DemPsdSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Co
   char      names[PSD_NOPT][64];
   PetscReal f[DEM_PSD_MAX_TABLE];
   PetscInt  nd = DEM_PSD_MAX_TABLE, nf = DEM_PSD_MAX_TABLE, kind = DEM_PSD_SINGLE;
-  PetscBool set[PSD_NOPT];
+  PetscBool set[PSD_NOPT], help;
 
   PetscFunctionBeginUser;
   PetscCall(DemPsdOptionNames(prefix, names));
@@ -355,6 +355,12 @@ PetscErrorCode DemPsdSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Co
   PetscCall(SableOptionsInt(names[PSD_CLASSES], "normal, lognormal, uniform: snap the samples to this many diameters, the medians of equal-number bins (0: every sample its own size)", NULL, "[0,inf)", 0, &psd->classes, &set[PSD_CLASSES]));
   for (int j = 0; j < PSD_NOPT; j++) PetscCheck(!set[j] || j == PSD_KIND || DemPsdApplies(psd->kind, j), comm, PETSC_ERR_ARG_INCOMP, "%s is not an option of %s %s", names[j], names[PSD_KIND], DemPsdKindNames[psd->kind]);
   PetscCheck(!set[PSD_MIN] || !set[PSD_MAX] || psd->dmin < psd->dmax, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g m must be below %s %g m", names[PSD_MIN], (double)psd->dmin, names[PSD_MAX], (double)psd->dmax);
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (help) { /* -help lists the options: a law not complete yet is no error, and nothing is sampled */
+    psd->kind = DEM_PSD_SINGLE;
+    psd->mean = psd->dmin = psd->dmax = dflt_d;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   switch (psd->kind) {
   case DEM_PSD_SINGLE:
     PetscCheck(psd->mean > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g m must be > 0 (the diameter of a single-size source)", names[PSD_MEAN], (double)psd->mean);

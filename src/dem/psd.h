@@ -33,7 +33,8 @@ typedef struct {
 } DemPsd;
 
 /* Reads <prefix>_psd* inside an open PetscOptionsBegin block; checks the values (one line naming
- * the option, value and range); dflt_d is the diameter of a single-size source. */
+ * the option, value and range); dflt_d is the diameter of a single-size source. Under -help it
+ * only reads (the law is left single, of diameter dflt_d: an incomplete one is no error). */
 PetscErrorCode DemPsdSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *prefix, PetscReal dflt_d, DemPsd *psd);
 /* The diameter (m) at the uniform number u in [0,1). */
 double DemPsdSample(const DemPsd *psd, double u);

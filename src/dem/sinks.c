@@ -97,9 +97,10 @@ static PetscErrorCode DemOutletOptions(PetscOptionItems *PetscOptionsObject, Dem
   char      opt[64], ob[64], op[64], os[64], o0[64], o1[64];
   PetscReal b[6], r[9], t0 = 0, t1 = PETSC_MAX_REAL;
   PetscInt  side = 0, nout = dem->sinks.nout;
-  PetscBool bset, pset, sset, s0, s1;
+  PetscBool bset, pset, sset, s0, s1, help;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help: an outlet left incomplete is no error */
   PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_outlet_%d", k));
   PetscCall(PetscSNPrintf(ob, sizeof ob, "-dem_outlet_%d_box", k));
   PetscCall(PetscSNPrintf(op, sizeof op, "-dem_outlet_%d_patch", k));
@@ -112,7 +113,7 @@ static PetscErrorCode DemOutletOptions(PetscOptionItems *PetscOptionsObject, Dem
   PetscCall(SableOptionsReal(o0, "Time the outlet starts removing particles", "s", "[0,inf)", t0, &t0, &s0));
   PetscCall(SableOptionsReal(o1, "Time the outlet stops removing particles; default: never", "s", "[0,inf)", -1, &t1, &s1));
   PetscCheck((int)bset + (int)pset + (int)sset <= 1, dem->comm, PETSC_ERR_ARG_INCOMP, "%s: give one of %s, %s, %s", opt, ob, op, os);
-  PetscCheck(bset || pset || sset || !(s0 || s1), dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s, %s or %s", s0 ? o0 : o1, ob, op, os);
+  PetscCheck(bset || pset || sset || !(s0 || s1) || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s, %s or %s", s0 ? o0 : o1, ob, op, os);
   if (!s1) t1 = PETSC_MAX_REAL;
   PetscCheck(t0 <= t1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g s is after %s %g s: the outlet would never remove anything", o0, (double)t0, o1, (double)t1);
   if (bset) PetscCall(DemOutletBox(dem, ob, b));

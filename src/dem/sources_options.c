@@ -13,27 +13,47 @@
 static const char *const DemSourceRegionOption[DEM_MAX_SOURCES] = {"-dem_insert_0_region", "-dem_insert_1_region", "-dem_insert_2_region", "-dem_insert_3_region", "-dem_insert_4_region", "-dem_insert_5_region", "-dem_insert_6_region", "-dem_insert_7_region", "-dem_insert_8_region", "-dem_insert_9_region"};
 static const char *const DemSourceOrientOption[DEM_MAX_SOURCES] = {"-dem_insert_0_random_orientation", "-dem_insert_1_random_orientation", "-dem_insert_2_random_orientation", "-dem_insert_3_random_orientation", "-dem_insert_4_random_orientation", "-dem_insert_5_random_orientation", "-dem_insert_6_random_orientation", "-dem_insert_7_random_orientation", "-dem_insert_8_random_orientation", "-dem_insert_9_random_orientation"};
 const char *const        DemSourceRegionNames[]                 = {"box", "cylinder", "patch"};
+static const char *const DemSourceRegionHelp[]                  = {"Source region: box xlo,ylo,zlo,xhi,yhi,zhi", "Source region: cylinder centre cx,cy,cz, axis ax,ay,az, radius R, length L", "Source region: rectangle with corners p0, p1, p2 (p1-p0 perpendicular to p2-p0); the stream leaves towards (p1-p0)x(p2-p0)"};
 
-/* The geometry option of the region, read into s->g. */
-static PetscErrorCode DemSourceGeometryOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s)
+/* -help: lists the geometry options of the regions r in [r0, r1) (another region's than the
+ * source's). */
+static PetscErrorCode DemSourceOtherRegions(PetscOptionItems *PetscOptionsObject, int k, int r0, int r1)
+{
+  const char    *kind[] = {"box", "cylinder", "patch"};
+  const PetscInt n[]    = {6, 8, 9};
+  char           opt[64];
+  PetscReal      g[9];
+
+  PetscFunctionBeginUser;
+  for (int r = r0; r < r1; r++) {
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_%s", k, kind[r]));
+    PetscCall(SableOptionsRealN(opt, DemSourceRegionHelp[r], "m", g, 0, n[r], NULL));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The geometry option of the region, read into s->g. With help (-help) the options of the other
+ * regions are listed too, and a missing geometry is not an error. */
+static PetscErrorCode DemSourceGeometryOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s, PetscBool help)
 {
   char      opt[64];
   PetscBool set;
 
   PetscFunctionBeginUser;
+  if (help) PetscCall(DemSourceOtherRegions(PetscOptionsObject, k, 0, (int)s->region));
   if (s->region == DEM_SRC_BOX) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_box", k));
-    PetscCall(SableOptionsRealN(opt, "Source region: box xlo,ylo,zlo,xhi,yhi,zhi", "m", s->g, 0, 6, &set));
+    PetscCall(SableOptionsRealN(opt, DemSourceRegionHelp[0], "m", s->g, 0, 6, &set));
     for (int d = 0; d < 3 && set; d++) PetscCheck(s->g[3 + d] > s->g[d], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: upper bound %g must exceed lower bound %g on axis %d", opt, (double)s->g[3 + d], (double)s->g[d], d);
   } else if (s->region == DEM_SRC_CYLINDER) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_cylinder", k));
-    PetscCall(SableOptionsRealN(opt, "Source region: cylinder centre cx,cy,cz, axis ax,ay,az, radius R, length L", "m", s->g, 0, 8, &set));
+    PetscCall(SableOptionsRealN(opt, DemSourceRegionHelp[1], "m", s->g, 0, 8, &set));
     const double l = set ? sqrt(dem_dot(s->g + 3, s->g + 3)) : 0;
     PetscCheck(!set || (l > 0 && s->g[6] > 0 && s->g[7] > 0), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the axis must be non-zero and R %g, L %g > 0", opt, (double)s->g[6], (double)s->g[7]);
     for (int d = 0; d < 3 && set; d++) s->g[3 + d] /= l;
   } else {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_patch", k));
-    PetscCall(SableOptionsRealN(opt, "Source region: rectangle with corners p0, p1, p2 (p1-p0 perpendicular to p2-p0); the stream leaves towards (p1-p0)x(p2-p0)", "m", s->g, 0, 9, &set));
+    PetscCall(SableOptionsRealN(opt, DemSourceRegionHelp[2], "m", s->g, 0, 9, &set));
     double e1[3], e2[3];
     for (int d = 0; d < 3 && set; d++) {
       e1[d] = s->g[3 + d] - s->g[d];
@@ -50,12 +70,14 @@ static PetscErrorCode DemSourceGeometryOptions(PetscOptionItems *PetscOptionsObj
       }
     }
   }
-  PetscCheck(set, dem->comm, PETSC_ERR_ARG_WRONG, "%s %s needs %s", DemSourceRegionOption[k], DemSourceRegionNames[s->region], opt);
+  if (help) PetscCall(DemSourceOtherRegions(PetscOptionsObject, k, (int)s->region + 1, 3));
+  PetscCheck(set || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s %s needs %s", DemSourceRegionOption[k], DemSourceRegionNames[s->region], opt);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The rates, totals, times and kinematics of source k. */
-static PetscErrorCode DemSourceRateOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s)
+/* The rates, totals, times and kinematics of source k (help: a source without a rate or a total
+ * is not an error). */
+static PetscErrorCode DemSourceRateOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s, PetscBool help)
 {
   char      o[6][64];
   PetscBool set[6];
@@ -75,13 +97,14 @@ static PetscErrorCode DemSourceRateOptions(PetscOptionItems *PetscOptionsObject,
   PetscCall(SableOptionsReal(o[5], "Time after which no batch is placed (default: never)", "s", "(0,inf)", -1, &s->stop, &set[5]));
   PetscCheck(!(s->rate > 0 && s->mass_rate > 0), dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the rate of source %d: give one of them", o[0], o[1], k);
   PetscCheck(!(set[2] && set[3]), dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the total of source %d: give one of them", o[2], o[3], k);
-  PetscCheck(s->rate > 0 || s->mass_rate > 0 || set[2] || set[3], dem->comm, PETSC_ERR_ARG_WRONG, "%s: give a rate (%s or %s) or a total (%s or %s)", DemSourceRegionOption[k], o[0], o[1], o[2], o[3]);
+  PetscCheck(help || s->rate > 0 || s->mass_rate > 0 || set[2] || set[3], dem->comm, PETSC_ERR_ARG_WRONG, "%s: give a rate (%s or %s) or a total (%s or %s)", DemSourceRegionOption[k], o[0], o[1], o[2], o[3]);
   PetscCheck(!set[5] || s->stop > s->start, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be after %s %g (s)", o[5], (double)s->stop, o[4], (double)s->start);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Velocity, orientation, shape, seed, period, attempts and sizes of source k. */
-static PetscErrorCode DemSourceParticleOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s)
+/* Velocity, orientation, shape, seed, period, attempts and sizes of source k (list: only read,
+ * for -help, the scene unchanged). */
+static PetscErrorCode DemSourceParticleOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s, PetscBool list)
 {
   char      opt[64];
   PetscBool set;
@@ -106,6 +129,7 @@ static PetscErrorCode DemSourceParticleOptions(PetscOptionItems *PetscOptionsObj
   PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d", k));
   PetscCall(DemPsdSetFromOptions(PetscOptionsObject, dem->comm, opt, 2 * dem->shapes.shp[s->shape].r, &s->psd));
   DemPsdRange(&s->psd, &dmin, &dmax);
+  if (list) PetscFunctionReturn(PETSC_SUCCESS);
   if (PetscAbsReal(dmin - 2 * dem->shapes.shp[s->shape].r) > 1e-12 * dmin || PetscAbsReal(dmax - dmin) > 1e-12 * dmin) {
     PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_ARG_INCOMP, "%s_psd: a source of convex shapes inserts its shape's size (bounding diameter %g m), not a distribution", opt, (double)(2 * dem->shapes.shp[s->shape].r));
     PetscCall(DemSetOwnSizes(dem, 0.5 * dmin, 0.5 * dmax)); /* spheres of their own sizes: reach, cells and time step cover them */
@@ -119,15 +143,28 @@ static PetscErrorCode DemSourceParticleOptions(PetscOptionItems *PetscOptionsObj
 /* The suffixes of a source's options: any of them without its _region is an error. */
 static const char *const DemSourceSuffixes[] = {"box", "cylinder", "patch", "rate", "mass_rate", "count", "mass", "start", "stop", "velocity", "velocity_spread", "random_orientation", "shape", "seed", "period", "attempts", "psd", "psd_mean", "psd_std", "psd_min", "psd_max", "psd_diameters", "psd_fractions", "psd_classes"};
 
+/* -help lists every source's options (a source not given is read into a scratch copy) and
+ * raises no error of a source left incomplete. */
 PetscErrorCode DemSourcesSetFromOptions(Dem dem)
 {
+  PetscBool help;
+
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
   PetscOptionsBegin(dem->comm, NULL, "DEM particle sources", NULL);
   for (int k = 0; k < DEM_MAX_SOURCES; k++) {
     DemSource *s      = &dem->src.s[dem->src.n];
     PetscInt   region = 0;
     PetscBool  set;
     PetscCall(PetscOptionsEList(DemSourceRegionOption[k], "Particle source: the region candidates are drawn in", NULL, DemSourceRegionNames, 3, DemSourceRegionNames[0], &region, &set));
+    if (!set && help) {
+      DemSource scratch;
+      PetscCall(PetscMemzero(&scratch, sizeof scratch));
+      PetscCall(DemSourceGeometryOptions(PetscOptionsObject, dem, k, &scratch, PETSC_TRUE));
+      PetscCall(DemSourceRateOptions(PetscOptionsObject, dem, k, &scratch, PETSC_TRUE));
+      PetscCall(DemSourceParticleOptions(PetscOptionsObject, dem, k, &scratch, PETSC_TRUE));
+      continue;
+    }
     if (!set) {
       for (size_t a = 0; a < sizeof DemSourceSuffixes / sizeof DemSourceSuffixes[0]; a++) {
         char      opt[64];
@@ -142,9 +179,9 @@ PetscErrorCode DemSourcesSetFromOptions(Dem dem)
     }
     PetscCall(PetscMemzero(s, sizeof *s));
     s->region = (DemSourceRegion)region;
-    PetscCall(DemSourceGeometryOptions(PetscOptionsObject, dem, k, s));
-    PetscCall(DemSourceRateOptions(PetscOptionsObject, dem, k, s));
-    PetscCall(DemSourceParticleOptions(PetscOptionsObject, dem, k, s));
+    PetscCall(DemSourceGeometryOptions(PetscOptionsObject, dem, k, s, help));
+    PetscCall(DemSourceRateOptions(PetscOptionsObject, dem, k, s, help));
+    PetscCall(DemSourceParticleOptions(PetscOptionsObject, dem, k, s, PETSC_FALSE));
     s->k = k;
     dem->src.n++;
   }

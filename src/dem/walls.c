@@ -54,7 +54,7 @@ PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem d
   PetscFunctionBeginUser;
   for (int k = 0; k < 7; k++) mu[k] = dem->contact.wmat.mu; /* the default -help shows */
   PetscCall(PetscOptionsRealArray(opt, "Friction coefficient of this wall, overriding -dem_wall_friction (box: xlo,ylo,zlo,xhi,yhi,zhi)", NULL, mu, &got, &set));
-  if (!set) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!set || first < 0) PetscFunctionReturn(PETSC_SUCCESS); /* first < 0: -help lists it, no wall */
   PetscCheck(got == n, dem->comm, PETSC_ERR_ARG_SIZ, "%s takes %" PetscInt_FMT " values, got %" PetscInt_FMT, opt, n, got);
   for (PetscInt k = 0; k < n; k++) {
     PetscCheck(mu[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", opt, (double)mu[k]);

@@ -21,14 +21,16 @@
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
 {
   PetscReal cyl[7], caps[2], omega = 0;
-  PetscBool set, oset, cset;
+  PetscBool set, oset, cset, help;
   DemWall  *w;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help: the friction listed without a cylinder */
   PetscCall(SableOptionsRealN("-dem_cylinder", "Cylinder wall, particles inside: axis point ax,ay,az (m), axis direction ux,uy,uz (-), radius R (m)", NULL, cyl, 0, 7, &set));
   PetscCall(PetscOptionsReal("-dem_cylinder_omega", "Angular velocity of the cylinder (and its caps) about its axis, right-handed (rad/s)", NULL, omega, &omega, &oset));
   PetscCall(SableOptionsRealN("-dem_cylinder_caps", "End caps: axial positions s0,s1 (from the axis point along the axis) of two planes perpendicular to the axis, co-rotating; default no caps", "m", caps, 0, 2, &cset));
-  PetscCheck(set || (!oset && !cset), dem->comm, PETSC_ERR_ARG_WRONG, "%s given without -dem_cylinder", oset ? "-dem_cylinder_omega" : "-dem_cylinder_caps");
+  PetscCheck(set || (!oset && !cset) || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without -dem_cylinder", oset ? "-dem_cylinder_omega" : "-dem_cylinder_caps");
+  if (!set && help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_cylinder_friction", 1, -1));
   if (!set) PetscFunctionReturn(PETSC_SUCCESS);
   const double u[3] = {cyl[3], cyl[4], cyl[5]}, lu = sqrt(dem_dot(u, u));
   PetscCheck(lu > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder: the axis direction %g,%g,%g must be non-zero", (double)u[0], (double)u[1], (double)u[2]);

@@ -82,20 +82,29 @@ static PetscErrorCode DemMeshMotion(PetscOptionItems *PetscOptionsObject, Dem de
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Reads and places mesh k (its file option is set), and announces it. */
-static PetscErrorCode DemMeshLoad(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemMesh *m)
+/* The placement of mesh k: scale, rotation (deg), translation (m). */
+static PetscErrorCode DemMeshPlacement(PetscOptionItems *PetscOptionsObject, Dem dem, int k, PetscReal *scale, PetscReal rot[3], PetscReal shift[3])
 {
-  char      o[3][48];
-  PetscReal scale = 1, rot[3] = {0, 0, 0}, shift[3] = {0, 0, 0}, lo[3], hi[3];
+  char o[3][48];
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(o[0], sizeof o[0], "-dem_mesh_%d_scale", k));
   PetscCall(PetscSNPrintf(o[1], sizeof o[1], "-dem_mesh_%d_rotate", k));
   PetscCall(PetscSNPrintf(o[2], sizeof o[2], "-dem_mesh_%d_translate", k));
-  PetscCall(SableOptionsReal(o[0], "Scale factor of the mesh's coordinates (about the origin, before rotation and translation)", NULL, "(0,inf)", 1, &scale, NULL));
+  PetscCall(SableOptionsReal(o[0], "Scale factor of the mesh's coordinates (about the origin, before rotation and translation)", NULL, "(0,inf)", 1, scale, NULL));
   PetscCall(SableOptionsRealN(o[1], "Rotation of the mesh: degrees about x, then y, then z (fixed axes), after the scale", "deg", rot, 3, 3, NULL));
   PetscCall(SableOptionsRealN(o[2], "Translation of the mesh, after the rotation", "m", shift, 3, 3, NULL));
   for (int j = 0; j < 3; j++) PetscCheck(!PetscIsInfOrNanReal(rot[j]) && !PetscIsInfOrNanReal(shift[j]), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s and %s must be finite", o[1], o[2]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Reads and places mesh k (its file option is set), and announces it. */
+static PetscErrorCode DemMeshLoad(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemMesh *m)
+{
+  PetscReal scale = 1, rot[3] = {0, 0, 0}, shift[3] = {0, 0, 0}, lo[3], hi[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(DemMeshPlacement(PetscOptionsObject, dem, k, &scale, rot, shift));
   {
     PetscBool ok = PETSC_FALSE;
     PetscCall(PetscTestFile(m->file, 'r', &ok));
@@ -112,9 +121,14 @@ static PetscErrorCode DemMeshLoad(PetscOptionItems *PetscOptionsObject, Dem dem,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* -help lists every mesh's options, given or not, and reads no mesh file (a mesh not given is
+ * read into a scratch copy). */
 PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
 {
+  PetscBool help;
+
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
   for (int k = 0; k < DEM_MAX_MESHES; k++) {
     DemMesh  *m = &dem->meshes.m[dem->meshes.n];
     char      opt[48];
@@ -123,6 +137,16 @@ PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem
     PetscCall(PetscMemzero(m, sizeof *m));
     PetscCall(PetscOptionsString(opt, "Triangle-mesh wall: an STL file (ASCII or binary)", NULL, m->file, m->file, sizeof m->file, &set));
     PetscCall(PetscSNPrintf(m->name, sizeof m->name, "-dem_mesh_%d", k));
+    if (help && (!set || !m->file[0])) {
+      DemMesh   scratch;
+      PetscReal scale = 1, rot[3] = {0, 0, 0}, shift[3] = {0, 0, 0};
+      PetscCall(PetscMemzero(&scratch, sizeof scratch));
+      PetscCall(DemMeshMaterial(PetscOptionsObject, dem, k, &scratch));
+      PetscCall(DemMeshMotion(PetscOptionsObject, dem, k, &scratch));
+      PetscCall(DemMeshPlacement(PetscOptionsObject, dem, k, &scale, rot, shift));
+      PetscCall(PetscFree(scratch.tab));
+      continue;
+    }
     if (!set) { /* its other options would be ignored */
       const char *sub[] = {"scale", "rotate", "translate", "friction", "restitution", "kn", "youngs_modulus", "rolling_friction", "velocity", "omega", "axis_point", "axis", "omega_table"};
       for (size_t j = 0; j < sizeof sub / sizeof sub[0]; j++) {
@@ -136,6 +160,12 @@ PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem
     PetscCheck(m->file[0], dem->comm, PETSC_ERR_ARG_WRONG, "-dem_mesh_%d_file needs a file name", k);
     PetscCall(DemMeshMaterial(PetscOptionsObject, dem, k, m));
     PetscCall(DemMeshMotion(PetscOptionsObject, dem, k, m));
+    if (help) { /* its options listed, its file not read */
+      PetscReal scale = 1, rot[3] = {0, 0, 0}, shift[3] = {0, 0, 0};
+      PetscCall(DemMeshPlacement(PetscOptionsObject, dem, k, &scale, rot, shift));
+      PetscCall(PetscFree(m->tab));
+      continue;
+    }
     PetscCall(DemMeshLoad(PetscOptionsObject, dem, k, m));
     dem->meshes.n++;
   }

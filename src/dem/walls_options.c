@@ -38,10 +38,11 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
 PetscErrorCode DemWallsSetFromOptions(Dem dem)
 {
   PetscReal box[6], pl[6], vel[3], trm;
-  PetscBool set, vset, rset;
+  PetscBool set, vset, rset, help;
   char      opt[64], optv[80];
 
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help: every wall's options listed, given or not */
   PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
   PetscCall(SableOptionsRealN("-dem_box", "Closed box of six inward-facing walls: xlo,ylo,zlo,xhi,yhi,zhi", "m", box, 0, 6, &set));
   if (set) {
@@ -59,7 +60,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
       PetscCall(DemWallAdd(dem, opt, p, n, z));
     }
     PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, dem->walls.nwall - 6));
-  }
+  } else if (help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_box_friction", 6, -1));
   for (int k = 0; k < 10; k++) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_plane_%d", k));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_velocity", k));
@@ -67,16 +68,16 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     vel[0] = vel[1] = vel[2] = 0;
     trm                      = 0; /* never */
     PetscCall(SableOptionsRealN(optv, "Translation velocity of the plane wall", "m/s", vel, 3, 3, &vset));
-    PetscCheck(set || !vset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
+    PetscCheck(set || !vset || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
     PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
     if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_remove_time", k));
     PetscCall(PetscOptionsReal(optv, "Time at which the plane wall is removed (a gate opening, as a silo's plate); 0: never", "s", trm, &trm, &rset));
-    PetscCheck(set || !rset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
+    PetscCheck(set || !rset || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
     PetscCheck(!rset || (trm >= 0 && !PetscIsInfOrNanReal(trm)), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be finite and >= 0 (s)", optv, (double)trm);
     if (rset && trm > 0) dem->walls.wall[dem->walls.nwall - 1].t_remove = trm;
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
-    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->walls.nwall - 1));
+    if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, set ? dem->walls.nwall - 1 : -1));
   }
   for (int k = 0; k < 10; k++) {
     PetscReal r[9];
@@ -84,7 +85,7 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCall(SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2; faces the side (p1-p0)x(p2-p0) points to", "m", r, 0, 9, &set));
     if (set) PetscCall(DemWallAddRect(dem, opt, r));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
-    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, dem->walls.nwall - 1));
+    if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, set ? dem->walls.nwall - 1 : -1));
   }
   PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));   /* -dem_quad_<k>, -dem_hopper */
   PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem));  /* -dem_cylinder (drum) */

@@ -110,10 +110,11 @@ static PetscErrorCode DemWallAddHopper(Dem dem, const PetscReal h[6])
 PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
 {
   PetscReal v[12], h[6];
-  PetscBool set;
+  PetscBool set, help;
   char      opt[64], optf[80];
 
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help: the friction of every wall listed */
   for (int k = 0; k < 10; k++) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_quad_%d", k));
     PetscCall(SableOptionsRealN(opt, "Convex planar quadrilateral wall: x0,y0,z0,...,x3,y3,z3 in order around it, counter-clockwise seen from the granular side", "m", v, 0, 12, &set));
@@ -123,13 +124,13 @@ PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem d
       PetscCall(DemWallAddPolygon(dem, opt, 4, dv, NULL));
     }
     PetscCall(PetscSNPrintf(optf, sizeof optf, "-dem_quad_%d_friction", k));
-    if (set) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optf, 1, dem->walls.nwall - 1));
+    if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optf, 1, set ? dem->walls.nwall - 1 : -1));
   }
   PetscCall(SableOptionsRealN("-dem_hopper", "Square truncated-pyramid hopper, four plates facing inward: centre x,y, top z, top half-width, bottom z, bottom half-width; wall angle from the horizontal atan((ztop-zbot)/(htop-hbot))", "m", h, 0, 6, &set));
   if (set) {
     PetscCall(DemWallAddHopper(dem, h));
     PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_hopper_friction", 1, dem->walls.nwall - 4));
     for (int q = 1; q < 4; q++) dem->walls.wall[dem->walls.nwall - 4 + q].mu = dem->walls.wall[dem->walls.nwall - 4].mu;
-  }
+  } else if (help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_hopper_friction", 1, -1));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

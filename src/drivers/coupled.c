@@ -15,7 +15,8 @@
  * With -fluid_adaptive_dt the coupling steps vary in whole DEM steps (coupling/exchange.c): the
  * loop's end and cadences are then judged to half a DEM step (the run ends at the first step
  * end from -cpl_t_end on, as the steps do not look at the end: restarts stay exact).
- * A run is coupled when any -cpl_ or -fluid_ option is given (DriverIsCoupled).
+ * A run is coupled when -sable_solver says so, or (auto, the default) when any -cpl_ or -fluid_
+ * option is given (DriverIsCoupled).
  * Checkpoints (-io_checkpoint_interval, simulated seconds, 0 = none; drivers/checkpoint.c): the
  * DEM's, the fluid's and the coupling's exact state, and the driver's own (run/coupled: the sums
  * of the column figures and the next progress and checkpoint times), every interval and at the
@@ -35,14 +36,43 @@ struct _p_CoupledRun {
   DriverAvg  avg; /* time averages (-avg_start) */
 };
 
+/* The solver mode, -sable_solver: auto (coupled when any -fluid_ or -cpl_ option is given), dry
+ * or coupled. A -fluid_ or -cpl_ name that Sable does not know (a typo) is named first, so that
+ * it never decides the mode; then an option of the other mode is refused, saying why the run is
+ * what it is. Under -help the mode is only read (both drivers list their options). */
+static const char *const DriverSolverNames[] = {"auto", "dry", "coupled"};
+
 PetscErrorCode DriverIsCoupled(PetscBool *on)
 {
-  char *all;
+  const char *dry[2] = {"-dem_t_end", "-dem_progress_interval"}, *wet[2] = {"-cpl_t_end", "-cpl_progress_interval"};
+  MPI_Comm    comm = PETSC_COMM_WORLD;
+  PetscInt    mode = 0;
+  PetscBool   help;
+  char       *all, *tok, *save = NULL, first[128] = "", why[192];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsGetAll(NULL, &all));
-  *on = (PetscBool)(!strncmp(all, "-cpl_", 5) || !strncmp(all, "-fluid_", 7) || strstr(all, " -cpl_") || strstr(all, " -fluid_"));
+  PetscOptionsBegin(comm, NULL, "Solver mode", NULL);
+  PetscCall(PetscOptionsEList("-sable_solver", "The run: auto (a coupled CFD-DEM run when any -fluid_ or -cpl_ option is given, a dry DEM run otherwise), dry or coupled (options of the other mode are then refused)", NULL, DriverSolverNames, 3, DriverSolverNames[0], &mode, NULL));
+  PetscOptionsEnd();
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (!help) {
+    PetscCall(SableCheckOptionsKnown(comm, "-fluid_"));
+    PetscCall(SableCheckOptionsKnown(comm, "-cpl_"));
+  }
+  PetscCall(PetscOptionsGetAll(NULL, &all)); /* the first -fluid_ or -cpl_ option given */
+  for (tok = strtok_r(all, " ", &save); tok && !first[0]; tok = strtok_r(NULL, " ", &save))
+    if (!strncmp(tok, "-fluid_", 7) || !strncmp(tok, "-cpl_", 5)) PetscCall(PetscStrncpy(first, tok, sizeof first));
   PetscCall(PetscFree(all));
+  *on = (PetscBool)(mode == 2 || (mode == 0 && first[0]));
+  if (help) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(mode != 1 || !first[0], comm, PETSC_ERR_ARG_INCOMP, "-sable_solver dry: %s is an option of coupled runs (remove it, or give -sable_solver coupled)", first);
+  if (mode == 2) PetscCall(PetscStrncpy(why, "-sable_solver coupled", sizeof why));
+  else PetscCall(PetscSNPrintf(why, sizeof why, "it has %s: remove it for a dry run", first));
+  for (int k = 0; k < 2 && *on; k++) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, dry[k], &set));
+    PetscCheck(!set, comm, PETSC_ERR_ARG_INCOMP, "%s applies to dry runs; this run is coupled (%s): use %s", dry[k], why, wet[k]);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -6,8 +6,11 @@
 #pragma once
 #include "balance/balancer.h"
 
-/* Whether the options ask for a coupled run: any -cpl_ or -fluid_ option given (the fluid has
- * defaults for all its properties, so one fluid option is enough to ask for it). */
+/* Collective. Whether the run is coupled: -sable_solver coupled, or (auto, the default) any -cpl_
+ * or -fluid_ option given (the fluid has defaults for all its properties, so one fluid option is
+ * enough to ask for it). First an unknown -cpl_/-fluid_ name is an error with its "did you mean";
+ * then the other mode's options are refused (-sable_solver dry with a -fluid_ option, -dem_t_end
+ * in a coupled run). Under -help it only reads -sable_solver. */
 PetscErrorCode DriverIsCoupled(PetscBool *on);
 
 /* Checkpoints, shared by both drivers (checkpoint.c): -io_checkpoint_interval (s, 0 = none; a

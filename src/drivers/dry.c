@@ -40,13 +40,16 @@ PetscErrorCode DryRunCreate(MPI_Comm comm, DryRun *run)
 
 PetscErrorCode DryRunSetFromOptions(DryRun r)
 {
+  PetscBool help;
+
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
   PetscOptionsBegin(r->comm, NULL, "Dry run (DEM without fluid)", NULL);
   PetscCall(SableOptionsReal("-dem_t_end", "Simulated time to run to; a dry run needs it", "s", "[0,inf)", -1, &r->t_end, &r->t_end_set));
   PetscCall(SableOptionsReal("-dem_progress_interval", "Simulated time between progress lines", "s; 0 = no progress lines", "[0,inf)", r->progress_dt, &r->progress_dt, NULL));
   PetscOptionsEnd();
   PetscCall(DriverCkptSetFromOptions(&r->ckpt, r->comm));
-  PetscCall(DriverMonSetFromOptions(&r->mon, r->comm, PETSC_FALSE));
+  PetscCall(DriverMonSetFromOptions(&r->mon, r->comm, help)); /* -help lists the monitor's options once, here, with a coupled run's */
   PetscCall(DriverAvgCreate(r->comm, &r->avg));
   PetscCall(DriverAvgSetFromOptions(r->avg));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -55,3 +55,20 @@ expect "plane with zero normal" "-dem_plane_0 0.,0.,0.,0.,0.,0.: the normal (the
 expect "prefix with a directory" "-io_prefix a/b: a file name prefix, without '/'" $OK -io_prefix a/b
 expect "prefix too long" "-io_prefix x*: at most 63 characters" $OK -io_prefix xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx
 expect "box across a periodic axis" "-dem_box puts walls across the x axis, which is periodic" $OK -domain_periodic_x
+# the solver mode (-sable_solver auto|dry|coupled; src/drivers/coupled.c, DriverIsCoupled): a
+# typo of a -fluid_ or -cpl_ option is named before it can make a dry case coupled; an explicit
+# mode refuses the other mode's options, saying why the run is what it is
+Q="-options_file cases/settle/quick.opts"
+expect "fluid typo in a dry case" "option -fluid_viscocity 1.8e-5 was given but nothing reads it (did you mean -fluid_viscosity?" $Q -fluid_viscocity 1.8e-5
+expect "coupling typo in a dry case" "option -cpl_t_ned 1 was given but nothing reads it (did you mean -cpl_t_end?" $Q -cpl_t_ned 1
+expect "a fluid option makes a dry case coupled" "-dem_t_end applies to dry runs; this run is coupled (it has -fluid_viscosity: remove it for a dry run): use -cpl_t_end" $Q -fluid_viscosity 1.8e-5
+expect "-sable_solver dry with a fluid option" "-sable_solver dry: -fluid_viscosity is an option of coupled runs (remove it, or give -sable_solver coupled)" $Q -sable_solver dry -fluid_viscosity 1.8e-5
+expect "-sable_solver dry on a coupled case" "-sable_solver dry: -cpl_drag is an option of coupled runs" -options_file cases/packed_bed/packed_bed.opts -sable_solver dry
+expect "-sable_solver coupled on a dry case" "-dem_t_end applies to dry runs; this run is coupled (-sable_solver coupled): use -cpl_t_end" $Q -sable_solver coupled
+expect "-sable_solver of another word" "Unknown option wet for -sable_solver. Available options: auto dry coupled" $Q -sable_solver wet
+for m in "dry|$OK -sable_solver dry|fluid off" "auto|$OK -sable_solver auto|fluid off" "coupled|-options_file cases/packed_bed/packed_bed.opts -sable_solver coupled -cpl_t_end 0|fluid on"; do
+  name=${m%%|*}; rest=${m#*|}; args=${rest%|*}; want=${rest##*|}
+  out=$($S $args 2>&1); rc=$?
+  if [ "$rc" -eq 0 ] && printf '%s\n' "$out" | grep -q "^modules: .*$want"; then echo "PASS -sable_solver $name: exit 0, $(printf '%s\n' "$out" | grep '^modules:' | cut -d';' -f1-2)"
+  else echo "FAIL -sable_solver $name: exit $rc, no \"modules: ... $want\" line: $(printf '%s\n' "$out" | tail -n 1)"; fi
+done

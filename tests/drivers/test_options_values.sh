@@ -34,7 +34,7 @@ expect "probe above the domain" "-cpl_probe_z 100.,200.: need lo <= z1 < z2 <= h
 expect "surplus inlet component" "-fluid_bc_zlo_velocity takes 3 comma-separated values, got 4" -fluid_bc_zlo_velocity 0,0,0.3,4
 Q="${BIN:-bin}/sable -options_file cases/settle/quick.opts -dem_t_end 0.001 -io_interval 0"
 expect "second value on the command line" "-dem_restitution has more than one value ('0.9' follows '0.5'" -dem_restitution 0.5 0.9
-expect "typo of a PETSc option" "option -log_vieww  was given but nothing reads it" -log_vieww
+expect "typo of a PETSc option" "option -log_vieww was given but nothing reads it" -log_vieww
 expect "multigrid-like name outside the solvers" "option -dem_mg_levels_foo 1 was given but nothing reads it" -dem_mg_levels_foo 1
 out=$($Q -dem_plane_0 -1,0,0,0,0,1 -dem_frozen -io_prefix inf -io_dir "$T/inf" -io_interval 0.001 2>&1); rc=$?
 if [ "$rc" -eq 0 ] && [ -f "$T/inf/inf.xmf" ]; then echo "PASS options negative first item, a flag alone, a file prefix named inf: exit 0"; else echo "FAIL options negative first item, a flag alone, a file prefix named inf: exit $rc: $(printf '%s\n' "$out" | tail -n 1)"; fi
@@ -61,29 +61,32 @@ if [ "$rc" -eq 1 ] && [ "$out" = "sable: error: -options_file needs a file name"
 # see (read under a name it does not find) fails here.
 genlist() { sed -n "/$1\[\] = {/,/NULL};/p" "${BUILD:-build}/gen/sable_options.h" | grep -o '"[a-z0-9_%]*"' | tr -d '"'; }
 ${BIN:-bin}/sable -help > "$T/help" 2>&1
-awk '/^  -(dem|fluid|cpl|domain|io|lb)_[a-z0-9_]*[ :]/ {
-    name = substr($1, 2); sub(/:$/, "", name)
+awk '/^  -(dem|fluid|cpl|domain|io|lb)_[a-z0-9_<>]*[ :]/ {
+    raw = substr($1, 2); sub(/:$/, "", raw); name = raw; gsub(/<k>/, "%d", name) # a family: its pattern
+    if (match(name, /_[0-9]+_/)) name = substr(name, 1, RSTART) "%d" substr(name, RSTART + RLENGTH - 1) # a member: its family
+    else if (match(name, /_[0-9]+$/)) name = substr(name, 1, RSTART) "%d"
     if (name ~ /^fluid_(poisson|viscous)_/ && name !~ /^fluid_(poisson_pc_lag|poisson_pc_lag_growth|viscous_number_max)$/) next # PETSc solvers
-    if ($0 ~ "^  -" name ": <(TRUE|FALSE) : ") { print "flag", name; next }
-    v = $0; sub(/^[^<]*</, "", v); now = (v ~ /^now /); sub(/^now /, "", v); split(v, t, /[ ,>]/); x = t[1]
+    if ($0 ~ "^  -" raw ": <(TRUE|FALSE) : ") { print "flag", name; next }
+    v = $0; sub(/^ *[^ ]*/, "", v); sub(/^[^<]*</, "", v); now = (v ~ /^now /); sub(/^now /, "", v); split(v, t, /[ ,>]/); x = t[1]
     num = (x ~ /^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$/)
     if ($0 ~ /\(choose (one of|from)\)/ || (now && !num) || (!now && !num && x != "none")) print "word", name
     else print "number", name
   }' "$T/help" > "$T/kinds"
 flags=$(genlist SableFlagOptions); words=$(genlist SableWordOptions)
 bad=""
-# an indexed name (dem_insert_0_psd) is listed by its pattern (dem_insert_%d_psd), which -help shows
-# through the members a run reads, if any: each shown must be of the pattern's kind
+# an indexed name is listed by the generator either by its pattern (dem_insert_%d_psd) or member
+# by member (dem_insert_0_region, from a table of names); -help shows each indexed family once, by
+# its pattern (-dem_insert_<k>_psd): names are compared as patterns
 for kind in flag word; do
-  list=$flags; [ $kind = word ] && list=$words
+  list=$(for f in $flags; do printf '%s\n' "$f"; done); [ $kind = word ] && list=$(for f in $words; do printf '%s\n' "$f"; done)
+  pats=$(printf '%s\n' "$list" | sed -E 's/_[0-9]+(_|$)/_%d\1/' | sort -u)
   for f in $(awk -v k=$kind '$1 == k {print $2}' "$T/kinds"); do
-    pat=$(printf '%s' "$f" | sed -E 's/_[0-9]+(_|$)/_%d\1/')
-    printf '%s\n' $list | grep -qxF -e "$f" -e "$pat" || bad="$bad $f(-help: $kind, not in the generated list)"
+    printf '%s\n' "$pats" | grep -qxF -e "$f" || bad="$bad $f(-help: $kind, not in the generated list)"
   done
-  for f in $list; do
+  for f in $pats; do
     case $f in dem_*|fluid_*|cpl_*|domain_*|io_*|lb_*) ;; *) continue ;; esac
     case $f in
-    *%d*) other=$(awk -v re="^$(printf '%s' "$f" | sed 's/%d/[0-9]+/')\$" -v k=$kind '$2 ~ re && $1 != k {print $1; exit}' "$T/kinds")
+    *%d*) other=$(awk -v n="$f" -v k=$kind '$2 == n && $1 != k {print $1; exit}' "$T/kinds")
       [ -z "$other" ] || bad="$bad $f(listed as a $kind, -help: $other)" ;;
     *) grep -qx "$kind $f" "$T/kinds" || bad="$bad $f(listed as a $kind, -help: $(awk -v n="$f" '$2 == n {print $1}' "$T/kinds" | head -n 1))" ;;
     esac
