@@ -399,7 +399,8 @@ static void SableHelpPrintFamily(SableHelpKept *lines, int n, int f)
     SableHelpValueSpan(lines[i].l, &b, &e);
     if (e - b != e0 - b0 || strncmp(b, b0, (size_t)(e - b))) varies = 1;
   }
-  if (hi - lo + 1 == count) snprintf(range, sizeof range, lo == hi ? "k = %ld" : "k = %ld..%ld", lo, hi);
+  if (strstr(lines[rep].l, "any k >= 0")) range[0] = 0; /* an open family (the monitor's): its text says so */
+  else if (hi - lo + 1 == count) snprintf(range, sizeof range, lo == hi ? "k = %ld" : "k = %ld..%ld", lo, hi);
   else
     for (long k = lo; k <= hi; k++)
       for (int i = f; i < n; i++)
@@ -408,7 +409,8 @@ static void SableHelpPrintFamily(SableHelpKept *lines, int n, int f)
           snprintf(range + len, sizeof range - len, "%s%ld", len ? ", " : "k = ", k);
           prev = k;
         }
-  snprintf(tail, sizeof tail, " (%s%s)", range, varies ? "; the default shown is the first one's, it depends on k" : "");
+  if (range[0] || varies) snprintf(tail, sizeof tail, " (%s%s)", range[0] ? range : "k", varies ? "; the default shown is the first one's, it depends on k" : "");
+  else tail[0] = 0;
   /* the line with its name as a pattern: "  -dem_plane_%d_velocity <...>" -> "-dem_plane_<k>_velocity" */
   {
     const char *dash = strchr(lines[rep].l, '-'), *after = dash;

@@ -106,7 +106,7 @@ static PetscErrorCode DriverMonReadBoxes(PetscOptionItems *PetscOptionsObject, D
     PetscCall(PetscSNPrintf(opt, sizeof opt, pattern, (int)idx[i]));
     PetscCall(SableOptionsRealN(opt, text, "m", v, 0, 6, &set));
     if (!set) continue;
-    PetscCheck(!fluid || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: an average of the fluid's fields; this run is dry (no -fluid_ or -cpl_ options)", opt);
+    PetscCheck(!fluid || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: an average of the fluid's fields; this run is dry (a coupled run has -fluid_ or -cpl_ options, or -sable_solver coupled)", opt);
     if (segment) PetscCheck(v[0] != v[3] || v[1] != v[4] || v[2] != v[5], m->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the two ends coincide (m)", opt, (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4], (double)v[5]);
     else PetscCheck(v[0] < v[3] && v[1] < v[4] && v[2] < v[5], m->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: need lo < hi on every axis (m)", opt, (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4], (double)v[5]);
     for (int d = 0; d < 3; d++) r.lo[d] = v[d], r.hi[d] = v[d + 3];
@@ -132,7 +132,7 @@ static PetscErrorCode DriverMonReadPlanes(PetscOptionItems *PetscOptionsObject, 
     PetscCall(PetscSNPrintf(opt, sizeof opt, pattern, (int)idx[i]));
     PetscCall(PetscOptionsString(opt, text, NULL, val, val, sizeof val, &set));
     if (!set) continue;
-    PetscCheck(!fluid || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: an average of the fluid's fields; this run is dry (no -fluid_ or -cpl_ options)", opt);
+    PetscCheck(!fluid || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: an average of the fluid's fields; this run is dry (a coupled run has -fluid_ or -cpl_ options, or -sable_solver coupled)", opt);
     PetscCall(DriverMonParsePlane(m->comm, opt, val, &r));
     PetscCall(PetscStrncpy(r.name, opt, sizeof r.name));
     PetscCall(DriverMonAppend(list, n, &r));
@@ -146,30 +146,32 @@ static PetscErrorCode DriverMonReadProbes(PetscOptionItems *PetscOptionsObject, 
 {
   PetscInt *idx, ni;
   char      opt[64];
+  PetscBool help; /* -help lists the options: a pair naming probes not given is no error there */
 
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
   PetscCall(DriverMonIndices("mon_probe", &ni, &idx));
   for (PetscInt i = 0; i < ni; i++) {
     DriverMonRegion r = {.k = idx[i]};
     PetscBool       set;
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_probe_%d", (int)idx[i]));
-    PetscCall(SableOptionsRealN(opt, "A point whose fluid pressure the monitor reports (coupled runs): x,y,z", "m", r.lo, 0, 3, &set));
-    PetscCheck(!set || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: a probe of the fluid pressure; this run is dry (no -fluid_ or -cpl_ options)", opt);
+    PetscCall(SableOptionsRealN(opt, "A point whose fluid pressure the monitor reports (coupled runs): x,y,z; any k >= 0", "m", r.lo, 0, 3, &set));
+    PetscCheck(!set || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: a probe of the fluid pressure; this run is dry (a coupled run has -fluid_ or -cpl_ options, or -sable_solver coupled)", opt);
     if (set) PetscCall(DriverMonAppend(&m->probe, &m->nprobe, &r));
   }
   PetscCall(PetscFree(idx));
   PetscCall(DriverMonIndices("mon_dp", &ni, &idx));
   for (PetscInt i = 0; i < ni; i++) {
     DriverMonRegion r = {.k = idx[i]};
-    PetscInt        ab[2], at[2] = {-1, -1};
+    PetscInt        ab[2] = {0, 0}, at[2] = {-1, -1};
     PetscBool       set;
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_dp_%d", (int)idx[i]));
-    PetscCall(PetscOptionsIntArray(opt, "Pressure drop the monitor reports: p(probe a) - p(probe b), probes of -mon_probe_<a>, -mon_probe_<b>", NULL, ab, &(PetscInt){2}, &set));
+    PetscCall(PetscOptionsIntArray(opt, "Pressure drop the monitor reports: p(probe a) - p(probe b), probes of -mon_probe_<a>, -mon_probe_<b>; any k >= 0", NULL, ab, &(PetscInt){2}, &set));
     if (!set) continue;
     for (PetscInt p = 0; p < m->nprobe; p++)
       for (int e = 0; e < 2; e++)
         if (m->probe[p].k == ab[e]) at[e] = p;
-    PetscCheck(at[0] >= 0 && at[1] >= 0, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %d,%d: both must be probes given by -mon_probe_<k>", opt, (int)ab[0], (int)ab[1]);
+    PetscCheck((at[0] >= 0 && at[1] >= 0) || help, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %d,%d: both must be probes given by -mon_probe_<k>", opt, (int)ab[0], (int)ab[1]);
     r.ab[0] = at[0];
     r.ab[1] = at[1];
     PetscCall(DriverMonAppend(&m->dp, &m->ndp, &r));
@@ -190,15 +192,15 @@ PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool co
   PetscCall(MonCreate(comm, &m->mon));
   PetscCall(MonSetFromOptions(m->mon));
   PetscOptionsBegin(comm, NULL, "Monitor contents", NULL);
-  PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_box", "-mon_box_%d", "A box whose solids mass and particle count the monitor reports: lo_x,lo_y,lo_z,hi_x,hi_y,hi_z", PETSC_FALSE, PETSC_FALSE, &m->box, &m->nbox));
-  PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_surface", "-mon_surface_%d", "A box whose bed surface the monitor reports (the particles with centres in it; slabs along gravity): lo_x,lo_y,lo_z,hi_x,hi_y,hi_z", PETSC_FALSE, PETSC_FALSE, &m->surf, &m->nsurf));
+  PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_box", "-mon_box_%d", "A box whose solids mass and particle count the monitor reports: lo_x,lo_y,lo_z,hi_x,hi_y,hi_z; any k >= 0", PETSC_FALSE, PETSC_FALSE, &m->box, &m->nbox));
+  PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_surface", "-mon_surface_%d", "A box whose bed surface the monitor reports (the particles with centres in it; slabs along gravity): lo_x,lo_y,lo_z,hi_x,hi_y,hi_z; any k >= 0", PETSC_FALSE, PETSC_FALSE, &m->surf, &m->nsurf));
   PetscCall(SableOptionsReal("-mon_surface_dz", "Thickness of the slabs of the bed surfaces' solids profile; default 2 x the largest particle diameter", "m", "(0,inf)", 0, &m->surf_dz, NULL));
   PetscCall(SableOptionsReal("-mon_surface_fraction", "A bed surface is where the solids profile, read from the top, first reaches this fraction of its densest slab", NULL, "(0,1]", 0.5, &m->surf_frac, NULL));
-  PetscCall(DriverMonReadPlanes(PetscOptionsObject, m, "mon_flux", DriverMonWordOptions[0], "A plane through which the monitor reports the solids mass flow (kg/s, along +axis): x=c, y=c, z=c (whole), or a rectangle lo_x,lo_y,lo_z,hi_x,hi_y,hi_z flat along one axis", PETSC_FALSE, &m->flux, &m->nflux));
+  PetscCall(DriverMonReadPlanes(PetscOptionsObject, m, "mon_flux", DriverMonWordOptions[0], "A plane through which the monitor reports the solids mass flow (kg/s, along +axis): x=c, y=c, z=c (whole), or a rectangle lo_x,lo_y,lo_z,hi_x,hi_y,hi_z flat along one axis; any k >= 0", PETSC_FALSE, &m->flux, &m->nflux));
   PetscCall(SableOptionsReal("-mon_flux_width", "Width of the slab about a -mon_flux_<k> plane whose particles count: flow = sum(m v.n) / width; default 2 x the largest particle diameter", "m", "(0,inf)", 0, &m->flux_width, NULL));
   PetscCall(DriverMonReadProbes(PetscOptionsObject, m));
-  PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_line", "-mon_line_%d", "A segment along which the monitor averages the fluid's fields (coupled runs): x0,y0,z0,x1,y1,z1", PETSC_TRUE, PETSC_TRUE, &m->line, &m->nline));
-  PetscCall(DriverMonReadPlanes(PetscOptionsObject, m, "mon_plane", DriverMonWordOptions[1], "A plane over which the monitor averages the fluid's fields (coupled runs): x=c, y=c, z=c (whole), or a rectangle lo_x,lo_y,lo_z,hi_x,hi_y,hi_z flat along one axis", PETSC_TRUE, &m->plane, &m->nplane));
+  PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_line", "-mon_line_%d", "A segment along which the monitor averages the fluid's fields (coupled runs): x0,y0,z0,x1,y1,z1; any k >= 0", PETSC_TRUE, PETSC_TRUE, &m->line, &m->nline));
+  PetscCall(DriverMonReadPlanes(PetscOptionsObject, m, "mon_plane", DriverMonWordOptions[1], "A plane over which the monitor averages the fluid's fields (coupled runs): x=c, y=c, z=c (whole), or a rectangle lo_x,lo_y,lo_z,hi_x,hi_y,hi_z flat along one axis; any k >= 0", PETSC_TRUE, &m->plane, &m->nplane));
   PetscCall(PetscOptionsStringArray("-mon_average_fields", "Fields the -mon_line_<k> and -mon_plane_<k> averages report: p (Pa), eps (-), u (interstitial velocity, 3 columns, m/s); default p,eps,u", NULL, fp, &nf, &set));
   for (int q = 0; q < 3; q++) m->fields[q] = (PetscBool)!set;
   for (PetscInt q = 0; set && q < nf; q++) {
@@ -211,7 +213,7 @@ PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool co
                         : 2] = PETSC_TRUE;
   }
   for (PetscInt q = 0; set && q < nf; q++) PetscCall(PetscFree(fp[q])); /* PetscOptionsStringArray allocates the strings */
-  PetscCheck(!set || coupled, comm, PETSC_ERR_ARG_INCOMP, "-mon_average_fields: the fields of -mon_line_<k> and -mon_plane_<k> averages; this run is dry (no -fluid_ or -cpl_ options)");
+  PetscCheck(!set || coupled, comm, PETSC_ERR_ARG_INCOMP, "-mon_average_fields: the fields of -mon_line_<k> and -mon_plane_<k> averages; this run is dry (a coupled run has -fluid_ or -cpl_ options, or -sable_solver coupled)");
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
