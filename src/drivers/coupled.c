@@ -477,7 +477,6 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
   PetscReal      g[3], t;
   PetscInt       step;
   PetscLogDouble t0, t1;
-  const char    *index;
 
   PetscFunctionBeginUser;
   PetscCall(FluidCreate(dom, &c.fl));
@@ -510,8 +509,7 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
     PetscCall(PetscPrintf(r->comm, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s\n", (double)t, step, t1 - t0));
     PetscCall(DemFlowView(dem, PETSC_VIEWER_STDOUT_WORLD)); /* with sources or outlets: the balance */
     PetscCall(DemViewSources(c.dem, PETSC_VIEWER_STDOUT_WORLD));
-    PetscCall(IoGetIndexPath(io, &index));
-    PetscCall(PetscPrintf(r->comm, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
+    PetscCall(IoView(io, PETSC_VIEWER_STDOUT_WORLD)); /* the frames, their size and write time */
     PetscCall(SableWarnOptionsUnused(r->comm));
   }
   PetscCall(BalanceSetCoupling(lb, NULL));

@@ -1,7 +1,8 @@
 /* The output's continuation across a restart (see io.h): what a checkpoint holds of the output
  * (group io/) and the run identity that keeps one run's frames apart from another's.
  *   io/state     LLONG [2]: frames written, run_id (its 64 bits)
- *   io/next      REAL [1]:  the next output time (s)
+ *   io/next      REAL [1]:  the next output time (s) of the particles
+ *   io/next_fluid REAL [1]: the fluid's (absent from older checkpoints: the particles')
  *   io/frame_t   REAL [n]:  each frame's time, exact
  *   io/frames    BYTE:      one text line per frame, fields split by tabs: its file, particle
  *                           count, surface points and triangles, then "p name ncomp isint" per
@@ -128,6 +129,7 @@ PetscErrorCode IoCheckpointWrite(Io io, IoCkpt ck)
   PetscFunctionBeginUser;
   PetscCall(IoCkptWriteShared(ck, "io/state", IO_CKPT_LLONG, 2, state));
   PetscCall(IoCkptWriteShared(ck, "io/next", IO_CKPT_REAL, 1, &io->next));
+  PetscCall(IoCkptWriteShared(ck, "io/next_fluid", IO_CKPT_REAL, 1, &io->fnext));
   PetscCall(PetscMalloc1(io->nframes + 1, &t));
   for (PetscInt i = 0; i < io->nframes; i++) t[i] = io->frames[i].t;
   PetscCall(IoCkptWriteShared(ck, "io/frame_t", IO_CKPT_REAL, io->nframes, t));
@@ -251,10 +253,14 @@ static PetscErrorCode IoRefuseForeignFrames(Io io)
 PetscErrorCode IoCheckpointRead(Io io, IoCkpt ck)
 {
   long long state[2];
+  PetscBool has;
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptReadShared(ck, "io/state", IO_CKPT_LLONG, 2, state));
   PetscCall(IoCkptReadShared(ck, "io/next", IO_CKPT_REAL, 1, &io->next));
+  PetscCall(IoCkptHas(ck, "io/next_fluid", &has));
+  if (has) PetscCall(IoCkptReadShared(ck, "io/next_fluid", IO_CKPT_REAL, 1, &io->fnext));
+  else io->fnext = io->next; /* a checkpoint of one cadence */
   PetscCheck(state[0] >= 0, io->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the dataset io/state holds a frame count %lld, expected >= 0", state[0]);
   io->run_id = (unsigned long long)state[1];
   PetscCall(IoFramesRead(io, ck, (PetscInt)state[0]));

@@ -40,6 +40,102 @@ PetscErrorCode IoCreate(MPI_Comm comm, Io *io)
   (*io)->gpart    = -1;
   (*io)->gfluid   = -1;
   (*io)->reserve  = -1;
+  PetscCall(PetscTime(&(*io)->t_create));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Every dataset a frame may hold, by group, for -io_fields (a dataset written under a name not
+ * listed here is always written). kind: 0 the particles' cadence, 1 the fluid's. */
+static const struct {
+  const char *group, *name;
+  int         kind;
+} io_fields[] = {
+  {"particles", "position", 0},
+  {"particles", "velocity", 0},
+  {"particles", "angular_velocity", 0},
+  {"particles", "quaternion", 0},
+  {"particles", "radius", 0},
+  {"particles", "id", 0},
+  {"particles", "shape", 0},
+  {"surface", "surface", 0},
+  {"fluid", "eps", 1},
+  {"fluid", "p", 1},
+  {"fluid", "velocity", 1},
+  {"fluid", "avg_solids_fraction", 1},
+  {"fluid", "rms_solids_fraction", 1},
+  {"fluid", "avg_fluid_velocity", 1},
+  {"fluid", "rms_fluid_velocity", 1},
+  {"fluid", "avg_particle_velocity", 1},
+  {"fluid", "rms_particle_velocity", 1},
+};
+#define IO_NFIELDS ((int)(sizeof io_fields / sizeof io_fields[0]))
+
+/* The entry of group/name in io_fields, -1 if none. */
+static int io_field_find(const char *group, const char *name)
+{
+  for (int k = 0; k < IO_NFIELDS; k++)
+    if (!strcmp(io_fields[k].group, group) && !strcmp(io_fields[k].name, name)) return k;
+  return -1;
+}
+
+/* Marks in sel the entries an item of -io_fields names: a group (particles: with the surface;
+ * fluid: with the averages), group/name, or a name that only one group has. Returns the count
+ * marked (0: unknown; -1: a name of two groups). */
+static int io_field_select(const char *item, PetscBool sel[])
+{
+  const char *slash = strchr(item, '/');
+  int         n     = 0;
+
+  if (!strcmp(item, "particles") || !strcmp(item, "fluid")) {
+    for (int k = 0; k < IO_NFIELDS; k++)
+      if (io_fields[k].kind == (item[0] == 'f')) sel[k] = PETSC_TRUE, n++;
+    return n;
+  }
+  for (int k = 0; k < IO_NFIELDS; k++) {
+    size_t lg = strlen(io_fields[k].group);
+    if (slash ? (!strncmp(item, io_fields[k].group, lg) && item + lg == slash && !strcmp(slash + 1, io_fields[k].name)) : !strcmp(item, io_fields[k].name)) n++;
+  }
+  if (n != 1) return n > 1 ? -1 : 0;
+  for (int k = 0; k < IO_NFIELDS; k++) {
+    size_t lg = strlen(io_fields[k].group);
+    if (slash ? (!strncmp(item, io_fields[k].group, lg) && item + lg == slash && !strcmp(slash + 1, io_fields[k].name)) : !strcmp(item, io_fields[k].name)) sel[k] = PETSC_TRUE;
+  }
+  return 1;
+}
+
+/* Collective. -io_fields into io->skip: unknown or ambiguous names are one error line listing
+ * the valid ones; particles/position is always written (the points every particle dataset
+ * lies on). */
+static PetscErrorCode IoReadFields(Io io, PetscOptionItems *PetscOptionsObject)
+{
+  char     *items[IO_MAX_FIELDS];
+  PetscInt  n = IO_MAX_FIELDS;
+  PetscBool set, sel[IO_MAX_FIELDS] = {PETSC_FALSE};
+  char      valid[1024] = "particles, fluid";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsStringArray("-io_fields", "Datasets a frame holds, comma separated: particles, fluid (a whole group), or particles/<name>, fluid/<name>, surface, or a name only one group has (eps); particles/position is always written; default all", NULL, items, &n, &set));
+  if (!set) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int k = 0; k < IO_NFIELDS; k++) {
+    PetscCall(PetscStrlcat(valid, ", ", sizeof valid));
+    if (strcmp(io_fields[k].group, "surface")) {
+      PetscCall(PetscStrlcat(valid, io_fields[k].group, sizeof valid));
+      PetscCall(PetscStrlcat(valid, "/", sizeof valid));
+    }
+    PetscCall(PetscStrlcat(valid, io_fields[k].name, sizeof valid));
+  }
+  for (PetscInt i = 0; i < n; i++) {
+    int  m = io_field_select(items[i], sel);
+    char item[128];
+    if (m > 0) continue;
+    PetscCall(PetscStrncpy(item, items[i], sizeof item));
+    for (PetscInt j = 0; j < n; j++) PetscCall(PetscFree(items[j]));
+    PetscCheck(m == 0, io->comm, PETSC_ERR_ARG_WRONG, "-io_fields %s: both particles/%s and fluid/%s: say which", item, item, item);
+    SETERRQ(io->comm, PETSC_ERR_ARG_WRONG, "-io_fields %s: not a dataset of a frame; valid: %s (a bare name where one group has it)", item, valid);
+  }
+  for (PetscInt j = 0; j < n; j++) PetscCall(PetscFree(items[j]));
+  sel[io_field_find("particles", "position")] = PETSC_TRUE;
+  for (int k = 0; k < IO_NFIELDS; k++) io->skip[k] = (PetscBool)!sel[k];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -50,6 +146,10 @@ PetscErrorCode IoSetFromOptions(Io io)
   PetscCall(PetscOptionsString("-io_dir", "Output directory, made with its parents if missing", NULL, io->dir, io->dir, sizeof io->dir, NULL));
   PetscCall(PetscOptionsString("-io_prefix", "Output file name prefix", NULL, io->prefix, io->prefix, sizeof io->prefix, NULL));
   PetscCall(SableOptionsReal("-io_interval", "Simulated time between outputs; 0 = no output", "s", "[0,inf)", io->interval, &io->interval, NULL));
+  PetscCall(SableOptionsReal("-io_particle_interval", "Simulated time between frames of the particles (and convex surfaces); 0 = none; default -io_interval", "s", "[0,inf)", io->interval, &io->pinterval, NULL));
+  PetscCall(SableOptionsReal("-io_fluid_interval", "Simulated time between frames of the fluid fields and time averages; 0 = none; default -io_interval", "s", "[0,inf)", io->interval, &io->finterval, NULL));
+  PetscCall(IoReadFields(io, PetscOptionsObject));
+  PetscCall(SableOptionsInt("-io_compress", "Lossless HDF5 compression of the frames (chunked, shuffle + deflate) at this level; 0 = none (checkpoints are never compressed)", NULL, "[0,9]", io->compress, &io->compress, NULL));
   PetscOptionsEnd();
   { /* the raw values: PETSc cuts a string at the buffer's size without a word */
     const char *v;
@@ -61,7 +161,7 @@ PetscErrorCode IoSetFromOptions(Io io)
     PetscCheck(!set || (v && strlen(v) < sizeof io->dir - 80), io->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_dir: at most %d characters", (int)sizeof io->dir - 81);
   }
   PetscCall(PetscSNPrintf(io->index, sizeof io->index, "%s/%s.xmf", io->dir, io->prefix));
-  io->next = 0;
+  io->next = io->fnext = 0;
   PetscCall(IoDrawRunId(io)); /* a restart replaces it with its run's (IoCheckpointRead) */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -69,7 +169,8 @@ PetscErrorCode IoSetFromOptions(Io io)
 PetscErrorCode IoGetInterval(Io io, PetscReal *interval)
 {
   PetscFunctionBeginUser;
-  *interval = io->interval;
+  if (io->pinterval > 0 && io->finterval > 0) *interval = PetscMin(io->pinterval, io->finterval);
+  else *interval = PetscMax(io->pinterval, io->finterval);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -111,19 +212,56 @@ PetscErrorCode IoGetFilePath(Io io, const char *suffix, char *path, size_t len)
 
 PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due)
 {
+  const PetscReal iv[2] = {io->pinterval, io->finterval};
+  PetscReal      *next[2] = {&io->next, &io->fnext};
+
   PetscFunctionBeginUser;
   /* t is a sum of steps and drifts from the multiples of the interval: the same tolerance decides
      whether a frame is due and which multiple comes next, so a frame taken just below k*interval
      is not followed by another just above it */
-  *due = (io->interval > 0 && t >= io->next - 1e-6 * io->interval) ? PETSC_TRUE : PETSC_FALSE;
-  if (*due) io->next = (PetscFloorReal(t / io->interval + 1e-6) + 1) * io->interval;
+  for (int k = 0; k < 2; k++) {
+    io->kind[k] = (iv[k] > 0 && t >= *next[k] - 1e-6 * iv[k]) ? PETSC_TRUE : PETSC_FALSE;
+    if (io->kind[k]) *next[k] = (PetscFloorReal(t / iv[k] + 1e-6) + 1) * iv[k];
+  }
+  *due      = (PetscBool)(io->kind[0] || io->kind[1]);
+  io->armed = *due;
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Whether frame fr holds data of kind k (0 particles or a surface, 1 fluid fields). */
+static PetscBool io_frame_has(const IoFrame *fr, int k)
+{
+  return (PetscBool)(k ? fr->nfluid > 0 : fr->npart > 0 || fr->nsurft > 0);
 }
 
 PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due)
 {
+  const PetscReal iv[2] = {io->pinterval, io->finterval};
+
   PetscFunctionBeginUser;
-  *due = (PetscBool)(io->interval > 0 && (io->nframes == 0 || io->frames[io->nframes - 1].t < t));
+  for (int k = 0; k < 2; k++) { /* a kind this run writes whose last frame is older than t */
+    PetscInt i = io->nframes - 1;
+    while (i >= 0 && !io_frame_has(&io->frames[i], k)) i--;
+    io->kind[k] = (PetscBool)(iv[k] > 0 && (io->nframes == 0 || (i >= 0 && io->frames[i].t < t)));
+  }
+  *due      = (PetscBool)(io->kind[0] || io->kind[1]);
+  io->armed = *due;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoFrameWants(Io io, const char *group, const char *name, PetscBool *wants)
+{
+  int k = -1;
+
+  PetscFunctionBeginUser;
+  *wants = io->kind[strcmp(group, "fluid") ? 0 : 1];
+  if (name) k = io_field_find(group, name);
+  else if (*wants) { /* any dataset of the group */
+    PetscBool any = PETSC_FALSE;
+    for (int j = 0; j < IO_NFIELDS; j++) any = (PetscBool)(any || (!strcmp(io_fields[j].group, group) && !io->skip[j]));
+    *wants = any;
+  }
+  if (k >= 0 && io->skip[k]) *wants = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -335,6 +473,8 @@ PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
   PetscFunctionBeginUser;
   io_quiet();
   (void)step;
+  PetscCall(PetscTime(&io->t_frame));
+  if (!io->armed) io->kind[0] = io->kind[1] = PETSC_TRUE; /* a frame not asked through IoDue: everything */
   if (!io->dirmade) PetscCall(IoMakeDir(io));
   io->dirmade = PETSC_TRUE;
   if (io->nframes == io->capframes) {
@@ -372,12 +512,38 @@ typedef struct {
   hsize_t dims[4], start[4], count[4];
 } IoShape;
 
+/* The bytes of a chunk of a compressed dataset (see io_chunked). */
+#define IO_CHUNK_BYTES (1 << 20)
+
+/* The creation properties of a compressed dataset of shape sh and elements of size bytes:
+ * chunks of whole rows (particles) or whole z-planes (fluid) of about IO_CHUNK_BYTES, cut
+ * along the slowest axis (then the next) when one row or plane is larger, byte shuffle, then
+ * deflate at level. Chunks are allocated as they are written and never filled (every element is
+ * written). < 0 on failure. */
+static hid_t io_chunked(const IoShape *sh, size_t size, unsigned level)
+{
+  hsize_t chunk[4], inner = size;
+  hid_t   dcpl = H5Pcreate(H5P_DATASET_CREATE);
+
+  if (dcpl < 0) return -1;
+  for (int k = sh->rank - 1; k >= 0; k--) { /* the fastest axes whole while they fit */
+    hsize_t fit = PetscMax((hsize_t)1, (hsize_t)IO_CHUNK_BYTES / inner);
+    chunk[k]    = PetscMin(sh->dims[k], fit);
+    inner *= chunk[k];
+  }
+  if (H5Pset_chunk(dcpl, sh->rank, chunk) < 0 || H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER) < 0 || H5Pset_shuffle(dcpl) < 0 || H5Pset_deflate(dcpl, level) < 0) {
+    H5Pclose(dcpl);
+    return -1;
+  }
+  return dcpl;
+}
+
 /* Collective write of this rank's block of a new dataset group/name. The ranks agree before the
  * write (a rank whose dataset was not created must not leave the others in a collective write)
  * and after it. */
 static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t type, const IoShape *sh, const void *data)
 {
-  hid_t       fspace = -1, mspace = -1, dset = -1, dxpl = -1;
+  hid_t       fspace = -1, mspace = -1, dset = -1, dxpl = -1, dcpl = -1;
   hsize_t     n = 1, total = 1;
   IoStep      st;
   PetscMPIInt first, size;
@@ -392,7 +558,8 @@ static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t t
   PetscCall(PetscStrlcat(path, name, sizeof path));
   st.need = (long long)(total * H5Tget_size(type));
   IoTry(&st, fspace = H5Screate_simple(sh->rank, sh->dims, NULL), "creating %s", path);
-  IoTry(&st, dset = H5Dcreate2(group, name, type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating %s", path);
+  if (io->compress > 0 && total) IoTry(&st, dcpl = io_chunked(sh, H5Tget_size(type), (unsigned)io->compress), "setting up the compression of %s", path);
+  IoTry(&st, dset = H5Dcreate2(group, name, type, fspace, H5P_DEFAULT, dcpl >= 0 ? dcpl : H5P_DEFAULT, H5P_DEFAULT), "creating %s", path);
   IoTry(&st, mspace = H5Screate_simple(1, &n, NULL), "creating %s", path);
   if (n) IoTry(&st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, sh->start, NULL, sh->count, NULL), "selecting this rank's rows of %s", path);
   else {
@@ -408,6 +575,7 @@ static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t t
     IoTry(&st, H5Dwrite(dset, type, mspace, fspace, dxpl, data), "writing %s", path);
   }
   if (dxpl >= 0) IoClose(&st, H5Pclose(dxpl), "writing %s", path);
+  if (dcpl >= 0) IoClose(&st, H5Pclose(dcpl), "closing %s", path);
   if (mspace >= 0) IoClose(&st, H5Sclose(mspace), "closing %s", path);
   if (fspace >= 0) IoClose(&st, H5Sclose(fspace), "closing %s", path);
   if (dset >= 0) IoClose(&st, H5Dclose(dset), "closing %s", path);
@@ -420,8 +588,11 @@ static PetscErrorCode IoWriteRows(Io io, const char *name, PetscInt nlocal, Pets
   long long n = nlocal, off = 0, total = 0;
   IoShape   sh = {ncomp > 1 ? 2 : 1, {0, (hsize_t)ncomp}, {0, 0}, {(hsize_t)n, (hsize_t)ncomp}};
   IoFrame  *fr = &io->frames[io->nframes];
+  PetscBool want;
 
   PetscFunctionBeginUser;
+  PetscCall(IoFrameWants(io, "particles", name, &want));
+  if (!want && !(io->kind[0] && !strcmp(name, "position"))) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(fr->npart < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many particle datasets in one frame");
   PetscCallMPI(MPI_Exscan(&n, &off, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
   PetscCallMPI(MPI_Allreduce(&n, &total, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
@@ -465,8 +636,11 @@ PetscErrorCode IoWriteSurface(Io io, PetscInt np, const PetscReal *xyz, const Pe
   IoFrame  *fr = &io->frames[io->nframes];
   IoStep    st;
   hid_t     g = -1;
+  PetscBool want;
 
   PetscFunctionBeginUser;
+  PetscCall(IoFrameWants(io, "surface", "surface", &want));
+  if (!want) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(!fr->nsurft, io->comm, PETSC_ERR_ORDER, "IoWriteSurface: at most one surface per frame");
   PetscCallMPI(MPI_Exscan(n, off, 2, MPI_LONG_LONG, MPI_SUM, io->comm));
   PetscCallMPI(MPI_Allreduce(n, tot, 2, MPI_LONG_LONG, MPI_SUM, io->comm));
@@ -505,9 +679,12 @@ PetscErrorCode IoSetFluidMesh(Io io, const PetscReal lo[3], const PetscReal h[3]
 PetscErrorCode IoWriteField(Io io, const char *name, PetscInt ncomp, const PetscInt start[3], const PetscInt count[3], const PetscReal *data)
 {
   IoShape  sh = {ncomp > 1 ? 4 : 3, {0}, {0}, {0}};
-  IoFrame *fr = &io->frames[io->nframes];
+  IoFrame  *fr = &io->frames[io->nframes];
+  PetscBool want;
 
   PetscFunctionBeginUser;
+  PetscCall(IoFrameWants(io, "fluid", name, &want));
+  if (!want) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(io->fluidmesh, io->comm, PETSC_ERR_ORDER, "IoSetFluidMesh must precede IoWriteField");
   PetscCheck(fr->nfluid < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many fluid datasets in one frame");
   for (int k = 0; k < 3; k++) { /* HDF5 order is z, y, x */
@@ -544,17 +721,54 @@ PetscErrorCode IoFrameEnd(Io io)
   PetscCall(IoFrameAgree(io, &st));
   PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
   PetscCall(PetscSNPrintf(final, sizeof final, "%s/%s", io->dir, io->frames[io->nframes].file));
+  io->armed = PETSC_FALSE;
+  if (!io_frame_has(&io->frames[io->nframes], 0) && !io_frame_has(&io->frames[io->nframes], 1)) { /* nothing of the kinds due was chosen or written (a dry run has no fluid fields without averages): no frame */
+    if (!rank) unlink(io->tmpname);
+    SableTempSet(NULL);
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   io->nframes++;
   if (!rank) {
     if (rename(io->tmpname, final) != 0) {
       err[0] = errno;
       unlink(io->tmpname);
-    } else PetscCall(IoWriteIndex(io, &err[1]));
+    } else {
+      struct stat sb;
+      if (stat(final, &sb) == 0) io->bytes += (long long)sb.st_size;
+      PetscCall(IoWriteIndex(io, &err[1]));
+    }
   }
   PetscCallMPI(MPI_Bcast(err, 2, MPI_INT, 0, io->comm));
   SableTempSet(NULL); /* renamed, or removed on failure */
   if (err[0]) io->nframes--;
   PetscCheck(!err[0], io->comm, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s: %s (the frame was removed)", io->tmpname, final, strerror(err[0]));
   PetscCheck(!err[1], io->comm, PETSC_ERR_FILE_WRITE, "cannot write %s.tmp: %s (the temporary was removed; %s is complete, but the index %s, if any, lists only the frames before it)", io->index, strerror(err[1]), final, io->index);
+  io->written++;
+  {
+    PetscLogDouble now;
+    PetscCall(PetscTime(&now));
+    io->wtime += now - io->t_frame;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoView(Io io, PetscViewer v)
+{
+  PetscLogDouble now;
+
+  PetscFunctionBeginUser;
+  if (!io || (io->pinterval <= 0 && io->finterval <= 0)) {
+    PetscCall(PetscViewerASCIIPrintf(v, "output: none (-io_interval 0)\n"));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (!io->nframes) {
+    PetscCall(PetscViewerASCIIPrintf(v, "output: none (no frame was due)\n"));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscTime(&now));
+  now -= io->t_create;
+  PetscCall(PetscViewerASCIIPrintf(v, "output: %s (open it in ParaView), %lld frames, %.1f MB, %.3g s writing (%.1f%% of the run's %.3g s)", io->index, io->written, io->bytes / 1e6, io->wtime, 100 * io->wtime / PetscMax(now, 1e-9), now));
+  if (io->nframes > io->written) PetscCall(PetscViewerASCIIPrintf(v, "; the index lists %" PetscInt_FMT " with the earlier run's", io->nframes));
+  PetscCall(PetscViewerASCIIPrintf(v, "\n"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -35,10 +35,21 @@ typedef struct {
 
 typedef unsigned long long IoRunId; /* a run's identity (continue.c) */
 
+/* The datasets -io_fields chooses from (io.c): their group and name in a frame. */
+#define IO_MAX_FIELDS 64
+
 struct _p_Io {
   MPI_Comm  comm;
   char      dir[PETSC_MAX_PATH_LEN], prefix[64], index[PETSC_MAX_PATH_LEN];
-  PetscReal interval, next;
+  PetscReal interval;              /* -io_interval (s): the default of the two below */
+  PetscReal pinterval, finterval;  /* -io_particle_interval, -io_fluid_interval (s; 0: never) */
+  PetscReal next, fnext;           /* the next particle and fluid output times */
+  PetscBool kind[2];               /* what the frame due or open takes: 0 particles (and surface), 1 fluid (and averages) */
+  PetscBool armed;                 /* kind[] was set by IoDue / IoDueFinal for the next frame */
+  PetscBool skip[IO_MAX_FIELDS];   /* datasets of the table in io.c that -io_fields leaves out */
+  PetscInt  compress;              /* -io_compress: deflate level (0: none) */
+  PetscLogDouble t_create, t_frame, wtime; /* wall clock at IoCreate, at IoFrameBegin; seconds spent writing frames */
+  long long written, bytes;        /* frames written by this process and their bytes (rank 0) */
   PetscBool fluidmesh;
   PetscReal flo[3], fh[3];
   PetscInt  fcells[3];
