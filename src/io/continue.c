@@ -6,7 +6,8 @@
  *   io/frame_t   REAL [n]:  each frame's time, exact
  *   io/frames    BYTE:      one text line per frame, fields split by tabs: its file, particle
  *                           count, surface points and triangles, then "p name ncomp isint" per
- *                           particle dataset and "f name ncomp" per fluid dataset
+ *                           particle dataset and "f name ncomp" per fluid dataset, and
+ *                           "s reals 4" when its reals are 32 bits (-io_precision single)
  *   io/dir       BYTE:      the absolute -io_dir the frames were written to
  * The run_id is drawn at a fresh start (clock and pid mixed) and kept by a restart; every frame
  * file and the index carry it. A restart lists the old frames again in its index (by their
@@ -86,6 +87,7 @@ static PetscErrorCode IoFramesEncode(Io io, char **text, size_t *len)
     n += (size_t)snprintf(*text + n, cap - n, "%s\t%lld\t%lld\t%lld", fr->file, fr->np, fr->nsurfp, fr->nsurft);
     for (PetscInt k = 0; k < fr->npart; k++) n += (size_t)snprintf(*text + n, cap - n, "\tp %s %d %d", fr->part[k].name, (int)fr->part[k].ncomp, (int)fr->part[k].isint);
     for (PetscInt k = 0; k < fr->nfluid; k++) n += (size_t)snprintf(*text + n, cap - n, "\tf %s %d", fr->fluid[k].name, (int)fr->fluid[k].ncomp);
+    if (fr->prec == 4) n += (size_t)snprintf(*text + n, cap - n, "\ts reals 4"); /* -io_precision single */
     n += (size_t)snprintf(*text + n, cap - n, "\n");
   }
   *len = n;
@@ -110,6 +112,10 @@ static PetscBool io_frame_decode(char *line, IoFrame *fr)
   while ((tok = strtok_r(NULL, "\t", &save))) {
     isint = 0;
     if (sscanf(tok, "%c %63s %d %d", &kind, name, &nc, &isint) < 3) return PETSC_FALSE;
+    if (kind == 's') { /* the bytes of the frame's reals */
+      fr->prec = nc;
+      continue;
+    }
     if ((kind != 'p' && kind != 'f') || fr->npart >= IO_MAX_SETS || fr->nfluid >= IO_MAX_SETS) return PETSC_FALSE;
     IoSet *s = kind == 'p' ? &fr->part[fr->npart++] : &fr->fluid[fr->nfluid++];
     strcpy(s->name, name);

@@ -31,6 +31,7 @@ typedef struct {
   IoSet     part[IO_MAX_SETS], fluid[IO_MAX_SETS];
   PetscInt  npart, nfluid;
   long long nsurfp, nsurft; /* surface points and triangles (0: none) */
+  PetscInt  prec;           /* bytes of its particle and fluid reals: 8 (0 read as 8) or 4 (-io_precision single) */
 } IoFrame;
 
 typedef unsigned long long IoRunId; /* a run's identity (continue.c) */
@@ -48,6 +49,7 @@ struct _p_Io {
   PetscBool armed;                 /* kind[] was set by IoDue / IoDueFinal for the next frame */
   PetscBool skip[IO_MAX_FIELDS];   /* datasets of the table in io.c that -io_fields leaves out */
   PetscInt  compress;              /* -io_compress: deflate level (0: none) */
+  PetscBool single;                /* -io_precision single: particle and fluid reals stored in 32 bits */
   PetscLogDouble t_create, t_frame, wtime; /* wall clock at IoCreate, at IoFrameBegin; seconds spent writing frames */
   long long written, bytes;        /* frames written by this process and their bytes (rank 0) */
   PetscBool fluidmesh;

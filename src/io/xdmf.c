@@ -25,12 +25,13 @@ static void io_printf(IoText *w, const char *fmt, ...)
   va_end(ap);
 }
 
-static void IoXdmfAttribute(IoText *w, const char *file, const char *group, const IoSet *s, const char *center, const char *dims)
+static void IoXdmfAttribute(IoText *w, const IoFrame *fr, const char *group, const IoSet *s, const char *center, const char *dims)
 {
   const char *type = s->ncomp == 3 ? "Vector" : (s->ncomp == 1 ? "Scalar" : "Matrix");
+  const int   prec = s->isint || fr->prec != 4 ? 8 : 4;
   io_printf(w, "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", s->name, type, center);
-  if (s->ncomp > 1) io_printf(w, "          <DataItem Dimensions=\"%s %" PetscInt_FMT "\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->ncomp, s->isint ? "Int" : "Float", file, group, s->name);
-  else io_printf(w, "          <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->isint ? "Int" : "Float", file, group, s->name);
+  if (s->ncomp > 1) io_printf(w, "          <DataItem Dimensions=\"%s %" PetscInt_FMT "\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->ncomp, s->isint ? "Int" : "Float", prec, fr->file, group, s->name);
+  else io_printf(w, "          <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:/%s/%s</DataItem>\n", dims, s->isint ? "Int" : "Float", prec, fr->file, group, s->name);
   io_printf(w, "        </Attribute>\n");
 }
 
@@ -44,9 +45,9 @@ static void IoXdmfGrid(Io io, IoText *w, const IoFrame *fr, int kind, PetscReal 
     snprintf(d, sizeof d, "%lld", fr->np);
     io_printf(w, "      <Grid Name=\"particles\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)t);
     io_printf(w, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n          <DataItem Dimensions=\"%lld\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/particles/vertex</DataItem>\n        </Topology>\n", fr->np, fr->np, fr->file);
-    io_printf(w, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/position</DataItem>\n        </Geometry>\n", fr->np, fr->file);
+    io_printf(w, "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"%d\" Format=\"HDF\">%s:/particles/position</DataItem>\n        </Geometry>\n", fr->np, fr->prec == 4 ? 4 : 8, fr->file);
     for (PetscInt i = 0; i < fr->npart; i++)
-      if (strcmp(fr->part[i].name, "position")) IoXdmfAttribute(w, fr->file, "particles", &fr->part[i], "Node", d);
+      if (strcmp(fr->part[i].name, "position")) IoXdmfAttribute(w, fr, "particles", &fr->part[i], "Node", d);
   } else if (kind == 1) {
     io_printf(w, "      <Grid Name=\"surface\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (double)t);
     io_printf(w, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%lld\">\n          <DataItem Dimensions=\"%lld 3\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/surface/triangles</DataItem>\n        </Topology>\n", fr->nsurft, fr->nsurft, fr->file);
@@ -59,7 +60,7 @@ static void IoXdmfGrid(Io io, IoText *w, const IoFrame *fr, int kind, PetscReal 
     io_printf(w, "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n");
     io_printf(w, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n", (double)io->flo[2], (double)io->flo[1], (double)io->flo[0]);
     io_printf(w, "          <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n        </Geometry>\n", (double)io->fh[2], (double)io->fh[1], (double)io->fh[0]);
-    for (PetscInt i = 0; i < fr->nfluid; i++) IoXdmfAttribute(w, fr->file, "fluid", &fr->fluid[i], "Cell", d);
+    for (PetscInt i = 0; i < fr->nfluid; i++) IoXdmfAttribute(w, fr, "fluid", &fr->fluid[i], "Cell", d);
   }
   io_printf(w, "      </Grid>\n");
 }
