@@ -114,3 +114,10 @@ PetscErrorCode IoFrameWants(Io io, const char *group, const char *name, PetscBoo
   if (k >= 0 && io->skip[k]) *wants = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscBool IoKindChosen(Io io, int kind)
+{
+  for (int k = 0; k < IO_NFIELDS; k++)
+    if (io_fields[k].kind == kind && !io->skip[k]) return PETSC_TRUE;
+  return PETSC_FALSE;
+}

@@ -133,6 +133,7 @@ PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due)
   for (int k = 0; k < 2; k++) {
     io->kind[k] = (iv[k] > 0 && t >= *next[k] - 1e-6 * iv[k]) ? PETSC_TRUE : PETSC_FALSE;
     if (io->kind[k]) *next[k] = (PetscFloorReal(t / iv[k] + 1e-6) + 1) * iv[k];
+    io->kind[k] = (PetscBool)(io->kind[k] && IoKindChosen(io, k)); /* no file for a kind without datasets */
   }
   *due      = (PetscBool)(io->kind[0] || io->kind[1]);
   io->armed = *due;

@@ -67,6 +67,8 @@ struct _p_Io {
 /* Collective, inside IoSetFromOptions' options block. Reads -io_fields into io->skip; an unknown
  * or ambiguous name is one error line listing the valid ones (fields.c). */
 PetscErrorCode IoReadFields(Io io, PetscOptionItems *PetscOptionsObject);
+/* Whether -io_fields chose a dataset of kind (0 particles, 1 fluid) (fields.c). */
+PetscBool IoKindChosen(Io io, int kind);
 
 /* Collective. A fresh run's identity: rank 0 mixes the clock and its pid (continue.c). */
 PetscErrorCode IoDrawRunId(Io io);
