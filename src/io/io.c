@@ -154,7 +154,7 @@ PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due)
   for (int k = 0; k < 2; k++) { /* a kind this run writes whose last frame is older than t */
     PetscInt i = io->nframes - 1;
     while (i >= 0 && !io_frame_has(&io->frames[i], k)) i--;
-    io->kind[k] = (PetscBool)(iv[k] > 0 && (io->nframes == 0 || (i >= 0 && io->frames[i].t < t)));
+    io->kind[k] = (PetscBool)(iv[k] > 0 && IoKindChosen(io, k) && (io->nframes == 0 || (i >= 0 && io->frames[i].t < t)));
   }
   *due      = (PetscBool)(io->kind[0] || io->kind[1]);
   io->armed = *due;
@@ -509,8 +509,8 @@ static PetscErrorCode IoWriteRows(Io io, const char *name, PetscInt nlocal, Pets
   PetscBool want;
 
   PetscFunctionBeginUser;
-  PetscCall(IoFrameWants(io, "particles", name, &want));
-  if (!want && !(io->kind[0] && !strcmp(name, "position"))) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(IoFrameWants(io, "particles", name, &want)); /* position: whenever the particles are due */
+  if (!want) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(fr->npart < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many particle datasets in one frame");
   PetscCallMPI(MPI_Exscan(&n, &off, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
   PetscCallMPI(MPI_Allreduce(&n, &total, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
