@@ -6,18 +6,28 @@ import os
 import xml.dom.minidom
 
 
-def run_frames(outdir, prefix="sable"):
-    """Paths of the run's frame files in time order; exits with a message when there is no index."""
+def run_frames(outdir, prefix="sable", kind=None):
+    """Paths of the run's frame files in time order; exits with a message when there is no index.
+    kind "particles", "fluid" or "surface": only the frames that hold it (with
+    -io_particle_interval and -io_fluid_interval apart, a frame may hold one kind only; the
+    index then repeats a kind's latest frame at the times it lacks, and these repeats are not
+    listed)."""
     index = os.path.join(outdir, prefix + ".xmf")
     if not os.path.exists(index):
         raise SystemExit("no index %s: the run wrote no frames there (-io_interval, -io_dir, -io_prefix)" % index)
-    files = []
-    for item in xml.dom.minidom.parse(index).getElementsByTagName("DataItem"):
-        if item.getAttribute("Format") != "HDF":
+    first = {}  # file -> the earliest time of a grid pointing into it
+    for grid in xml.dom.minidom.parse(index).getElementsByTagName("Grid"):
+        if grid.getAttribute("GridType") != "Uniform":
             continue
-        name = item.firstChild.data.strip().split(":")[0]
-        if name not in files:
-            files.append(name)
+        if kind is not None and grid.getAttribute("Name") != kind:
+            continue
+        t = float(grid.getElementsByTagName("Time")[0].getAttribute("Value"))
+        for item in grid.getElementsByTagName("DataItem"):
+            if item.getAttribute("Format") != "HDF":
+                continue
+            name = item.firstChild.data.strip().split(":")[0]
+            first[name] = min(t, first.get(name, t))
+    files = sorted(first, key=lambda f: first[f])
     return [os.path.join(outdir, f) for f in files]
 
 

@@ -179,9 +179,11 @@ PetscErrorCode DemView(Dem dem, PetscViewer v)
 PetscErrorCode DemWriteOutput(Dem dem, Io io)
 {
   double   *r, *x = dem->p.x;
-  PetscBool per = (PetscBool)(dem->dom->periodic[0] || dem->dom->periodic[1] || dem->dom->periodic[2]);
+  PetscBool per = (PetscBool)(dem->dom->periodic[0] || dem->dom->periodic[1] || dem->dom->periodic[2]), want;
 
   PetscFunctionBeginUser;
+  PetscCall(IoFrameWants(io, "particles", NULL, &want)); /* not at this frame's time (-io_particle_interval) */
+  if (!want) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(DEM_Output, 0, 0, 0, 0));
   PetscCall(PetscMalloc1(dem->p.n + 1, &r));
   for (PetscInt i = 0; i < dem->p.n; i++) r[i] = DemRadius(&dem->p, &dem->shapes, i); /* each sphere's own in a scene of own sizes */
@@ -197,7 +199,8 @@ PetscErrorCode DemWriteOutput(Dem dem, Io io)
   PetscCall(IoWriteParticles(io, "radius", dem->p.n, 1, r));
   PetscCall(IoWriteParticlesInt(io, "id", dem->p.n, dem->p.id));
   PetscCall(IoWriteParticlesInt(io, "shape", dem->p.n, dem->p.shape));
-  if (dem->shapes.convex) PetscCall(DemConvexWriteSurface(dem, x, io)); /* convex_diag.c */
+  PetscCall(IoFrameWants(io, "surface", "surface", &want));
+  if (dem->shapes.convex && want) PetscCall(DemConvexWriteSurface(dem, x, io)); /* convex_diag.c */
   PetscCall(PetscFree(r));
   if (per) PetscCall(PetscFree(x));
   PetscCall(PetscLogEventEnd(DEM_Output, 0, 0, 0, 0));

@@ -254,9 +254,11 @@ PetscErrorCode DriverAvgWriteOutput(DriverAvg a, Io io)
   const PetscScalar *acc;
   PetscReal         *f[6];
   PetscInt           n;
+  PetscBool          want = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  if (!a || !a->on || !a->dom || !io || a->n == 0) PetscFunctionReturn(PETSC_SUCCESS);
+  if (io) PetscCall(IoFrameWants(io, "fluid", NULL, &want)); /* the averages go with the fluid fields */
+  if (!a || !a->on || !a->dom || !want || a->n == 0) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(AvgFollowDomain(a));
   n = dom->ccount[0] * dom->ccount[1] * dom->ccount[2];
   PetscCall(PetscMalloc6(n, &f[0], n, &f[1], 3 * n, &f[2], 3 * n, &f[3], 3 * n, &f[4], 3 * n, &f[5]));

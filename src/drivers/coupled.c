@@ -514,7 +514,6 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
   PetscReal      g[3], t, ts;
   PetscInt       step, step0;
   PetscLogDouble t0, t1;
-  const char    *index;
   char           seg[160] = "";
 
   PetscFunctionBeginUser;
@@ -550,8 +549,7 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
     PetscCall(PetscPrintf(r->comm, "done: t = %g, %" PetscInt_FMT " fluid steps in %.3f s%s\n", (double)t, step - step0, t1 - t0, seg));
     PetscCall(DemFlowView(dem, PETSC_VIEWER_STDOUT_WORLD)); /* with sources or outlets: the balance */
     PetscCall(DemViewSources(c.dem, PETSC_VIEWER_STDOUT_WORLD));
-    PetscCall(IoGetIndexPath(io, &index));
-    PetscCall(PetscPrintf(r->comm, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
+    PetscCall(IoView(io, PETSC_VIEWER_STDOUT_WORLD)); /* the frames, their size and write time */
     PetscCall(SableWarnOptionsUnused(r->comm));
   }
   PetscCall(BalanceSetCoupling(lb, NULL));

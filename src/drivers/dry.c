@@ -217,7 +217,6 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscInt       step, step0;
   char           seg[160] = "";
   PetscLogDouble t0, t1;
-  const char    *index;
   struct rusage  ru;
   IoCkpt         ck = NULL;
 
@@ -259,8 +258,6 @@ PetscErrorCode DryRunCase(DryRun r, Domain *dom, Dem dem, Balance lb, Io io)
   PetscCall(PetscPrintf(r->comm, "bed: packing fraction %.4f, mean coordination number %.3f\n", (double)phi, (double)coord));
   PetscCall(DemFlowView(dem, PETSC_VIEWER_STDOUT_WORLD)); /* with sources or outlets: the balance */
   PetscCall(DemViewSources(dem, PETSC_VIEWER_STDOUT_WORLD));
-  index = NULL;
-  if (io) PetscCall(IoGetIndexPath(io, &index));
-  PetscCall(PetscPrintf(r->comm, index ? "output: %s (open it in ParaView)\n" : "output: none (-io_interval 0)\n", index));
+  PetscCall(IoView(io, PETSC_VIEWER_STDOUT_WORLD)); /* the frames, their size and write time */
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,6 +1,6 @@
 /* Fluid output: porosity eps, pressure p and the cell-centred velocity (the mean of the two
  * face values of each component) of the owned cells, written as fluid fields of the open
- * frame (io.h). The cell-centred velocity is also what the drivers' time averages sample. */
+ * frame (io.h) when it takes fluid fields (-io_fluid_interval, -io_fields). The cell-centred velocity is also what the drivers' time averages sample. */
 #include "fluid/fluid_impl.h"
 
 PetscErrorCode FluidGetCellVelocity(Fluid fl, PetscReal *vel)
@@ -28,8 +28,11 @@ PetscErrorCode FluidWriteOutput(Fluid fl, Io io)
   const PetscScalar *e, *p;
   PetscReal         *vel;
   PetscInt           n = g->xm[0] * g->xm[1] * g->xm[2];
+  PetscBool          want;
 
   PetscFunctionBeginUser;
+  PetscCall(IoFrameWants(io, "fluid", NULL, &want)); /* not at this frame's time (-io_fluid_interval) */
+  if (!want) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(IoSetFluidMesh(io, g->lo, g->h, g->N));
   PetscCall(PetscMalloc1(3 * n, &vel));
   PetscCall(FluidGetCellVelocity(fl, vel));

@@ -1,11 +1,13 @@
 /* The output's continuation across a restart (see io.h): what a checkpoint holds of the output
  * (group io/) and the run identity that keeps one run's frames apart from another's.
  *   io/state     LLONG [2]: frames written, run_id (its 64 bits)
- *   io/next      REAL [1]:  the next output time (s)
+ *   io/next      REAL [1]:  the next output time (s) of the particles
+ *   io/next_fluid REAL [1]: the fluid's (absent from older checkpoints: the particles')
  *   io/frame_t   REAL [n]:  each frame's time, exact
  *   io/frames    BYTE:      one text line per frame, fields split by tabs: its file, particle
  *                           count, surface points and triangles, then "p name ncomp isint" per
- *                           particle dataset and "f name ncomp" per fluid dataset
+ *                           particle dataset and "f name ncomp" per fluid dataset, and
+ *                           "s reals 4" when its reals are 32 bits (-io_precision single)
  *   io/dir       BYTE:      the absolute -io_dir the frames were written to
  *   io/prefix    BYTE:      the -io_prefix (absent: taken to be this run's)
  * A restart in the same place (the same directory, by its absolute path, and prefix) continues
@@ -88,6 +90,7 @@ static PetscErrorCode IoFramesEncode(Io io, char **text, size_t *len)
     n += (size_t)snprintf(*text + n, cap - n, "%s\t%lld\t%lld\t%lld", fr->file, fr->np, fr->nsurfp, fr->nsurft);
     for (PetscInt k = 0; k < fr->npart; k++) n += (size_t)snprintf(*text + n, cap - n, "\tp %s %d %d", fr->part[k].name, (int)fr->part[k].ncomp, (int)fr->part[k].isint);
     for (PetscInt k = 0; k < fr->nfluid; k++) n += (size_t)snprintf(*text + n, cap - n, "\tf %s %d", fr->fluid[k].name, (int)fr->fluid[k].ncomp);
+    if (fr->prec == 4) n += (size_t)snprintf(*text + n, cap - n, "\ts reals 4"); /* -io_precision single */
     n += (size_t)snprintf(*text + n, cap - n, "\n");
   }
   *len = n;
@@ -112,6 +115,10 @@ static PetscBool io_frame_decode(char *line, IoFrame *fr)
   while ((tok = strtok_r(NULL, "\t", &save))) {
     isint = 0;
     if (sscanf(tok, "%c %63s %d %d", &kind, name, &nc, &isint) < 3) return PETSC_FALSE;
+    if (kind == 's') { /* the bytes of the frame's reals */
+      fr->prec = nc;
+      continue;
+    }
     if ((kind != 'p' && kind != 'f') || fr->npart >= IO_MAX_SETS || fr->nfluid >= IO_MAX_SETS) return PETSC_FALSE;
     IoSet *s = kind == 'p' ? &fr->part[fr->npart++] : &fr->fluid[fr->nfluid++];
     strcpy(s->name, name);
@@ -131,6 +138,7 @@ PetscErrorCode IoCheckpointWrite(Io io, IoCkpt ck)
   PetscFunctionBeginUser;
   PetscCall(IoCkptWriteShared(ck, "io/state", IO_CKPT_LLONG, 2, state));
   PetscCall(IoCkptWriteShared(ck, "io/next", IO_CKPT_REAL, 1, &io->next));
+  PetscCall(IoCkptWriteShared(ck, "io/next_fluid", IO_CKPT_REAL, 1, &io->fnext));
   PetscCall(PetscMalloc1(io->nframes + 1, &t));
   for (PetscInt i = 0; i < io->nframes; i++) t[i] = io->frames[i].t;
   PetscCall(IoCkptWriteShared(ck, "io/frame_t", IO_CKPT_REAL, io->nframes, t));
@@ -264,20 +272,25 @@ static PetscErrorCode IoRefuseForeignFrames(Io io)
 PetscErrorCode IoCheckpointRead(Io io, IoCkpt ck)
 {
   long long state[2];
-  PetscBool same;
-  PetscReal next;
+  PetscBool same, has;
+  PetscReal next, fnext;
 
   PetscFunctionBeginUser;
   PetscCall(IoCkptReadShared(ck, "io/state", IO_CKPT_LLONG, 2, state));
   PetscCall(IoCkptReadShared(ck, "io/next", IO_CKPT_REAL, 1, &next));
+  PetscCall(IoCkptHas(ck, "io/next_fluid", &has));
+  if (has) PetscCall(IoCkptReadShared(ck, "io/next_fluid", IO_CKPT_REAL, 1, &fnext));
+  else fnext = next; /* a checkpoint of one cadence */
   PetscCheck(state[0] >= 0, io->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the dataset io/state holds a frame count %lld, expected >= 0", state[0]);
   PetscCall(IoSamePlace(io, ck, &same));
   if (same) { /* the series goes on: the old frames listed again, the run_id kept */
     io->next   = next;
+    io->fnext  = fnext;
     io->run_id = (unsigned long long)state[1];
     PetscCall(IoFramesRead(io, ck, (PetscInt)state[0]));
   } else { /* a new series: this run's own run_id (drawn), a frame at once, numbered from 0 */
     io->next  = -PETSC_MAX_REAL;
+    io->fnext = -PETSC_MAX_REAL;
     io->fresh = PETSC_TRUE;
   }
   PetscCall(IoRefuseForeignFrames(io));

@@ -40,6 +40,7 @@ PetscErrorCode IoCreate(MPI_Comm comm, Io *io)
   (*io)->gpart    = -1;
   (*io)->gfluid   = -1;
   (*io)->reserve  = -1;
+  PetscCall(PetscTime(&(*io)->t_create));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -50,6 +51,16 @@ PetscErrorCode IoSetFromOptions(Io io)
   PetscCall(PetscOptionsString("-io_dir", "Output directory, made with its parents if missing", NULL, io->dir, io->dir, sizeof io->dir, NULL));
   PetscCall(PetscOptionsString("-io_prefix", "Output file name prefix", NULL, io->prefix, io->prefix, sizeof io->prefix, NULL));
   PetscCall(SableOptionsReal("-io_interval", "Simulated time between outputs; 0 = no output", "s", "[0,inf)", io->interval, &io->interval, NULL));
+  PetscCall(SableOptionsReal("-io_particle_interval", "Simulated time between frames of the particles (and convex surfaces); 0 = none; default -io_interval", "s", "[0,inf)", io->interval, &io->pinterval, NULL));
+  PetscCall(SableOptionsReal("-io_fluid_interval", "Simulated time between frames of the fluid fields and time averages; 0 = none; default -io_interval", "s", "[0,inf)", io->interval, &io->finterval, NULL));
+  PetscCall(IoReadFields(io, PetscOptionsObject)); /* fields.c */
+  {
+    const char *prec[] = {"double", "single"};
+    PetscInt    k      = 0;
+    PetscCall(PetscOptionsEList("-io_precision", "Reals of the particle and fluid datasets of a frame: double (64 bits, exact) or single (32 bits, about 7 digits: half the bytes; checkpoints stay exact)", NULL, prec, 2, prec[0], &k, NULL));
+    io->single = (PetscBool)(k == 1);
+  }
+  PetscCall(SableOptionsInt("-io_compress", "Lossless HDF5 compression of the frames (chunked, shuffle + deflate) at this level; 0 = none (checkpoints are never compressed)", NULL, "[0,9]", io->compress, &io->compress, NULL));
   PetscOptionsEnd();
   { /* the raw values: PETSc cuts a string at the buffer's size without a word */
     const char *v;
@@ -61,7 +72,7 @@ PetscErrorCode IoSetFromOptions(Io io)
     PetscCheck(!set || (v && strlen(v) < sizeof io->dir - 80), io->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_dir: at most %d characters", (int)sizeof io->dir - 81);
   }
   PetscCall(PetscSNPrintf(io->index, sizeof io->index, "%s/%s.xmf", io->dir, io->prefix));
-  io->next = 0;
+  io->next = io->fnext = 0;
   PetscCall(IoDrawRunId(io)); /* a restart replaces it with its run's (IoCheckpointRead) */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -69,7 +80,8 @@ PetscErrorCode IoSetFromOptions(Io io)
 PetscErrorCode IoGetInterval(Io io, PetscReal *interval)
 {
   PetscFunctionBeginUser;
-  *interval = io->interval;
+  if (io->pinterval > 0 && io->finterval > 0) *interval = PetscMin(io->pinterval, io->finterval);
+  else *interval = PetscMax(io->pinterval, io->finterval);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -111,19 +123,41 @@ PetscErrorCode IoGetFilePath(Io io, const char *suffix, char *path, size_t len)
 
 PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due)
 {
+  const PetscReal iv[2]   = {io->pinterval, io->finterval};
+  PetscReal      *next[2] = {&io->next, &io->fnext};
+
   PetscFunctionBeginUser;
   /* t is a sum of steps and drifts from the multiples of the interval: the same tolerance decides
      whether a frame is due and which multiple comes next, so a frame taken just below k*interval
      is not followed by another just above it */
-  *due = (io->interval > 0 && t >= io->next - 1e-6 * io->interval) ? PETSC_TRUE : PETSC_FALSE;
-  if (*due) io->next = (PetscFloorReal(t / io->interval + 1e-6) + 1) * io->interval;
+  for (int k = 0; k < 2; k++) {
+    io->kind[k] = (iv[k] > 0 && t >= *next[k] - 1e-6 * iv[k]) ? PETSC_TRUE : PETSC_FALSE;
+    if (io->kind[k]) *next[k] = (PetscFloorReal(t / iv[k] + 1e-6) + 1) * iv[k];
+    io->kind[k] = (PetscBool)(io->kind[k] && IoKindChosen(io, k)); /* no file for a kind without datasets */
+  }
+  *due      = (PetscBool)(io->kind[0] || io->kind[1]);
+  io->armed = *due;
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Whether frame fr holds data of kind k (0 particles or a surface, 1 fluid fields). */
+static PetscBool io_frame_has(const IoFrame *fr, int k)
+{
+  return (PetscBool)(k ? fr->nfluid > 0 : fr->npart > 0 || fr->nsurft > 0);
 }
 
 PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due)
 {
+  const PetscReal iv[2] = {io->pinterval, io->finterval};
+
   PetscFunctionBeginUser;
-  *due = (PetscBool)(io->interval > 0 && (io->nframes == 0 || io->frames[io->nframes - 1].t < t));
+  for (int k = 0; k < 2; k++) { /* a kind this run writes whose last frame is older than t */
+    PetscInt i = io->nframes - 1;
+    while (i >= 0 && !io_frame_has(&io->frames[i], k)) i--;
+    io->kind[k] = (PetscBool)(iv[k] > 0 && IoKindChosen(io, k) && (io->nframes == 0 || (i >= 0 && io->frames[i].t < t)));
+  }
+  *due      = (PetscBool)(io->kind[0] || io->kind[1]);
+  io->armed = *due;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -303,6 +337,10 @@ static PetscErrorCode IoFrameCreate(Io io)
   PetscCall(PetscMemzero(&st, sizeof st));
   fapl = H5Pcreate(H5P_FILE_ACCESS);
   PetscCheck(fapl >= 0 && H5Pset_fapl_mpio(fapl, io->comm, MPI_INFO_NULL) >= 0, io->comm, PETSC_ERR_LIB, "HDF5 cannot set up parallel (MPI-IO) access for %s", io->tmpname);
+  /* compressed frames in the HDF5 1.10 format: its chunk indices (a single chunk, a fixed array)
+     take a few bytes where the 1.8 format's B-tree takes about 2 kB per dataset, more than a small
+     dataset saves; any reader from HDF5 1.10 on (ParaView's since 5.6) reads it */
+  PetscCheck(io->compress == 0 || H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110) >= 0, io->comm, PETSC_ERR_LIB, "HDF5 cannot select the 1.10 file format for %s", io->tmpname);
   IoTry(&st, io->file = H5Fcreate(io->tmpname, H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "creating the file");
   H5Pclose(fapl);
   PetscCall(IoFirstFailed(io, &st, &first));
@@ -335,6 +373,8 @@ PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
   PetscFunctionBeginUser;
   io_quiet();
   (void)step;
+  PetscCall(PetscTime(&io->t_frame));
+  if (!io->armed) io->kind[0] = io->kind[1] = PETSC_TRUE; /* a frame not asked through IoDue: everything */
   if (!io->dirmade) PetscCall(IoMakeDir(io));
   io->dirmade = PETSC_TRUE;
   if (io->nframes == io->capframes) {
@@ -347,7 +387,8 @@ PetscErrorCode IoFrameBegin(Io io, PetscReal t, PetscInt step)
   }
   fr = &io->frames[io->nframes];
   PetscCall(PetscMemzero(fr, sizeof *fr));
-  fr->t = t;
+  fr->t    = t;
+  fr->prec = io->single ? 4 : 8;
   PetscCall(PetscSNPrintf(fr->file, sizeof fr->file, "%s_%06" PetscInt_FMT ".h5", io->prefix, io->nframes));
   PetscCall(PetscSNPrintf(io->tmpname, sizeof io->tmpname, "%s/%s.tmp", io->dir, fr->file));
   io->gpart = io->gfluid = -1;
@@ -372,12 +413,40 @@ typedef struct {
   hsize_t dims[4], start[4], count[4];
 } IoShape;
 
+/* The bytes of a chunk of a compressed dataset (see io_chunked). Measured on 18,000 beads
+   (doc/output.md): 64 kB chunks compress 1% worse than 1 MB ones, 256 kB 0.5%; on 2 ranks
+   1 MB chunks wrote slowest (a 432 kB position array is one chunk, which one rank compresses). */
+#define IO_CHUNK_BYTES (1 << 18)
+
+/* The creation properties of a compressed dataset of shape sh and elements of size bytes:
+ * chunks of whole rows (particles) or whole z-planes (fluid) of at most about IO_CHUNK_BYTES, cut
+ * along the slowest axis (then the next) when one row or plane is larger, byte shuffle, then
+ * deflate at level. Chunks are allocated as they are written and never filled (every element is
+ * written). < 0 on failure. */
+static hid_t io_chunked(const IoShape *sh, size_t size, unsigned level)
+{
+  hsize_t chunk[4], inner = size;
+  hid_t   dcpl = H5Pcreate(H5P_DATASET_CREATE);
+
+  if (dcpl < 0) return -1;
+  for (int k = sh->rank - 1; k >= 0; k--) { /* the fastest axes whole while they fit */
+    hsize_t fit = PetscMax((hsize_t)1, (hsize_t)IO_CHUNK_BYTES / inner);
+    chunk[k]    = PetscMin(sh->dims[k], fit);
+    inner *= chunk[k];
+  }
+  if (H5Pset_chunk(dcpl, sh->rank, chunk) < 0 || H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER) < 0 || H5Pset_shuffle(dcpl) < 0 || H5Pset_deflate(dcpl, level) < 0) {
+    H5Pclose(dcpl);
+    return -1;
+  }
+  return dcpl;
+}
+
 /* Collective write of this rank's block of a new dataset group/name. The ranks agree before the
  * write (a rank whose dataset was not created must not leave the others in a collective write)
  * and after it. */
 static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t type, const IoShape *sh, const void *data)
 {
-  hid_t       fspace = -1, mspace = -1, dset = -1, dxpl = -1;
+  hid_t       fspace = -1, mspace = -1, dset = -1, dxpl = -1, dcpl = -1;
   hsize_t     n = 1, total = 1;
   IoStep      st;
   PetscMPIInt first, size;
@@ -392,7 +461,8 @@ static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t t
   PetscCall(PetscStrlcat(path, name, sizeof path));
   st.need = (long long)(total * H5Tget_size(type));
   IoTry(&st, fspace = H5Screate_simple(sh->rank, sh->dims, NULL), "creating %s", path);
-  IoTry(&st, dset = H5Dcreate2(group, name, type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating %s", path);
+  if (io->compress > 0 && total) IoTry(&st, dcpl = io_chunked(sh, H5Tget_size(type), (unsigned)io->compress), "setting up the compression of %s", path);
+  IoTry(&st, dset = H5Dcreate2(group, name, type, fspace, H5P_DEFAULT, dcpl >= 0 ? dcpl : H5P_DEFAULT, H5P_DEFAULT), "creating %s", path);
   IoTry(&st, mspace = H5Screate_simple(1, &n, NULL), "creating %s", path);
   if (n) IoTry(&st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, sh->start, NULL, sh->count, NULL), "selecting this rank's rows of %s", path);
   else {
@@ -408,6 +478,7 @@ static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t t
     IoTry(&st, H5Dwrite(dset, type, mspace, fspace, dxpl, data), "writing %s", path);
   }
   if (dxpl >= 0) IoClose(&st, H5Pclose(dxpl), "writing %s", path);
+  if (dcpl >= 0) IoClose(&st, H5Pclose(dcpl), "closing %s", path);
   if (mspace >= 0) IoClose(&st, H5Sclose(mspace), "closing %s", path);
   if (fspace >= 0) IoClose(&st, H5Sclose(fspace), "closing %s", path);
   if (dset >= 0) IoClose(&st, H5Dclose(dset), "closing %s", path);
@@ -415,19 +486,39 @@ static PetscErrorCode IoWriteBlock(Io io, hid_t group, const char *name, hid_t t
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* With -io_precision single: the n reals of data as floats in *buf (PetscFree it), the type to
+ * write; otherwise data itself. */
+static PetscErrorCode IoNarrow(Io io, hid_t *type, const void **data, long long n, float **buf)
+{
+  PetscFunctionBeginUser;
+  *buf = NULL;
+  if (!io->single || *type != H5T_NATIVE_DOUBLE) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscMalloc1(n + 1, buf));
+  for (long long i = 0; i < n; i++) (*buf)[i] = (float)((const double *)*data)[i];
+  *type = H5T_NATIVE_FLOAT;
+  *data = *buf;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode IoWriteRows(Io io, const char *name, PetscInt nlocal, PetscInt ncomp, hid_t type, const void *data, PetscBool isint)
 {
+  float    *buf;
   long long n = nlocal, off = 0, total = 0;
   IoShape   sh = {ncomp > 1 ? 2 : 1, {0, (hsize_t)ncomp}, {0, 0}, {(hsize_t)n, (hsize_t)ncomp}};
   IoFrame  *fr = &io->frames[io->nframes];
+  PetscBool want;
 
   PetscFunctionBeginUser;
+  PetscCall(IoFrameWants(io, "particles", name, &want)); /* position: whenever the particles are due */
+  if (!want) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(fr->npart < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many particle datasets in one frame");
   PetscCallMPI(MPI_Exscan(&n, &off, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
   PetscCallMPI(MPI_Allreduce(&n, &total, 1, MPI_LONG_LONG, MPI_SUM, io->comm));
   sh.dims[0]  = (hsize_t)total;
   sh.start[0] = (hsize_t)off;
+  PetscCall(IoNarrow(io, &type, &data, n * ncomp, &buf));
   PetscCall(IoWriteBlock(io, io->gpart, name, type, &sh, data));
+  PetscCall(PetscFree(buf));
   if (!strcmp(name, "position")) { /* the Polyvertex connectivity 0..N-1: the Xdmf3 readers make no cells without it */
     IoShape    sv = {1, {(hsize_t)total}, {(hsize_t)off}, {(hsize_t)n}};
     long long *vtx;
@@ -465,8 +556,11 @@ PetscErrorCode IoWriteSurface(Io io, PetscInt np, const PetscReal *xyz, const Pe
   IoFrame  *fr = &io->frames[io->nframes];
   IoStep    st;
   hid_t     g = -1;
+  PetscBool want;
 
   PetscFunctionBeginUser;
+  PetscCall(IoFrameWants(io, "surface", "surface", &want));
+  if (!want) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(!fr->nsurft, io->comm, PETSC_ERR_ORDER, "IoWriteSurface: at most one surface per frame");
   PetscCallMPI(MPI_Exscan(n, off, 2, MPI_LONG_LONG, MPI_SUM, io->comm));
   PetscCallMPI(MPI_Allreduce(n, tot, 2, MPI_LONG_LONG, MPI_SUM, io->comm));
@@ -504,10 +598,13 @@ PetscErrorCode IoSetFluidMesh(Io io, const PetscReal lo[3], const PetscReal h[3]
 
 PetscErrorCode IoWriteField(Io io, const char *name, PetscInt ncomp, const PetscInt start[3], const PetscInt count[3], const PetscReal *data)
 {
-  IoShape  sh = {ncomp > 1 ? 4 : 3, {0}, {0}, {0}};
-  IoFrame *fr = &io->frames[io->nframes];
+  IoShape   sh = {ncomp > 1 ? 4 : 3, {0}, {0}, {0}};
+  IoFrame  *fr = &io->frames[io->nframes];
+  PetscBool want;
 
   PetscFunctionBeginUser;
+  PetscCall(IoFrameWants(io, "fluid", name, &want));
+  if (!want) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(io->fluidmesh, io->comm, PETSC_ERR_ORDER, "IoSetFluidMesh must precede IoWriteField");
   PetscCheck(fr->nfluid < IO_MAX_SETS, io->comm, PETSC_ERR_SUP, "too many fluid datasets in one frame");
   for (int k = 0; k < 3; k++) { /* HDF5 order is z, y, x */
@@ -516,7 +613,14 @@ PetscErrorCode IoWriteField(Io io, const char *name, PetscInt ncomp, const Petsc
     sh.count[k] = (hsize_t)count[2 - k];
   }
   sh.dims[3] = sh.count[3] = (hsize_t)ncomp;
-  PetscCall(IoWriteBlock(io, io->gfluid, name, H5T_NATIVE_DOUBLE, &sh, data));
+  {
+    hid_t       type = H5T_NATIVE_DOUBLE;
+    const void *d    = data;
+    float      *buf;
+    PetscCall(IoNarrow(io, &type, &d, (long long)count[0] * count[1] * count[2] * ncomp, &buf));
+    PetscCall(IoWriteBlock(io, io->gfluid, name, type, &sh, d));
+    PetscCall(PetscFree(buf));
+  }
   PetscCall(PetscStrncpy(fr->fluid[fr->nfluid].name, name, sizeof fr->fluid[0].name));
   fr->fluid[fr->nfluid].ncomp = ncomp;
   fr->nfluid++;
@@ -544,17 +648,54 @@ PetscErrorCode IoFrameEnd(Io io)
   PetscCall(IoFrameAgree(io, &st));
   PetscCallMPI(MPI_Comm_rank(io->comm, &rank));
   PetscCall(PetscSNPrintf(final, sizeof final, "%s/%s", io->dir, io->frames[io->nframes].file));
+  io->armed = PETSC_FALSE;
+  if (!io_frame_has(&io->frames[io->nframes], 0) && !io_frame_has(&io->frames[io->nframes], 1)) { /* nothing of the kinds due was chosen or written (a dry run has no fluid fields without averages): no frame */
+    if (!rank) unlink(io->tmpname);
+    SableTempSet(NULL);
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   io->nframes++;
   if (!rank) {
     if (rename(io->tmpname, final) != 0) {
       err[0] = errno;
       unlink(io->tmpname);
-    } else PetscCall(IoWriteIndex(io, &err[1]));
+    } else {
+      struct stat sb;
+      if (stat(final, &sb) == 0) io->bytes += (long long)sb.st_size;
+      PetscCall(IoWriteIndex(io, &err[1]));
+    }
   }
   PetscCallMPI(MPI_Bcast(err, 2, MPI_INT, 0, io->comm));
   SableTempSet(NULL); /* renamed, or removed on failure */
   if (err[0]) io->nframes--;
   PetscCheck(!err[0], io->comm, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s: %s (the frame was removed)", io->tmpname, final, strerror(err[0]));
   PetscCheck(!err[1], io->comm, PETSC_ERR_FILE_WRITE, "cannot write %s.tmp: %s (the temporary was removed; %s is complete, but the index %s, if any, lists only the frames before it)", io->index, strerror(err[1]), final, io->index);
+  io->written++;
+  {
+    PetscLogDouble now;
+    PetscCall(PetscTime(&now));
+    io->wtime += now - io->t_frame;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IoView(Io io, PetscViewer v)
+{
+  PetscLogDouble now;
+
+  PetscFunctionBeginUser;
+  if (!io || (io->pinterval <= 0 && io->finterval <= 0)) {
+    PetscCall(PetscViewerASCIIPrintf(v, "output: none (-io_interval 0)\n"));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (!io->nframes) {
+    PetscCall(PetscViewerASCIIPrintf(v, "output: none (no frame was due)\n"));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscTime(&now));
+  now -= io->t_create;
+  PetscCall(PetscViewerASCIIPrintf(v, "output: %s (open it in ParaView), %lld frames, %.3f MB, %.3g s writing (%.1f%% of the run's %.3g s)", io->index, io->written, io->bytes / 1e6, io->wtime, 100 * io->wtime / PetscMax(now, 1e-9), now));
+  if (io->nframes > io->written) PetscCall(PetscViewerASCIIPrintf(v, "; the index lists %" PetscInt_FMT " with the earlier run's", io->nframes));
+  PetscCall(PetscViewerASCIIPrintf(v, "\n"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -3,23 +3,28 @@
  * written under a temporary name and renamed when complete, and the XDMF index is rewritten the
  * same way, so a killed run never leaves a half-written file behind a name ParaView reads.
  * Writes are collective (MPI-IO); each rank passes its own block. Options: -io_dir, -io_prefix,
- * -io_interval. */
+ * -io_interval, -io_particle_interval and -io_fluid_interval (the two cadences: a frame holds
+ * the kinds due at its time), -io_fields (the datasets written; the writers may call the others,
+ * which are skipped), -io_compress (chunked datasets, shuffle + deflate). */
 #pragma once
 #include "sable.h"
 
 typedef struct _p_Io *Io;
 
 PetscErrorCode IoCreate(MPI_Comm comm, Io *io);
-/* Reads -io_dir (default out), -io_prefix (default sable), -io_interval (s, 0 = no output). */
+/* Reads -io_dir (default out), -io_prefix (default sable), -io_interval (s, 0 = no output),
+ * -io_particle_interval, -io_fluid_interval (s, default -io_interval), -io_fields, -io_compress. */
 PetscErrorCode IoSetFromOptions(Io io);
 PetscErrorCode IoDestroy(Io *io);
-/* Whether an output is due at simulated time t (first call: always, when output is on). */
+/* Not collective (the same on every rank). Whether a frame is due at simulated time t: the
+ * particles' or the fluid's cadence (first call: both, when on); the next IoFrameBegin takes
+ * the kinds due. */
 PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due);
 /* Not collective (the same on every rank). At the end of a run: whether the state at t still
  * needs a frame (output is on and the last frame is older than t), so that a run always leaves
  * its final state, also when the end time is not a multiple of -io_interval. */
 PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due);
-/* Not collective. The simulated time between outputs (s; 0 = no output), for the drivers' check
+/* Not collective. The shorter of the two cadences (s; 0 = no output), for the drivers' check
  * that it is not shorter than their time step. */
 PetscErrorCode IoGetInterval(Io io, PetscReal *interval);
 /* The XDMF index path, for messages; NULL when this run wrote no frame (-io_interval 0). */
@@ -44,8 +49,16 @@ PetscErrorCode IoSetFluidMesh(Io io, const PetscReal lo[3], const PetscReal h[3]
 /* Collective. A cell-centred field block: count[0..2] cells from start[0..2], x fastest, the
  * ncomp components of a cell contiguous. */
 PetscErrorCode IoWriteField(Io io, const char *name, PetscInt ncomp, const PetscInt start[3], const PetscInt count[3], const PetscReal *data);
-/* Collective. Closes, renames into place, rewrites the XDMF index. */
+/* Not collective. Whether the open frame takes dataset group/name ("particles", "surface" or
+ * "fluid"; name NULL: any dataset of the group): its kind is due and -io_fields chose it. The
+ * writers skip their work when not; the Io* writers skip such a dataset by themselves. */
+PetscErrorCode IoFrameWants(Io io, const char *group, const char *name, PetscBool *wants);
+/* Collective. Closes, renames into place, rewrites the XDMF index. A frame that received no
+ * dataset is removed instead (not counted, not indexed). */
 PetscErrorCode IoFrameEnd(Io io);
+/* Collective; io may be NULL (no output). The run's output line: "output: INDEX (open it in
+ * ParaView), N frames, X MB, Y s writing (Z% of the run's W s)", the run timed from IoCreate. */
+PetscErrorCode IoView(Io io, PetscViewer v);
 
 /* The simulated time of a frame (its root attribute "time"); has = false if it has none. */
 PetscErrorCode IoReadTime(const char *file, PetscReal *t, PetscBool *has);

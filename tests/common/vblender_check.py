@@ -36,7 +36,7 @@ def depth(x, r, R, L, half):
 def main(a):
     d, R, L, ang, az, w = a[0], *map(float, a[1:6])
     prefix = a[6] if len(a) > 6 else "sable"
-    worst, n, ids, files = -np.inf, 0, 0, run_frames(d, prefix)
+    worst, n, ids, files = -np.inf, 0, 0, run_frames(d, prefix, "particles")
     for name in files:
         with h5py.File(name, "r") as f:
             t = float(f.attrs["time"])

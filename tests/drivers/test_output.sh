@@ -112,3 +112,96 @@ ok = out == 0 and (sys.argv[2] == "sphere" or 0 < far <= 0.00699)
 print("%s output periodic %s: %d of %d frames with a position outside [lo, hi) along x or y (bound 0)%s" % ("PASS" if ok else "FAIL", sys.argv[2], out, len(frames), surf))
 PY
 done
+
+# What a frame holds and when: -io_fields (unknown and ambiguous names refused in one line, 1 and
+# 2 ranks; the chosen datasets with the full run's values, position always), the two cadences
+# (particles every 0.01 s, fluid and averages every 0.004 s: each frame holds the kinds due, the
+# index lists every time in order in both series, repeating a kind's latest grid), a restart
+# between them continuing both cadences (frames and index as the uninterrupted run's),
+# -io_compress (every dataset bitwise the uncompressed run's, chunked, shuffle + deflate; 1 and
+# 2 ranks) and the output line (frames, MB and write time of the files written).
+for bad in "veloc:-io_fields veloc: not a dataset of a frame; valid: particles, fluid, particles/position, particles/velocity," "velocity:-io_fields velocity: both particles/velocity and fluid/velocity: say which"; do
+  v=${bad%%:*}; pat=${bad#*:}
+  nps=1; [ "$v" = veloc ] && nps="1 2"
+  for np in $nps; do
+    if [ "$np" -eq 1 ]; then out=$(${BIN:-bin}/sable $OPTS -io_dir "$D/bad" -io_fields position,$v 2>&1); rc=$?
+    else out=$(mpiexec --oversubscribe -n $np ${BIN:-bin}/sable $OPTS -io_dir "$D/bad" -io_fields position,$v 2>&1); rc=$?; fi
+    n=$(printf '%s\n' "$out" | grep -c 'sable: error')
+    if [ "$rc" -ne 0 ] && [ "$n" -eq 1 ] && printf '%s\n' "$out" | grep -qF "sable: error: $pat"; then echo "PASS -io_fields $v refused on $np rank(s): exit $rc, $(printf '%s\n' "$out" | grep 'sable: error' | cut -c1-110)..."
+    else echo "FAIL -io_fields $v on $np rank(s): exit $rc, $n error lines, expected one with '$pat'; got: $(printf '%s\n' "$out" | grep -m1 'error' | cut -c1-200)"; fi
+  done
+done
+${BIN:-bin}/sable $OPTS -io_dir "$D/fields" -io_fields radius,particles/id > "$D/log7" 2>&1 || echo "FAIL -io_fields run: exit $?: $(tail -n 1 "$D/log7")"
+/usr/bin/python3 - "$D" <<'PY' || echo "FAIL -io_fields: the checking script exited with status $?"
+import sys, glob, h5py, xml.dom.minidom
+d = sys.argv[1]
+files = sorted(glob.glob(d + "/fields/*.h5"))
+bad, diff = [], 0
+for name in files:
+    with h5py.File(name, "r") as f, h5py.File(name.replace("/fields/", "/a/"), "r") as g:
+        if sorted(f) != ["fluid", "particles"] or sorted(f["particles"]) != ["id", "position", "radius", "vertex"] or len(f["fluid"]):
+            bad.append(name)
+        diff += sum(f["particles"][n][()].tobytes() != g["particles"][n][()].tobytes() for n in f["particles"])
+attrs = sorted({a.getAttribute("Name") for a in xml.dom.minidom.parse(d + "/fields/sable.xmf").getElementsByTagName("Attribute")})
+ok = len(files) == 5 and not bad and diff == 0 and attrs == ["id", "radius"]
+print("%s -io_fields radius,particles/id: %d frames, %d holding other than position, radius, id, vertex; %d datasets unlike the full run's; index attributes %s (expected 5, 0, 0, id,radius)" % ("PASS" if ok else "FAIL", len(files), len(bad), diff, ",".join(attrs)))
+PY
+SPLIT="-io_particle_interval 0.01 -io_fluid_interval 0.004 -avg_start 0 -domain_cell 0.03"
+${BIN:-bin}/sable $OPTS $SPLIT -io_dir "$D/split" -io_checkpoint_interval 0.0075 -io_checkpoint_keep 4 > "$D/log8" 2>&1 || echo "FAIL split intervals run: exit $?: $(tail -n 1 "$D/log8")"
+mkdir -p "$D/split_ref" && cp "$D"/split/*.h5 "$D"/split/sable.xmf "$D/split_ref/" 2>/dev/null
+/usr/bin/python3 - "$D" <<'PY' || echo "FAIL split intervals: the checking script exited with status $?"
+import sys, glob, h5py, xml.dom.minidom
+d = sys.argv[1]
+got = []
+for name in sorted(glob.glob(d + "/split/sable_0*.h5")):
+    with h5py.File(name, "r") as f:
+        got.append((round(float(f.attrs["time"]), 6), "position" in f["particles"], "avg_solids_fraction" in f["fluid"]))
+# particles at 0, 0.01, 0.02; fluid (the averages, from the first sample on) every 0.004 s and at the end
+want = [(0.0, True, False), (0.004, False, True), (0.008, False, True), (0.01, True, False), (0.012, False, True), (0.016, False, True), (0.02, True, True)]
+doc = xml.dom.minidom.parse(d + "/split/sable.xmf")
+series = {}
+for c in doc.getElementsByTagName("Grid"):
+    if c.getAttribute("GridType") == "Collection":
+        grids = [g for g in c.getElementsByTagName("Grid") if g.getAttribute("GridType") == "Uniform"]
+        series[c.getAttribute("Name")] = [(round(float(g.getElementsByTagName("Time")[0].getAttribute("Value")), 6), g.getElementsByTagName("DataItem")[-1].firstChild.data.split(":")[0][-9:-3]) for g in grids]
+tp = [t for t, _ in series.get("particles", [])]
+pfiles = sorted({f for _, f in series.get("particles", [])})
+tf = [t for t, _ in series.get("fluid", [])]
+ok = got == want and tp == [g[0] for g in want] and pfiles == ["000000", "000003", "000006"] and tf == [g[0] for g in want[1:]]
+print("%s split intervals: frames (time, particles, averages) %s; index: particles at %s from files %s, fluid at %s (expected %s; the particles series every time, from the particle frames only)" % ("PASS" if ok else "FAIL", got, tp, pfiles, tf, want))
+PY
+${BIN:-bin}/sable $OPTS $SPLIT -io_dir "$D/split" -restart "$D/split/sable_checkpoint_000750.h5" > "$D/log9" 2>&1 || echo "FAIL split intervals restart: exit $?: $(tail -n 1 "$D/log9")"
+nd=0; nf=0
+for f in "$D"/split_ref/sable_0*.h5; do
+  nf=$((nf + 1)); r=$(/usr/bin/python3 tests/common/frames_equal.py "$f" "$D/split/$(basename "$f")" 2>&1)
+  [ "$(echo "$r" | cut -d' ' -f2)" = "0" ] || nd=$((nd + 1))
+done
+n=$(ls "$D"/split/sable_0*.h5 | wc -l)
+if [ "$nd" -eq 0 ] && [ "$n" -eq 7 ] && cmp -s "$D/split_ref/sable.xmf" "$D/split/sable.xmf"; then echo "PASS split intervals restart at t = 0.0075 (next fluid frame 0.008, particles 0.01): $n frames, $nd of $nf unlike the uninterrupted run's, the index the same"
+else echo "FAIL split intervals restart at t = 0.0075: $n frames (expected 7), $nd of $nf unlike the uninterrupted run's; index $(cmp -s "$D/split_ref/sable.xmf" "$D/split/sable.xmf" && echo same || echo differs)"; fi
+${BIN:-bin}/sable $OPTS -io_dir "$D/z1" -io_compress 6 > "$D/log10" 2>&1 || echo "FAIL -io_compress run: exit $?: $(tail -n 1 "$D/log10")"
+mpiexec --oversubscribe -n 2 ${BIN:-bin}/sable $OPTS -io_dir "$D/z2" -io_compress 6 -da_processors_x 2 -da_processors_y 1 -da_processors_z 1 -domain_cell 0.03 > "$D/log11" 2>&1 || echo "FAIL 2-rank -io_compress run: exit $?: $(tail -n 1 "$D/log11")"
+for pair in "z1:a:1:log10" "z2:c:2:log11"; do
+  z=$(echo $pair | cut -d: -f1); u=$(echo $pair | cut -d: -f2); np=$(echo $pair | cut -d: -f3); lg=$(echo $pair | cut -d: -f4)
+  /usr/bin/python3 - "$D/$z" "$D/$u" "$np" "$D/$lg" <<'PY' || echo "FAIL -io_compress: the checking script exited with status $?"
+import sys, glob, os, re, h5py
+z, u, np_, log = sys.argv[1:5]
+files = sorted(glob.glob(z + "/sable_0*.h5"))
+n, diff, plain = 0, 0, 0
+for name in files:
+    with h5py.File(name, "r") as f, h5py.File(os.path.join(u, os.path.basename(name)), "r") as g:
+        def each(k, o):
+            global n, diff, plain
+            if isinstance(o, h5py.Dataset):
+                n += 1
+                diff += o[()].tobytes() != g[k][()].tobytes() or o.dtype != g[k].dtype
+                plain += o.size > 0 and not (o.chunks and o.compression == "gzip" and o.shuffle)
+        f.visititems(each)
+size = lambda d: sum(os.path.getsize(x) for x in glob.glob(d + "/sable_0*.h5"))
+line = [l for l in open(log) if l.startswith("output:")]
+m = re.search(r"output: \S+ \(open it in ParaView\), (\d+) frames, ([0-9.]+) MB, ([0-9.e-]+) s writing \(([0-9.]+)% of the run's", line[0]) if line else None
+lineok = m and int(m.group(1)) == len(files) and abs(float(m.group(2)) - size(z) / 1e6) < 1e-3 and float(m.group(3)) > 0 and 0 < float(m.group(4)) <= 100
+ok = len(files) == 5 and n > 0 and diff == 0 and plain == 0 and lineok and size(z) < size(u)
+print("%s -io_compress 6 on %s rank(s): %d frames, %d datasets, %d unlike the uncompressed run's, %d not chunked + shuffle + gzip; %d bytes against %d (ratio %.2f, bound > 1); %s" % ("PASS" if ok else "FAIL", np_, len(files), n, diff, plain, size(z), size(u), size(u) / max(size(z), 1), (line[0].strip() if line else "no output: line")))
+PY
+done
