@@ -162,7 +162,7 @@ static PetscErrorCode DriverMonReadProbes(PetscOptionItems *PetscOptionsObject, 
   PetscCall(PetscFree(idx));
   PetscCall(DriverMonIndices("mon_dp", &ni, &idx));
   for (PetscInt i = 0; i < ni; i++) {
-    DriverMonRegion r = {.k = idx[i]};
+    DriverMonRegion r     = {.k = idx[i]};
     PetscInt        ab[2] = {0, 0}, at[2] = {-1, -1};
     PetscBool       set;
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_dp_%d", (int)idx[i]));
