@@ -348,7 +348,7 @@ PetscErrorCode SableCheckRunLength(MPI_Comm comm, const SableRunLength *r)
   PetscCheck(r->end_set, comm, PETSC_ERR_ARG_WRONG, "the run has no end: give -%s_t_end, the simulated time to reach (s)", r->prefix);
   PetscCheck(steps <= (double)(PETSC_MAX_INT - r->counter), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%s_t_end %g s at a %s of %g s (%s) takes %.4g %s, more than the step counter holds (%" PetscInt_FMT "): lower -%s_t_end or raise %s", r->prefix, (double)r->t_end, r->step, (double)r->dt, r->dt_text, steps, r->counted, (PetscInt)PETSC_MAX_INT, r->prefix, r->raise);
   PetscCheck(r->progress_dt == 0 || r->progress_dt >= r->dt, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%s_progress_interval %g s is shorter than the %s %g s (%s): give 0 (no progress lines) or at least one step", r->prefix, (double)r->progress_dt, r->step, (double)r->dt, r->dt_text);
-  PetscCheck(r->io_dt == 0 || r->io_dt >= r->dt, comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_interval %g s is shorter than the %s %g s (%s): give 0 (no output) or at least one step", (double)r->io_dt, r->step, (double)r->dt, r->dt_text);
+  PetscCheck(r->io_dt == 0 || r->io_dt >= r->dt, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g s is shorter than the %s %g s (%s): give 0 (no output) or at least one step", r->io_opt ? r->io_opt : "-io_interval", (double)r->io_dt, r->step, (double)r->dt, r->dt_text);
   if (r->t < r->t_end - 0.5 * r->dt) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscPrintf(comm, "run: -%s_t_end %g s is not after the start time %g s: 0 steps, the initial state only\n", r->prefix, (double)r->t_end, (double)r->t));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -41,6 +41,7 @@ typedef struct {
   PetscReal   t, t_end, dt, progress_dt, io_dt; /* s */
   PetscInt    per_step;                         /* counter increments per step (DEM substeps) */
   PetscInt    counter;                          /* the counter now */
+  const char *io_opt;                           /* the option that set io_dt (IoGetInterval; NULL: -io_interval) */
 } SableRunLength;
 /* Collective. A run must have an end; its steps must fit the step counter (PetscInt: beyond it
  * the count wraps and the run never ends); a progress or output interval must not be shorter

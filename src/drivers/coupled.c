@@ -254,11 +254,11 @@ static PetscErrorCode CoupledCheckRunLength(const Coupled *c)
   PetscCall(CplGetTime(c->cpl, &t, &step));
   PetscCall(CplGetTimeStep(c->cpl, &dt));
   PetscCall(CplGetSubsteps(c->cpl, &substeps));
-  len         = (SableRunLength){"cpl", "coupling step", dtopt, c->frozen ? "-fluid_dt" : "-dem_dt", c->frozen ? "fluid steps" : "DEM steps", c->r->t_end_set, t, c->r->t_end, dt, c->r->progress_dt, 0, c->frozen ? 1 : substeps, step};
+  len         = (SableRunLength){"cpl", "coupling step", dtopt, c->frozen ? "-fluid_dt" : "-dem_dt", c->frozen ? "fluid steps" : "DEM steps", c->r->t_end_set, t, c->r->t_end, dt, c->r->progress_dt, 0, c->frozen ? 1 : substeps, step, NULL};
   len.counter = PetscMax(s0, step);
   if (c->frozen) PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-fluid_dt"));
   else PetscCall(PetscSNPrintf(dtopt, sizeof dtopt, "-cpl_substeps %d x -dem_dt %g s", (int)substeps, (double)dtd));
-  PetscCall(IoGetInterval(c->io, &len.io_dt));
+  PetscCall(IoGetInterval(c->io, &len.io_dt, &len.io_opt));
   PetscCall(SableCheckRunLength(c->r->comm, &len));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -423,21 +423,6 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective. The dry loop's options have no effect here: given, they are an error that names
- * the coupled run's own. */
-static PetscErrorCode CoupledCheckDryOptions(MPI_Comm comm)
-{
-  const char *dry[2] = {"-dem_t_end", "-dem_progress_interval"}, *wet[2] = {"-cpl_t_end", "-cpl_progress_interval"};
-
-  PetscFunctionBeginUser;
-  for (int k = 0; k < 2; k++) {
-    PetscBool set;
-    PetscCall(PetscOptionsHasName(NULL, NULL, dry[k], &set));
-    PetscCheck(!set, comm, PETSC_ERR_ARG_INCOMP, "%s applies to dry runs; this run is coupled (it has -fluid_ or -cpl_ options): use %s", dry[k], wet[k]);
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* The driver's carried state from a checkpoint's run/coupled (after the coupling's clock). The
  * column sums cover the steps after 0.5 -cpl_t_end: when the checkpoint comes before this run's
  * window they are zero whatever the writer's end; inside it, they are the writer's only when
@@ -523,7 +508,6 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
   PetscCall(CplSetFromOptions(c.cpl));
   PetscCall(BalanceSetCoupling(lb, c.cpl));
   if (!help) {
-    PetscCall(CoupledCheckDryOptions(r->comm));
     PetscCall(DriverCkptSetFromOptions(&r->ckpt, r->comm)); /* here, not with the run's options: -help lists them once, with the dry run's */
     PetscCall(DriverMonSetFromOptions(&r->mon, r->comm, PETSC_TRUE));
     PetscCall(DriverAvgCreate(r->comm, &r->avg));

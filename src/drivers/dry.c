@@ -128,8 +128,8 @@ static PetscErrorCode DryCheckRunLength(DryRun r, Dem dem, Io io)
   PetscCall(DemGetTimeStepOption(dem, &dtopt));
   PetscCall(DemGetTime(dem, &t, &step));
   PetscCall(DemGetTimeStep(dem, &dt));
-  len = (SableRunLength){"dem", "time step", dtopt, dtopt, "steps", r->t_end_set, t, r->t_end, dt, r->progress_dt, 0, 1, step};
-  if (io) PetscCall(IoGetInterval(io, &len.io_dt));
+  len = (SableRunLength){"dem", "time step", dtopt, dtopt, "steps", r->t_end_set, t, r->t_end, dt, r->progress_dt, 0, 1, step, NULL};
+  if (io) PetscCall(IoGetInterval(io, &len.io_dt, &len.io_opt));
   PetscCall(SableCheckRunLength(r->comm, &len));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

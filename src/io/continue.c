@@ -302,8 +302,8 @@ PetscErrorCode IoViewRestart(Io io, const char *mpath, PetscBool mon_resumed, Pe
   char frames[PETSC_MAX_PATH_LEN + 128], monitor[PETSC_MAX_PATH_LEN + 64] = "";
 
   PetscFunctionBeginUser;
-  if (io->interval > 0) PetscCall(PetscSNPrintf(frames, sizeof frames, "frames from %s_%06" PetscInt_FMT ".h5 on (index %s)", io->prefix, io->nframes, io->index));
-  else PetscCall(PetscStrcpy(frames, "no frames (-io_interval 0)"));
+  if (io->pinterval > 0 || io->finterval > 0) PetscCall(PetscSNPrintf(frames, sizeof frames, "frames from %s_%06" PetscInt_FMT ".h5 on (index %s)", io->prefix, io->nframes, io->index));
+  else PetscCall(PetscStrcpy(frames, "no frames (no output interval)"));
   if (mpath) PetscCall(PetscSNPrintf(monitor, sizeof monitor, "; monitor %s%s", mpath, mon_resumed ? " continued (cut back to the checkpoint's rows)" : (io->fresh ? "" : " (a new series)")));
   if (io->fresh) PetscCall(PetscPrintf(io->comm, "restart: new output series in %s from t = %g: %s%s; the checkpoint's run's frames in %s are left as they are\n", io->dir, (double)t, frames, monitor, io->from));
   else PetscCall(PetscPrintf(io->comm, "restart: output continued in %s from t = %g: %s%s\n", io->dir, (double)t, frames, monitor));

@@ -2,8 +2,9 @@
  * frame may hold, by group and kind (0 the particles' cadence, 1 the fluid's), the reader of
  * -io_fields, and IoFrameWants, which the writers ask before they gather a dataset. A dataset
  * written under a name not in the table is always written: a new dataset is one line here.
- * particles/position is always written (with the vertex list): it is the points every particle
- * dataset lies on; the fluid grid lives in the XDMF index and needs no dataset. */
+ * particles/position is written (with the vertex list) whenever any particle dataset is: it is
+ * the points every particle dataset lies on; -io_fields without any (fluid only) writes no
+ * particle frames. The fluid grid lives in the XDMF index and needs no dataset. */
 #include "io/io_private.h"
 
 static const struct {
@@ -29,6 +30,7 @@ static const struct {
   {"fluid", "rms_particle_velocity", 1},
 };
 #define IO_NFIELDS ((int)(sizeof io_fields / sizeof io_fields[0]))
+_Static_assert(sizeof io_fields / sizeof io_fields[0] <= IO_MAX_FIELDS, "IO_MAX_FIELDS (io_private.h) holds every dataset of the table");
 
 /* The entry of group/name in io_fields, -1 if none. */
 static int io_field_find(const char *group, const char *name)
@@ -74,7 +76,7 @@ PetscErrorCode IoReadFields(Io io, PetscOptionItems *PetscOptionsObject)
   char      valid[1024] = "particles, fluid";
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsStringArray("-io_fields", "Datasets a frame holds, comma separated: particles, fluid (a whole group), or particles/<name>, fluid/<name>, surface, or a name only one group has (eps); particles/position is always written; default all", NULL, items, &n, &set));
+  PetscCall(PetscOptionsStringArray("-io_fields", "Datasets a frame holds, comma separated: particles, fluid (a whole group), or particles/<name>, fluid/<name>, surface, or a name only one group has (eps); particles/position goes with any particle dataset; default all", NULL, items, &n, &set));
   if (!set) PetscFunctionReturn(PETSC_SUCCESS);
   for (int k = 0; k < IO_NFIELDS; k++) {
     PetscCall(PetscStrlcat(valid, ", ", sizeof valid));
@@ -94,7 +96,11 @@ PetscErrorCode IoReadFields(Io io, PetscOptionItems *PetscOptionsObject)
     SETERRQ(io->comm, PETSC_ERR_ARG_WRONG, "-io_fields %s: not a dataset of a frame; valid: %s (a bare name where one group has it)", item, valid);
   }
   for (PetscInt j = 0; j < n; j++) PetscCall(PetscFree(items[j]));
-  sel[io_field_find("particles", "position")] = PETSC_TRUE;
+  { /* particles/position goes with any particle dataset (the points they lie on); none chosen: no particle frames */
+    PetscBool any = PETSC_FALSE;
+    for (int k = 0; k < IO_NFIELDS; k++) any = (PetscBool)(any || (io_fields[k].kind == 0 && sel[k]));
+    if (any) sel[io_field_find("particles", "position")] = PETSC_TRUE;
+  }
   for (int k = 0; k < IO_NFIELDS; k++) io->skip[k] = (PetscBool)!sel[k];
   PetscFunctionReturn(PETSC_SUCCESS);
 }

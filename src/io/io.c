@@ -77,11 +77,17 @@ PetscErrorCode IoSetFromOptions(Io io)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IoGetInterval(Io io, PetscReal *interval)
+PetscErrorCode IoGetInterval(Io io, PetscReal *interval, const char **opt)
 {
+  PetscBool particles;
+
   PetscFunctionBeginUser;
-  if (io->pinterval > 0 && io->finterval > 0) *interval = PetscMin(io->pinterval, io->finterval);
-  else *interval = PetscMax(io->pinterval, io->finterval);
+  if (io->pinterval > 0 && io->finterval > 0) particles = (PetscBool)(io->pinterval <= io->finterval);
+  else particles = (PetscBool)(io->pinterval > 0);
+  *interval = particles ? io->pinterval : io->finterval;
+  /* the option that set it: the split one when it differs from -io_interval */
+  if (particles) *opt = io->pinterval != io->interval ? "-io_particle_interval" : "-io_interval";
+  else *opt = io->finterval != io->interval ? "-io_fluid_interval" : "-io_interval";
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -154,7 +160,7 @@ PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due)
   for (int k = 0; k < 2; k++) { /* a kind this run writes whose last frame is older than t */
     PetscInt i = io->nframes - 1;
     while (i >= 0 && !io_frame_has(&io->frames[i], k)) i--;
-    io->kind[k] = (PetscBool)(iv[k] > 0 && IoKindChosen(io, k) && (io->nframes == 0 || (i >= 0 && io->frames[i].t < t)));
+    io->kind[k] = (PetscBool)(iv[k] > 0 && IoKindChosen(io, k) && (i < 0 || io->frames[i].t < t)); /* i < 0: none yet, e.g. averages begun after the last frame */
   }
   *due      = (PetscBool)(io->kind[0] || io->kind[1]);
   io->armed = *due;
@@ -685,7 +691,7 @@ PetscErrorCode IoView(Io io, PetscViewer v)
 
   PetscFunctionBeginUser;
   if (!io || (io->pinterval <= 0 && io->finterval <= 0)) {
-    PetscCall(PetscViewerASCIIPrintf(v, "output: none (-io_interval 0)\n"));
+    PetscCall(PetscViewerASCIIPrintf(v, io && (io->pinterval != io->interval || io->finterval != io->interval) ? "output: none (-io_particle_interval 0 and -io_fluid_interval 0)\n" : "output: none (-io_interval 0)\n"));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (!io->nframes) {

@@ -24,9 +24,10 @@ PetscErrorCode IoDue(Io io, PetscReal t, PetscBool *due);
  * needs a frame (output is on and the last frame is older than t), so that a run always leaves
  * its final state, also when the end time is not a multiple of -io_interval. */
 PetscErrorCode IoDueFinal(Io io, PetscReal t, PetscBool *due);
-/* Not collective. The shorter of the two cadences (s; 0 = no output), for the drivers' check
- * that it is not shorter than their time step. */
-PetscErrorCode IoGetInterval(Io io, PetscReal *interval);
+/* Not collective. The shorter of the two cadences (s; 0 = no output) and the option that set it
+ * (-io_interval, -io_particle_interval or -io_fluid_interval), for the drivers' check that it is
+ * not shorter than their time step. */
+PetscErrorCode IoGetInterval(Io io, PetscReal *interval, const char **opt);
 /* The XDMF index path, for messages; NULL when this run wrote no frame (-io_interval 0). */
 PetscErrorCode IoGetIndexPath(Io io, const char **path);
 /* Collective. <dir>/<prefix>_<suffix> for a file of the run beside its frames (a checkpoint);

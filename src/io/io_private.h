@@ -36,7 +36,7 @@ typedef struct {
 
 typedef unsigned long long IoRunId; /* a run's identity (continue.c) */
 
-/* The datasets -io_fields chooses from (io.c): their group and name in a frame. */
+/* The datasets -io_fields chooses from (fields.c): their group and name in a frame. */
 #define IO_MAX_FIELDS 64
 
 struct _p_Io {

@@ -18,7 +18,8 @@
 #       bitwise the uninterrupted run's final frame (dry and coupled, 1 and 2 ranks); a coupled
 #       checkpoint of 2 ranks continued on 1 agrees with the 1-rank run within 1e-12 of the scale;
 #   (d) without -avg_start the frames hold no avg_ datasets and every other dataset is bitwise
-#       that of the averaged run; bad values are refused in one line naming the option.
+#       that of the averaged run; bad values are refused in one line naming the option;
+#   (e) averages begun after the last regular frame are in the final frame.
 cd "$(dirname "$0")/../.." || exit 1
 ROOT=$(pwd)
 S=$ROOT/${BIN:-bin}/sable
@@ -222,3 +223,10 @@ for bad in "-avg_interval 0.1" "-avg_start -1"; do
   line=$(grep -i 'error' "$W/bad/log" | head -n 1)
   case "$line" in *"${bad%% *}"*) echo "PASS average bad input '$bad': refused: $line" ;; *) echo "FAIL average bad input '$bad': $(tail -n 2 "$W/bad/log")" ;; esac
 done
+
+# (e) averages begun after the last regular frame still reach the final one (its fluid part)
+run 1 "$W/late" -options_file "$ROOT/cases/settle/quick.opts" -dem_t_end 0.048 -io_interval 0.01 -avg_start 0.045
+f=$(last "$W/late")
+n=$([ -n "$f" ] && /usr/bin/python3 -c "import h5py, sys; h = h5py.File(sys.argv[1], 'r'); print(sum(k.startswith('avg_') for k in h['fluid'].keys()) if 'fluid' in h else 0)" "$f")
+if [ "${n:-0}" -ge 2 ]; then echo "PASS average late start: -avg_start 0.045 after the last regular frame (0.04): the final frame at 0.048 holds $n avg_ datasets"
+else echo "FAIL average late start: the final frame ${f:-(none)} holds ${n:-0} avg_ datasets (expected the solids fraction's and the particle velocity's); $(grep -i error "$W/late/log" | head -n 1)"; fi

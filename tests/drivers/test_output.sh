@@ -205,3 +205,15 @@ ok = len(files) == 5 and n > 0 and diff == 0 and plain == 0 and lineok and size(
 print("%s -io_compress 6 on %s rank(s): %d frames, %d datasets, %d unlike the uncompressed run's, %d not chunked + shuffle + gzip; %d bytes against %d (ratio %.2f, bound > 1); %s" % ("PASS" if ok else "FAIL", np_, len(files), n, diff, plain, size(z), size(u), size(u) / max(size(z), 1), (line[0].strip() if line else "no output: line")))
 PY
 done
+
+# -io_fields with fluid datasets only: no particle dataset in any frame, no particle grid in the index
+${BIN:-bin}/sable -options_file cases/fluidized_bed/small.opts -cpl_t_end 2 -io_interval 1 -io_fields fluid -io_dir "$D/fluidonly" > "$D/log9" 2>&1 || echo "FAIL -io_fields fluid run: exit $?: $(tail -n 1 "$D/log9")"
+/usr/bin/python3 - "$D/fluidonly" <<'PY' || echo "FAIL -io_fields fluid: the checking script exited with status $?"
+import sys, glob, h5py
+files = sorted(glob.glob(sys.argv[1] + "/sable_[0-9]*.h5"))
+npart = sum(len(h5py.File(f, "r").get("particles", {})) for f in files)
+nfluid = sum(len(h5py.File(f, "r").get("fluid", {})) for f in files)
+grids = open(sys.argv[1] + "/sable.xmf").read().count('Name="particles"')
+ok = len(files) == 3 and npart == 0 and nfluid == 9 and grids == 0
+print("%s -io_fields fluid: %d frames (3), %d particle datasets (0), %d fluid datasets (9), %d particle grids in the index (0)" % ("PASS" if ok else "FAIL", len(files), npart, nfluid, grids))
+PY
