@@ -458,6 +458,8 @@ static void SableHelpPrintLines(SableHelpKept *lines, int from, int to)
  * order, or PETSc's in the order printed), starting at position at; returns the new count. */
 static int SableHelpOrder(const SableHelpSection *sec, int ns, PetscBool own, SableHelpKept *line, int at)
 {
+  const int first = at; /* families form within one pass: a PETSc line never joins one of Sable's */
+
   for (int g = own ? 0 : -1; g < (own ? 9 : 0); g++)
     for (int k = 0; k < ns; k++) {
       if (sec[k].group != g) continue;
@@ -470,7 +472,7 @@ static int SableHelpOrder(const SableHelpSection *sec, int ns, PetscBool own, Sa
         if (name[0] && index[0]) {
           L->index = atol(index);
           L->given = SableHelpGiven(name);
-          for (int i = 0; i < at && L->family < 0; i++)
+          for (int i = first; i < at && L->family < 0; i++)
             if (line[i].family >= 0 && !strcmp(line[i].pat, L->pat)) L->family = line[i].family;
           if (L->family < 0) L->family = at;
         }

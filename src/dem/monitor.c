@@ -172,6 +172,7 @@ PetscErrorCode DemGetBedSurface(Dem dem, const PetscReal lo[3], const PetscReal 
     s0 = PetscMin(up * a, up * b);
     s1 = PetscMax(up * a, up * b);
   }
+  PetscCheck((s1 - s0) / dz <= 100000, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-mon_surface_dz %g m: %.3g slabs over the %g m along gravity; at most 100000 (a thicker slab)", (double)dz, (s1 - s0) / dz, s1 - s0);
   n = (PetscInt)PetscCeilReal((s1 - s0) / dz - 1e-9);
   n = PetscMax(n, 1);
   PetscCall(PetscCalloc2(n, &loc, n, &vol));

@@ -182,8 +182,8 @@ static PetscErrorCode DriverMonReadProbes(PetscOptionItems *PetscOptionsObject, 
 
 PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool coupled)
 {
-  char      fields[3][8], *fp[3] = {fields[0], fields[1], fields[2]};
-  PetscInt  nf = 3;
+  char     *fp[8]; /* room past the three fields: a longer list is refused, not cut */
+  PetscInt  nf = 8;
   PetscBool set;
 
   PetscFunctionBeginUser;
@@ -202,6 +202,7 @@ PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool co
   PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_line", "-mon_line_%d", "A segment along which the monitor averages the fluid's fields (coupled runs): x0,y0,z0,x1,y1,z1; any k >= 0", PETSC_TRUE, PETSC_TRUE, &m->line, &m->nline));
   PetscCall(DriverMonReadPlanes(PetscOptionsObject, m, "mon_plane", DriverMonWordOptions[1], "A plane over which the monitor averages the fluid's fields (coupled runs): x=c, y=c, z=c (whole), or a rectangle lo_x,lo_y,lo_z,hi_x,hi_y,hi_z flat along one axis; any k >= 0", PETSC_TRUE, &m->plane, &m->nplane));
   PetscCall(PetscOptionsStringArray("-mon_average_fields", "Fields the -mon_line_<k> and -mon_plane_<k> averages report: p (Pa), eps (-), u (interstitial velocity, 3 columns, m/s); default p,eps,u", NULL, fp, &nf, &set));
+  PetscCheck(!set || (nf >= 1 && nf <= 3), comm, PETSC_ERR_ARG_OUTOFRANGE, "-mon_average_fields: %d items; give 1 to 3 of p, eps, u", (int)nf);
   for (int q = 0; q < 3; q++) m->fields[q] = (PetscBool)!set;
   for (PetscInt q = 0; set && q < nf; q++) {
     PetscBool p, e, u;

@@ -70,7 +70,7 @@ PetscErrorCode MonAddColumn(Mon mon, const char *name, const char *unit)
 {
   PetscFunctionBeginUser;
   PetscCheck(!mon->open, mon->comm, PETSC_ERR_ORDER, "monitor column %s added after the first row", name);
-  PetscCheck(mon->ncol < MON_MAX_COLS, mon->comm, PETSC_ERR_SUP, "monitor: more than %d columns", MON_MAX_COLS);
+  PetscCheck(mon->ncol < MON_MAX_COLS, mon->comm, PETSC_ERR_SUP, "monitor: more than %d columns: the -mon_ families give too many (fewer probes, boxes, lines or planes, or fewer -mon_average_fields)", MON_MAX_COLS);
   PetscCall(PetscStrncpy(mon->name[mon->ncol], name, sizeof mon->name[0]));
   PetscCall(PetscStrncpy(mon->unit[mon->ncol], unit, sizeof mon->unit[0]));
   mon->ncol++;

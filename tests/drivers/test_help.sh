@@ -97,7 +97,7 @@ else echo "FAIL help bed: faces show another face's value:$bad"; fi
 # (e) every shipped case
 own='function own(n) { return n == "-restart" || n ~ /^-(domain|dem|fluid|cpl|lb|io|mon|avg|sable)_/ && (n !~ /^-fluid_(poisson|viscous)_/ || n ~ /^-fluid_(poisson_pc_lag|poisson_pc_lag_growth|viscous_number_max)$/) }'
 for f in cases/*/*.opts; do
-  timeout 10 $S -help -options_file "$f" > "$T/case" 2>&1; rc=$?
+  timeout 60 $S -help -options_file "$f" > "$T/case" 2>&1; rc=$?
   err=$(grep -c 'sable: error' "$T/case")
   miss=""; for g in domain dem fluid cpl lb io mon avg sable; do grep -q "^  -${g}_" "$T/case" || miss="$miss -${g}_"; done
   grep -q '^  -restart ' "$T/case" || miss="$miss -restart"
