@@ -523,7 +523,17 @@ PetscErrorCode DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write)
     PetscCall(IoCkptWriteShared(ck, "dem/sources", IO_CKPT_REAL, nv, v));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(IoCkptReadShared(ck, "dem/sources", IO_CKPT_REAL, nv, v));
+  { /* a checkpoint of Sable before the log's figures held 6 numbers a source (the 6th the mass) */
+    long long total;
+    PetscCall(IoCkptGetSize(ck, "dem/sources", &total));
+    if (total == 4 + 6 * dem->src.n) {
+      PetscCall(IoCkptReadShared(ck, "dem/sources", IO_CKPT_REAL, total, v));
+      for (PetscInt i = dem->src.n - 1; i >= 0; i--) { /* spread to 9 a source, from the last */
+        const double *o = v + 4 + 6 * i, w[DEM_SRC_CKPT] = {o[0], o[1], o[2], o[3], 0, o[5], o[3], -1, 0};
+        for (int a = 0; a < DEM_SRC_CKPT; a++) v[4 + DEM_SRC_CKPT * i + a] = w[a];
+      }
+    } else PetscCall(IoCkptReadShared(ck, "dem/sources", IO_CKPT_REAL, nv, v));
+  }
   PetscCheck(v[0] == (double)dem->src.n, dem->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint has %g particle sources, the case's options make %" PetscInt_FMT, v[0], dem->src.n);
   dem->flow.inserted    = (PetscInt)v[1];
   dem->flow.m_inserted  = v[2];

@@ -219,7 +219,7 @@ PetscErrorCode MonCheckpointRead(Mon mon, IoCkpt ck, PetscBool *resumed)
   PetscCall(MonSameFile(mon, ck, (long long)s[2], &same));
   if (!same) PetscFunctionReturn(PETSC_SUCCESS); /* a new series: the header, then a row at once */
   PetscCall(IoCkptGetPath(ck, &path));
-  PetscCheck((PetscInt)s[3] == mon->ncol, mon->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset mon/state says %d monitor columns, this run has %d (give another -mon_file to start a new series)", path, (int)s[3], (int)mon->ncol);
+  PetscCheck((PetscInt)s[3] == mon->ncol, mon->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the monitor file %s has %d columns, this run has %d (other -mon_ options, or a Sable that writes other columns): continue with the checkpoint's monitor options, or give another -mon_file, -io_dir or -io_prefix to start a new series", path, mon->path, (int)s[3], (int)mon->ncol);
   {
     PetscMPIInt rank;
     int         err = 0;
