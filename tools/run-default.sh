@@ -7,4 +7,4 @@ set -eu
 cd "$(dirname "$0")/.."
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 bin/sable -options_file cases/bubbling_bed/bubbling.opts "$@"
-echo "plot the monitor file (the \"monitor:\" line above): tools/plot_monitor FILE --columns dp0,bed_height_95 --spectrum dp0"
+echo "plot the monitor file (the \"monitor:\" line above): tools/plot_monitor FILE --columns dp0,bed_surface --spectrum dp0"
