@@ -196,24 +196,22 @@ if [ "$rc" -eq 0 ] && ! grep -q 'reaches row 1 ' "$d/rest.log" && printf '%s' "$
 else
   echo "FAIL restart inlet line: exit $rc; inlet lines: $(grep '^fluid: inlet' "$d/rest.log" | tr '\n' '|')"
 fi
-tot=$(sed -n 's/^done: t = [^,]*, \([0-9]*\) fluid steps.*/\1/p' "$d/full.log")
-cks=$(printf '%s' "$ck" | sed 's/.*_0*\([0-9][0-9]*\)\.h5$/\1/')
-done=$(grep '^done:' "$d/rest.log")
-got=$(printf '%s' "$done" | sed -n 's/^done: t = [^,]*, \([0-9]*\) fluid steps.*/\1/p')
-if [ -n "$tot" ] && [ "$got" = "$((tot - cks))" ] && printf '%s' "$done" | grep -q "from the restart at t = 2\.*, step $cks, to step $tot"; then
-  echo "PASS restart done line coupled: \"$done\" ($tot - $cks steps: the uninterrupted run's less the checkpoint's)"
-else
-  echo "FAIL restart done line coupled: \"$done\" (want $tot - $cks steps of this run, and the step reached)"
-fi
+# the done: line of the restart in $1 from checkpoint $2: this run's steps (the uninterrupted run's
+# less the checkpoint's) and the step reached; $3 the label, $4 what the counter counts, $5 the
+# restart time as printed
+done_line() {
+  tot=$(sed -n "s/^done: t = [^,]*, \([0-9]*\) $4.*/\1/p" "$1/full.log")
+  cks=$(printf '%s' "$2" | sed 's/.*_0*\([0-9][0-9]*\)\.h5$/\1/')
+  done=$(grep '^done:' "$1/rest.log")
+  got=$(printf '%s' "$done" | sed -n "s/^done: t = [^,]*, \([0-9]*\) $4.*/\1/p")
+  if [ -n "$tot" ] && [ "$got" = "$((tot - cks))" ] && printf '%s' "$done" | grep -q "from the restart at t = $5, step $cks, to step $tot"; then
+    echo "PASS restart done line $3: \"$done\" ($tot - $cks steps: the uninterrupted run's less the checkpoint's)"
+  else
+    echo "FAIL restart done line $3: \"$done\" (want $tot - $cks steps of this run, and the step reached)"
+  fi
+}
+done_line "$d" "$ck" coupled "fluid steps" '2\.*'
 d=$W/dry.1
 ck=$(sed -n 's/^checkpoint: //p' "$d/half.log" | tail -n 1)
 (cd "$d" && "$S" $DRY -dem_t_end 0.04 -io_dir half2 -mon_interval 0 -io_interval 0 -restart "$ck" >rest.log 2>&1)
-tot=$(sed -n 's/^done: t = [^,]*, \([0-9]*\) steps.*/\1/p' "$d/full.log")
-cks=$(printf '%s' "$ck" | sed 's/.*_0*\([0-9][0-9]*\)\.h5$/\1/')
-done=$(grep '^done:' "$d/rest.log")
-got=$(printf '%s' "$done" | sed -n 's/^done: t = [^,]*, \([0-9]*\) steps.*/\1/p')
-if [ -n "$tot" ] && [ "$got" = "$((tot - cks))" ] && printf '%s' "$done" | grep -q "from the restart at t = 0.02 s, step $cks, to step $tot"; then
-  echo "PASS restart done line dry: \"$done\""
-else
-  echo "FAIL restart done line dry: \"$done\" (want $tot - $cks steps of this run, and the step reached)"
-fi
+done_line "$d" "$ck" dry steps '0.02 s'
