@@ -223,8 +223,9 @@ struct _p_Dem {
   DemSources     src;       /* particle sources (sources.c) */
 };
 
-/* Internal functions, by file, from the leaves up: a file calls only files listed above it
- * (the DEM's .c files form no circle of calls). */
+/* Internal functions of the core, by file, from the leaves up (the DEM's .c files form no circle
+ * of calls: tools/check-layout); the walls', the sources' and the checkpoints' are declared in
+ * their own headers. */
 PetscErrorCode       DemEventsRegister(void); /* events.c */
 extern PetscLogEvent DEM_Exchange, DEM_Neighbours, DEM_Contacts, DEM_Walls, DEM_Integrate, DEM_Output, DEM_Placement;
 PetscErrorCode       DemSpringsSort(DemSpring *r, PetscInt n);                                        /* springs.c */

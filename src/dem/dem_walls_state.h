@@ -5,6 +5,9 @@
 #pragma once
 #include "dem/contact_laws.h"
 #include "geom/trimesh.h"
+#ifndef DEM_MAX_SHAPES
+  #error "dem_walls_state.h is included by dem_core.h (it needs DEM_MAX_SHAPES and DemMaterial); include dem_walls.h"
+#endif
 
 #define DEM_MAX_WALLS 24
 
