@@ -20,7 +20,10 @@
  * the outlets' totals are dem/flow (sinks.c). A drum (cylinder and caps turning at omega) has no
  *  angle: its geometry is invariant under its rotation and its surface velocity is given.
  * Read on another rank count or process grid, the state is redistributed (checkpoint_remap.c). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
+#include "dem/dem_sources.h"
+#include "dem/dem_checkpoint.h"
 
 /* Collective. Every per-particle dataset of the table, this rank's rows (x0 and id apart). */
 static PetscErrorCode DemCkptFields(Dem dem, IoCkpt ck, PetscBool write)

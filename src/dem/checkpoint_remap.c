@@ -20,7 +20,9 @@
  * this run's boxes (DemCheckpointNeedsRemap).
  * Memory: a rank holds its block's rows of one dataset at a time, their ids and their lists,
  * about ceil(R/P) writing ranks' state (all of it on one rank for a 1-rank checkpoint). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
+#include "dem/dem_checkpoint.h"
 #include <stddef.h>
 
 /* The per-particle datasets (dem_impl.h), walked by the writer and both readers. */

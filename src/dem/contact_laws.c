@@ -8,7 +8,8 @@
  * factor of the kernel, c_h = c / sqrt(3/2), is found by bisection on that reduced equation so
  * that the restitution is exactly the one set (the usual closed-form beta(e) is only approximate
  * for Hertz). The same reduced solution gives the contact time at speed V. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
 
 /* Integrates the reduced Hertz impact; returns restitution and dimensionless contact time. */
 static void dem_hertz_reduced(double c, double *e, double *tau)

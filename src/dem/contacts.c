@@ -19,7 +19,7 @@
  * the other scenes, whose loop must stay the one it was. Rolling resistance (-dem_rolling_model,
  * contact_laws.h) adds a torque on i and the opposite on j, behind one branch on the model. */
 #include <string.h>
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 #define DEM_PAIR_BLOCK 256 /* list entries screened per block (10 kB of buffers on the stack) */
 

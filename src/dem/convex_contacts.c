@@ -28,7 +28,8 @@
  * -dem_convex_contact_point), and MPR is the fallback if that point fails. With the support
  * point, pairs left to MPR take MPR's depth and normal and the support features' point.
  * The contact laws use R = d_eq/2 per shape (shapes.c). Units SI. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
 
 typedef struct {
   DemLaw               law;

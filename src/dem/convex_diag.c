@@ -6,7 +6,8 @@
  * Output: besides the per-particle arrays (position, quaternion, ...), every particle's surface
  * in the world frame, x + R v for the shape's hull vertices v, as one triangle mesh that ParaView
  * draws directly (XDMF grid "surface"; a cylinder is drawn as a 24-sided prism). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
 #include "geom/quat.h"
 
 #define DEM_CYL_SIDES 24

@@ -7,7 +7,9 @@
  * of the shortest Tc instead. A run that diverges anyway (dt too large for the stiffness: the
  * particles pass through each other while every number stays finite) stops at the next progress
  * line or output frame when the largest overlap exceeds -dem_overlap_max radii (diag.c). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
+#include "dem/dem_sources.h"
 
 static const char *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
 

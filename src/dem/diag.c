@@ -3,7 +3,8 @@
  * summary with the contact pre-flight figures, output of particle state, and the run loop with
  * its progress line. Elastic energy: linear 1/2 kn delta^2 + 1/2 kt |xi|^2; hertz
  * 8/15 E* sqrt(R*) delta^(5/2) (the tangential spring energy is left out for hertz). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
 
 static double dem_spring_energy(const Dem dem, const DemPairParams *p, double delta, const double *xi)
 {

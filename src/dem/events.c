@@ -2,7 +2,7 @@
  * contains the migration and ghost creation counted again under DemExchange), ghost exchange,
  * pair contacts, wall contacts, integration, output, the placement check. Registered once per
  * process, by the first DemCreate. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 PetscLogEvent DEM_Exchange;
 PetscLogEvent DEM_Neighbours;

@@ -14,7 +14,7 @@
  * opposite forces. With one rank along a periodic axis the neighbour is the rank itself (a
  * message to self with a shift), so periodicity has one code path. A box thinner than the halo
  * along a split or periodic axis is an error (a particle could then reach past a neighbour). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 #define GHOST_WIDTH 15 /* id, shape, x[3], v[3], w[3], q[4]; then the radius in a scene of own sizes */
 

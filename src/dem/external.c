@@ -9,7 +9,7 @@
  * A frozen DEM (-dem_frozen) integrates nothing: its particles are fixed obstacles. A checkpoint
  * holds the arrays of the local particles (dem/ext_fext, ext_k, ext_u, ext_j: the first rows of
  * the particle arrays, in the same local order). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 /* The translational half kick of length h with the coupling's forces: writes the local
  * particles' v and the impulse j; reads f, the coupling's fext, k, u and the shapes' masses. */

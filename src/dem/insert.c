@@ -11,7 +11,8 @@
  * when the scene has sizes of their own or the file more distinct radii than shapes can hold).
  * Both at once: the lattice's ids follow the file's. Whether they start clear of the walls and
  * of each other is checked once the ghosts exist (placement.c). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_sources.h"
 
 static double dem_hash_frac(double n, int c)
 {

@@ -10,7 +10,7 @@
  * With a coupling attached (external.c) the translational kicks are DemExternalKick's (drag
  * implicit); a frozen DEM (-dem_frozen) moves nothing. Spheres of their own sizes take their own
  * 1/m and 1/I (DemParticles.invm, invi). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 #define DEM_INTEGRATE_BLOCK 256 /* particles per block of the first half step */
 

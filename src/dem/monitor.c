@@ -25,7 +25,7 @@
  * count unless a partial mass sum sits within roundoff of 0.95 M; the highest particle is exact;
  * the slab volumes and the mass flow are sums over ranks (the last bits depend on the rank
  * count). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 #include <stdint.h>
 
 static inline double dem_mass_of(const Dem dem, PetscInt i)

@@ -11,7 +11,7 @@
  * bins and rows cover locals and ghosts (DemNeighBuildList). Cell coordinates are clamped to the
  * grid, which keeps every pair within reach in adjacent cells even for a particle outside the box
  * (clamping is 1-Lipschitz). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 /* Morton key of a cell: the bits of cx, cy, cz interleaved. */
 static uint64_t dem_morton(PetscInt cx, PetscInt cy, PetscInt cz)

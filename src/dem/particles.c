@@ -4,7 +4,7 @@
  * of their own sizes (DemShapeTable.poly) each particle also has its radius, mass, 1/m and 1/I
  * (I = 2/5 m r^2, m = rho 4/3 pi r^3 with its shape's density), set from the radius in one place
  * (DemParticleSetSize); other scenes allocate none of them. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 /* every real per-particle array and its width (the coupling arrays only when switched on) */
 static int DemRealArrays(Dem dem, double ***a, int *m)

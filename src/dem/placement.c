@@ -26,7 +26,9 @@
  * All ranks agree on the worst finding (by kind in the order above, then depth, then id) and
  * stop with one message from the rank that found it: what overlaps what, where, by how much,
  * which option placed it, what to change. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
+#include "dem/dem_sources.h"
 
 #define DEM_PLACE_ROUNDOFF 1e-9 /* radii: a lattice on a wall or touching lattice sites */
 #define DEM_PLACE_FILE_MIN 0.05 /* radii: the least default limit of a file's overlaps */

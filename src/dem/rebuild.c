@@ -9,7 +9,9 @@
  *   candidates (walls_mesh.c) -> the
  *   reference positions of the rebuild check (x0, the walls' travel) reset.
  * It sits above the files it calls; none of them calls it back. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
+#include "dem/dem_sources.h"
 
 /* Collective. The rebuild from the migration on, with the springs as id-keyed records (sorted;
  * freed here): DemRebuild's after it saved them, a checkpoint's read on another rank count. */

@@ -8,7 +8,7 @@
  * particle. DemRedistribute (rebuild.c) runs it as the migration of a full rebuild, the cell grid
  * set up anew over the new box. Also here: what the balancer measures (the halo width, the
  * particles per grid cell, the compute time). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 /* Rank column along axis k whose box holds coordinate x: box r is [lo + s_r h, lo + s_{r+1} h)
  * with s_r the cells before column r; below lo the first, from hi on the last. */

@@ -16,7 +16,7 @@
  * the world frame (w = R J^-1 L_b), as the contact kernels use it; q maps body to world.
  * Isotropic bodies (J1 = J2 = J3: cube, regular polyhedra) have w constant in free flight; their
  * free rotor is the single exact rotation by |w| dt about w, q <- (c, s w/|w|) q (Cayley angle). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 #include "geom/quat.h"
 
 /* q (c, s e_k): the quaternion product with a rotation about body axis k (sparse form) */

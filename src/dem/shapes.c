@@ -16,7 +16,7 @@
  *   -dem_cylinder_aspect  height / diameter of the cylinders (default 1)
  * Spheres and convex shapes in one scene are refused (no sphere-polyhedron narrow phase yet).
  * Reference: Rakotonirina & Wachs 2018 (Grains3D Part II) §2, the "reference particle". */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 typedef enum {
   DEM_SHAPE_SPHERE,

@@ -15,7 +15,8 @@
  * dem->flow, equal on every rank. The balance initial + inserted - removed = present holds in
  * count and in the id checksum (DemCheckBalance, -dem_check_every); ids sum exactly in doubles
  * below 2^53. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_sources.h"
 
 static const char *const DemSideNames[] = {"xlo", "xhi", "ylo", "yhi", "zlo", "zhi", "DemSide", "DEM_SIDE_", NULL};
 /* the indexed options whose values are words, listed for the option checks (tools/gen-options.sh) */

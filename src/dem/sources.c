@@ -21,7 +21,9 @@
  * A particle placed at the step ending at t is there at t with the set velocity: x is not
  * drifted, and v0 - g dt/2 before the step's last half kick gives v0 (no contact can act on it).
  * Units SI. The state (counts, mass, candidate counter, batch, shortfall) is checkpointed. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
+#include "dem/dem_sources.h"
 
 #define DEM_SRC_STREAM        16     /* the sources' hash streams start here (the lattice's are 0-6) */
 #define DEM_SRC_MAX_CANDIDATE 200000 /* per batch: bounds the memory (about 30 MB) */

@@ -5,7 +5,8 @@
  * need them (a region outside the domain or thinner than the largest diameter, a batch larger
  * than the region holds at random close packing, a patch stream that does not leave it).
  * What the sources do with these: sources.c. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_sources.h"
 
 #define DEM_SRC_DENSE        0.64 /* random close packing: no batch can hold more */
 #define DEM_SRC_PERIOD_STEPS 200  /* default period, in time steps */

@@ -7,7 +7,7 @@
  * takes the opposite of the spring saved under (i, j); when particles may move to another rank a
  * pair listed once is saved from both sides, so that each particle takes its own side along.
  * This file calls no other of the DEM: it reads the lists and writes the springs only. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
 
 static int dem_spring_cmp(const void *a, const void *b)
 {

@@ -19,7 +19,8 @@
  * Only edges marked as free rims (the hopper's orifice) are touched as segments. At most
  * DEM_MAX_WALLS walls in all. A domain face is closed (DemWallsCloseFace) by a wall at it or
  * inside before it, or by a mesh at rest whose triangles tile the face itself. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
 
 /* Adds a plane wall; name is the option that made it (messages name the wall by it). */
 PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3])

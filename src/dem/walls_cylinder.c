@@ -15,7 +15,7 @@
  * without caps (close it with caps, planes, or a periodic domain axis).
  * Options: -dem_cylinder ax,ay,az,ux,uy,uz,R (m, -, m); -dem_cylinder_omega (rad/s);
  * -dem_cylinder_caps s0,s1 (m); -dem_cylinder_friction (cylinder and caps). Spheres only. */
-#include "dem/dem_impl.h"
+#include "dem/dem_walls.h"
 
 /* Reads the cylinder options inside the walls' options block (walls.c). */
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem)

@@ -19,7 +19,8 @@
  * build, the triangles whose box meets this rank's box grown by the largest radius + skin are
  * binned, and each local particle lists those within r + skin; a moving mesh counts its travel
  * bound (|v| dt + |dtheta| raxis) as a wall's (dem.c). */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
 
 /* The integral of the table's piecewise-linear omega from its first time to t (omega
  * constant outside the table), and omega(t) in *w. */

@@ -8,7 +8,8 @@
  *   (s, rad/s: piecewise linear in time, constant outside; the angle is its exact integral).
  * Each mesh is read on rank 0 and broadcast, then announced in one line (file, triangles, the
  * skipped degenerate and duplicate ones, bounding box). Contacts, lists and motion: walls_mesh.c. */
-#include "dem/dem_impl.h"
+#include "dem/dem_core.h"
+#include "dem/dem_walls.h"
 
 static const char *const DemMeshWordOptions[] = {"-dem_mesh_%d_file"};
 #define DEM_MESH_TAB_MAX 64 /* points of an omega table */

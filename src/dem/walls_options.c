@@ -7,7 +7,7 @@
  * -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); triangle meshes -dem_mesh_<k>_*
  * (walls_mesh_options.c, not counted among the walls); -dem_<wall>_friction overrides
  * -dem_wall_friction for that wall. The walls are added to the store (walls.c) in this order. */
-#include "dem/dem_impl.h"
+#include "dem/dem_walls.h"
 
 /* Adds the rectangle p0 + s (p1 - p0) + t (p2 - p0), s, t in [0,1], facing the side (p1 - p0) x
  * (p2 - p0) points to; r = p0, p1, p2. */

@@ -17,7 +17,7 @@
  * by the edge, never falls through it). -dem_quad_<k> edges are all joints (the rectangle rule);
  * the hopper's four bottom edges, the orifice, are rims. Convex particles use the face rule only.
  * Units SI. */
-#include "dem/dem_impl.h"
+#include "dem/dem_walls.h"
 
 /* Adds the convex polygon v[3*nv] (the first edges given rim[] = PETSC_TRUE are free rims). */
 static PetscErrorCode DemWallAddPolygon(Dem dem, const char *opt, PetscInt nv, const double *v, const PetscBool *rim)

@@ -6,7 +6,11 @@
 #   (b) src/geom includes nothing from src/dem (said on its own: the geometry is a library);
 #   (c) the checker can fail: on a copy of src/ with a circle planted in src/io (two files that
 #       call each other) and an include of the DEM in src/geom, it reports both and exits 1;
-#   (d) the C sources are formatted as .clang-format says (clang-format --dry-run finds nothing).
+#   (d) the C sources are formatted as .clang-format says (clang-format --dry-run finds nothing);
+#   (e) no DEM file includes a private header of a concern it does not use, and every .c and .h
+#       file of a folder of src/ is named in its README.md (its file map): the checker fails on a
+#       copy of src/ with an unused dem_sources.h planted in src/dem/springs.c and a file
+#       unnamed in src/geom/README.md.
 cd "$(dirname "$0")/../.." || exit 1
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 
@@ -27,6 +31,15 @@ bad=$(tools/check-layout "$T/src" 2>&1); rc=$?
 if [ $rc -ne 0 ] && echo "$bad" | grep -q 'planted_a.c -> planted_b.c' && echo "$bad" | grep -q 'geom/hull.c:.*may not use dem/'; then
   echo "PASS layout checker fails on a planted circle and a planted include: exit $rc, $(echo "$bad" | tail -n 1)"
 else echo "FAIL layout checker missed a planted fault: exit $rc; $(echo "$bad" | tail -n 3 | tr '\n' ';')"; fi
+
+rm -rf "$T/src"; cp -r src "$T/src"
+sed -i 's|^#include "dem/dem_core.h"$|&\n#include "dem/dem_sources.h"|' "$T/src/dem/springs.c"
+printf '/* planted */\nint GeomPlanted(void);\n' > "$T/src/geom/planted.h"
+bad=$(tools/check-layout "$T/src" 2>&1); rc=$?
+if [ $rc -ne 0 ] && echo "$bad" | grep -q 'dem/springs.c:[0-9]*: includes "dem_sources.h" and uses none' \
+  && echo "$bad" | grep -q 'geom/README.md: does not name planted.h' && echo "$bad" | tail -n 1 | grep -q ' 1 unused private headers, 1 files missing'; then
+  echo "PASS layout checker fails on a planted unused DEM header and a file missing from a README: exit $rc, $(echo "$bad" | tail -n 1)"
+else echo "FAIL layout checker missed a planted unused header or README omission: exit $rc; $(echo "$bad" | tail -n 3 | tr '\n' ';')"; fi
 
 files=$(find src tests tools -name '*.[ch]' | sort)
 nf=$(echo "$files" | wc -l)

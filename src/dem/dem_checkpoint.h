@@ -1,0 +1,43 @@
+/* DEM private header of the checkpoints (checkpoint.c, checkpoint_remap.c): the per-rank
+ * counters, the table of per-particle datasets and the read on another rank count. */
+#pragma once
+#include "dem/dem.h"
+
+PetscErrorCode DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap); /* checkpoint_remap.c: another rank count or other boxes */
+PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck);                    /* checkpoint_remap.c */
+
+/* Checkpoints (checkpoint.c, checkpoint_remap.c). The per-rank counters of dem/counters, in
+ * their stored order (DemCkptCounters). */
+enum {
+  CK_N,
+  CK_NG,
+  CK_NEXT_ID,
+  CK_BUILDS,
+  CK_SORTS,
+  CK_STEP,
+  CK_STATE,
+  CK_INITIAL_N,
+  CK_NWALL,
+  CK_MIGRATED,
+  CK_NC0,
+  CK_NC1,
+  CK_NC2,
+  CK_NEED_BUILD,
+  DEM_CKPT_NCOUNT
+};
+/* A per-particle dataset of a checkpoint: rows of ncomp values, per rank its n owned particles
+ * then (if ghosts) its ng ghosts, from and into the array whose pointer sits at offset at of
+ * struct _p_Dem; coupled: the coupling's arrays (external.c), only in a coupled run's
+ * checkpoint. The same-grid read, the writer and the remap (which moves the owned rows with the
+ * migration record, exchange.c) all walk this table. */
+typedef struct {
+  const char *name;
+  IoCkptType  type;
+  int         ncomp;
+  PetscBool   ghosts;
+  size_t      at;
+  PetscBool   coupled;
+  PetscBool   poly; /* only in a scene of spheres of their own sizes (DemParticles.rad) */
+} DemCkptField;
+extern const DemCkptField dem_ckpt_fields[];
+extern const size_t       dem_ckpt_nfields;

@@ -1,0 +1,148 @@
+/* DEM private header of the walls: analytic walls (planes, rectangles, polygons, cylinders) and
+ * triangle meshes, their contact with a sphere, their options, lists, contacts and checkpoint.
+ * Their state (DemWall, DemWalls, DemMesh, DemMeshes) is in dem_walls_state.h, which the
+ * object's layout needs. */
+#pragma once
+#include "dem/dem_core.h"
+
+/* Whether a contact at point pt of a particle centred at xc is on the wall: always for an
+ * infinite plane; for a rectangle or a polygon, pt projects inside it and xc is on its front
+ * side (the face rule; convex particles use it for polygons, spheres see rim edges too). */
+static inline PetscBool DemWallCovers(const DemWall *w, const double *pt, const double *xc)
+{
+  if (!w->finite) return PETSC_TRUE;
+  const double d[3] = {pt[0] - w->p[0], pt[1] - w->p[1], pt[2] - w->p[2]};
+  const double c[3] = {xc[0] - w->p[0], xc[1] - w->p[1], xc[2] - w->p[2]};
+  if (dem_dot(c, w->n) <= 0) return PETSC_FALSE;
+  if (w->kind == DEM_WALL_POLYGON) {
+    for (PetscInt e = 0; e < w->nv; e++) {
+      const double de[3] = {pt[0] - w->vert[e][0], pt[1] - w->vert[e][1], pt[2] - w->vert[e][2]};
+      if (dem_dot(de, w->en[e]) < 0) return PETSC_FALSE;
+    }
+    return PETSC_TRUE;
+  }
+  const double s = dem_dot(d, w->e1) / dem_dot(w->e1, w->e1), t = dem_dot(d, w->e2) / dem_dot(w->e2, w->e2);
+  return (PetscBool)(s >= 0 && s <= 1 && t >= 0 && t <= 1);
+}
+
+/* Sphere (centre x, radius r) against a polygon's free rim: the nearest point of the rim edges
+ * the centre lies outside of; no contact if it lies outside a joint edge (the neighbour wall
+ * takes over) or behind the plane. Returns the distance and the unit direction to that point. */
+static inline double dem_wall_rim(const DemWall *w, const double *x, double nrm[3])
+{
+  double best = 1e300;
+  for (PetscInt e = 0; e < w->nv; e++) {
+    const double *a = w->vert[e], *b = w->vert[(e + 1) % w->nv];
+    const double  d[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]}, ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    if (dem_dot(d, w->en[e]) >= 0) continue;
+    if (!w->rim[e]) return 1e300;
+    const double t    = PetscMin(1.0, PetscMax(0.0, dem_dot(d, ab) / dem_dot(ab, ab)));
+    const double q[3] = {a[0] + t * ab[0] - x[0], a[1] + t * ab[1] - x[1], a[2] + t * ab[2] - x[2]};
+    const double l    = sqrt(dem_dot(q, q));
+    if (l < best && l > 0) {
+      best = l;
+      for (int k = 0; k < 3; k++) nrm[k] = q[k] / l;
+    }
+  }
+  return best;
+}
+
+/* Contact of a sphere (centre x, radius r) with wall w: the overlap (> 0 when touching) and the
+ * unit normal from the centre towards the wall. Plane and rectangle: the face rule above;
+ * polygon: face, or its free rim; cylinder (particles inside): radial. */
+static inline double dem_wall_sphere(const DemWall *w, const double *x, double r, double nrm[3])
+{
+  const double d[3] = {x[0] - w->p[0], x[1] - w->p[1], x[2] - w->p[2]};
+  if (w->kind == DEM_WALL_CYLINDER) {
+    const double a = dem_dot(d, w->n), rho[3] = {d[0] - a * w->n[0], d[1] - a * w->n[1], d[2] - a * w->n[2]};
+    const double l = sqrt(dem_dot(rho, rho));
+    if (l <= 0) return -1;
+    for (int k = 0; k < 3; k++) nrm[k] = rho[k] / l;
+    return r + l - w->R;
+  }
+  const double h = dem_dot(d, w->n);
+  for (int k = 0; k < 3; k++) nrm[k] = -w->n[k];
+  if (w->kind == DEM_WALL_POLYGON) {
+    if (h <= 0) return -1;
+    if (DemWallCovers(w, x, x)) return r - h;
+    return r - dem_wall_rim(w, x, nrm);
+  }
+  if (!DemWallCovers(w, x, x)) return -1;
+  return r - h;
+}
+
+/* Velocity of the wall's surface at point c (m/s). */
+static inline void dem_wall_velocity(const DemWall *w, const double *c, double vw[3])
+{
+  for (int k = 0; k < 3; k++) vw[k] = w->v[k];
+  if (w->omega != 0) {
+    const double d[3] = {c[0] - w->ax_p[0], c[1] - w->ax_p[1], c[2] - w->ax_p[2]};
+    double       t[3];
+    dem_cross(w->ax_u, d, t);
+    for (int k = 0; k < 3; k++) vw[k] += w->omega * t[k];
+  }
+}
+
+/* Pair parameters of shape s with wall w from the contact model cm (a copy with the wall's own
+ * friction, if it has one). */
+#define DemWallParams(cm, w, s, tmp) ((w)->mu < 0 ? &(cm)->pw[s] : ((*(tmp) = (cm)->pw[s]), (tmp)->mu = (w)->mu, (tmp)))
+
+/* The contact of sphere i (radius r, centre x) with a wall surface (an analytic wall or a mesh
+ * triangle): overlap delta along the unit normal nrm from the centre to the wall, the surface's
+ * velocity at the contact point vw and its angular velocity ww (rolling resistance takes
+ * w_rel = w_i - ww). Adds the force and torques to i and advances its spring xi_t (NULL: none). */
+static inline void dem_sphere_wall_force(DemParticles *pt, PetscInt i, double r, double delta, const double nrm[3], const double vw[3], const double ww[3], const DemPairParams *p, const DemContactModel *cm, double ieff, double *xi_t, double dt)
+{
+  const double l = r - 0.5 * delta, *vi = pt->v + 3 * i, *wi_ = pt->w + 3 * i;
+  double       vr[3], c[3], kt, gt, F[3];
+  dem_cross(wi_, nrm, c);
+  for (int k = 0; k < 3; k++) vr[k] = vw[k] - vi[k] - l * c[k];
+  const double vn = dem_dot(vr, nrm);
+  const double fn = dem_normal_force(cm->law, p, delta, vn, &kt, &gt);
+  for (int k = 0; k < 3; k++) F[k] = -fn * nrm[k];
+  if (p->mu > 0) {
+    double vt[3], ft[3];
+    for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * nrm[k];
+    dem_tangential_force(p, fn, kt, gt, nrm, vt, xi_t, dt, ft);
+    if (cm->rotation) {
+      dem_cross(nrm, ft, c);
+      for (int k = 0; k < 3; k++) pt->tq[3 * i + k] -= l * c[k];
+    }
+    for (int k = 0; k < 3; k++) F[k] -= ft[k];
+  }
+  if (cm->roll) { /* V_w = r w_i x n */
+    double wrel[3], vwr[3], mr[3];
+    for (int k = 0; k < 3; k++) wrel[k] = wi_[k] - ww[k];
+    dem_cross(wi_, nrm, vwr);
+    for (int k = 0; k < 3; k++) vwr[k] *= r;
+    dem_rolling_torque(cm->roll, p, fn, ieff, wrel, vwr, nrm, dt, mr);
+    for (int k = 0; k < 3; k++) pt->tq[3 * i + k] += mr[k];
+  }
+  for (int k = 0; k < 3; k++) pt->f[3 * i + k] += F[k];
+}
+
+/* Internal functions of the walls and meshes, by file. */
+PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const double n[3], const double v[3]);                                          /* walls.c */
+PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first);                       /* walls.c; first < 0: -help, no wall */
+PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const DemShapeTable *st, double skin, const DemSpring *recs, PetscInt nrec); /* walls.c */
+PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt);                      /* walls.c */
+PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                    /* walls_polygon.c */
+PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                   /* walls_cylinder.c */
+PetscErrorCode DemWallsSetFromOptions(Dem dem);                                                                                                         /* walls_options.c */
+PetscErrorCode DemWallPairsFill(Dem dem, const DemMaterial *wm, DemPairParams *pw, PetscReal *tc);                                                      /* contact_laws.c: (shape, wall) pairs of material wm */
+PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                  /* walls_mesh_options.c */
+PetscErrorCode DemMeshesSetUp(Dem dem);                                                                                                                 /* walls_mesh_options.c: materials, after DemMaterialsSetUp */
+PetscErrorCode DemMeshesDestroy(Dem dem);                                                                                                               /* walls_mesh_options.c */
+PetscErrorCode DemMeshesMove(Dem dem, double t, double *moved);                                                                                         /* walls_mesh.c: the pose at t; the largest travel since the build */
+PetscErrorCode DemMeshesBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec);                                                                      /* walls_mesh.c */
+PetscErrorCode DemContactsMeshes(Dem dem);                                                                                                              /* walls_mesh.c */
+PetscErrorCode DemMeshesSaveSprings(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap);                                                          /* walls_mesh.c: appends the slots' records, sorted */
+PetscErrorCode DemMeshesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                                                                                /* walls_mesh.c: same rank count */
+PetscErrorCode DemMeshTouchConvex(Dem dem, const DemMesh *m, PetscInt i, ConvexContact cc[], int *nc);                                                  /* walls_mesh.c: the face rule */
+void           DemMeshMatchSlots(double *sl, int na, const double an[][3], int match[]);                                                                /* walls_mesh.c: springs matched by normal */
+PetscErrorCode DemContactsMeshesConvex(Dem dem);                                                                                                        /* convex_contacts.c */
+PetscErrorCode DemMeshesStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax);                                                                  /* walls_mesh.c: contacts, normal elastic energy */
+PetscErrorCode DemMeshesCloseFace(Dem dem, int d, int side, double tol, PetscBool *closed);                                                             /* walls_mesh.c: triangles tiling the face */
+PetscErrorCode DemMeshDepth(Dem dem, PetscInt k, PetscInt i, double *depth);                                                                            /* walls_mesh.c: placement check, radii */
+PetscBool      DemMeshesBlock(Dem dem, const double x[3], double r);                                                                                    /* walls_mesh.c: a source's candidate meets a triangle */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                                                                                                         /* convex_contacts.c */

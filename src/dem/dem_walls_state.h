@@ -1,0 +1,91 @@
+/* The walls' and meshes' state that struct _p_Dem embeds (walls.c, walls_polygon.c,
+ * walls_cylinder.c, walls_mesh.c): struct definitions only, included by dem_core.h where the
+ * layout needs them (after DEM_MAX_SHAPES and DemMaterial); the functions and the contact
+ * kernels of walls are in dem_walls.h. */
+#pragma once
+#include "dem/contact_laws.h"
+#include "geom/trimesh.h"
+#ifndef DEM_MAX_SHAPES
+  #error "dem_walls_state.h is included by dem_core.h (it needs DEM_MAX_SHAPES and DemMaterial); include dem_walls.h"
+#endif
+
+#define DEM_MAX_WALLS 24
+
+typedef enum {
+  DEM_WALL_PLANE,
+  DEM_WALL_RECT,
+  DEM_WALL_POLYGON,
+  DEM_WALL_CYLINDER
+} DemWallKind;
+#define DEM_POLY_MAX 8
+
+typedef struct {
+  DemWallKind kind;
+  char        name[32];         /* the option that made it, for messages: -dem_plane_0, -dem_box zlo */
+  double      p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity;
+                              a cylinder: a point of its axis, the unit axis, v = 0 */
+  double      moved;            /* distance moved since the last list build (m) */
+  /* finite rectangle p + s e1 + t e2, s,t in [0,1], touched from the front only (-dem_rect_k) */
+  PetscBool finite; /* a rectangle or a polygon: touched from the front only */
+  double    e1[3], e2[3];
+  /* convex polygon (walls_polygon.c): vertices, unit in-plane edge normals pointing inside, and
+     whether an edge is a free rim (edge contacts) or a joint with a neighbour wall (face only) */
+  PetscInt  nv;
+  double    vert[DEM_POLY_MAX][3], en[DEM_POLY_MAX][3];
+  PetscBool rim[DEM_POLY_MAX];
+  double    R; /* cylinder radius (m), particles inside (walls_cylinder.c) */
+  /* rotation about an axis (drum and its end caps): surface velocity v + omega u x (x - a) */
+  double omega, ax_p[3], ax_u[3];
+  double mu; /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
+  /* removal (-dem_plane_<k>_remove_time): from the first step whose forces act at t >= t_remove the
+     wall is gone (no list, no contacts, no travel); removed says it went */
+  double    t_remove;
+  PetscBool removed;
+  /* list of particles within reach, with their tangential springs */
+  PetscInt *idx;
+  double   *hist;
+  PetscInt  cnt, cap;
+} DemWall;
+
+/* The walls (walls.c). */
+typedef struct {
+  DemWall  wall[DEM_MAX_WALLS];
+  PetscInt nwall;
+} DemWalls;
+
+/* Triangle-mesh walls (walls_mesh.c, walls_mesh_options.c): -dem_mesh_<k>_file, k < 8. A mesh
+ * is placed at t = 0 (ref) and moves rigidly: x(t) = a + v t + Rot(u, theta(t)) (x_ref - a),
+ * theta the integral of omega (a constant or a table in time); the pose is a function of t only.
+ * Per rank: the triangles near the rank's box (loc), their vertices at the pose of the forces
+ * (cur: the reference's for a mesh at rest), per local particle the candidate triangles of the
+ * last list build (CSR), and per particle a few tangential springs matched by normal (slot: n,
+ * xi). A spring saved across a rebuild is two records, partner DEM_MESH_PARTNER(k, s, 0) (xi)
+ * and (k, s, 1) (its normal). */
+#define DEM_MAX_MESHES               8
+#define DEM_MESH_SLOTS               4
+#define DEM_MESH_MAXC                16
+#define DEM_MESH_PARTNER(k, s, half) (-1 - DEM_MAX_WALLS - 2 * ((k)*DEM_MESH_SLOTS + (s)) - (half))
+#define DEM_MESH_PARTNER_MIN         DEM_MESH_PARTNER(DEM_MAX_MESHES - 1, DEM_MESH_SLOTS - 1, 1)
+typedef struct {
+  char          name[32];                        /* -dem_mesh_<k>, for messages */
+  char          file[PETSC_MAX_PATH_LEN];        /* the STL file */
+  TriMesh       ref;                             /* the triangles at t = 0 (scaled, rotated, translated) */
+  double        vel[3], omega, ax_p[3], ax_u[3]; /* motion: translation (m/s), rotation (rad/s) about a + v t, u */
+  double       *tab;                             /* -dem_mesh_<k>_omega_table t0,w0,t1,w1,... (s, rad/s); NULL: omega */
+  PetscInt      ntab;                            /* points of the table */
+  double        raxis;                           /* largest distance of a vertex from the axis (m): the travel bound */
+  PetscBool     moving;
+  DemMaterial   mat;                           /* -dem_mesh_<k>_friction, ... (default the -dem_wall_* material) */
+  DemPairParams pw[DEM_MAX_SHAPES];            /* (shape, mesh) pair parameters */
+  double        theta, w_now, tpose;           /* the pose of cur: angle (rad), angular velocity (rad/s), time (s) */
+  double        moved;                         /* travel bound since the last list build (m) */
+  PetscInt     *loc, nloc, caploc;             /* triangles near this rank's box */
+  double       *cur;                           /* 9 per triangle (only loc's are current); ref.v at rest */
+  PetscInt     *cstart, *ctri, capstart, capc; /* candidate triangles per local particle (CSR) */
+  double       *slot;                          /* 6 DEM_MESH_SLOTS per local particle: normal, spring */
+  PetscInt      capslot;
+} DemMesh;
+typedef struct {
+  DemMesh  m[DEM_MAX_MESHES];
+  PetscInt n;
+} DemMeshes;
