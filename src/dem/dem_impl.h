@@ -11,6 +11,7 @@
 #include "geom/convex.h"
 #include "geom/sat.h"
 #include "geom/trimesh.h"
+#include "geom/region.h"
 #include "dem/psd.h"
 
 #define DEM_MAX_SHAPES 32
@@ -404,18 +405,16 @@ typedef struct {
  * (local indices, increasing, and the outlet of each) wait for the rebuild that removes them. */
 #define DEM_MAX_OUTLETS 10 /* -dem_outlet_<k>, k = 0..9; a coupled run may add the 6 sides */
 typedef enum {
-  DEM_OUTLET_BOX,
-  DEM_OUTLET_PATCH,
+  DEM_OUTLET_REGION,
   DEM_OUTLET_SIDE
 } DemOutletKind;
 typedef struct {
   DemOutletKind kind;
-  char          name[48];                 /* the option that made it, for messages and the summary */
-  double        lo[3], hi[3];             /* box */
-  double        p[3], e1[3], e2[3], n[3]; /* patch: corner, edges, unit normal */
-  int           axis, side;               /* side: axis 0..2, 0 lo / 1 hi */
-  double        t_start, t_stop;          /* s */
-  PetscInt      removed;                  /* global totals */
+  char          name[48];        /* the option that made it, for messages and the summary */
+  GeomRegion    reg;             /* region: a box (centre inside) or a patch (centre crossed it) */
+  int           axis, side;      /* side: axis 0..2, 0 lo / 1 hi */
+  double        t_start, t_stop; /* s */
+  PetscInt      removed;         /* global totals */
   double        m_removed, id_removed;
 } DemOutlet;
 typedef struct {
@@ -426,27 +425,20 @@ typedef struct {
 /* Particle sources (sources.c): -dem_insert_<k>_*. Geometry and rates as set; the state (counts,
  * mass, candidate counter, batch number, shortfall) is the same on every rank and checkpointed. */
 #define DEM_MAX_SOURCES 10
-typedef enum {
-  DEM_SRC_BOX,
-  DEM_SRC_CYLINDER,
-  DEM_SRC_PATCH
-} DemSourceRegion;
 typedef struct {
-  PetscInt        k; /* its option index: -dem_insert_<k>_* */
-  DemSourceRegion region;
-  PetscReal       g[12];               /* box lo,hi; cylinder centre, unit axis, R, L; patch p0, e1, e2 */
-  PetscReal       n[3], depth;         /* patch: unit normal (the stream's side) and the slab depth (m) */
-  PetscReal       lo[3], hi[3];        /* the region's bounding box (m) */
-  PetscReal       rate, mass_rate;     /* 1/s, kg/s; 0: none */
-  PetscInt        count;               /* total; < 0: none */
-  PetscReal       mass;                /* total (kg); < 0: none */
-  PetscReal       start, stop, period; /* s */
-  PetscReal       v[3], vspread;       /* m/s */
-  PetscBool       random_orient;
-  PetscInt        shape, seed, attempts;
-  DemPsd          psd;
-  PetscReal       m_mean; /* mean particle mass (kg) */
-  PetscReal       vol;    /* the region's volume (m^3) */
+  PetscInt   k;                   /* its option index: -dem_insert_<k>_* */
+  GeomRegion reg;                 /* box, cylinder or patch (its depth: the stream's slab, m) */
+  PetscReal  lo[3], hi[3];        /* the region's bounding box (m) */
+  PetscReal  rate, mass_rate;     /* 1/s, kg/s; 0: none */
+  PetscInt   count;               /* total; < 0: none */
+  PetscReal  mass;                /* total (kg); < 0: none */
+  PetscReal  start, stop, period; /* s */
+  PetscReal  v[3], vspread;       /* m/s */
+  PetscBool  random_orient;
+  PetscInt   shape, seed, attempts;
+  DemPsd     psd;
+  PetscReal  m_mean; /* mean particle mass (kg) */
+  PetscReal  vol;    /* the region's volume (m^3) */
   /* state */
   PetscInt  inserted, cand, batch, shortfall;
   PetscInt  said, sh_max; /* the log's note (1) and warning (2) printed; the largest shortfall */
@@ -577,36 +569,35 @@ static inline ConvexPose DemPose(const double *x, const double *q)
   ConvexPose p = {{x[0], x[1], x[2]}, {q[0], q[1], q[2], q[3]}};
   return p;
 }
-PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c);                                                                         /* convex_contacts.c: the forces' narrow phase */
-PetscErrorCode DemContactsWallsConvex(Dem dem);                                                                                                                 /* convex_contacts.c */
-PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax);                                                                          /* convex_diag.c */
-PetscErrorCode DemConvexWriteSurface(Dem dem, const double *x, Io io);                                                                                          /* convex_diag.c */
-PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                                         /* rotation.c */
-PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                                        /* rotation.c */
-                                                                                                                                                                /* external.c */
-PetscErrorCode           DemExternalCheckpointCheck(Dem dem, IoCkpt ck);                                                                                        /* external.c: a coupled checkpoint for a coupled case, a dry one for a dry case */
-void                     DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h);                                              /* external.c */
-PetscErrorCode           DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2); /* integrate.c */
-PetscErrorCode           DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt);                  /* integrate.c */
-PetscErrorCode           DemInsertSetFromOptions(Dem dem);                                                                                                      /* insert.c */
-PetscErrorCode           DemInsert(Dem dem);                                                                                                                    /* insert.c */
-PetscErrorCode           DemInsertRestartSizes(Dem dem);                                                                                                        /* insert.c */
-double                   DemLatticeSpacing(Dem dem);                                                                                                            /* insert.c */
-PetscErrorCode           DemSourcesSetFromOptions(Dem dem);                                                                                                     /* sources_options.c */
-PetscErrorCode           DemSourcesSetUp(Dem dem);                                                                                                              /* sources_options.c: after the time step is known */
-double                   DemSourceMass(Dem dem, const DemSource *s, double d);                                                                                  /* sources_options.c: a particle of diameter d (kg) */
-extern const char *const DemSourceRegionNames[];                                                                                                                /* sources_options.c: box, cylinder, patch */
-PetscBool                DemSourcesDue(Dem dem);                                                                                                                /* sources.c: a batch is placed at this step (same on every rank) */
-PetscErrorCode           DemSourcesPlace(Dem dem);                                                                                                              /* sources.c: collective; the batch, pending until the rebuild */
-PetscErrorCode           DemSourcesAddPending(Dem dem);                                                                                                         /* sources.c: in DemRebuild, ghosts dropped */
-PetscErrorCode           DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                                                                             /* sources.c */
-PetscErrorCode           DemSourcesDestroy(Dem dem);                                                                                                            /* sources.c */
-double                   DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
-PetscErrorCode           DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
-PetscErrorCode           DemRebuild(Dem dem);                                                                                                                   /* rebuild.c */
-PetscErrorCode           DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt caprec);                                                              /* rebuild.c */
-PetscErrorCode           DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap);                                                                         /* checkpoint_remap.c: another rank count or other boxes */
-PetscErrorCode           DemCheckpointReadRemap(Dem dem, IoCkpt ck);                                                                                            /* checkpoint_remap.c */
+PetscErrorCode DemConvexPairContact(Dem dem, PetscInt i, PetscInt j, ConvexContact *c);                                                               /* convex_contacts.c: the forces' narrow phase */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                                                                                                       /* convex_contacts.c */
+PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax);                                                                /* convex_diag.c */
+PetscErrorCode DemConvexWriteSurface(Dem dem, const double *x, Io io);                                                                                /* convex_diag.c */
+PetscErrorCode DemRotateFirstHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                               /* rotation.c */
+PetscErrorCode DemRotateSecondHalf(DemParticles *p, const DemShapeTable *st, double dt);                                                              /* rotation.c */
+                                                                                                                                                      /* external.c */
+PetscErrorCode DemExternalCheckpointCheck(Dem dem, IoCkpt ck);                                                                                        /* external.c: a coupled checkpoint for a coupled case, a dry one for a dry case */
+void           DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState *e, double h);                                              /* external.c */
+PetscErrorCode DemIntegrateFirstHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt, double *maxdisp2); /* integrate.c */
+PetscErrorCode DemIntegrateSecondHalf(DemParticles *p, const DemShapeTable *st, DemExternalState *e, PetscBool rotation, double dt);                  /* integrate.c */
+PetscErrorCode DemInsertSetFromOptions(Dem dem);                                                                                                      /* insert.c */
+PetscErrorCode DemInsert(Dem dem);                                                                                                                    /* insert.c */
+PetscErrorCode DemInsertRestartSizes(Dem dem);                                                                                                        /* insert.c */
+double         DemLatticeSpacing(Dem dem);                                                                                                            /* insert.c */
+PetscErrorCode DemSourcesSetFromOptions(Dem dem);                                                                                                     /* sources_options.c */
+PetscErrorCode DemSourcesSetUp(Dem dem);                                                                                                              /* sources_options.c: after the time step is known */
+double         DemSourceMass(Dem dem, const DemSource *s, double d);                                                                                  /* sources_options.c: a particle of diameter d (kg) */
+PetscBool      DemSourcesDue(Dem dem);                                                                                                                /* sources.c: a batch is placed at this step (same on every rank) */
+PetscErrorCode DemSourcesPlace(Dem dem);                                                                                                              /* sources.c: collective; the batch, pending until the rebuild */
+PetscErrorCode DemSourcesAddPending(Dem dem);                                                                                                         /* sources.c: in DemRebuild, ghosts dropped */
+PetscErrorCode DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                                                                             /* sources.c */
+PetscErrorCode DemSourcesDestroy(Dem dem);                                                                                                            /* sources.c */
+double         DemImpactOverlap(Dem dem, const DemPairParams *p);                                                                                     /* diag.c */
+PetscErrorCode DemCheckPlacement(Dem dem);                                                                                                            /* placement.c */
+PetscErrorCode DemRebuild(Dem dem);                                                                                                                   /* rebuild.c */
+PetscErrorCode DemRebuildFrom(Dem dem, DemSpring *recs, PetscInt nrec, PetscInt caprec);                                                              /* rebuild.c */
+PetscErrorCode DemCheckpointNeedsRemap(Dem dem, IoCkpt ck, PetscBool *remap);                                                                         /* checkpoint_remap.c: another rank count or other boxes */
+PetscErrorCode DemCheckpointReadRemap(Dem dem, IoCkpt ck);                                                                                            /* checkpoint_remap.c */
 
 /* Outlets and the mass balance (sinks.c): called by dem.c (DemStep), rebuild.c and the
  * checkpoints; sinks.c calls particles.c and diag.c only. */
