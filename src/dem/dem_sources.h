@@ -5,20 +5,19 @@
 #pragma once
 #include "dem/dem_sources_state.h"
 
-PetscErrorCode           DemInsertSetFromOptions(Dem dem);                          /* insert.c */
-PetscErrorCode           DemInsert(Dem dem);                                        /* insert.c */
-PetscErrorCode           DemInsertRestartSizes(Dem dem);                            /* insert.c */
-double                   DemLatticeSpacing(Dem dem);                                /* insert.c */
-PetscErrorCode           DemSourcesSetFromOptions(Dem dem);                         /* sources_options.c */
-PetscErrorCode           DemSourcesSetUp(Dem dem);                                  /* sources_options.c: after the time step is known */
-double                   DemSourceMass(Dem dem, const DemSource *s, double d);      /* sources_options.c: a particle of diameter d (kg) */
-extern const char *const DemSourceRegionNames[];                                    /* sources_options.c: box, cylinder, patch */
-PetscBool                DemSourcesDue(Dem dem);                                    /* sources.c: a batch is placed at this step (same on every rank) */
-PetscErrorCode           DemSourcesPlace(Dem dem);                                  /* sources.c: collective; the batch, pending until the rebuild */
-PetscErrorCode           DemSourcesAddPending(Dem dem);                             /* sources.c: in DemRebuild, ghosts dropped */
-PetscErrorCode           DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write); /* sources.c */
-PetscErrorCode           DemSourcesDestroy(Dem dem);                                /* sources.c */
-PetscErrorCode           DemCheckPlacement(Dem dem);                                /* placement.c */
+PetscErrorCode DemInsertSetFromOptions(Dem dem);                          /* insert.c */
+PetscErrorCode DemInsert(Dem dem);                                        /* insert.c */
+PetscErrorCode DemInsertRestartSizes(Dem dem);                            /* insert.c */
+double         DemLatticeSpacing(Dem dem);                                /* insert.c */
+PetscErrorCode DemSourcesSetFromOptions(Dem dem);                         /* sources_options.c */
+PetscErrorCode DemSourcesSetUp(Dem dem);                                  /* sources_options.c: after the time step is known */
+double         DemSourceMass(Dem dem, const DemSource *s, double d);      /* sources_options.c: a particle of diameter d (kg) */
+PetscBool      DemSourcesDue(Dem dem);                                    /* sources.c: a batch is placed at this step (same on every rank) */
+PetscErrorCode DemSourcesPlace(Dem dem);                                  /* sources.c: collective; the batch, pending until the rebuild */
+PetscErrorCode DemSourcesAddPending(Dem dem);                             /* sources.c: in DemRebuild, ghosts dropped */
+PetscErrorCode DemSourcesCheckpoint(Dem dem, IoCkpt ck, PetscBool write); /* sources.c */
+PetscErrorCode DemSourcesDestroy(Dem dem);                                /* sources.c */
+PetscErrorCode DemCheckPlacement(Dem dem);                                /* placement.c */
 
 /* Outlets and the mass balance (sinks.c): called by dem.c (DemStep), rebuild.c and the
  * checkpoints; sinks.c calls particles.c and diag.c only. */

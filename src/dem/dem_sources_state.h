@@ -4,6 +4,7 @@
 #pragma once
 #include "dem/dem.h"
 #include "dem/psd.h"
+#include "geom/region.h"
 
 /* Insertion (insert.c). */
 typedef struct {
@@ -37,18 +38,16 @@ typedef struct {
  * (local indices, increasing, and the outlet of each) wait for the rebuild that removes them. */
 #define DEM_MAX_OUTLETS 10 /* -dem_outlet_<k>, k = 0..9; a coupled run may add the 6 sides */
 typedef enum {
-  DEM_OUTLET_BOX,
-  DEM_OUTLET_PATCH,
+  DEM_OUTLET_REGION,
   DEM_OUTLET_SIDE
 } DemOutletKind;
 typedef struct {
   DemOutletKind kind;
-  char          name[48];                 /* the option that made it, for messages and the summary */
-  double        lo[3], hi[3];             /* box */
-  double        p[3], e1[3], e2[3], n[3]; /* patch: corner, edges, unit normal */
-  int           axis, side;               /* side: axis 0..2, 0 lo / 1 hi */
-  double        t_start, t_stop;          /* s */
-  PetscInt      removed;                  /* global totals */
+  char          name[48];        /* the option that made it, for messages and the summary */
+  GeomRegion    reg;             /* region: a box (centre inside) or a patch (centre crossed it) */
+  int           axis, side;      /* side: axis 0..2, 0 lo / 1 hi */
+  double        t_start, t_stop; /* s */
+  PetscInt      removed;         /* global totals */
   double        m_removed, id_removed;
 } DemOutlet;
 typedef struct {
@@ -59,27 +58,20 @@ typedef struct {
 /* Particle sources (sources.c): -dem_insert_<k>_*. Geometry and rates as set; the state (counts,
  * mass, candidate counter, batch number, shortfall) is the same on every rank and checkpointed. */
 #define DEM_MAX_SOURCES 10
-typedef enum {
-  DEM_SRC_BOX,
-  DEM_SRC_CYLINDER,
-  DEM_SRC_PATCH
-} DemSourceRegion;
 typedef struct {
-  PetscInt        k; /* its option index: -dem_insert_<k>_* */
-  DemSourceRegion region;
-  PetscReal       g[12];               /* box lo,hi; cylinder centre, unit axis, R, L; patch p0, e1, e2 */
-  PetscReal       n[3], depth;         /* patch: unit normal (the stream's side) and the slab depth (m) */
-  PetscReal       lo[3], hi[3];        /* the region's bounding box (m) */
-  PetscReal       rate, mass_rate;     /* 1/s, kg/s; 0: none */
-  PetscInt        count;               /* total; < 0: none */
-  PetscReal       mass;                /* total (kg); < 0: none */
-  PetscReal       start, stop, period; /* s */
-  PetscReal       v[3], vspread;       /* m/s */
-  PetscBool       random_orient;
-  PetscInt        shape, seed, attempts;
-  DemPsd          psd;
-  PetscReal       m_mean; /* mean particle mass (kg) */
-  PetscReal       vol;    /* the region's volume (m^3) */
+  PetscInt   k;                   /* its option index: -dem_insert_<k>_* */
+  GeomRegion reg;                 /* box, cylinder or patch (its depth: the stream's slab, m) */
+  PetscReal  lo[3], hi[3];        /* the region's bounding box (m) */
+  PetscReal  rate, mass_rate;     /* 1/s, kg/s; 0: none */
+  PetscInt   count;               /* total; < 0: none */
+  PetscReal  mass;                /* total (kg); < 0: none */
+  PetscReal  start, stop, period; /* s */
+  PetscReal  v[3], vspread;       /* m/s */
+  PetscBool  random_orient;
+  PetscInt   shape, seed, attempts;
+  DemPsd     psd;
+  PetscReal  m_mean; /* mean particle mass (kg) */
+  PetscReal  vol;    /* the region's volume (m^3) */
   /* state */
   PetscInt  inserted, cand, batch, shortfall;
   PetscInt  said, sh_max; /* the log's note (1) and warning (2) printed; the largest shortfall */

@@ -1,8 +1,8 @@
 /* Outlets: regions that take particles out of the run, and the mass balance they keep.
- * An outlet is a box (a particle whose centre is inside it is removed), a plane patch (a
- * rectangle p + s e1 + t e2, s, t in [0,1]: a particle whose centre crossed it, in either
- * direction, since the last list build is removed; the crossing point is taken on the straight
- * segment x0 -> x, which is shorter than skin/2), or a domain side (a particle whose centre
+ * An outlet is a region (geom/region.h): a box (a particle whose centre is inside it is
+ * removed), a plane patch (the rectangle of corners p0, p1, p2: a particle whose centre crossed
+ * it, in either direction, since the last list build is removed; the crossing point is taken on
+ * the straight segment x0 -> x, which is shorter than skin/2), or a domain side (a particle whose centre
  * left the domain across that side is removed instead of stopping the run, DemCheckInDomain);
  * each is active for start <= t <= stop (t at the end of the step). Options
  * -dem_outlet_<k>_{box,patch,side,start,stop}, k = 0..9; a coupled run adds the fluid's outlet
@@ -34,54 +34,28 @@ static PetscErrorCode DemOutletNew(Dem dem, const char *name, DemOutletKind kind
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The box lo,hi; it must overlap the domain. */
-static PetscErrorCode DemOutletBox(Dem dem, const char *opt, const PetscReal b[6])
+/* The region r of option opt: a box must overlap the domain, a patch lie inside it. */
+static PetscErrorCode DemOutletRegion(Dem dem, const char *opt, const GeomRegion *r)
 {
-  const Domain *dom = dem->dom;
-  DemOutlet    *o;
+  const Domain    *dom = dem->dom;
+  const PetscReal *g   = r->g;
+  DemOutlet       *o   = NULL;
 
   PetscFunctionBeginUser;
-  for (int k = 0; k < 3; k++) {
-    PetscCheck(b[k] < b[k + 3], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: need lo < hi on every axis (m)", opt, (double)b[0], (double)b[1], (double)b[2], (double)b[3], (double)b[4], (double)b[5]);
-    PetscCheck(b[k] < dom->hi[k] && b[k + 3] > dom->lo[k], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the box is outside the domain along %c ([%g, %g] against -domain_lo/-domain_hi [%g, %g] m)", opt, "xyz"[k], (double)b[k], (double)b[k + 3], (double)dom -> lo[k], (double)dom -> hi[k]);
-  }
-  PetscCall(DemOutletNew(dem, opt, DEM_OUTLET_BOX, &o));
-  for (int k = 0; k < 3; k++) {
-    o->lo[k] = b[k];
-    o->hi[k] = b[k + 3];
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* The patch p, e1, e2: edges non-zero and perpendicular, every corner inside the domain. */
-static PetscErrorCode DemOutletPatch(Dem dem, const char *opt, const PetscReal r[9])
-{
-  const Domain *dom = dem->dom;
-  DemOutlet    *o;
-  double        e1[3] = {r[3], r[4], r[5]}, e2[3] = {r[6], r[7], r[8]}, n[3];
-
-  PetscFunctionBeginUser;
-  const double l1 = sqrt(dem_dot(e1, e1)), l2 = sqrt(dem_dot(e2, e2));
-  PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the edges e1 = %g,%g,%g and e2 = %g,%g,%g must be non-zero and perpendicular (a degenerate patch)", opt, e1[0], e1[1], e1[2], e2[0], e2[1], e2[2]);
-  for (int c = 0; c < 4; c++)
+  for (int k = 0; k < 3 && r->kind == GEOM_REGION_BOX; k++) PetscCheck(g[k] < dom->hi[k] && g[k + 3] > dom->lo[k], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the box is outside the domain along %c ([%g, %g] against -domain_lo/-domain_hi [%g, %g] m)", opt, "xyz"[k], (double)g[k], (double)g[k + 3], (double)dom -> lo[k], (double)dom -> hi[k]);
+  for (int c = 0; c < 4 && r->kind == GEOM_REGION_PATCH; c++)
     for (int k = 0; k < 3; k++) {
-      const double x = r[k] + (c & 1 ? e1[k] : 0) + (c & 2 ? e2[k] : 0), tol = 1e-9 * dom->len[k];
+      const double x = g[k] + (c & 1 ? g[3 + k] : 0) + (c & 2 ? g[6 + k] : 0), tol = 1e-9 * dom->len[k];
       PetscCheck(x >= dom->lo[k] - tol && x <= dom->hi[k] + tol, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: corner %d of the patch has %c = %g m, outside the domain [%g, %g] m (-domain_lo/-domain_hi)", opt, c, "xyz"[k], x, (double)dom -> lo[k], (double)dom -> hi[k]);
     }
-  PetscCall(DemOutletNew(dem, opt, DEM_OUTLET_PATCH, &o));
-  dem_cross(e1, e2, n);
-  for (int k = 0; k < 3; k++) {
-    o->p[k]  = r[k];
-    o->e1[k] = e1[k];
-    o->e2[k] = e2[k];
-    o->n[k]  = n[k] / (l1 * l2);
-  }
+  PetscCall(DemOutletNew(dem, opt, DEM_OUTLET_REGION, &o));
+  o->reg = *r;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode DemAddOutletSide(Dem dem, int d, int s, const char *name)
 {
-  DemOutlet *o;
+  DemOutlet *o = NULL;
 
   PetscFunctionBeginUser;
   PetscCheck(d >= 0 && d < 3 && (s == 0 || s == 1), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: side (%d, %d) is not a domain side", name, d, s);
@@ -95,10 +69,12 @@ PetscErrorCode DemAddOutletSide(Dem dem, int d, int s, const char *name)
 /* Outlet k: its region (one of box, patch, side) and its time window. */
 static PetscErrorCode DemOutletOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k)
 {
-  char      opt[64], ob[64], op[64], os[64], o0[64], o1[64];
-  PetscReal b[6], r[9], t0 = 0, t1 = PETSC_MAX_REAL;
-  PetscInt  side = 0, nout = dem->sinks.nout;
-  PetscBool bset, pset, sset, s0, s1, help;
+  char           opt[64], ob[64], op[64], os[64], o0[64], o1[64];
+  PetscReal      t0 = 0, t1 = PETSC_MAX_REAL;
+  PetscInt       side = 0, nout = dem->sinks.nout;
+  PetscBool      rset, sset, s0, s1, help;
+  GeomRegion     reg;
+  GeomRegionSpec spec = {{ob, NULL, op}, {"Outlet box: particles whose centre enters it are removed: lo_x,lo_y,lo_z,hi_x,hi_y,hi_z", NULL, "Outlet patch: particles whose centre crosses the rectangle of corners p0, p1, p2 (p1-p0 perpendicular to p2-p0) are removed: p0x,p0y,p0z,p1x,p1y,p1z,p2x,p2y,p2z"}};
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help: an outlet left incomplete is no error */
@@ -108,17 +84,15 @@ static PetscErrorCode DemOutletOptions(PetscOptionItems *PetscOptionsObject, Dem
   PetscCall(PetscSNPrintf(o0, sizeof o0, "-dem_outlet_%d_start", k));
   PetscCall(PetscSNPrintf(o1, sizeof o1, "-dem_outlet_%d_stop", k));
   PetscCall(PetscStrncpy(os, DemOutletSideOption[k], sizeof os));
-  PetscCall(SableOptionsRealN(ob, "Outlet box: particles whose centre enters it are removed: lo_x,lo_y,lo_z,hi_x,hi_y,hi_z", "m", b, 0, 6, &bset));
-  PetscCall(SableOptionsRealN(op, "Outlet patch: particles whose centre crosses the rectangle p + s e1 + t e2 (s, t in [0,1]) are removed: px,py,pz,e1x,e1y,e1z,e2x,e2y,e2z", "m", r, 0, 9, &pset));
+  PetscCall(GeomRegionOptions(&spec, &reg, &rset)); /* box or patch (geom/region.h) */
   PetscCall(PetscOptionsEList(DemOutletSideOption[k], "Outlet side: a particle leaving the domain across it is removed instead of stopping the run", NULL, DemSideNames, 6, DemSideNames[0], &side, &sset));
   PetscCall(SableOptionsReal(o0, "Time the outlet starts removing particles", "s", "[0,inf)", t0, &t0, &s0));
   PetscCall(SableOptionsReal(o1, "Time the outlet stops removing particles; default: never", "s", "[0,inf)", -1, &t1, &s1));
-  PetscCheck((int)bset + (int)pset + (int)sset <= 1, dem->comm, PETSC_ERR_ARG_INCOMP, "%s: give one of %s, %s, %s", opt, ob, op, os);
-  PetscCheck(bset || pset || sset || !(s0 || s1) || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s, %s or %s", s0 ? o0 : o1, ob, op, os);
+  PetscCheck((int)rset + (int)sset <= 1, dem->comm, PETSC_ERR_ARG_INCOMP, "%s: give one of %s, %s, %s", opt, ob, op, os);
+  PetscCheck(rset || sset || !(s0 || s1) || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s, %s or %s", s0 ? o0 : o1, ob, op, os);
   if (!s1) t1 = PETSC_MAX_REAL;
   PetscCheck(t0 <= t1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g s is after %s %g s: the outlet would never remove anything", o0, (double)t0, o1, (double)t1);
-  if (bset) PetscCall(DemOutletBox(dem, ob, b));
-  if (pset) PetscCall(DemOutletPatch(dem, op, r));
+  if (rset) PetscCall(DemOutletRegion(dem, reg.kind == GEOM_REGION_BOX ? ob : op, &reg));
   if (sset) {
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s %s", os, DemSideNames[side]));
     PetscCall(DemAddOutletSide(dem, (int)side / 2, (int)side % 2, opt));
@@ -141,21 +115,8 @@ PetscErrorCode DemSinksSetFromOptions(Dem dem)
 /* Whether outlet o takes the particle now at x, at x0 at the last list build. */
 static inline PetscBool dem_outlet_takes(const DemOutlet *o, const Domain *dom, const double *x, const double *x0)
 {
-  switch (o->kind) {
-  case DEM_OUTLET_BOX:
-    return (PetscBool)(x[0] >= o->lo[0] && x[0] <= o->hi[0] && x[1] >= o->lo[1] && x[1] <= o->hi[1] && x[2] >= o->lo[2] && x[2] <= o->hi[2]);
-  case DEM_OUTLET_SIDE:
-    return (PetscBool)(o->side ? x[o->axis] > dom->hi[o->axis] : x[o->axis] < dom->lo[o->axis]);
-  case DEM_OUTLET_PATCH: {
-    const double a[3] = {x0[0] - o->p[0], x0[1] - o->p[1], x0[2] - o->p[2]}, b[3] = {x[0] - o->p[0], x[1] - o->p[1], x[2] - o->p[2]};
-    const double s0 = dem_dot(a, o->n), s1 = dem_dot(b, o->n);
-    if ((s0 > 0) == (s1 > 0)) return PETSC_FALSE;
-    const double f = s0 / (s0 - s1), c[3] = {a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2])};
-    const double u = dem_dot(c, o->e1) / dem_dot(o->e1, o->e1), v = dem_dot(c, o->e2) / dem_dot(o->e2, o->e2);
-    return (PetscBool)(u >= 0 && u <= 1 && v >= 0 && v <= 1);
-  }
-  }
-  return PETSC_FALSE;
+  if (o->kind == DEM_OUTLET_SIDE) return (PetscBool)(o->side ? x[o->axis] > dom->hi[o->axis] : x[o->axis] < dom->lo[o->axis]);
+  return o->reg.kind == GEOM_REGION_PATCH ? geom_region_crossed(&o->reg, x0, x) : geom_region_inside(&o->reg, x);
 }
 
 PetscErrorCode DemSinksMark(Dem dem)

@@ -151,28 +151,14 @@ static double DemSourceDiameter(const DemSource *s, PetscInt n)
  * DEM_SRC_STREAM + 16 k + 0..9 (0: the sizes, by particle). */
 static void DemSourceCandidate(Dem dem, const DemSource *s, PetscInt c, double d, DemParticle *p)
 {
-  const int     b = DEM_SRC_STREAM + 16 * (int)s->k;
-  const double *g = s->g, r = 0.5 * d;
-  const double  u[3] = {dem_uniform(s->seed, c, b + 1), dem_uniform(s->seed, c, b + 2), dem_uniform(s->seed, c, b + 3)};
+  const int    b    = DEM_SRC_STREAM + 16 * (int)s->k;
+  const double r    = 0.5 * d;
+  const double u[3] = {dem_uniform(s->seed, c, b + 1), dem_uniform(s->seed, c, b + 2), dem_uniform(s->seed, c, b + 3)};
 
   memset(p, 0, sizeof *p);
   p->shape = s->shape;
   p->r     = dem->shapes.poly ? r : 0;
-  if (s->region == DEM_SRC_BOX) {
-    for (int k = 0; k < 3; k++) p->x[k] = g[k] + r + u[k] * (g[3 + k] - g[k] - 2 * r);
-  } else if (s->region == DEM_SRC_CYLINDER) {
-    const double *a = g + 3, e[3] = {PetscAbsReal(a[0]) < 0.6 ? 1 : 0, PetscAbsReal(a[0]) < 0.6 ? 0 : 1, 0};
-    double        b1[3], b2[3];
-    dem_cross(a, e, b1);
-    const double l = sqrt(dem_dot(b1, b1)), rho = (g[6] - r) * sqrt(u[0]), phi = 2 * PETSC_PI * u[1], h = -0.5 * g[7] + r + u[2] * (g[7] - 2 * r);
-    for (int k = 0; k < 3; k++) b1[k] /= l;
-    dem_cross(a, b1, b2);
-    for (int k = 0; k < 3; k++) p->x[k] = g[k] + h * a[k] + rho * (cos(phi) * b1[k] + sin(phi) * b2[k]);
-  } else {
-    const double l1 = sqrt(dem_dot(g + 3, g + 3)), l2 = sqrt(dem_dot(g + 6, g + 6));
-    const double s1 = (r + u[0] * (l1 - 2 * r)) / l1, s2 = (r + u[1] * (l2 - 2 * r)) / l2, h = r + u[2] * PetscMax(0.0, s->depth - 2 * r);
-    for (int k = 0; k < 3; k++) p->x[k] = g[k] + s1 * g[3 + k] + s2 * g[6 + k] + h * s->n[k];
-  }
+  geom_region_sample(&s->reg, u, r, p->x); /* wholly inside */
   for (int k = 0; k < 3; k++) p->v[k] = s->v[k] + s->vspread * (2 * dem_uniform(s->seed, c, b + 7 + k) - 1);
   p->q[0] = 1;
   if (s->random_orient) { /* Shoemake, Graphics Gems III (1992) */
@@ -383,21 +369,6 @@ static PetscErrorCode DemSourceBatch(Dem dem, DemSource *s, DemSrcAccepted *acc,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Whether x (m) lies in source s's region (the patch: its slab). */
-static PetscBool DemSourceInside(const DemSource *s, const double x[3])
-{
-  const double *g = s->g;
-  double        y[3];
-  for (int d = 0; d < 3; d++) y[d] = x[d] - g[d];
-  if (s->region == DEM_SRC_BOX) return (PetscBool)(x[0] >= g[0] && x[1] >= g[1] && x[2] >= g[2] && x[0] <= g[3] && x[1] <= g[4] && x[2] <= g[5]);
-  if (s->region == DEM_SRC_CYLINDER) {
-    const double h = dem_dot(y, g + 3), q = dem_dot(y, y) - h * h;
-    return (PetscBool)(PetscAbsReal(h) <= 0.5 * g[7] && q <= g[6] * g[6]);
-  }
-  const double a = dem_dot(y, g + 3) / dem_dot(g + 3, g + 3), b = dem_dot(y, g + 6) / dem_dot(g + 6, g + 6), h = dem_dot(y, s->n);
-  return (PetscBool)(a >= 0 && a <= 1 && b >= 0 && b <= 1 && h >= 0 && h <= s->depth);
-}
-
 /* Collective. The solids volume fraction of source s's region: the particles whose centres lie in
  * it (the locals, and this step's accepted of every source when acc is given). */
 static PetscErrorCode DemSourceFill(Dem dem, const DemSource *s, const DemSrcAccepted *acc, double *fill)
@@ -406,10 +377,10 @@ static PetscErrorCode DemSourceFill(Dem dem, const DemSource *s, const DemSrcAcc
 
   PetscFunctionBeginUser;
   for (PetscInt j = 0; j < dem->p.n; j++)
-    if (DemSourceInside(s, dem->p.x + 3 * j)) v += DemMass(&dem->p, &dem->shapes, j) / dem->shapes.shp[dem->p.shape[j]].rho;
+    if (geom_region_inside(&s->reg, dem->p.x + 3 * j)) v += DemMass(&dem->p, &dem->shapes, j) / dem->shapes.shp[dem->p.shape[j]].rho;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, dem->comm));
   for (PetscInt a = 0; acc && a < acc->n; a++)
-    if (DemSourceInside(s, acc->xr + 4 * a)) v += acc->vol[a];
+    if (geom_region_inside(&s->reg, acc->xr + 4 * a)) v += acc->vol[a];
   *fill = v / s->vol;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -569,7 +540,7 @@ PetscErrorCode DemViewSources(Dem dem, PetscViewer v)
       PetscCall(DemSourceFill(dem, s, NULL, &fill));
       PetscCall(PetscSNPrintf(how, sizeof how, " (due and not placed: its region is %.1f%% full by volume at the end%s)", 100 * fill, s->said & 2 ? "; it stopped catching up, see the warning" : ", and it was still placing the carried ones"));
     } else if (s->sh_max > 0) PetscCall(PetscSNPrintf(how, sizeof how, " (placed over several batches: up to %" PetscInt_FMT " carried, all placed by t = %g s)", s->sh_max, (double)s->t_caught));
-    PetscCall(PetscViewerASCIIPrintf(v, "source -dem_insert_%d (%s): %" PetscInt_FMT " particles, %.6g kg inserted in %" PetscInt_FMT " batches; shortfall %" PetscInt_FMT " particles%s\n", (int)s->k, DemSourceRegionNames[s->region], s->inserted, (double)s->m_inserted, s->batch, s->shortfall, how));
+    PetscCall(PetscViewerASCIIPrintf(v, "source -dem_insert_%d (%s): %" PetscInt_FMT " particles, %.6g kg inserted in %" PetscInt_FMT " batches; shortfall %" PetscInt_FMT " particles%s\n", (int)s->k, GeomRegionKinds[s->reg.kind], s->inserted, (double)s->m_inserted, s->batch, s->shortfall, how));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

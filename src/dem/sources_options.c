@@ -13,66 +13,26 @@
 
 static const char *const DemSourceRegionOption[DEM_MAX_SOURCES] = {"-dem_insert_0_region", "-dem_insert_1_region", "-dem_insert_2_region", "-dem_insert_3_region", "-dem_insert_4_region", "-dem_insert_5_region", "-dem_insert_6_region", "-dem_insert_7_region", "-dem_insert_8_region", "-dem_insert_9_region"};
 static const char *const DemSourceOrientOption[DEM_MAX_SOURCES] = {"-dem_insert_0_random_orientation", "-dem_insert_1_random_orientation", "-dem_insert_2_random_orientation", "-dem_insert_3_random_orientation", "-dem_insert_4_random_orientation", "-dem_insert_5_random_orientation", "-dem_insert_6_random_orientation", "-dem_insert_7_random_orientation", "-dem_insert_8_random_orientation", "-dem_insert_9_random_orientation"};
-const char *const        DemSourceRegionNames[]                 = {"box", "cylinder", "patch"};
 static const char *const DemSourceRegionHelp[]                  = {"Source region: box xlo,ylo,zlo,xhi,yhi,zhi", "Source region: cylinder centre cx,cy,cz, axis ax,ay,az, radius R, length L", "Source region: rectangle with corners p0, p1, p2 (p1-p0 perpendicular to p2-p0); the stream leaves towards (p1-p0)x(p2-p0)"};
 
-/* -help: lists the geometry options of the regions r in [r0, r1) (another region's than the
- * source's). */
-static PetscErrorCode DemSourceOtherRegions(PetscOptionItems *PetscOptionsObject, int k, int r0, int r1)
+/* The geometry option of the region (geom/region.h), read into s->reg. With help (-help) the
+ * options of the other regions are listed too, and a missing geometry is not an error. */
+static PetscErrorCode DemSourceGeometryOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s, GeomRegionKind kind, PetscBool help)
 {
-  const char    *kind[] = {"box", "cylinder", "patch"};
-  const PetscInt n[]    = {6, 8, 9};
-  char           opt[64];
-  PetscReal      g[9];
+  char           opt[3][64];
+  GeomRegionSpec spec;
+  PetscBool      set;
 
   PetscFunctionBeginUser;
-  for (int r = r0; r < r1; r++) {
-    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_%s", k, kind[r]));
-    PetscCall(SableOptionsRealN(opt, DemSourceRegionHelp[r], "m", g, 0, n[r], NULL));
+  PetscCall(PetscSNPrintf(opt[0], sizeof opt[0], "-dem_insert_%d_box", k));
+  PetscCall(PetscSNPrintf(opt[1], sizeof opt[1], "-dem_insert_%d_cylinder", k));
+  PetscCall(PetscSNPrintf(opt[2], sizeof opt[2], "-dem_insert_%d_patch", k));
+  for (int r = 0; r < 3; r++) {
+    spec.opt[r]  = help || r == (int)kind ? opt[r] : NULL;
+    spec.text[r] = DemSourceRegionHelp[r];
   }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* The geometry option of the region, read into s->g. With help (-help) the options of the other
- * regions are listed too, and a missing geometry is not an error. */
-static PetscErrorCode DemSourceGeometryOptions(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemSource *s, PetscBool help)
-{
-  char      opt[64];
-  PetscBool set;
-
-  PetscFunctionBeginUser;
-  if (help) PetscCall(DemSourceOtherRegions(PetscOptionsObject, k, 0, (int)s->region));
-  if (s->region == DEM_SRC_BOX) {
-    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_box", k));
-    PetscCall(SableOptionsRealN(opt, DemSourceRegionHelp[0], "m", s->g, 0, 6, &set));
-    for (int d = 0; d < 3 && set; d++) PetscCheck(s->g[3 + d] > s->g[d], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: upper bound %g must exceed lower bound %g on axis %d", opt, (double)s->g[3 + d], (double)s->g[d], d);
-  } else if (s->region == DEM_SRC_CYLINDER) {
-    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_cylinder", k));
-    PetscCall(SableOptionsRealN(opt, DemSourceRegionHelp[1], "m", s->g, 0, 8, &set));
-    const double l = set ? sqrt(dem_dot(s->g + 3, s->g + 3)) : 0;
-    PetscCheck(!set || (l > 0 && s->g[6] > 0 && s->g[7] > 0), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the axis must be non-zero and R %g, L %g > 0", opt, (double)s->g[6], (double)s->g[7]);
-    for (int d = 0; d < 3 && set; d++) s->g[3 + d] /= l;
-  } else {
-    PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_patch", k));
-    PetscCall(SableOptionsRealN(opt, DemSourceRegionHelp[2], "m", s->g, 0, 9, &set));
-    double e1[3], e2[3];
-    for (int d = 0; d < 3 && set; d++) {
-      e1[d] = s->g[3 + d] - s->g[d];
-      e2[d] = s->g[6 + d] - s->g[d];
-    }
-    const double l1 = set ? sqrt(dem_dot(e1, e1)) : 0, l2 = set ? sqrt(dem_dot(e2, e2)) : 0;
-    PetscCheck(!set || (l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular", opt);
-    if (set) {
-      dem_cross(e1, e2, s->n);
-      for (int d = 0; d < 3; d++) {
-        s->n[d] /= l1 * l2;
-        s->g[3 + d] = e1[d];
-        s->g[6 + d] = e2[d];
-      }
-    }
-  }
-  if (help) PetscCall(DemSourceOtherRegions(PetscOptionsObject, k, (int)s->region + 1, 3));
-  PetscCheck(set || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s %s needs %s", DemSourceRegionOption[k], DemSourceRegionNames[s->region], opt);
+  PetscCall(GeomRegionOptions(&spec, &s->reg, &set));
+  PetscCheck(set || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s %s needs %s", DemSourceRegionOption[k], GeomRegionKinds[kind], opt[kind]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -157,11 +117,11 @@ PetscErrorCode DemSourcesSetFromOptions(Dem dem)
     DemSource *s      = &dem->src.s[dem->src.n];
     PetscInt   region = 0;
     PetscBool  set;
-    PetscCall(PetscOptionsEList(DemSourceRegionOption[k], "Particle source: the region candidates are drawn in", NULL, DemSourceRegionNames, 3, DemSourceRegionNames[0], &region, &set));
+    PetscCall(PetscOptionsEList(DemSourceRegionOption[k], "Particle source: the region candidates are drawn in", NULL, GeomRegionKinds, 3, GeomRegionKinds[0], &region, &set));
     if (!set && help) {
       DemSource scratch;
       PetscCall(PetscMemzero(&scratch, sizeof scratch));
-      PetscCall(DemSourceGeometryOptions(PetscOptionsObject, dem, k, &scratch, PETSC_TRUE));
+      PetscCall(DemSourceGeometryOptions(PetscOptionsObject, dem, k, &scratch, GEOM_REGION_BOX, PETSC_TRUE));
       PetscCall(DemSourceRateOptions(PetscOptionsObject, dem, k, &scratch, PETSC_TRUE));
       PetscCall(DemSourceParticleOptions(PetscOptionsObject, dem, k, &scratch, PETSC_TRUE));
       continue;
@@ -179,8 +139,7 @@ PetscErrorCode DemSourcesSetFromOptions(Dem dem)
       continue;
     }
     PetscCall(PetscMemzero(s, sizeof *s));
-    s->region = (DemSourceRegion)region;
-    PetscCall(DemSourceGeometryOptions(PetscOptionsObject, dem, k, s, help));
+    PetscCall(DemSourceGeometryOptions(PetscOptionsObject, dem, k, s, (GeomRegionKind)region, help));
     PetscCall(DemSourceRateOptions(PetscOptionsObject, dem, k, s, help));
     PetscCall(DemSourceParticleOptions(PetscOptionsObject, dem, k, s, PETSC_FALSE));
     s->k = k;
@@ -188,35 +147,6 @@ PetscErrorCode DemSourcesSetFromOptions(Dem dem)
   }
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* The bounding box of the region (m) and its volume (m^3). */
-static void DemSourceBounds(const DemSource *s, double lo[3], double hi[3], double *vol)
-{
-  const double *g = s->g;
-  if (s->region == DEM_SRC_BOX) {
-    for (int d = 0; d < 3; d++) {
-      lo[d] = g[d];
-      hi[d] = g[3 + d];
-    }
-    *vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-  } else if (s->region == DEM_SRC_CYLINDER) {
-    for (int d = 0; d < 3; d++) {
-      const double e = PetscAbsReal(g[3 + d]) * 0.5 * g[7] + g[6] * sqrt(PetscMax(0.0, 1 - g[3 + d] * g[3 + d]));
-      lo[d]          = g[d] - e;
-      hi[d]          = g[d] + e;
-    }
-    *vol = PETSC_PI * g[6] * g[6] * g[7];
-  } else {
-    for (int d = 0; d < 3; d++) lo[d] = hi[d] = g[d];
-    for (int c = 1; c < 8; c++)
-      for (int d = 0; d < 3; d++) {
-        const double x = g[d] + (c & 1 ? g[3 + d] : 0) + (c & 2 ? g[6 + d] : 0) + (c & 4 ? s->depth * s->n[d] : 0);
-        lo[d]          = PetscMin(lo[d], x);
-        hi[d]          = PetscMax(hi[d], x);
-      }
-    *vol = sqrt(dem_dot(g + 3, g + 3) * dem_dot(g + 6, g + 6)) * s->depth;
-  }
 }
 
 /* Mass (kg) of a particle of diameter d from source s: its shape's at the shape's size. */
@@ -230,9 +160,9 @@ double DemSourceMass(Dem dem, const DemSource *s, double d)
 /* The smallest extent of the region a particle must fit in (m). */
 static double DemSourceThinnest(const DemSource *s)
 {
-  const double *g = s->g;
-  if (s->region == DEM_SRC_BOX) return PetscMin(PetscMin(g[3] - g[0], g[4] - g[1]), g[5] - g[2]);
-  if (s->region == DEM_SRC_CYLINDER) return PetscMin(2 * g[6], g[7]);
+  const double *g = s->reg.g;
+  if (s->reg.kind == GEOM_REGION_BOX) return PetscMin(PetscMin(g[3] - g[0], g[4] - g[1]), g[5] - g[2]);
+  if (s->reg.kind == GEOM_REGION_CYLINDER) return PetscMin(2 * g[6], g[7]);
   return PetscMin(sqrt(dem_dot(g + 3, g + 3)), sqrt(dem_dot(g + 6, g + 6)));
 }
 
@@ -245,18 +175,18 @@ PetscErrorCode DemSourcesSetUp(Dem dem)
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < dem->src.n; i++) {
     DemSource   *s  = &dem->src.s[i];
-    const char  *rn = DemSourceRegionNames[s->region];
+    const char  *rn = GeomRegionKinds[s->reg.kind];
     const int    k  = (int)s->k;
-    double       dmin, dmax, vol, vn = dem_dot(s->v, s->n);
+    double       dmin, dmax, vol, vn = dem_dot(s->v, s->reg.n);
     char         go[64];
     const double rho = dem->shapes.shp[s->shape].rho;
     PetscCall(PetscSNPrintf(go, sizeof go, "-dem_insert_%d_%s", k, rn));
     DemPsdRange(&s->psd, &dmin, &dmax);
     if (s->period < 0) s->period = DEM_SRC_PERIOD_STEPS * dt;
     PetscCheck(s->period >= dt, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_period %g must be at least the time step %g s", k, (double)s->period, dt);
-    PetscCheck(s->region != DEM_SRC_PATCH || vn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_velocity must leave the patch: its component %g along the patch normal (%g,%g,%g) must be > 0 (m/s)", k, vn, (double)s->n[0], (double)s->n[1], (double)s->n[2]);
-    s->depth = PetscMax(vn * s->period, dmax);
-    DemSourceBounds(s, s->lo, s->hi, &vol);
+    PetscCheck(s->reg.kind != GEOM_REGION_PATCH || vn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_insert_%d_velocity must leave the patch: its component %g along the patch normal (%g,%g,%g) must be > 0 (m/s)", k, vn, (double)s->reg.n[0], (double)s->reg.n[1], (double)s->reg.n[2]);
+    s->reg.depth = PetscMax(vn * s->period, dmax);
+    geom_region_bounds(&s->reg, s->lo, s->hi, &vol);
     s->vol      = vol;
     s->t_caught = -1;
     PetscCheck(DemSourceThinnest(s) >= dmax, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the region is %g m thin, less than the largest diameter %g m", go, DemSourceThinnest(s), dmax);

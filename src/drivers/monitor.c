@@ -9,6 +9,7 @@
  * the DEM's getters (dem/monitor.c), the fluid ones from the fluid's (fluid/probe.c): every
  * figure is one a user can compute again from a frame at the same time. All collective. */
 #include "drivers/drivers.h"
+#include "geom/region.h"
 #include <ctype.h>
 
 /* The plane options take words ("z=0.05"); -mon_average_fields is a literal word option. */
@@ -101,14 +102,15 @@ static PetscErrorCode DriverMonReadBoxes(PetscOptionItems *PetscOptionsObject, D
   PetscCall(DriverMonIndices(family, &ni, &idx));
   for (PetscInt i = 0; i < ni; i++) {
     DriverMonRegion r = {.k = idx[i]};
-    PetscReal       v[6];
+    GeomRegion      box;
+    PetscReal      *v = box.g; /* a box region's lo, hi (geom/region.h), or a segment's ends */
     PetscBool       set;
     PetscCall(PetscSNPrintf(opt, sizeof opt, pattern, (int)idx[i]));
-    PetscCall(SableOptionsRealN(opt, text, "m", v, 0, 6, &set));
+    if (segment) PetscCall(SableOptionsRealN(opt, text, "m", v, 0, 6, &set));
+    else PetscCall(GeomRegionOption(opt, GEOM_REGION_BOX, text, &box, &set));
     if (!set) continue;
     PetscCheck(!fluid || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: an average of the fluid's fields; this run is dry (a coupled run has -fluid_ or -cpl_ options, or -sable_solver coupled)", opt);
     if (segment) PetscCheck(v[0] != v[3] || v[1] != v[4] || v[2] != v[5], m->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the two ends coincide (m)", opt, (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4], (double)v[5]);
-    else PetscCheck(v[0] < v[3] && v[1] < v[4] && v[2] < v[5], m->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: need lo < hi on every axis (m)", opt, (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4], (double)v[5]);
     for (int d = 0; d < 3; d++) r.lo[d] = v[d], r.hi[d] = v[d + 3];
     PetscCall(PetscStrncpy(r.name, opt, sizeof r.name));
     PetscCall(DriverMonAppend(list, n, &r));

@@ -19,7 +19,7 @@
   "-domain_lo 0,0,0 -domain_hi 0.1449,0.1449,0.24633 -dem_plane_0 0,0,0,1,0,0 -dem_plane_1 0.1449,0,0,-1,0,0 -dem_plane_2 0,0,0,0,1,0 " \
   "-dem_plane_3 0,0.1449,0,0,-1,0 -dem_radius 0.0069,0.006 -dem_density 2500 -dem_kn 7.2e5 -dem_friction 0.3 -dem_dt 1e-5 -dem_gravity 0,0,-40 -dem_lattice 8,8,6 " \
   "-dem_lattice_spacing 0.01449 -dem_lattice_origin 0,0,0.14 -dem_lattice_speed 0.1 -dem_check_every 1 " \
-  "-dem_outlet_0_box 0.06,0,0.11,0.09,0.1449,0.135 -dem_outlet_1_patch 0,0,0.123,0.05,0,0,0,0.1449,0 -dem_outlet_2_side zlo"
+  "-dem_outlet_0_box 0.06,0,0.11,0.09,0.1449,0.135 -dem_outlet_1_patch 0,0,0.123,0.05,0,0.123,0,0.1449,0.123 -dem_outlet_2_side zlo"
 
 /* present[id] over all ranks (1: some rank owns it). */
 static PetscErrorCode Present(Dem dem, PetscInt N, int *loc, int *present)

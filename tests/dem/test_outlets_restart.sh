@@ -17,7 +17,7 @@ S=$(pwd)/${BIN:-bin}/sable
 export OMPI_MCA_rmaps_base_oversubscribe=1
 W=$(mktemp -d)
 trap 'rm -rf "$W"' EXIT
-SCENE="-domain_lo 0,0,0 -domain_hi 0.1449,0.1449,0.24633 -dem_plane_0 0,0,0,1,0,0 -dem_plane_1 0.1449,0,0,-1,0,0 -dem_plane_2 0,0,0,0,1,0 -dem_plane_3 0,0.1449,0,0,-1,0 -dem_radius 0.0069 -dem_density 2500 -dem_kn 7.2e5 -dem_friction 0.3 -dem_dt 1e-5 -dem_gravity 0,0,-30 -dem_lattice 8,8,6 -dem_lattice_spacing 0.01449 -dem_lattice_origin 0,0,0.1 -dem_lattice_jitter 0.3 -dem_lattice_speed 0.05 -dem_progress_interval 0 -dem_check_every 1 -dem_outlet_0_side zlo -dem_outlet_1_patch 0,0,0.08,0.07,0,0,0,0.1449,0 -dem_outlet_1_start 0.02"
+SCENE="-domain_lo 0,0,0 -domain_hi 0.1449,0.1449,0.24633 -dem_plane_0 0,0,0,1,0,0 -dem_plane_1 0.1449,0,0,-1,0,0 -dem_plane_2 0,0,0,0,1,0 -dem_plane_3 0,0.1449,0,0,-1,0 -dem_radius 0.0069 -dem_density 2500 -dem_kn 7.2e5 -dem_friction 0.3 -dem_dt 1e-5 -dem_gravity 0,0,-30 -dem_lattice 8,8,6 -dem_lattice_spacing 0.01449 -dem_lattice_origin 0,0,0.1 -dem_lattice_jitter 0.3 -dem_lattice_speed 0.05 -dem_progress_interval 0 -dem_check_every 1 -dem_outlet_0_side zlo -dem_outlet_1_patch 0,0,0.08,0.07,0,0.08,0,0.1449,0.08 -dem_outlet_1_start 0.02"
 T=0.08
 H=0.05
 run() { # np, dir, args...
@@ -76,7 +76,8 @@ expect() { # name, pattern, options...
   fi
 }
 expect "box outside the domain" "-dem_outlet_3_box: the box is outside the domain" -dem_outlet_3_box 0,0,-0.2,0.1,0.1,-0.1
-expect "patch outside the domain" "-dem_outlet_3_patch: corner" -dem_outlet_3_patch 0,0,0.3,0.1,0,0,0,0.1,0
+expect "patch outside the domain" "-dem_outlet_3_patch: corner" -dem_outlet_3_patch 0,0,0.3,0.1,0,0.3,0,0.1,0.3
+expect "old patch spelling p,e1,e2" "-dem_outlet_3_patch takes three corners p0,p1,p2 now.*write 0,0,0.08,0.07,0,0.08,0,0.1449,0.08" -dem_outlet_3_patch 0,0,0.08,0.07,0,0,0,0.1449,0
 expect "degenerate patch" "-dem_outlet_3_patch: the edges" -dem_outlet_3_patch 0,0,0.1,0.1,0,0,0.1,0,0
 expect "unknown side" "-dem_outlet_3_side" -dem_outlet_3_side bottom
 expect "start after stop" "-dem_outlet_3_start 0.5 s is after -dem_outlet_3_stop 0.2 s" -dem_outlet_3_box 0,0,0,0.1,0.1,0.01 -dem_outlet_3_start 0.5 -dem_outlet_3_stop 0.2
