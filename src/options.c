@@ -205,7 +205,7 @@ PetscErrorCode SableOptionsString_Private(PetscOptionItems *PetscOptionsObject, 
   }
   if (!flg) PetscFunctionReturn(PETSC_SUCCESS);
   if (given) PetscCall(PetscStrlen(given, &len));
-  PetscCheck(len < size, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s: a value of %zu characters, at most %zu", opt, len, size - 1);
+  PetscCheck(len < size, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s %s: at most %zu characters", opt, given, size - 1);
   PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, size, &flg));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
