@@ -96,7 +96,7 @@ PetscErrorCode BalanceSetFromOptions(Balance b)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(b->comm, NULL, "Load balancing (moves the shared DMDA cuts)", NULL);
-  PetscCall(SableOptionsEnum("-lb_scheme", "When to rebalance: none, once, frequent, dynamic", LbSchemeNames, 4, (PetscInt)b->scheme, &scheme, NULL));
+  PetscCall(SableOptionsEnum("-lb_scheme", "When to rebalance", LbSchemeNames, 4, (PetscInt)b->scheme, &scheme, NULL));
   b->scheme = (LbScheme)scheme;
   PetscCall(SableOptionsEnum("-lb_weight", "Cell weight: linear alpha n + beta, quadratic alpha n^2 + beta, measured (linear, alpha and beta from measured costs)", LbWeightNames, 3, b->weight, &b->weight, NULL));
   PetscCall(SableOptionsReal("-lb_alpha", "Weight of a particle in a cell", NULL, "[0,inf)", b->alpha, &b->alpha, NULL));
