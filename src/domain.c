@@ -13,9 +13,9 @@ PetscErrorCode DomainSetFromOptions(MPI_Comm comm, Domain *dom)
   PetscOptionsBegin(comm, NULL, "Domain (shared by DEM and fluid)", NULL);
   PetscCall(SableOptionsRealN("-domain_lo", "Lower corner of the domain box", "m", dom->lo, 3, 3, &set));
   PetscCall(SableOptionsRealN("-domain_hi", "Upper corner of the domain box", "m", dom->hi, 3, 3, &set));
-  PetscCall(PetscOptionsBool("-domain_periodic_x", "Periodic along x", NULL, dom->periodic[0], &dom->periodic[0], NULL));
-  PetscCall(PetscOptionsBool("-domain_periodic_y", "Periodic along y", NULL, dom->periodic[1], &dom->periodic[1], NULL));
-  PetscCall(PetscOptionsBool("-domain_periodic_z", "Periodic along z", NULL, dom->periodic[2], &dom->periodic[2], NULL));
+  PetscCall(SableOptionsBool("-domain_periodic_x", "Periodic along x", dom->periodic[0], &dom->periodic[0], NULL));
+  PetscCall(SableOptionsBool("-domain_periodic_y", "Periodic along y", dom->periodic[1], &dom->periodic[1], NULL));
+  PetscCall(SableOptionsBool("-domain_periodic_z", "Periodic along z", dom->periodic[2], &dom->periodic[2], NULL));
   PetscCall(SableOptionsReal("-domain_cell", "Cell size of the grid; -da_grid_x/y/z override it; default 4 largest particle diameters (1.25 with -lb_scheme)", "m", "(0,inf)", 0, &dom->cell, &dom->cell_set));
   PetscOptionsEnd();
   for (int k = 0; k < 3; k++) {

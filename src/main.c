@@ -292,7 +292,7 @@ static PetscErrorCode SableRun(void)
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Sable driver", NULL);
-  PetscCall(PetscOptionsBool("-sable_traceback", "Print PETSc's full traceback on errors", NULL, sable_traceback, &sable_traceback, NULL));
+  PetscCall(SableOptionsBool("-sable_traceback", "Print PETSc's full traceback on errors", sable_traceback, &sable_traceback, NULL));
   PetscOptionsEnd();
   if (!help) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "Sable %s — CFD-DEM for fluidized beds and granular flows\n", SABLE_VERSION));
   PetscCall(DriverIsCoupled(&coupled)); /* before any module: an unknown -fluid_ or -cpl_ name must not decide it */

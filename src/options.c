@@ -1,6 +1,6 @@
 /* How Sable's options are read and shown. Two parts:
- *  - the readers of numeric options (SableOptionsReal, SableOptionsInt, SableOptionsRealArray,
- *    SableOptionsRealN), called inside the PetscOptionsBegin block of the object that owns the
+ *  - the readers of options (SableOptionsReal, SableOptionsInt, SableOptionsRealArray,
+ *    SableOptionsRealN, SableOptionsIntN; SableOptionsEnum, SableOptionsBool, SableOptionsString), called inside the PetscOptionsBegin block of the object that owns the
  *    option, with the option's literal name. Each prints its own -help line, with the true
  *    default ("<none>" when the option has none: a default outside the valid range, or no
  *    default values), the value given, the unit and the valid range, and refuses a value out
@@ -145,6 +145,71 @@ PetscErrorCode SableOptionsInt_Private(PetscOptionItems *PetscOptionsObject, con
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SableOptionsEnum_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char *const names[], PetscInt n, PetscInt def, PetscInt *v, PetscBool *set)
+{
+  char      buf[256], all[512] = "", paren[600];
+  PetscBool flg = PETSC_FALSE, match = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCheck(def >= 0 && def < n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%s: default %" PetscInt_FMT " is not one of its %" PetscInt_FMT " names", opt, def, n);
+  *v = def;
+  for (PetscInt i = 0; i < n; i++) {
+    const size_t len = strlen(all);
+    PetscCall(PetscSNPrintf(all + len, sizeof all - len, "%s%s", i ? ", " : "", names[i]));
+  }
+  PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, buf, sizeof buf, &flg));
+  if (set) *set = flg;
+  for (PetscInt i = 0; flg && i < n && !match; i++) {
+    PetscCall(PetscStrcasecmp(buf, names[i], &match));
+    if (match) *v = i;
+  }
+  if (SableHelpDue(PetscOptionsObject)) {
+    char line[320];
+    SableHelpValue(names[def], PETSC_TRUE, flg ? buf : NULL, line, sizeof line);
+    PetscCall(PetscSNPrintf(paren, sizeof paren, "%s (one of %s)", text, all));
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, paren, NULL, NULL));
+  }
+  PetscCheck(!flg || match, PetscOptionsObject->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s is not known; valid values: %s", opt, buf, all);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionsBool_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscBool def, PetscBool *v, PetscBool *set)
+{
+  PetscBool flg = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  *v = def;
+  PetscCall(PetscOptionsGetBool(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, &flg));
+  if (set) *set = flg;
+  if (SableHelpDue(PetscOptionsObject)) {
+    char line[64];
+    SableHelpValue(def ? "true" : "false", PETSC_TRUE, flg ? (*v ? "true" : "false") : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, text, NULL, NULL));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionsString_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], char v[], size_t size, PetscBool *set)
+{
+  const char *given = NULL;
+  PetscBool   flg   = PETSC_FALSE;
+  size_t      len   = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsFindPair(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, &given, &flg));
+  if (set) *set = flg;
+  if (SableHelpDue(PetscOptionsObject)) {
+    char line[2 * PETSC_MAX_PATH_LEN + 16];
+    SableHelpValue(v, (PetscBool)(v[0] != 0), flg ? (given ? given : "") : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, text, "text", NULL)); /* "(text)": a word, not a number */
+  }
+  if (!flg) PetscFunctionReturn(PETSC_SUCCESS);
+  if (given) PetscCall(PetscStrlen(given, &len));
+  PetscCheck(len < size, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s %s: at most %zu characters", opt, given, size - 1);
+  PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, size, &flg));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* "a,b,c" of n reals. */
 static PetscErrorCode SableRealList(const PetscReal *v, PetscInt n, char *buf, size_t size)
 {
@@ -180,6 +245,43 @@ PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *PetscOptionsObjec
   PetscCall(SableOptionCount(opt, &count)); /* PETSc stops at the array's size without a word */
   if (exact) PetscCheck(count == cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes %d comma-separated values, got %d", opt, (int)cap, (int)count);
   else PetscCheck(count <= cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes at most %d comma-separated values, got %d", opt, (int)cap, (int)count);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionsIntArray_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char unit[], const char range[], PetscInt v[], PetscInt ndef, PetscInt *n, PetscBool exact, PetscBool *set)
+{
+  const PetscInt cap = *n;
+  SableRange     r   = {PETSC_NINFINITY, PETSC_INFINITY, PETSC_FALSE, PETSC_FALSE, "-inf", "inf"};
+  PetscInt       got = cap, count = 0;
+  PetscBool      flg        = PETSC_FALSE;
+  char           dtext[512] = "", gtext[512] = "", line[1040];
+
+  PetscFunctionBeginUser;
+  if (range) PetscCall(SableRangeParse(range, &r));
+  for (PetscInt i = 0; i < PetscMin(ndef, cap); i++) {
+    const size_t len = strlen(dtext);
+    PetscCall(PetscSNPrintf(dtext + len, sizeof dtext - len, "%s%" PetscInt_FMT, i ? "," : "", v[i]));
+  }
+  PetscCall(PetscOptionsGetIntArray(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, &got, &flg));
+  if (set) *set = flg;
+  *n = flg ? got : 0;
+  if (SableHelpDue(PetscOptionsObject)) {
+    for (PetscInt i = 0; i < *n; i++) {
+      const size_t len = strlen(gtext);
+      PetscCall(PetscSNPrintf(gtext + len, sizeof gtext - len, "%s%" PetscInt_FMT, i ? "," : "", v[i]));
+    }
+    SableHelpValue(dtext, (PetscBool)(ndef > 0), flg ? gtext : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, text, unit, range));
+  }
+  if (!flg) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(SableOptionCount(opt, &count)); /* PETSc stops at the array's size without a word */
+  if (exact) PetscCheck(count == cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes %d comma-separated values, got %d", opt, (int)cap, (int)count);
+  else PetscCheck(count <= cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes at most %d comma-separated values, got %d", opt, (int)cap, (int)count);
+  for (PetscInt i = 0; i < *n; i++)
+    if (!SableRangeHolds(&r, (PetscReal)v[i])) {
+      PetscCall(PetscSNPrintf(gtext, sizeof gtext, "%" PetscInt_FMT, v[i]));
+      PetscCall(SableRangeError(PetscOptionsObject->comm, opt, gtext, unit, range, &r));
+    }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -113,7 +113,25 @@ int SableOptionGroup(const char *name);
 /* A list of exactly n reals (a wrong count, fewer or more, is an error naming the option); v
  * holds the ndef default values (n or 0). */
 #define SableOptionsRealN(opt, text, unit, v, ndef, n, set) SableOptionsRealArray_Private(PetscOptionsObject, opt, text, unit, v, ndef, &(PetscInt){(n)}, PETSC_TRUE, set)
+/* One of n names (case as given or not), read into an integer: *v is def (the index of a name)
+ * unless given. A name not in names is an error of one line, on every rank alike, listing the
+ * valid names. For an enum field, read into a PetscInt and assign (never through a cast
+ * pointer: PetscInt may be 64 bits). */
+#define SableOptionsEnum(opt, text, names, n, def, v, set) SableOptionsEnum_Private(PetscOptionsObject, opt, text, names, n, def, v, set)
+/* A flag: *v is def unless given ("-opt", "-opt true|false|yes|no|1|0"). */
+#define SableOptionsBool(opt, text, def, v, set) SableOptionsBool_Private(PetscOptionsObject, opt, text, def, v, set)
+/* A word or a path: v (of size bytes) holds the default on entry (an empty one shown <none>) and
+ * is left as it was unless given; its help line ends "(text)". A value longer than size - 1 characters is an error naming
+ * the option (PETSc would cut it silently). */
+#define SableOptionsString(opt, text, v, size, set) SableOptionsString_Private(PetscOptionsObject, opt, text, v, size, set)
+/* A list of exactly n integers, each in range (a wrong count, or an item out of range, is an
+ * error naming the option); v holds the ndef default values (n or 0). */
+#define SableOptionsIntN(opt, text, unit, range, v, ndef, n, set) SableOptionsIntArray_Private(PetscOptionsObject, opt, text, unit, range, v, ndef, &(PetscInt){(n)}, PETSC_TRUE, set)
 PetscErrorCode SableOptionsReal_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscReal, PetscReal *, PetscBool *);
+PetscErrorCode SableOptionsIntArray_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscInt[], PetscInt, PetscInt *, PetscBool, PetscBool *);
+PetscErrorCode SableOptionsEnum_Private(PetscOptionItems *, const char[], const char[], const char *const[], PetscInt, PetscInt, PetscInt *, PetscBool *);
+PetscErrorCode SableOptionsBool_Private(PetscOptionItems *, const char[], const char[], PetscBool, PetscBool *, PetscBool *);
+PetscErrorCode SableOptionsString_Private(PetscOptionItems *, const char[], const char[], char[], size_t, PetscBool *);
 PetscErrorCode SableOptionsInt_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscInt, PetscInt *, PetscBool *);
 PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *, const char[], const char[], const char[], PetscReal[], PetscInt, PetscInt *, PetscBool, PetscBool *);
 

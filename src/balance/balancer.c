@@ -89,33 +89,16 @@ PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* A name option checked here, not by PetscOptionsEList, so that a wrong value is one collective
- * error naming the valid values (PETSc's own check raises it on every rank). */
-static PetscErrorCode BalanceOptionName(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *opt, const char *text, const char *const *names, PetscInt n, PetscInt *value)
-{
-  char      buf[64];
-  PetscBool set, match = PETSC_FALSE;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscStrncpy(buf, names[*value], sizeof buf));
-  PetscCall(PetscOptionsString(opt, text, NULL, buf, buf, sizeof buf, &set));
-  if (!set) PetscFunctionReturn(PETSC_SUCCESS);
-  for (PetscInt i = 0; i < n && !match; i++) {
-    PetscCall(PetscStrcasecmp(buf, names[i], &match));
-    if (match) *value = i;
-  }
-  PetscCheck(match, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s is not known; valid values: %s%s%s%s%s%s%s", opt, buf, names[0], n > 1 ? ", " : "", n > 1 ? names[1] : "", n > 2 ? ", " : "", n > 2 ? names[2] : "", n > 3 ? ", " : "", n > 3 ? names[3] : "");
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode BalanceSetFromOptions(Balance b)
 {
   PetscBool set[4]; /* -lb_interval, -lb_step, -lb_interval_time, -lb_time given */
+  PetscInt  scheme;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(b->comm, NULL, "Load balancing (moves the shared DMDA cuts)", NULL);
-  PetscCall(BalanceOptionName(PetscOptionsObject, b->comm, "-lb_scheme", "When to rebalance: none, once, frequent, dynamic", LbSchemeNames, 4, (PetscInt *)&b->scheme));
-  PetscCall(BalanceOptionName(PetscOptionsObject, b->comm, "-lb_weight", "Cell weight: linear alpha n + beta, quadratic alpha n^2 + beta, measured (linear, alpha and beta from measured costs)", LbWeightNames, 3, &b->weight));
+  PetscCall(SableOptionsEnum("-lb_scheme", "When to rebalance", LbSchemeNames, 4, (PetscInt)b->scheme, &scheme, NULL));
+  b->scheme = (LbScheme)scheme;
+  PetscCall(SableOptionsEnum("-lb_weight", "Cell weight: linear alpha n + beta, quadratic alpha n^2 + beta, measured (linear, alpha and beta from measured costs)", LbWeightNames, 3, b->weight, &b->weight, NULL));
   PetscCall(SableOptionsReal("-lb_alpha", "Weight of a particle in a cell", NULL, "[0,inf)", b->alpha, &b->alpha, NULL));
   PetscCall(SableOptionsReal("-lb_beta", "Weight of a cell", NULL, "[0,inf)", b->beta, &b->beta, NULL));
   PetscCall(SableOptionsReal("-lb_threshold", "dynamic: rebalance when (L_max - L_min) / L_avg exceeds it", NULL, "(0,inf)", b->threshold, &b->threshold, NULL));
@@ -125,7 +108,7 @@ PetscErrorCode BalanceSetFromOptions(Balance b)
   PetscCall(SableOptionsReal("-lb_time", "once: the simulated time after which to rebalance (replaces -lb_step); default none: -lb_step counts", "s", "[0,inf)", b->once_time, &b->once_time, &set[3]));
   PetscCall(SableOptionsInt("-lb_max_sweeps", "Coordinate-descent rounds of the cut search (0: the marginal cuts only get refined by the default 20)", NULL, "[0,inf)", b->max_sweeps, &b->max_sweeps, NULL));
   PetscCall(SableOptionsReal("-lb_mesh_cost", "Weight of a particle's candidate mesh triangle relative to the particle (linear, quadratic; -lb_weight measured measures it)", NULL, "[0,inf)", b->mesh_cost, &b->mesh_cost, NULL));
-  PetscCall(PetscOptionsBool("-lb_verbose", "Print one line per check", NULL, b->verbose, &b->verbose, NULL));
+  PetscCall(SableOptionsBool("-lb_verbose", "Print one line per check", b->verbose, &b->verbose, NULL));
   PetscOptionsEnd();
   { /* the time-based option replaces the step-based one: both given, one would be ignored */
     const char *steps[2] = {"-lb_interval", "-lb_step"}, *times[2] = {"-lb_interval_time", "-lb_time"};

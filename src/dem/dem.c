@@ -11,7 +11,7 @@
 #include "dem/dem_walls.h"
 #include "dem/dem_sources.h"
 
-static const char *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
+static const char *const DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
 
 PetscErrorCode DemCreate(Domain *dom, Dem *dem)
 {
@@ -53,34 +53,28 @@ static const char *const DemMaterialNames[2][6] = {
   {"-dem_kn", "-dem_kt", "-dem_restitution", "-dem_friction", "-dem_youngs_modulus", "-dem_poisson_ratio"},
   {"-dem_wall_kn", "-dem_wall_kt", "-dem_wall_restitution", "-dem_wall_friction", "-dem_wall_youngs_modulus", "-dem_wall_poisson_ratio"}};
 
-static PetscErrorCode DemMaterialOptions(PetscOptionItems *PetscOptionsObject, Dem dem, const char *const o[6], DemMaterial *m, const DemMaterial *dflt)
+static PetscErrorCode DemMaterialOptions(PetscOptionItems *PetscOptionsObject, const char *const o[6], DemMaterial *m, const DemMaterial *dflt)
 {
   PetscFunctionBeginUser;
   if (dflt) *m = *dflt;
-  PetscCall(PetscOptionsReal(o[0], "Normal stiffness of the linear laws (N/m)", NULL, m->kn, &m->kn, &m->kn_set));
-  PetscCall(PetscOptionsReal(o[1], "Tangential stiffness (N/m); default 2/7 kn", NULL, m->kt, &m->kt, &m->kt_set));
-  PetscCall(PetscOptionsReal(o[2], "Coefficient of restitution, in (0,1]", NULL, m->e, &m->e, NULL));
-  PetscCall(PetscOptionsReal(o[3], "Coulomb friction coefficient, >= 0", NULL, m->mu, &m->mu, NULL));
-  PetscCall(PetscOptionsReal(o[4], "Young's modulus (Pa), for hertz or to derive kn", NULL, m->E, &m->E, &m->E_set));
-  PetscCall(PetscOptionsReal(o[5], "Poisson ratio, in (-1, 0.5)", NULL, m->nu, &m->nu, NULL));
+  PetscCall(SableOptionsReal(o[0], "Normal stiffness of the linear laws", "N/m", "(0,inf)", m->kn, &m->kn, &m->kn_set));
+  PetscCall(SableOptionsReal(o[1], "Tangential stiffness; default 2/7 kn", "N/m", "[0,inf)", m->kt, &m->kt, &m->kt_set));
+  PetscCall(SableOptionsReal(o[2], "Coefficient of restitution", NULL, "(0,1]", m->e, &m->e, NULL));
+  PetscCall(SableOptionsReal(o[3], "Coulomb friction coefficient", NULL, "[0,inf)", m->mu, &m->mu, NULL));
+  PetscCall(SableOptionsReal(o[4], "Young's modulus, for hertz or to derive kn", "Pa", "(0,inf)", m->E, &m->E, &m->E_set));
+  PetscCall(SableOptionsReal(o[5], "Poisson ratio", NULL, "(-1,0.5)", m->nu, &m->nu, NULL));
   if (dflt) { /* a wall inherits what it was not given */
     m->kn_set = (PetscBool)(m->kn_set || dflt->kn_set);
     m->kt_set = (PetscBool)(m->kt_set || dflt->kt_set);
     m->E_set  = (PetscBool)(m->E_set || dflt->E_set);
   }
-  PetscCheck(m->e > 0 && m->e <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be in (0,1]", o[2], (double)m->e);
-  PetscCheck(m->mu >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", o[3], (double)m->mu);
-  PetscCheck(!m->kn_set || m->kn > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be > 0", o[0], (double)m->kn);
-  PetscCheck(!m->kt_set || m->kt >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", o[1], (double)m->kt);
-  PetscCheck(!m->E_set || m->E > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be > 0", o[4], (double)m->E);
-  PetscCheck(m->nu > -1 && m->nu < 0.5, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be in (-1, 0.5)", o[5], (double)m->nu);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Rolling resistance (contact_laws.h): the model and the coefficients of the particles and the
  * walls (the walls take the particles' unless given). A coefficient without a model, or a model
  * without a coefficient, is refused: one of them would be ignored. */
-static const char *DemRollNames[] = {"none", "constant", "viscous", "kms", "DemRoll", "DEM_ROLL_", NULL};
+static const char *const DemRollNames[] = {"none", "constant", "viscous", "kms", "DemRoll", "DEM_ROLL_", NULL};
 
 static PetscErrorCode DemRollingOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
 {
@@ -88,15 +82,13 @@ static PetscErrorCode DemRollingOptions(PetscOptionItems *PetscOptionsObject, De
   PetscBool pset, wset;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsEList("-dem_rolling_model", "Rolling resistance of every contact: none, constant (torque mu_r R* |Fn|) or viscous (mu_r R* |Fn| |V_omega|), as Lethe's; kms (k_ms |Fn| (w_t + 1e-3 w_n)), as Grains3D's", NULL, DemRollNames, 4, DemRollNames[roll], &roll, NULL));
+  PetscCall(SableOptionsEnum("-dem_rolling_model", "Rolling resistance of every contact: none, constant (torque mu_r R* |Fn|) or viscous (mu_r R* |Fn| |V_omega|), as Lethe's; kms (k_ms |Fn| (w_t + 1e-3 w_n)), as Grains3D's", DemRollNames, 4, roll, &roll, NULL));
   dem->contact.roll = (DemRoll)roll;
-  PetscCall(PetscOptionsReal("-dem_rolling_friction", "Rolling friction coefficient mu_r, >= 0 (constant: -, viscous: s/m, kms: k_ms in m s)", NULL, dem->contact.mat.mur, &dem->contact.mat.mur, &pset));
+  PetscCall(SableOptionsReal("-dem_rolling_friction", "Rolling friction coefficient mu_r (constant: -, viscous: s/m, kms: k_ms in m s)", NULL, "[0,inf)", dem->contact.mat.mur, &dem->contact.mat.mur, &pset));
   dem->contact.wmat.mur = dem->contact.mat.mur;
-  PetscCall(PetscOptionsReal("-dem_wall_rolling_friction", "Rolling friction coefficient against the walls, >= 0; default -dem_rolling_friction", NULL, dem->contact.wmat.mur, &dem->contact.wmat.mur, &wset));
+  PetscCall(SableOptionsReal("-dem_wall_rolling_friction", "Rolling friction coefficient against the walls; default -dem_rolling_friction", NULL, "[0,inf)", dem->contact.wmat.mur, &dem->contact.wmat.mur, &wset));
   PetscCheck(dem->contact.roll != DEM_ROLL_NONE || !(pset || wset), dem->comm, PETSC_ERR_ARG_INCOMP, "%s is ignored by -dem_rolling_model none: give -dem_rolling_model constant, viscous or kms", pset ? "-dem_rolling_friction" : "-dem_wall_rolling_friction");
   PetscCheck(dem->contact.roll == DEM_ROLL_NONE || pset || wset, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_rolling_model %s needs -dem_rolling_friction (and optionally -dem_wall_rolling_friction)", DemRollNames[dem->contact.roll]);
-  PetscCheck(dem->contact.mat.mur >= 0 && PetscIsNormalReal(dem->contact.mat.mur + 1), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_rolling_friction %g must be finite and >= 0", (double)dem->contact.mat.mur);
-  PetscCheck(dem->contact.wmat.mur >= 0 && PetscIsNormalReal(dem->contact.wmat.mur + 1), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_wall_rolling_friction %g must be finite and >= 0", (double)dem->contact.wmat.mur);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -128,47 +120,39 @@ static PetscErrorCode DemCheckMaterialConflicts(Dem dem)
 PetscErrorCode DemSetFromOptions(Dem dem)
 {
   PetscReal r[DEM_MAX_SHAPES] = {0}, fr[DEM_MAX_SHAPES] = {0}, sum = 0;
-  PetscInt  nr = DEM_MAX_SHAPES, nf = DEM_MAX_SHAPES, law = dem->contact.law;
+  PetscInt  nr = DEM_MAX_SHAPES, nf = DEM_MAX_SHAPES, law = dem->contact.law, point = dem->narrow.convex_point;
   PetscBool rset, fset, gset, sset;
 
   PetscFunctionBeginUser;
   r[0]  = dem->shapes.shp[0].r; /* the defaults -help shows: one shape of the default radius */
   fr[0] = 1;
   PetscOptionsBegin(dem->comm, NULL, "DEM: particles, contacts, time stepping", NULL);
-  PetscCall(PetscOptionsRealArray("-dem_radius", "Sphere radii r1,r2,... (m), one shape each", NULL, r, &nr, &rset));
-  PetscCall(PetscOptionsRealArray("-dem_radius_fraction", "Number fraction of each radius (default equal)", NULL, fr, &nf, &fset));
-  PetscCall(PetscOptionsReal("-dem_density", "Particle density (kg/m^3)", NULL, dem->shapes.shp[0].rho, &dem->shapes.shp[0].rho, NULL));
-  PetscCall(PetscOptionsEList("-dem_contact_law", "Contact law", NULL, DemLawNames, 3, DemLawNames[dem->contact.law], &law, NULL));
+  PetscCall(SableOptionsRealArray("-dem_radius", "Sphere radii r1,r2,..., one shape each", "m", r, 1, &nr, &rset));
+  PetscCall(SableOptionsRealArray("-dem_radius_fraction", "Number fraction of each radius (default equal)", NULL, fr, 1, &nf, &fset));
+  PetscCall(SableOptionsReal("-dem_density", "Particle density", "kg/m^3", "(0,inf)", dem->shapes.shp[0].rho, &dem->shapes.shp[0].rho, NULL));
+  PetscCall(SableOptionsEnum("-dem_contact_law", "Contact law", DemLawNames, 3, law, &law, NULL));
   dem->contact.law = (DemLaw)law;
-  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[0], &dem->contact.mat, NULL));
-  PetscCall(DemMaterialOptions(PetscOptionsObject, dem, DemMaterialNames[1], &dem->contact.wmat, &dem->contact.mat));
+  PetscCall(DemMaterialOptions(PetscOptionsObject, DemMaterialNames[0], &dem->contact.mat, NULL));
+  PetscCall(DemMaterialOptions(PetscOptionsObject, DemMaterialNames[1], &dem->contact.wmat, &dem->contact.mat));
   PetscCall(DemRollingOptions(PetscOptionsObject, dem));
-  PetscCall(PetscOptionsReal("-dem_tangential_damping", "Tangential over normal damping ratio, >= 0", NULL, dem->contact.tdamp_ratio, &dem->contact.tdamp_ratio, NULL));
-  PetscCall(PetscOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates (m/s)", NULL, dem->contact.vimpact, &dem->contact.vimpact, NULL));
-  PetscCall(PetscOptionsReal("-dem_dt", "Time step (s)", NULL, dem->clock.dt, &dem->clock.dt, &dem->clock.dt_set));
-  PetscCall(PetscOptionsReal("-dem_dt_tc", "Time step as this fraction of the shortest contact time (every pair type, at -dem_impact_velocity); replaces -dem_dt when > 0 (the presets in cases/presets use it)", NULL, dem->clock.dt_tc, &dem->clock.dt_tc, NULL));
-  PetscCall(PetscOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time, in (0,1]", NULL, dem->clock.dt_frac, &dem->clock.dt_frac, NULL));
-  PetscCall(PetscOptionsReal("-dem_overlap_max", "Largest overlap / radius allowed at a progress line or output frame; above it the run is diverging and stops, > 0", NULL, dem->overlap_max, &dem->overlap_max, NULL));
+  PetscCall(SableOptionsReal("-dem_tangential_damping", "Tangential over normal damping ratio", NULL, "[0,inf)", dem->contact.tdamp_ratio, &dem->contact.tdamp_ratio, NULL));
+  PetscCall(SableOptionsReal("-dem_impact_velocity", "Impact speed for the hertz contact time, kn from E and overlap estimates", "m/s", "(0,inf)", dem->contact.vimpact, &dem->contact.vimpact, NULL));
+  PetscCall(SableOptionsReal("-dem_dt", "Time step", "s", "(0,inf)", dem->clock.dt, &dem->clock.dt, &dem->clock.dt_set));
+  PetscCall(SableOptionsReal("-dem_dt_tc", "Time step as this fraction of the shortest contact time (every pair type, at -dem_impact_velocity); replaces -dem_dt when > 0 (the presets in cases/presets use it); 0: use -dem_dt", NULL, "[0,1]", dem->clock.dt_tc, &dem->clock.dt_tc, NULL));
+  PetscCall(SableOptionsReal("-dem_dt_max_fraction", "Largest allowed dt / contact time", NULL, "(0,1]", dem->clock.dt_frac, &dem->clock.dt_frac, NULL));
+  PetscCall(SableOptionsReal("-dem_overlap_max", "Largest overlap / radius allowed at a progress line or output frame; above it the run is diverging and stops", NULL, "(0,inf)", dem->overlap_max, &dem->overlap_max, NULL));
   PetscCall(SableOptionsRealN("-dem_gravity", "Gravity gx,gy,gz", "m/s^2", dem->g, 3, 3, &gset));
-  PetscCall(PetscOptionsReal("-dem_skin", "Verlet skin (m); default 0.1 x the largest diameter", NULL, dem->nl.skin, &dem->nl.skin, &sset));
-  PetscCall(PetscOptionsBool("-dem_convex_sat", "Polyhedron pairs with at most -dem_convex_sat_axes candidate axes by the exact separating-axis test instead of libccd's MPR (default true)", NULL, dem->narrow.convex_sat, &dem->narrow.convex_sat, NULL));
-  PetscCall(PetscOptionsInt("-dem_convex_sat_axes", "Most candidate axes (distinct face normals of both + edge-direction pairs) of a pair that takes the separating-axis test: 16 = box-box; 58 box-icosahedron, 245 icosahedron pairs (exact, ~9x MPR's cost in a dense bed)", NULL, dem->narrow.convex_sat_axes, &dem->narrow.convex_sat_axes, NULL));
-  PetscCall(PetscOptionsEnum("-dem_convex_contact_point", "Pair contact point: patch (centroid of the contact patch, smooth) or support (the deepest vertex / edge crossing: the energy's own gradient, conserves energy with the exact depth)", NULL, ConvexPointModels, (PetscEnum)dem->narrow.convex_point, (PetscEnum *)&dem->narrow.convex_point, NULL));
-  PetscCall(PetscOptionsBool("-dem_deterministic", "Full neighbour rows summed in id order: results bitwise independent of the rank count (about 2x the contact cost)", NULL, dem->nl.full_list, &dem->nl.full_list, NULL));
-  PetscCall(PetscOptionsInt("-dem_check_every", "Debug: check the global particle count and id checksum every this many steps (0 = never)", NULL, dem->check_every, &dem->check_every, NULL));
-  PetscCall(PetscOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, dem->nl.sort_interval, &dem->nl.sort_interval, NULL));
+  PetscCall(SableOptionsReal("-dem_skin", "Verlet skin; default 0.1 x the largest diameter", "m", "(0,inf)", dem->nl.skin, &dem->nl.skin, &sset));
+  PetscCall(SableOptionsBool("-dem_convex_sat", "Polyhedron pairs with at most -dem_convex_sat_axes candidate axes by the exact separating-axis test instead of libccd's MPR", dem->narrow.convex_sat, &dem->narrow.convex_sat, NULL));
+  PetscCall(SableOptionsInt("-dem_convex_sat_axes", "Most candidate axes (distinct face normals of both + edge-direction pairs) of a pair that takes the separating-axis test: 16 = box-box; 58 box-icosahedron, 245 icosahedron pairs (exact, ~9x MPR's cost in a dense bed)", NULL, "[0,inf)", dem->narrow.convex_sat_axes, &dem->narrow.convex_sat_axes, NULL));
+  PetscCall(SableOptionsEnum("-dem_convex_contact_point", "Pair contact point: patch (centroid of the contact patch, smooth) or support (the deepest vertex / edge crossing: the energy's own gradient, conserves energy with the exact depth)", ConvexPointModels, 2, point, &point, NULL));
+  dem->narrow.convex_point = (ConvexPointModel)point;
+  PetscCall(SableOptionsBool("-dem_deterministic", "Full neighbour rows summed in id order: results bitwise independent of the rank count (about 2x the contact cost)", dem->nl.full_list, &dem->nl.full_list, NULL));
+  PetscCall(SableOptionsInt("-dem_check_every", "Debug: check the global particle count and id checksum every this many steps (0 = never)", NULL, "[0,inf)", dem->check_every, &dem->check_every, NULL));
+  PetscCall(SableOptionsInt("-dem_sort_interval", "Re-sort particles by cell every this many list builds (0 = never)", NULL, "[0,inf)", dem->nl.sort_interval, &dem->nl.sort_interval, NULL));
   PetscOptionsEnd();
   dem->clock.dt_given = dem->clock.dt;
   PetscCall(DemCheckMaterialConflicts(dem));
-  PetscCheck(!sset || dem->nl.skin > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_skin %g must be > 0 (m)", (double)dem->nl.skin);
-  PetscCheck(dem->check_every >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_check_every %d must be >= 0 (0 = never)", (int)dem->check_every);
-  for (int k = 0; k < 2; k++) { /* PETSc stops reading an array at its capacity without a word */
-    const char *opt = k ? "-dem_radius_fraction" : "-dem_radius";
-    PetscInt    cnt;
-    PetscCall(SableOptionCount(opt, &cnt));
-    PetscCheck(cnt <= DEM_MAX_SHAPES, dem->comm, PETSC_ERR_ARG_SIZ, "%s has %d values; at most %d shapes", opt, (int)cnt, DEM_MAX_SHAPES);
-  }
-  PetscCheck(dem->narrow.convex_sat_axes >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_convex_sat_axes %d must be >= 0 (candidate axes of a pair; 16 covers box-box pairs)", (int)dem->narrow.convex_sat_axes);
   if (rset) {
     PetscCheck(nr >= 1, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_radius needs at least one value");
     for (PetscInt s = 0; s < nr; s++) {
@@ -187,14 +171,6 @@ PetscErrorCode DemSetFromOptions(Dem dem)
   }
   PetscCheck(sum > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_radius_fraction must not be all zero");
   for (PetscInt s = 0; s < dem->shapes.nshape; s++) dem->shapes.shape_frac[s] /= sum;
-  PetscCheck(dem->shapes.shp[0].rho > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_density %g must be > 0 (kg/m^3)", (double)dem->shapes.shp[0].rho);
-  PetscCheck(dem->clock.dt > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt %g must be > 0 (s)", (double)dem->clock.dt);
-  PetscCheck(dem->clock.dt_frac > 0 && dem->clock.dt_frac <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_max_fraction %g must be in (0,1]", (double)dem->clock.dt_frac);
-  PetscCheck(dem->clock.dt_tc >= 0 && dem->clock.dt_tc <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_dt_tc %g must be in [0,1] (0: use -dem_dt)", (double)dem->clock.dt_tc);
-  PetscCheck(dem->overlap_max > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_overlap_max %g must be > 0", (double)dem->overlap_max);
-  PetscCheck(dem->contact.vimpact > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_impact_velocity %g must be > 0 (m/s)", (double)dem->contact.vimpact);
-  PetscCheck(dem->contact.tdamp_ratio >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_tangential_damping %g must be >= 0", (double)dem->contact.tdamp_ratio);
-  PetscCheck(dem->nl.sort_interval >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_sort_interval %" PetscInt_FMT " must be >= 0", dem->nl.sort_interval);
   PetscCall(DemWallsSetFromOptions(dem));
   PetscCall(DemInsertSetFromOptions(dem));
   PetscCall(DemSinksSetFromOptions(dem));

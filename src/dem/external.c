@@ -118,7 +118,7 @@ PetscErrorCode DemExternalSetFromOptions(Dem dem)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(dem->comm, NULL, "DEM frozen bed", NULL);
-  PetscCall(PetscOptionsBool("-dem_frozen", "Integrate no particles (fixed obstacles, e.g. a packed bed)", NULL, dem->ext.frozen, &dem->ext.frozen, NULL));
+  PetscCall(SableOptionsBool("-dem_frozen", "Integrate no particles (fixed obstacles, e.g. a packed bed)", dem->ext.frozen, &dem->ext.frozen, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -73,37 +73,29 @@ static PetscErrorCode DemInitFileRadii(Dem dem, const PetscReal *dr, PetscInt ro
 
 PetscErrorCode DemInsertSetFromOptions(Dem dem)
 {
-  PetscBool set, help;
+  PetscBool help;
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help opens no file: the init file may not exist yet */
   PetscOptionsBegin(dem->comm, NULL, "DEM insertion", NULL);
-  PetscInt nl = 3;
-  PetscCall(PetscOptionsIntArray("-dem_lattice", "Cubic lattice site counts nx,ny,nz (0 = no lattice)", NULL, dem->insert.lat, &nl, &set));
-  if (set) PetscCall(SableOptionCount("-dem_lattice", &nl)); /* PETSc drops a surplus count */
-  PetscCheck(!set || nl == 3, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_lattice takes 3 counts nx,ny,nz, got %" PetscInt_FMT, nl);
-  PetscCall(PetscOptionsInt("-dem_lattice_count", "Fill only the first this many lattice sites, x fastest then y then z (default all nx*ny*nz)", NULL, dem->insert.lat_count, &dem->insert.lat_count, NULL));
-  PetscCall(PetscOptionsReal("-dem_lattice_spacing", "Lattice spacing (m); default 1.05 x the largest diameter", NULL, dem->insert.lat_a, &dem->insert.lat_a, &set));
-  PetscCheck(!set || dem->insert.lat_a > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_spacing %g must be > 0 (m)", (double)dem->insert.lat_a);
+  PetscCall(SableOptionsIntN("-dem_lattice", "Cubic lattice site counts nx,ny,nz (0 = no lattice)", NULL, "[0,inf)", dem->insert.lat, 3, 3, NULL));
+  PetscCall(SableOptionsInt("-dem_lattice_count", "Fill only the first this many lattice sites, x fastest then y then z; default all nx*ny*nz", NULL, "[0,inf)", dem->insert.lat_count, &dem->insert.lat_count, NULL));
+  PetscCall(SableOptionsReal("-dem_lattice_spacing", "Lattice spacing; default 1.05 x the largest diameter", "m", "(0,inf)", dem->insert.lat_a, &dem->insert.lat_a, NULL));
   PetscCall(SableOptionsRealN("-dem_lattice_origin", "Lower corner of the lattice region; default the domain's lower corner", "m", dem->insert.lat_origin, 0, 3, &dem->insert.lat_origin_set));
-  PetscCall(PetscOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2, in [0,1]", NULL, dem->insert.lat_jitter, &dem->insert.lat_jitter, NULL));
-  PetscCall(PetscOptionsReal("-dem_lattice_speed", "Amplitude of the deterministic random initial velocity (m/s)", NULL, dem->insert.lat_speed, &dem->insert.lat_speed, NULL));
-  PetscCall(PetscOptionsBool("-dem_lattice_random_orientation", "Uniformly random initial orientations (convex shapes)", NULL, dem->insert.random_orient, &dem->insert.random_orient, NULL));
-  PetscCall(PetscOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, dem->insert.seed, &dem->insert.seed, NULL));
-  PetscCall(PetscOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles); default none (the particles come from -dem_lattice)", NULL, dem->insert.init_file, dem->insert.init_file, sizeof dem->insert.init_file, NULL));
-  PetscCall(PetscOptionsEList("-dem_init_file_radii", "Spheres of -dem_init_file: own (each keeps its radius: a scene of own sizes, the shape index names the material), shapes (one shape per distinct radius, at most 32), or auto (own when the scene has own sizes or the file has more distinct radii than shapes can hold)", NULL, DemFileRadiiNames, 3, DemFileRadiiNames[dem->insert.file_radii], &dem->insert.file_radii, NULL));
-  PetscCall(PetscOptionsReal("-dem_init_file_overlap_max", "Largest overlap / radius a -dem_init_file particle may start with, with another or with a wall; default twice the contact design's overlap at -dem_impact_velocity, at least 0.05", NULL, dem->insert.init_overlap_max, &dem->insert.init_overlap_max, &set));
+  PetscCall(SableOptionsReal("-dem_lattice_jitter", "Random position perturbation, fraction of the gap (a - d)/2", NULL, "[0,1]", dem->insert.lat_jitter, &dem->insert.lat_jitter, NULL));
+  PetscCall(SableOptionsReal("-dem_lattice_speed", "Amplitude of the deterministic random initial velocity", "m/s", "[0,inf)", dem->insert.lat_speed, &dem->insert.lat_speed, NULL));
+  PetscCall(SableOptionsBool("-dem_lattice_random_orientation", "Uniformly random initial orientations (convex shapes)", dem->insert.random_orient, &dem->insert.random_orient, NULL));
+  PetscCall(SableOptionsInt("-dem_seed", "Seed of the insertion perturbations", NULL, NULL, dem->insert.seed, &dem->insert.seed, NULL));
+  PetscCall(SableOptionsString("-dem_init_file", "HDF5 file written by Sable to start from (its particles); default none (the particles come from -dem_lattice)", dem->insert.init_file, sizeof dem->insert.init_file, NULL));
+  PetscCall(SableOptionsEnum("-dem_init_file_radii", "Spheres of -dem_init_file: own (each keeps its radius: a scene of own sizes, the shape index names the material), shapes (one shape per distinct radius, at most 32), or auto (own when the scene has own sizes or the file has more distinct radii than shapes can hold)", DemFileRadiiNames, 3, dem->insert.file_radii, &dem->insert.file_radii, NULL));
+  PetscCall(SableOptionsReal("-dem_init_file_overlap_max", "Largest overlap / radius a -dem_init_file particle may start with, with another or with a wall; default twice the contact design's overlap at -dem_impact_velocity, at least 0.05", NULL, "(0,2)", dem->insert.init_overlap_max, &dem->insert.init_overlap_max, NULL));
   PetscOptionsEnd();
-  PetscCheck(!set || (dem->insert.init_overlap_max > 0 && dem->insert.init_overlap_max < 2), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_init_file_overlap_max %g must be in (0,2) (radii)", (double)dem->insert.init_overlap_max);
-  for (int k = 0; k < 3; k++) PetscCheck(dem->insert.lat[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice count %" PetscInt_FMT " must be >= 0", dem->insert.lat[k]);
   {
     const double sites = (double)dem->insert.lat[0] * (double)dem->insert.lat[1] * (double)dem->insert.lat[2];
     PetscCheck(sites <= (double)PETSC_MAX_INT, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ": %.0f sites, more than %" PetscInt_FMT " (the integer size PETSc was built with)", dem->insert.lat[0], dem->insert.lat[1], dem->insert.lat[2], sites, (PetscInt)PETSC_MAX_INT);
   }
-  PetscCheck(dem->insert.lat_count >= -1 && dem->insert.lat_count <= dem->insert.lat[0] * dem->insert.lat[1] * dem->insert.lat[2], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_count %" PetscInt_FMT " must be in [0, nx*ny*nz = %" PetscInt_FMT "]", dem->insert.lat_count, dem->insert.lat[0] * dem->insert.lat[1] * dem->insert.lat[2]);
+  PetscCheck(dem->insert.lat_count <= dem->insert.lat[0] * dem->insert.lat[1] * dem->insert.lat[2], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_count %" PetscInt_FMT " must be in [0, nx*ny*nz = %" PetscInt_FMT "]", dem->insert.lat_count, dem->insert.lat[0] * dem->insert.lat[1] * dem->insert.lat[2]);
   if (dem->insert.lat_count < 0) dem->insert.lat_count = dem->insert.lat[0] * dem->insert.lat[1] * dem->insert.lat[2];
-  PetscCheck(dem->insert.lat_jitter >= 0 && dem->insert.lat_jitter <= 1, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_jitter %g must be in [0,1]", (double)dem->insert.lat_jitter);
-  PetscCheck(dem->insert.lat_speed >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_lattice_speed %g must be >= 0", (double)dem->insert.lat_speed);
   if (dem->insert.init_file[0] && !help) PetscCall(IoCheckReadable(dem->comm, "-dem_init_file", dem->insert.init_file));
   if (dem->insert.init_file[0] && !help && dem->insert.file_radii == 2 && !dem->shapes.convex) { /* own: declared now, so a restart has it too */
     PetscReal *d;

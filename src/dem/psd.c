@@ -344,7 +344,7 @@ PetscErrorCode DemPsdSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Co
   PetscFunctionBeginUser;
   PetscCall(DemPsdOptionNames(prefix, names));
   PetscCall(PetscMemzero(psd, sizeof *psd));
-  PetscCall(PetscOptionsEList(names[PSD_KIND], "Size distribution of the diameter: single, number (table of number fractions), mass (table of mass fractions), normal, lognormal, uniform", NULL, DemPsdKindNames, 6, DemPsdKindNames[kind], &kind, &set[PSD_KIND]));
+  PetscCall(SableOptionsEnum(names[PSD_KIND], "Size distribution of the diameter: single, number (table of number fractions), mass (table of mass fractions), normal, lognormal, uniform", DemPsdKindNames, 6, kind, &kind, &set[PSD_KIND]));
   psd->kind = (DemPsdKind)kind;
   PetscCall(SableOptionsRealArray(names[PSD_DIAMETERS], "number, mass: the table's diameters", "m", psd->d, 0, &nd, &set[PSD_DIAMETERS]));
   PetscCall(SableOptionsRealArray(names[PSD_FRACTIONS], "number, mass: the fraction of each diameter, by number or by mass (normalised)", NULL, f, 0, &nf, &set[PSD_FRACTIONS]));

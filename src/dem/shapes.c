@@ -134,7 +134,7 @@ static PetscErrorCode DemShapeSpecsRead(Dem dem, PetscInt *ns, DemShapeSpec sp[]
   PetscCall(SableOptionsRealArray("-dem_shape_size", "Edge (polyhedra), diameter (sphere, cylinder) or scale of the vertex file, per shape", "m", size, 0, &nsz, &sset));
   PetscCall(SableOptionsRealArray("-dem_shape_deq", "Volume-equivalent diameter per shape, instead of -dem_shape_size", "m", deq, 0, &nd, &dset));
   PetscCall(PetscOptionsStringArray("-dem_shape_file", "Vertex file of each polyhedron shape (x y z per line, m)", NULL, files, &nfile, &fset));
-  PetscCall(PetscOptionsReal("-dem_cylinder_aspect", "Height / diameter of the cylinder shapes", NULL, aspect, &aspect, NULL));
+  PetscCall(SableOptionsReal("-dem_cylinder_aspect", "Height / diameter of the cylinder shapes", NULL, "(0,inf)", aspect, &aspect, NULL));
   PetscOptionsEnd();
   *ns = kset ? nk : 0;
   if (!fset) nfile = 0;
@@ -147,7 +147,6 @@ static PetscErrorCode DemShapeSpecsRead(Dem dem, PetscInt *ns, DemShapeSpec sp[]
   PetscCheck(!(sset && dset), dem->comm, PETSC_ERR_ARG_WRONG, "give either -dem_shape_size or -dem_shape_deq, not both");
   PetscCheck(!sset || nsz == nk, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_shape_size has %" PetscInt_FMT " values for %" PetscInt_FMT " shapes", nsz, nk);
   PetscCheck(!dset || nd == nk, dem->comm, PETSC_ERR_ARG_SIZ, "-dem_shape_deq has %" PetscInt_FMT " values for %" PetscInt_FMT " shapes", nd, nk);
-  PetscCheck(aspect > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder_aspect %g must be > 0", (double)aspect);
   for (PetscInt s = 0; s < nk; s++) {
     sp[s].kind   = (DemShapeKind)kind[s];
     sp[s].size   = sset ? size[s] : -1;

@@ -35,7 +35,7 @@ PetscErrorCode DriverCkptSetFromOptions(DriverCkpt *c, MPI_Comm comm)
   PetscOptionsBegin(comm, NULL, "Checkpoints", NULL);
   PetscCall(SableOptionsReal("-io_checkpoint_interval", "Simulated time between exact checkpoints, and one at the end; a stop signal writes one in any case", "s; 0 = none", "[0,inf)", c->dt, &c->dt, NULL));
   PetscCall(SableOptionsInt("-io_checkpoint_keep", "Newest checkpoints of this run kept (older ones removed)", "files", "[1,64]", c->keep, &c->keep, NULL));
-  PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint instead of inserting particles (the same case options)", NULL, c->restart, c->restart, sizeof c->restart, NULL));
+  PetscCall(SableOptionsString("-restart", "Continue from this checkpoint instead of inserting particles (the same case options)", c->restart, sizeof c->restart, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -52,7 +52,7 @@ PetscErrorCode DriverIsCoupled(PetscBool *on)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Solver mode", NULL);
-  PetscCall(PetscOptionsEList("-sable_solver", "The run: auto (a coupled CFD-DEM run when any -fluid_ or -cpl_ option is given, a dry DEM run otherwise), dry or coupled (options of the other mode are then refused)", NULL, DriverSolverNames, 3, DriverSolverNames[0], &mode, NULL));
+  PetscCall(SableOptionsEnum("-sable_solver", "The run: auto (a coupled CFD-DEM run when any -fluid_ or -cpl_ option is given, a dry DEM run otherwise), dry or coupled (options of the other mode are then refused)", DriverSolverNames, 3, 0, &mode, NULL));
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (!help) {

@@ -2,7 +2,8 @@
  * columns and their definitions are listed in doc/output.md ("Monitor file"). Each column is one
  * line of DriverMonFill: MonCol(cols, name, index, unit, value) declares the column (name and
  * unit) while the header is made and fills its value in each row, so a column's name, unit and
- * value stay together. The indexed families (-mon_box_<k>, -mon_surface_<k>, -mon_flux_<k>, and
+ * value stay together; each value is placed under the column declared with its name and unit
+ * (MonCheckColumn), so the two passes cannot pair a value with another column's name. The indexed families (-mon_box_<k>, -mon_surface_<k>, -mon_flux_<k>, and
  * for coupled runs -mon_probe_<k>, -mon_dp_<k>, -mon_line_<k>, -mon_plane_<k>) take any number
  * of members: the indices given are found in the options database, and their columns follow in
  * increasing index; nothing is computed for a family left empty. The particle figures come from
@@ -229,17 +230,18 @@ typedef struct {
   PetscInt   c, ncol;
 } MonCols;
 
-/* One column: its name (a printf pattern of the index k when it has one), unit and value. */
+/* One column: its name (a printf pattern of the index k when it has one), unit and value. Each
+ * value is placed under the column declared with the same name and unit (MonCheckColumn), not
+ * merely at the same position, so a column the two passes take differently stops the run. */
 static PetscErrorCode MonCol(MonCols *cols, const char *name, PetscInt k, const char *unit, PetscReal v)
 {
   char buf[64];
 
   PetscFunctionBeginUser;
-  if (cols->declare) {
-    PetscCall(PetscSNPrintf(buf, sizeof buf, name, (int)k));
-    PetscCall(MonAddColumn(cols->mon, buf, unit));
-  } else {
-    PetscCheck(cols->c < cols->ncol, PETSC_COMM_SELF, PETSC_ERR_PLIB, "monitor: more values than the %d columns", (int)cols->ncol);
+  PetscCall(PetscSNPrintf(buf, sizeof buf, name, (int)k));
+  if (cols->declare) PetscCall(MonAddColumn(cols->mon, buf, unit));
+  else {
+    PetscCall(MonCheckColumn(cols->mon, cols->c, buf, unit));
     cols->row[cols->c] = v;
   }
   cols->c++;
@@ -249,9 +251,11 @@ static PetscErrorCode MonCol(MonCols *cols, const char *name, PetscInt k, const 
 /* The fluid's columns: probes, pressure drops, line and plane averages (coupled runs). */
 static PetscErrorCode DriverMonFillFluid(DriverMon *m, MonCols *cols, const DriverMonInput *in)
 {
-  const char *fname[5] = {"%s%d_p", "%s%d_eps", "%s%d_ux", "%s%d_uy", "%s%d_uz"}, *funit[5] = {"Pa", "-", "m/s", "m/s", "m/s"};
-  PetscReal  *p = NULL, *avg = NULL, emin = 1;
-  PetscInt    nspan = m->nline + m->nplane;
+  const struct {
+    const char *name, *unit; /* the name a printf pattern of the family (line, plane) and index */
+  } fcol[5]    = {{"%s%d_p", "Pa"}, {"%s%d_eps", "-"}, {"%s%d_ux", "m/s"}, {"%s%d_uy", "m/s"}, {"%s%d_uz", "m/s"}};
+  PetscReal *p = NULL, *avg = NULL, emin = 1;
+  PetscInt   nspan = m->nline + m->nplane;
 
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc2(m->nprobe, &p, 5 * nspan, &avg));
@@ -266,8 +270,8 @@ static PetscErrorCode DriverMonFillFluid(DriverMon *m, MonCols *cols, const Driv
       const PetscBool line = (PetscBool)(s < m->nline);
       char            name[32];
       if (!m->fields[q < 2 ? q : 2]) continue;
-      PetscCall(PetscSNPrintf(name, sizeof name, fname[q], line ? "line" : "plane", (int)(line ? m->line[s].k : m->plane[s - m->nline].k)));
-      PetscCall(MonCol(cols, name, 0, funit[q], avg[5 * s + q]));
+      PetscCall(PetscSNPrintf(name, sizeof name, fcol[q].name, line ? "line" : "plane", (int)(line ? m->line[s].k : m->plane[s - m->nline].k)));
+      PetscCall(MonCol(cols, name, 0, fcol[q].unit, avg[5 * s + q]));
     }
   PetscCall(PetscFree2(p, avg));
   if (!cols->declare && !in->cst) { /* before the first coupling step (a run's start, a restart's first row): the porosity set up */

@@ -99,7 +99,7 @@ typedef enum {
   CONVEX_POINT_PATCH,
   CONVEX_POINT_SUPPORT
 } ConvexPointModel;
-extern const char *const ConvexPointModels[]; /* option names, for PetscOptionsEnum */
+extern const char *const ConvexPointModels[]; /* the names of -dem_convex_contact_point, in enum order */
 
 /* ConvexCollide with the contact point of the given model (ConvexCollide itself: PATCH). */
 PetscErrorCode ConvexCollideWith(const ConvexShape *a, const ConvexPose *pa, const ConvexShape *b, const ConvexPose *pb, ConvexPointModel model, ConvexContact *c);

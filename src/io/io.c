@@ -48,25 +48,23 @@ PetscErrorCode IoSetFromOptions(Io io)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(io->comm, NULL, "Output (HDF5 + XDMF)", NULL);
-  PetscCall(PetscOptionsString("-io_dir", "Output directory, made with its parents if missing", NULL, io->dir, io->dir, sizeof io->dir, NULL));
-  PetscCall(PetscOptionsString("-io_prefix", "Output file name prefix", NULL, io->prefix, io->prefix, sizeof io->prefix, NULL));
+  PetscCall(SableOptionsString("-io_dir", "Output directory, made with its parents if missing", io->dir, sizeof io->dir, NULL));
+  PetscCall(SableOptionsString("-io_prefix", "Output file name prefix", io->prefix, sizeof io->prefix, NULL));
   PetscCall(SableOptionsReal("-io_interval", "Simulated time between outputs; 0 = no output", "s", "[0,inf)", io->interval, &io->interval, NULL));
   PetscCall(SableOptionsReal("-io_particle_interval", "Simulated time between frames of the particles (and convex surfaces); 0 = none; default -io_interval", "s", "[0,inf)", io->interval, &io->pinterval, NULL));
   PetscCall(SableOptionsReal("-io_fluid_interval", "Simulated time between frames of the fluid fields and time averages; 0 = none; default -io_interval", "s", "[0,inf)", io->interval, &io->finterval, NULL));
   PetscCall(IoReadFields(io, PetscOptionsObject)); /* fields.c */
   {
-    const char *prec[] = {"double", "single"};
-    PetscInt    k      = 0;
-    PetscCall(PetscOptionsEList("-io_precision", "Reals of the particle and fluid datasets of a frame: double (64 bits, exact) or single (32 bits, about 7 digits: half the bytes; checkpoints stay exact)", NULL, prec, 2, prec[0], &k, NULL));
+    const char *const prec[] = {"double", "single"};
+    PetscInt          k      = 0;
+    PetscCall(SableOptionsEnum("-io_precision", "Reals of the particle and fluid datasets of a frame: double (64 bits, exact) or single (32 bits, about 7 digits: half the bytes; checkpoints stay exact)", prec, 2, 0, &k, NULL));
     io->single = (PetscBool)(k == 1);
   }
   PetscCall(SableOptionsInt("-io_compress", "Lossless HDF5 compression of the frames (chunked, shuffle + deflate) at this level; 0 = none (checkpoints are never compressed)", NULL, "[0,9]", io->compress, &io->compress, NULL));
   PetscOptionsEnd();
-  { /* the raw values: PETSc cuts a string at the buffer's size without a word */
+  { /* the raw value of -io_dir: room for the file names under it */
     const char *v;
     PetscBool   set;
-    PetscCall(PetscOptionsFindPair(NULL, NULL, "-io_prefix", &v, &set));
-    PetscCheck(!set || (v && strlen(v) < sizeof io->prefix), io->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_prefix %s: at most %d characters", v ? v : "(none)", (int)sizeof io->prefix - 1);
     PetscCheck(!strchr(io->prefix, '/') && io->prefix[0], io->comm, PETSC_ERR_ARG_WRONG, "-io_prefix %s: a file name prefix, without '/' (the directory is -io_dir)", io->prefix);
     PetscCall(PetscOptionsFindPair(NULL, NULL, "-io_dir", &v, &set));
     PetscCheck(!set || (v && strlen(v) < sizeof io->dir - 80), io->comm, PETSC_ERR_ARG_OUTOFRANGE, "-io_dir: at most %d characters", (int)sizeof io->dir - 81);

@@ -152,6 +152,10 @@ PetscErrorCode MonSetUp(Mon mon, Io io);
 PetscErrorCode MonIsActive(Mon mon, PetscBool *on);
 PetscErrorCode MonAddColumn(Mon mon, const char *name, const char *unit);
 PetscErrorCode MonGetColumnCount(Mon mon, PetscInt *n);
+/* Not collective. Errors (PETSC_ERR_PLIB, naming both) unless column c was added with this name
+ * and unit: a row's filler calls it with each value it places, so that a value cannot land under
+ * another column's name (a count check alone lets two swapped columns pass). */
+PetscErrorCode MonCheckColumn(Mon mon, PetscInt c, const char *name, const char *unit);
 /* Not collective (the same on every rank). Whether a row is due at simulated time t (the first
  * call: always). */
 PetscErrorCode MonDue(Mon mon, PetscReal t, PetscBool *due);

@@ -42,7 +42,7 @@ PetscErrorCode MonSetFromOptions(Mon mon)
   PetscFunctionBeginUser;
   PetscOptionsBegin(mon->comm, NULL, "Monitor (a CSV time series)", NULL);
   PetscCall(SableOptionsReal("-mon_interval", "Simulated time between monitor rows", "s; 0 = no monitor file", "[0,inf)", mon->interval, &mon->interval, NULL));
-  PetscCall(PetscOptionsString("-mon_file", "Monitor file (CSV); default <io_dir>/<io_prefix>_monitor.csv", NULL, mon->path, mon->path, sizeof mon->path, NULL));
+  PetscCall(SableOptionsString("-mon_file", "Monitor file (CSV); default <io_dir>/<io_prefix>_monitor.csv", mon->path, sizeof mon->path, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -81,6 +81,18 @@ PetscErrorCode MonGetColumnCount(Mon mon, PetscInt *n)
 {
   PetscFunctionBeginUser;
   *n = mon->ncol;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MonCheckColumn(Mon mon, PetscInt c, const char *name, const char *unit)
+{
+  PetscBool same_name = PETSC_FALSE, same_unit = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCheck(c >= 0 && c < mon->ncol, PETSC_COMM_SELF, PETSC_ERR_PLIB, "monitor: a value for column %d (%s [%s]); the header has %d columns", (int)c, name, unit, (int)mon->ncol);
+  PetscCall(PetscStrncmp(mon->name[c], name, sizeof mon->name[0], &same_name));
+  PetscCall(PetscStrncmp(mon->unit[c], unit, sizeof mon->unit[0], &same_unit));
+  PetscCheck(same_name && same_unit, PETSC_COMM_SELF, PETSC_ERR_PLIB, "monitor: the value of %s [%s] in column %d, whose header is %s [%s]", name, unit, (int)c, mon->name[c], mon->unit[c]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

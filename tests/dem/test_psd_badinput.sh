@@ -16,7 +16,7 @@ expect() { # name, pattern the message must match, arguments...
     echo "FAIL bad input, $name: exit $rc, $lines error lines, expected /$pat/; got: $out"
   fi
 }
-expect "unknown kind" "Unknown option gamma for $P" $P gamma
+expect "unknown kind" "$P gamma is not known; valid values: single, number, mass, normal, lognormal, uniform" $P gamma
 expect "table without diameters" "$P number needs ${P}_diameters" $P number ${P}_fractions 1
 expect "empty table" "${P}_diameters needs a value" $P number ${P}_diameters ${P}_fractions 1
 expect "counts differ" "${P}_fractions has 1 values for the 2 diameters" $P number ${P}_diameters 1e-3,2e-3 ${P}_fractions 0.5

@@ -14,12 +14,12 @@ expect() { # name, pattern the message must match, arguments...
     echo "FAIL bad input, $name: exit $rc, $lines error lines, expected /$pat/; got: $out"
   fi
 }
-expect "unknown model" "Unknown option foo for -dem_rolling_model. Available options: none constant viscous kms" $OK -dem_rolling_model foo -dem_rolling_friction 0.1
+expect "unknown model" "-dem_rolling_model foo is not known; valid values: none, constant, viscous, kms" $OK -dem_rolling_model foo -dem_rolling_friction 0.1
 expect "model without coefficient" "-dem_rolling_model constant needs -dem_rolling_friction" $OK -dem_rolling_model constant
 expect "coefficient without model" "-dem_rolling_friction is ignored by -dem_rolling_model none" $OK -dem_rolling_friction 0.1
 expect "wall coefficient without model" "-dem_wall_rolling_friction is ignored by -dem_rolling_model none" $OK -dem_wall_rolling_friction 0.1
-expect "negative coefficient" "-dem_rolling_friction -0.1 must be finite and >= 0" $OK -dem_rolling_model constant -dem_rolling_friction -0.1
-expect "negative wall coefficient" "-dem_wall_rolling_friction -0.2 must be finite and >= 0" $OK -dem_rolling_model viscous -dem_rolling_friction 0.1 -dem_wall_rolling_friction -0.2
+expect "negative coefficient" "-dem_rolling_friction -0.1 must be >= 0" $OK -dem_rolling_model constant -dem_rolling_friction -0.1
+expect "negative wall coefficient" "-dem_wall_rolling_friction -0.2 must be >= 0" $OK -dem_rolling_model viscous -dem_rolling_friction 0.1 -dem_wall_rolling_friction -0.2
 expect "convex shapes" "-dem_rolling_model constant applies to spheres; convex shapes (-dem_shape) take none" $OK -dem_shape cube -dem_shape_size 0.01 -dem_rolling_model constant -dem_rolling_friction 0.1
 for m in constant viscous kms; do
   if $S $OK -dem_rolling_model $m -dem_rolling_friction 0.1 -dem_wall_rolling_friction 0.05 >/dev/null 2>&1; then echo "PASS good rolling input runs ($m): exit 0"; else echo "FAIL good rolling input runs ($m): exit $?"; fi

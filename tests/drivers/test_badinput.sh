@@ -65,7 +65,7 @@ expect "a fluid option makes a dry case coupled" "-dem_t_end applies to dry runs
 expect "-sable_solver dry with a fluid option" "-sable_solver dry: -fluid_viscosity is an option of coupled runs (remove it, or give -sable_solver coupled)" $Q -sable_solver dry -fluid_viscosity 1.8e-5
 expect "-sable_solver dry on a coupled case" "-sable_solver dry: -cpl_drag is an option of coupled runs" -options_file cases/packed_bed/packed_bed.opts -sable_solver dry
 expect "-sable_solver coupled on a dry case" "-dem_t_end applies to dry runs; this run is coupled (-sable_solver coupled): use -cpl_t_end" $Q -sable_solver coupled
-expect "-sable_solver of another word" "Unknown option wet for -sable_solver. Available options: auto dry coupled" $Q -sable_solver wet
+expect "-sable_solver of another word" "-sable_solver wet is not known; valid values: auto, dry, coupled" $Q -sable_solver wet
 for m in "dry|$OK -sable_solver dry|fluid off" "auto|$OK -sable_solver auto|fluid off" "coupled|-options_file cases/packed_bed/packed_bed.opts -sable_solver coupled -cpl_t_end 0|fluid on"; do
   name=${m%%|*}; rest=${m#*|}; args=${rest%|*}; want=${rest##*|}
   out=$($S $args 2>&1); rc=$?
