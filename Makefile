@@ -1,6 +1,7 @@
 # Sable build. `make` builds bin/sable and build/libsable.a (the tests link it).
 #   make DEBUG=1      debug build (-O0 -g, PetscAssert active), all in build-debug/ (its
 #                     binary build-debug/bin/sable; bin/sable stays the optimised one)
+#   make check        installs missing packages, builds, runs the quick tier (tests/check.list)
 #   make test         installs missing packages, builds, runs the whole suite
 #   make run          installs missing packages, builds, runs the default case
 #   make bench        the performance benchmarks (never part of `make test`)
@@ -16,7 +17,10 @@ endif
 BIN ?= bin
 CC = mpicc
 PKGS = petsc ccd hdf5-openmpi
-CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra $(OPT) \
+# -MMD -MP: the compiler writes each object's header dependencies beside it (%.d, read below),
+# so a header edit rebuilds only the objects and tests that include it.
+DEPFLAGS = -MMD -MP
+CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra $(OPT) $(DEPFLAGS) \
          $(shell pkg-config --cflags $(PKGS) 2>/dev/null) -Isrc
 LDLIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm
 
@@ -27,10 +31,8 @@ LIB_OBJ = $(LIB_SRC:%.c=$(BUILD)/%.o)
 # where its scenes (*.opts) are.
 TEST_SRC = $(wildcard tests/*/*.c)
 TEST_BIN = $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
-TEST_HDRS = $(wildcard tests/common/*.h)
-HDRS = $(shell find src -name '*.h')
 
-.PHONY: all deps test run bench clean
+.PHONY: all deps check test run bench clean
 all: $(BIN)/sable $(TEST_BIN) $(BUILD)/tools/tradeoff_run $(BUILD)/tools/umf_sweep $(BUILD)/tools/grid_settle
 
 deps:
@@ -46,7 +48,7 @@ $(BUILD)/gen/sable_options.h: $(LIB_SRC) src/main.c tools/gen-options.sh
 $(BUILD)/src/sable.o: $(BUILD)/gen/sable_options.h
 $(BUILD)/src/sable.o: CFLAGS += -I$(BUILD)/gen
 
-$(BUILD)/%.o: %.c $(HDRS)
+$(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 
@@ -58,11 +60,17 @@ $(BIN)/sable: $(BUILD)/src/main.o $(BUILD)/libsable.a
 	@mkdir -p $(BIN)
 	$(CC) $(CFLAGS) $^ $(LDLIBS) -o $@
 
-$(BUILD)/tests/%: tests/%.c $(BUILD)/libsable.a $(HDRS) $(TEST_HDRS)
+$(BUILD)/tests/%: tests/%.c $(BUILD)/libsable.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Itests/common -DTEST_DIR='"$(abspath $(dir $<))"' $< $(BUILD)/libsable.a $(LDLIBS) -o $@
+	$(CC) $(CFLAGS) -MF $@.d -MT $@ -Itests/common -DTEST_DIR='"$(abspath $(dir $<))"' $< $(BUILD)/libsable.a $(LDLIBS) -o $@
 
 # The targets that a fresh machine runs first install what is missing, then build.
+# `make check` is the quick tier a kernel change runs first (the tests named in tests/check.list);
+# `make test` the whole suite.
+check: deps
+	@$(MAKE) --no-print-directory -s all
+	@BUILD=$(BUILD) BIN=$(BIN) TIER=check tests/run.sh
+
 test: deps
 	@$(MAKE) --no-print-directory -s all
 	@BUILD=$(BUILD) BIN=$(BIN) tests/run.sh
@@ -79,6 +87,10 @@ clean:
 	rm -rf build build-debug bin
 
 # Stand-alone tools, not part of `all`: e.g. make build/tools/bench_convex
-$(BUILD)/tools/%: tools/%.c $(BUILD)/libsable.a $(HDRS)
+$(BUILD)/tools/%: tools/%.c $(BUILD)/libsable.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) $< $(BUILD)/libsable.a $(LDLIBS) -o $@
+	$(CC) $(CFLAGS) -MF $@.d -MT $@ $< $(BUILD)/libsable.a $(LDLIBS) -o $@
+
+# The header dependencies the compiler wrote (none before the first build, when every object is
+# built anyway; the generated sable_options.h is named above for that first build).
+-include $(LIB_OBJ:.o=.d) $(BUILD)/src/main.d $(TEST_BIN:=.d) $(wildcard $(BUILD)/tools/*.d)

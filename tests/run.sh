@@ -9,6 +9,9 @@
 # Every tests/<folder>/*.sh is a shell test printing the same kind of lines.
 # A test's label is <folder>/<name> (e.g. dem/test_verlet, dem/test_parallel[np=2]);
 # ONLY=<substring> runs the tests whose label holds it (ONLY=verlet, ONLY=coupling/).
+# TIER=check runs only the tests named in tests/check.list (`make check`, the quick tier a kernel
+# change runs first; a name there that is no test is one failure); no TIER: the whole suite.
+# TIMES=1 adds a line "TIME <label>: <seconds> s" after each test (not counted).
 # A test that exits non-zero without printing a FAIL line counts as one failure; a test still
 # running after TEST_TIMEOUT seconds (default 900) is stopped and counts as one failure.
 # Last line: "N passed, N failed"; exit status non-zero when anything failed.
@@ -23,11 +26,26 @@ LOG=$(mktemp -d)
 trap 'rm -rf "$LOG"' EXIT
 pass=0; fail=0
 ONLY=${ONLY:-}
+TIER=${TIER:-}
+TIMES=${TIMES:-0}
 TEST_TIMEOUT=${TEST_TIMEOUT:-900}
+if [ -n "$TIER" ]; then # the tier's labels, one a line, without comments and blank lines
+  [ -f "tests/$TIER.list" ] || { echo "FAIL tests/run.sh: TIER=$TIER: no tests/$TIER.list"; echo "0 passed, 1 failed"; exit 1; }
+  sed 's/#.*//; s/[[:space:]]*$//; /^$/d' "tests/$TIER.list" >"$LOG/tier"
+  for name in $(cat "$LOG/tier"); do
+    [ -f "tests/$name.c" ] || [ -f "tests/$name.sh" ] || { echo "FAIL tests/$TIER.list: names $name, no such test"; fail=$((fail + 1)); }
+  done
+fi
+selected() { # label without [np=..]: in ONLY and in the tier
+  case "$1" in common/*) return 1 ;; esac
+  case "$1" in *$ONLY*) ;; *) return 1 ;; esac
+  [ -z "$TIER" ] || grep -qx "$1" "$LOG/tier"
+}
 
 run_one() { # label, command...
   label=$1; shift
   out="$LOG/out"
+  t0=$(date +%s.%N)
   timeout -k 10 "$TEST_TIMEOUT" "$@" >"$out" 2>"$LOG/err"
   rc=$?
   timedout=0 # timeout's TERM (124) or, when the test ignored it, KILL 10 s later (137)
@@ -40,12 +58,13 @@ run_one() { # label, command...
   fi
   [ "$np" -eq 0 ] && [ "$nf" -eq 0 ] && { echo "FAIL $label: printed no check"; nf=1; }
   pass=$((pass + np)); fail=$((fail + nf))
+  [ "$TIMES" = 1 ] && echo "TIME $label: $(echo "$t0 $(date +%s.%N)" | awk '{printf "%.1f", $2 - $1}') s"
+  return 0
 }
 
 for src in tests/*/*.c; do
   name=${src#tests/}; name=${name%.c} # <folder>/<name>
-  case "$name" in common/*) continue ;; esac
-  case "$name" in *$ONLY*) ;; *) continue ;; esac
+  selected "$name" || continue
   ranks=$(sed -n 's|^/\* ranks: \(.*\) \*/$|\1|p' "$src" | head -n 1)
   for n in ${ranks:-1}; do
     if [ "$n" -eq 1 ]; then run_one "$name" "$BUILD/tests/$name"
@@ -54,8 +73,7 @@ for src in tests/*/*.c; do
 done
 for t in tests/*/*.sh; do
   name=${t#tests/}; name=${name%.sh}
-  case "$name" in common/*) continue ;; esac
-  case "$name" in *$ONLY*) ;; *) continue ;; esac
+  selected "$name" || continue
   run_one "$name" sh "$t"
 done
 echo "$pass passed, $fail failed"
