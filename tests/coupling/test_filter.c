@@ -43,13 +43,13 @@ static PetscErrorCode StencilError(Cpl cpl, DM da, Vec v, int d, const PetscInt 
           off += idx[e] != c[e];
           if (idx[e] != c[e]) at = e;
         }
-        for (int e = 0; e < 3; e++) ctr -= (2 - missing[e][0] - missing[e][1]) * cpl->filter_lam[e];
+        for (int e = 0; e < 3; e++) ctr -= (2 - missing[e][0] - missing[e][1]) * cpl->filt.lam[e];
         if (off == 0) want = ctr;
         else if (off == 1) {
           const PetscInt dd = idx[at] - c[at], n = cpl->dom->cells[at];
           const PetscInt s = (dd == 1 || dd == 1 - n) ? 1 : (dd == -1 || dd == n - 1) ? 0
                                                                                       : -1;
-          if (s >= 0 && !missing[at][s]) want = cpl->filter_lam[at];
+          if (s >= 0 && !missing[at][s]) want = cpl->filt.lam[at];
         }
         loc[0] = PetscMax(loc[0], PetscAbsReal(a[o + d] - want));
         for (int q = 0; q < dof; q++) loc[1] += a[o + q];
@@ -121,9 +121,9 @@ static PetscErrorCode OneSweep(void)
 
   PetscFunctionBeginUser;
   PetscCall(TestCplCreate(BOX_P "-cpl_filter_width 1.2", &t));
-  PetscCall(CheckTrue("W = 1.2 on cells 1 x 1.25 x 1.5 is one sweep", (PetscBool)(t.cpl->filter_n == 1), t.cpl->filter_n == 1 ? "1 sweep" : "not 1 sweep"));
-  CheckDetail("bound 1e-15; lam = %.4f %.4f %.4f", (double)t.cpl->filter_lam[0], (double)t.cpl->filter_lam[1], (double)t.cpl->filter_lam[2]);
-  PetscCall(CheckClose("lam_x h_x^2 = sigma^2/2 = W^2/(16 ln 2)", t.cpl->filter_lam[0], 1.44 / (16 * PetscLogReal(2.0)), 1e-14));
+  PetscCall(CheckTrue("W = 1.2 on cells 1 x 1.25 x 1.5 is one sweep", (PetscBool)(t.cpl->filt.n == 1), t.cpl->filt.n == 1 ? "1 sweep" : "not 1 sweep"));
+  CheckDetail("bound 1e-15; lam = %.4f %.4f %.4f", (double)t.cpl->filt.lam[0], (double)t.cpl->filt.lam[1], (double)t.cpl->filt.lam[2]);
+  PetscCall(CheckClose("lam_x h_x^2 = sigma^2/2 = W^2/(16 ln 2)", t.cpl->filt.lam[0], 1.44 / (16 * PetscLogReal(2.0)), 1e-14));
   PetscCall(DMGetGlobalVector(t.cpl->cda, &v));
   PetscCall(Unit(t.cpl->cda, v, 0, c));
   PetscCall(CplFilter(t.cpl, v, PETSC_FALSE));
@@ -175,9 +175,9 @@ static PetscErrorCode Variance(void)
 
   PetscCall(TestCplCreate(BOX_P "-cpl_filter_width 4", &t));
   sig2 = 16 / (8 * PetscLogReal(2.0));
-  PetscCall(CheckClose("W = 4: the filter's variance (W d)^2 / (8 ln 2)", t.cpl->filter_var, sig2, 1e-14));
-  CheckDetail("bound 1/6; %d sweeps", (int)t.cpl->filter_n);
-  PetscCall(CheckAtMost("W = 4: largest diffusion number of a sweep", PetscMax(t.cpl->filter_lam[0], PetscMax(t.cpl->filter_lam[1], t.cpl->filter_lam[2])), 1.0 / 6));
+  PetscCall(CheckClose("W = 4: the filter's variance (W d)^2 / (8 ln 2)", t.cpl->filt.var, sig2, 1e-14));
+  CheckDetail("bound 1/6; %d sweeps", (int)t.cpl->filt.n);
+  PetscCall(CheckAtMost("W = 4: largest diffusion number of a sweep", PetscMax(t.cpl->filt.lam[0], PetscMax(t.cpl->filt.lam[1], t.cpl->filt.lam[2])), 1.0 / 6));
   PetscCall(DMGetGlobalVector(t.cpl->cda, &v));
   {
     const PetscReal xc[3] = {12.5, 15.625, 18.75}; /* cell 12's centre */

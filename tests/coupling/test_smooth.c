@@ -105,15 +105,15 @@ static PetscErrorCode PhiById(PetscReal h, PetscReal w, PetscInt nid, PetscReal 
     for (PetscInt i = 0; i < nid; i++)
       for (PetscInt j = 0; j < nid; j++) {
         PetscReal k = PETSC_PI / 6;
-        for (int e = 0; e < 3; e++) k *= K1(&t.dom, e, t.cpl->pw_sigma, xs[3 * i + e], xs[3 * j + e]);
+        for (int e = 0; e < 3; e++) k *= K1(&t.dom, e, t.cpl->pw.sigma, xs[3 * i + e], xs[3 * j + e]);
         ana[i] += k;
       }
     PetscCall(PetscFree(xs));
   }
   { /* the solid volume on the auxiliary grid against the particles' */
-    const PetscReal va = t.cpl->pw_h[0] * t.cpl->pw_h[1] * t.cpl->pw_h[2];
+    const PetscReal va = t.cpl->pw.h[0] * t.cpl->pw.h[1] * t.cpl->pw.h[2];
     PetscReal       s;
-    PetscCall(VecSum(t.cpl->aglob, &s));
+    PetscCall(VecSum(t.cpl->pw.glob, &s));
     vsum[0] = s * va;
     PetscCall(DemGetLocalCount(t.dem, &count));
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &count, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
@@ -185,11 +185,11 @@ static PetscErrorCode FaceBalance(void)
   PetscCall(FluidGetVelocity(t.fl, &u));
   PetscCall(VecGetLocalSize(beta, &n));
   PetscCall(VecGetArrayRead(beta, &b));
-  PetscCall(VecGetArrayRead(t.cpl->kv, &kv));
+  PetscCall(VecGetArrayRead(t.cpl->ex.kv, &kv));
   PetscCall(VecGetArrayRead(u, &uf));
-  for (PetscInt i = 0; i < n; i++) loc[3 + i % 3] += t.cpl->cell_vol * (b[i] * uf[i] - kv[i]);
+  for (PetscInt i = 0; i < n; i++) loc[3 + i % 3] += t.cpl->kern.cell_vol * (b[i] * uf[i] - kv[i]);
   PetscCall(VecRestoreArrayRead(u, &uf));
-  PetscCall(VecRestoreArrayRead(t.cpl->kv, &kv));
+  PetscCall(VecRestoreArrayRead(t.cpl->ex.kv, &kv));
   PetscCall(VecRestoreArrayRead(beta, &b));
   PetscCall(MPIU_Allreduce(loc, sum, 6, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &scale, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
