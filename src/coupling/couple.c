@@ -312,3 +312,19 @@ PetscErrorCode CplGetTimeStep(Cpl cpl, PetscReal *dt)
   *dt = cpl->clock.dt;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode CplGetTestView(Cpl cpl, CplTestView *v)
+{
+  PetscFunctionBeginUser;
+  v->cell_vol      = cpl->kern.cell_vol;
+  v->filter_var    = cpl->filt.var;
+  v->filter_sweeps = cpl->filt.n;
+  v->smooth_sigma  = cpl->pw.sigma;
+  v->smooth_solid  = cpl->pw.glob;
+  v->kv            = cpl->ex.kv;
+  for (int d = 0; d < 3; d++) {
+    v->filter_lam[d] = cpl->filt.lam[d];
+    v->smooth_h[d]   = cpl->pw.h[d];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

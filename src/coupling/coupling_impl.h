@@ -173,20 +173,16 @@ typedef struct {
   Vec              out; /* global face Vec */
 } CplSpread;
 PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[]);
-/* smooth.c: the drag's porosity on a length in diameters (-cpl_porosity_width) */
+/* smooth.c: the drag's porosity on a length in diameters (-cpl_porosity_width); CplSmoothProject,
+ * CplSmoothAt and CplSmoothSeen are in coupling.h */
 PetscErrorCode CplSmoothSetUp(Cpl cpl, PetscReal dmean);
-PetscErrorCode CplSmoothProject(Cpl cpl);
-PetscErrorCode CplSmoothAt(Cpl cpl, PetscInt n, PetscReal *phi, PetscReal *own);
-PetscErrorCode CplSmoothSeen(Cpl cpl, PetscInt n, PetscReal *eps, PetscReal *fade);
 PetscErrorCode CplSmoothDestroyGrid(Cpl cpl);
 PetscErrorCode CplSmoothDestroy(Cpl cpl);
-/* filter.c */
+/* filter.c (CplFilter is in coupling.h) */
 PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean);
 PetscErrorCode CplMeanDiameter(Cpl cpl, PetscReal *dmean);
-PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces);
-/* exchange.c: the two halves of the drag set-up of a step (the steady start uses them too) */
-PetscErrorCode CplSetParticleDrag(Cpl cpl);
-PetscErrorCode CplSetFluidDrag(Cpl cpl);
+/* exchange.c: the two halves of the drag set-up of a step, CplSetParticleDrag and
+ * CplSetFluidDrag (the steady start uses them too), are in coupling.h */
 /* self.c: the drag sees the fluid without the particle's own disturbance */
 PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps, PetscReal *fade);
 PetscErrorCode CplSelfTableDestroy(Cpl cpl);
