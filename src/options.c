@@ -1,6 +1,6 @@
 /* How Sable's options are read and shown. Two parts:
  *  - the readers of numeric options (SableOptionsReal, SableOptionsInt, SableOptionsRealArray,
- *    SableOptionsRealN), called inside the PetscOptionsBegin block of the object that owns the
+ *    SableOptionsRealN, SableOptionsEnum, SableOptionsBool), called inside the PetscOptionsBegin block of the object that owns the
  *    option, with the option's literal name. Each prints its own -help line, with the true
  *    default ("<none>" when the option has none: a default outside the valid range, or no
  *    default values), the value given, the unit and the valid range, and refuses a value out
@@ -180,6 +180,52 @@ PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *PetscOptionsObjec
   PetscCall(SableOptionCount(opt, &count)); /* PETSc stops at the array's size without a word */
   if (exact) PetscCheck(count == cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes %d comma-separated values, got %d", opt, (int)cap, (int)count);
   else PetscCheck(count <= cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes at most %d comma-separated values, got %d", opt, (int)cap, (int)count);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionsEnum_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char *const list[], PetscEnum def, PetscEnum *v, size_t size, PetscBool *set)
+{
+  PetscBool flg        = PETSC_FALSE;
+  PetscInt  n          = 0;
+  char      names[512] = "", paren[576], line[160];
+
+  PetscFunctionBeginUser;
+  PetscCheck(size == sizeof(PetscEnum), PETSC_COMM_SELF, PETSC_ERR_PLIB, "%s: the variable is not an enum (%d bytes)", opt, (int)size);
+  while (list[n]) n++;
+  PetscCheck(n >= 3, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%s: the list of names ends in its type and prefix, then NULL", opt);
+  *v = def;
+  PetscCall(PetscOptionsGetEnum(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, list, v, &flg)); /* an unknown word: PETSc's one line, naming the option and the words */
+  if (set) *set = flg;
+  if (SableHelpDue(PetscOptionsObject)) {
+    for (PetscInt i = 0; i < n - 2; i++) { /* the names; the type and the prefix follow them */
+      PetscCall(PetscStrlcat(names, i ? ", " : "", sizeof names));
+      PetscCall(PetscStrlcat(names, list[i], sizeof names));
+    }
+    PetscCall(PetscSNPrintf(paren, sizeof paren, "%s (one of %s)", text, names));
+    SableHelpValue(list[def], PETSC_TRUE, flg ? list[*v] : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, paren, NULL, NULL));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionsBool_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscBool def, PetscBool *v, PetscBool *set)
+{
+  static const char *const words[] = {"true", "yes", "on", "1", "false", "no", "off", "0"};
+  PetscBool                flg = PETSC_FALSE, known = PETSC_FALSE;
+  char                     value[64];
+
+  PetscFunctionBeginUser;
+  *v = def;
+  PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, value, sizeof value, &flg));
+  if (flg) {
+    known = (PetscBool)!value[0]; /* given alone: true */
+    for (size_t i = 0; i < sizeof words / sizeof words[0] && !known; i++) PetscCall(PetscStrcasecmp(value, words[i], &known));
+    PetscCheck(known, PetscOptionsObject->comm, PETSC_ERR_ARG_WRONG, "%s %s must be true or false (also yes/no, on/off, 1/0; alone: true)", opt, value);
+    PetscCall(PetscOptionsStringToBool(value, v));
+  }
+  if (set) *set = flg;
+  /* PETSc's own line for a flag, "-name: <default : value> text", which -help and its checks know */
+  if (SableHelpDue(PetscOptionsObject)) PetscCall((*PetscHelpPrintf)(PetscOptionsObject->comm, "  -%s%s: <%s : %s> %s\n", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", opt + 1, def ? "TRUE" : "FALSE", *v ? "TRUE" : "FALSE", text));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -93,7 +93,7 @@ PetscBool SableOptionIsOwn(const char *name);
  * 4 -lb_, 5 -io_ and -restart, 6 -mon_, 7 -avg_, 8 -sable_), -1 for PETSc's. */
 int SableOptionGroup(const char *name);
 
-/* Readers of numeric options (options.c), inside the PetscOptionsBegin block of the object that
+/* Readers of options (options.c), inside the PetscOptionsBegin block of the object that
  * owns the option, called with its literal name ("-dem_kn": grep finds it). Each prints its own
  * -help line "-name <default>: text (unit; range)" with the true default, and the value given
  * ("<0.9 (default 0.75)>"); an option without a default shows "<none>". unit: SI unit ("m",
@@ -113,9 +113,19 @@ int SableOptionGroup(const char *name);
 /* A list of exactly n reals (a wrong count, fewer or more, is an error naming the option); v
  * holds the ndef default values (n or 0). */
 #define SableOptionsRealN(opt, text, unit, v, ndef, n, set) SableOptionsRealArray_Private(PetscOptionsObject, opt, text, unit, v, ndef, &(PetscInt){(n)}, PETSC_TRUE, set)
+/* A word of list (PETSc's form: the names, the type's name, the prefix, NULL) into the enum
+ * variable *v (any enum type: a variable of another size is refused); def its default. An
+ * unknown word is PETSc's one-line error naming the option and the words. */
+#define SableOptionsEnum(opt, text, list, def, v, set) SableOptionsEnum_Private(PetscOptionsObject, opt, text, list, (PetscEnum)(def), (PetscEnum *)(v), sizeof *(v), set)
+/* A flag: true when given alone or as true, yes, on or 1; false as false, no, off or 0 (any
+ * case); another word is an error of one line naming the option. Its -help line is PETSc's
+ * for a flag, "-name: <FALSE : TRUE> text" (default : value). */
+#define SableOptionsBool(opt, text, def, v, set) SableOptionsBool_Private(PetscOptionsObject, opt, text, def, v, set)
 PetscErrorCode SableOptionsReal_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscReal, PetscReal *, PetscBool *);
 PetscErrorCode SableOptionsInt_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscInt, PetscInt *, PetscBool *);
 PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *, const char[], const char[], const char[], PetscReal[], PetscInt, PetscInt *, PetscBool, PetscBool *);
+PetscErrorCode SableOptionsEnum_Private(PetscOptionItems *, const char[], const char[], const char *const[], PetscEnum, PetscEnum *, size_t, PetscBool *);
+PetscErrorCode SableOptionsBool_Private(PetscOptionItems *, const char[], const char[], PetscBool, PetscBool *, PetscBool *);
 
 /* The -help printer (options.c). SableHelpBegin: not collective; call it before PetscInitialize
  * (it installs Sable's PetscHelpPrintf, which keeps the help text when -help is given and

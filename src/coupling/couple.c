@@ -94,9 +94,9 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
-  PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu), schiller (Schiller-Naumann, single sphere)", NULL, CplDragNames, (PetscEnum)cpl->drag.law, (PetscEnum *)&cpl->drag.law, NULL));
-  PetscCall(PetscOptionsEnum("-cpl_mode", "twoway: fluid and particles act on each other; oneway: the fluid acts on the particles only (the fluid is single phase: porosity 1 everywhere, no drag reaction)", NULL, CplModeNames, (PetscEnum)cpl->drag.mode, (PetscEnum *)&cpl->drag.mode, NULL));
-  PetscCall(PetscOptionsEnum("-cpl_init_fluid", "Fluid velocity before the first step: rest, uniform (the inlet's superficial velocity over the porosity), steady (a steady solve through the initial bed held fixed)", NULL, CplInitNames, (PetscEnum)cpl->start.init, (PetscEnum *)&cpl->start.init, NULL));
+  PetscCall(SableOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu), schiller (Schiller-Naumann, single sphere)", CplDragNames, cpl->drag.law, &cpl->drag.law, NULL));
+  PetscCall(SableOptionsEnum("-cpl_mode", "twoway: fluid and particles act on each other; oneway: the fluid acts on the particles only (the fluid is single phase: porosity 1 everywhere, no drag reaction)", CplModeNames, cpl->drag.mode, &cpl->drag.mode, NULL));
+  PetscCall(SableOptionsEnum("-cpl_init_fluid", "Fluid velocity before the first step: rest, uniform (the inlet's superficial velocity over the porosity), steady (a steady solve through the initial bed held fixed)", CplInitNames, cpl->start.init, &cpl->start.init, NULL));
   PetscCall(SableOptionsReal("-cpl_init_fluid_rtol", "-cpl_init_fluid steady: stop when a pseudo step changes the velocity by less than this times its maximum", NULL, "(0,1)", cpl->start.rtol, &cpl->start.rtol, NULL));
   PetscCall(SableOptionsInt("-cpl_init_fluid_max_steps", "-cpl_init_fluid steady: most pseudo steps (of the coupling step) before the run stops unconverged", NULL, "[1,inf)", cpl->start.max_steps, &cpl->start.max_steps, NULL));
   PetscCall(SableOptionsInt("-cpl_substeps", "DEM steps per fluid step; the fluid step is this times -dem_dt", NULL, "[1,inf)", cpl->clock.substeps, &cpl->clock.substeps, &cpl->clock.substeps_set));
@@ -106,10 +106,10 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->drag.eps_floor, &cpl->drag.eps_floor, NULL));
   PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->start.relax_max, &cpl->start.relax_max, NULL));
   PetscCall(SableOptionsReal("-cpl_umf_porosity", "Porosity at which the bed: line takes U_mf (default: the bed's own when it is packed, at most 0.445, else 0.40: a packed bed at minimum fluidization)", NULL, "(0,1)", cpl->drag.umf_eps, &cpl->drag.umf_eps, &cpl->drag.umf_eps_set));
-  PetscCall(PetscOptionsBool("-cpl_self_porosity", "The drag law sees the porosity of the other particles: the particle's own kernel dip is removed", NULL, cpl->self.eps, &cpl->self.eps, NULL));
-  PetscCall(PetscOptionsBool("-cpl_self_velocity", "The drag law sees the undisturbed fluid: its own disturbance (the exact discrete response of the grid to its stencil, coupling/self.c) is removed, K' = K / (1 - G K)", NULL, cpl->self.u, &cpl->self.u, NULL));
+  PetscCall(SableOptionsBool("-cpl_self_porosity", "The drag law sees the porosity of the other particles: the particle's own kernel dip is removed", cpl->self.eps, &cpl->self.eps, NULL));
+  PetscCall(SableOptionsBool("-cpl_self_velocity", "The drag law sees the undisturbed fluid: its own disturbance (the exact discrete response of the grid to its stencil, coupling/self.c) is removed, K' = K / (1 - G K)", cpl->self.u, &cpl->self.u, NULL));
   PetscCall(SableOptionsReal("-cpl_self_fade", "-cpl_self_porosity/-cpl_self_velocity: both fade linearly to nothing as the other particles' solid fraction reaches this (0: no fade)", NULL, "[0,1)", cpl->self.fade, &cpl->self.fade, NULL));
-  PetscCall(PetscOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", NULL, remove, &remove, NULL));
+  PetscCall(SableOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", remove, &remove, NULL));
   PetscOptionsEnd();
   PetscCheck(!(cpl->self.eps && cpl->filt.width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_self_porosity removes the particle's unfiltered kernel dip, which -cpl_filter_width %g changes: use one of the two (the filtered dip is not implemented)", (double)cpl->filt.width);
   PetscCheck(!(cpl->pw.width > 0 && cpl->filt.width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_filter_width %g: both smooth over a width in diameters (the drag's porosity, the spread fields); use one of the two", (double)cpl->pw.width, (double)cpl->filt.width);

@@ -21,7 +21,7 @@ const char *const FluidBCNames[] = {"periodic", "wall", "slip", "inlet", "outlet
 
 /* The face options by axis and side, written out so that grep (and the option lists the Makefile
  * builds from the sources: tools/gen-options.sh) finds them; the enum is read as
- * PetscOptionsEnum(FluidBCOption[d][s], ...), which tells the lists that these take words. */
+ * SableOptionsEnum(FluidBCOption[d][s], ...), which tells the lists that these take words. */
 static const char *const FluidBCOption[3][2]         = {{"-fluid_bc_xlo", "-fluid_bc_xhi"}, {"-fluid_bc_ylo", "-fluid_bc_yhi"}, {"-fluid_bc_zlo", "-fluid_bc_zhi"}};
 static const char *const FluidBCVelocityOption[3][2] = {{"-fluid_bc_xlo_velocity", "-fluid_bc_xhi_velocity"}, {"-fluid_bc_ylo_velocity", "-fluid_bc_yhi_velocity"}, {"-fluid_bc_zlo_velocity", "-fluid_bc_zhi_velocity"}};
 
@@ -38,7 +38,7 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
     for (int s = 0; s < 2; s++) {
       FluidBCType t   = fl->bc.face[d][s].type;
       const char *opt = FluidBCOption[d][s], *optv = FluidBCVelocityOption[d][s];
-      PetscCall(PetscOptionsEnum(FluidBCOption[d][s], "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", NULL, FluidBCNames, (PetscEnum)t, (PetscEnum *)&t, &set));
+      PetscCall(SableOptionsEnum(FluidBCOption[d][s], "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", FluidBCNames, t, &t, &set));
       PetscCheck(!set || fl->dom->periodic[d] == (t == FLUID_BC_PERIODIC), fl->comm, PETSC_ERR_ARG_WRONG, "%s %s: the %c axis is %speriodic (-domain_periodic_%c); valid values here: %s", opt, FluidBCNames[t], ax[d], fl->dom->periodic[d] ? "" : "not ", ax[d], fl->dom->periodic[d] ? "periodic" : "wall, slip, inlet, outlet");
       fl->bc.face[d][s].type = t;
       PetscCall(SableOptionsRealN(optv, "Inlet velocity on this face", "m/s", fl->bc.face[d][s].vel, 3, 3, &set));

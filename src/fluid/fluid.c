@@ -66,13 +66,13 @@ PetscErrorCode FluidSetFromOptions(Fluid fl)
   PetscCall(SableOptionsReal("-fluid_dt", "Fluid time step", "s", "(0,inf)", fl->clock.dt, &fl->clock.dt, &fl->clock.dt_set));
   PetscCall(SableOptionsRealN("-fluid_gravity", "Gravity g, acts as rho eps g", "m/s^2", fl->prop.gravity, 3, 3, NULL));
   PetscCall(SableOptionsRealN("-fluid_pressure_gradient", "Imposed mean pressure gradient G, acts as the force -G per unit volume", "Pa/m", fl->prop.dpdx, 3, 3, NULL));
-  PetscCall(PetscOptionsEnum("-fluid_advection", "Advection scheme: central (2nd order), tvd (van Leer limited upwind), none (Stokes)", NULL, FluidAdvectionNames, (PetscEnum)fl->mom.adv, (PetscEnum *)&fl->mom.adv, NULL));
-  PetscCall(PetscOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", NULL, FluidViscousNames, (PetscEnum)fl->mom.visc, (PetscEnum *)&fl->mom.visc, NULL));
+  PetscCall(SableOptionsEnum("-fluid_advection", "Advection scheme: central (2nd order), tvd (van Leer limited upwind), none (Stokes)", FluidAdvectionNames, fl->mom.adv, &fl->mom.adv, NULL));
+  PetscCall(SableOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", FluidViscousNames, fl->mom.visc, &fl->mom.visc, NULL));
   PetscCall(SableOptionsReal("-fluid_cfl_max", "Largest advective CFL number dt*sum|u_d|/h_d allowed", NULL, "(0,1]", fl->clock.cfl_max, &fl->clock.cfl_max, NULL));
   PetscCall(SableOptionsReal("-fluid_viscous_number_max", "Largest explicit viscous number 2 dt nu sum 1/h_d^2 allowed (stability needs <= 1)", NULL, "(0,1]", fl->clock.visc_max, &fl->clock.visc_max, NULL));
   PetscCall(SableOptionsInt("-fluid_poisson_pc_lag", "Keep the Poisson preconditioner for up to this many matrix changes (0: rebuild at every change)", NULL, "[0,inf)", fl->pois.pc_lag, &fl->pois.pc_lag, NULL));
   PetscCall(SableOptionsReal("-fluid_poisson_pc_lag_growth", "Rebuild a lagged preconditioner earlier when the iterations exceed growth x those after its build + 1", NULL, "[1,inf)", fl->pois.pc_growth, &fl->pois.pc_growth, NULL));
-  PetscCall(PetscOptionsBool("-fluid_adaptive_dt", "Lower dt to the stability limit instead of stopping", NULL, fl->clock.adaptive, &fl->clock.adaptive, NULL));
+  PetscCall(SableOptionsBool("-fluid_adaptive_dt", "Lower dt to the stability limit instead of stopping", fl->clock.adaptive, &fl->clock.adaptive, NULL));
   PetscOptionsEnd();
   PetscCall(FluidSetFromOptionsBC(fl));
   PetscCall(FluidSetFromOptionsInlet(fl));

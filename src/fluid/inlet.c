@@ -31,7 +31,7 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid inlet tables", NULL);
-  PetscCall(PetscOptionsEnum("-fluid_inlet_interpolation", "Between rows of an inlet table: step (hold the earlier row) or linear (default step)", NULL, FluidInletInterpNames, (PetscEnum)interp, (PetscEnum *)&interp, NULL));
+  PetscCall(SableOptionsEnum("-fluid_inlet_interpolation", "Between rows of an inlet table: step (hold the earlier row) or linear (default step)", FluidInletInterpNames, interp, &interp, NULL));
   fl->inlet.linear = interp == FLUID_INLET_LINEAR ? PETSC_TRUE : PETSC_FALSE;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {

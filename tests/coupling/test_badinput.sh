@@ -36,6 +36,7 @@ check bad_drag_name 'Unknown option stokes for -cpl_drag. Available options: bee
 check fluid_gravity '-fluid_gravity .* must be 0,0,0 in a coupled run' -fluid_gravity 0,0,-1
 check misspelled_option 'option -cpl_substep 3 was given but nothing reads it' -cpl_substep 3
 check bad_mode 'Unknown option both for -cpl_mode. Available options: twoway oneway' -cpl_mode both
+check self_porosity_word '-cpl_self_porosity maybe must be true or false' -cpl_self_porosity maybe
 CASE=cases/packed_bed/packed_bed.opts; check oneway_frozen '-cpl_mode oneway with -dem_frozen: .*nothing would be coupled' -cpl_mode oneway
 CASE=
 CASE=tests/coupling/test_conserve.opts; check init_uniform_no_inlet '-cpl_init_fluid uniform: the fluid has no inlet face' -cpl_init_fluid uniform

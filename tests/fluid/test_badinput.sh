@@ -41,6 +41,7 @@ check mg_levels_zero '-fluid_poisson_pc_mg_levels 0: the number of multigrid lev
 check negative_pc_lag '-fluid_poisson_pc_lag -1 must be >= 0' 1 -fluid_poisson_pc_lag -1
 check pc_lag_growth_below_1 '-fluid_poisson_pc_lag_growth 0.5 must be >= 1' 1 -fluid_poisson_pc_lag_growth 0.5
 check bad_advection_name 'Unknown option upwind3 for -fluid_advection. Available options: central tvd none' 1 -fluid_advection upwind3
+check adaptive_dt_word '-fluid_adaptive_dt 2 must be true or false' 1 -fluid_adaptive_dt 2
 # the same too-large dt with adaptive stepping: the step is cut to 0.9 of the CFL limit
 "$exe" -io_dir "${out}.d" -fluid_dt 0.5 -fluid_adaptive_dt >"$out" 2>&1; rc=$?
 rm -rf "${out}.d"
