@@ -115,8 +115,8 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCheck(!(cpl->pw.width > 0 && cpl->filt.width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_filter_width %g: both smooth over a width in diameters (the drag's porosity, the spread fields); use one of the two", (double)cpl->pw.width, (double)cpl->filt.width);
   PetscCheck(!(cpl->pw.width > 0 && cpl->drag.mode == CPL_MODE_ONEWAY), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_mode oneway: a one-way run's drag sees porosity 1; drop one of them", (double)cpl->pw.width);
   PetscCall(CplOutletFaces(cpl, remove));
-  PetscCall(FluidGetDensity(cpl->fl, &cpl->rho));
-  PetscCall(FluidGetViscosity(cpl->fl, &cpl->mu));
+  PetscCall(FluidGetDensity(cpl->fl, &cpl->prop.rho));
+  PetscCall(FluidGetViscosity(cpl->fl, &cpl->prop.mu));
   PetscCall(FluidGetGravity(cpl->fl, fg));
   PetscCheck(fg[0] == 0 && fg[1] == 0 && fg[2] == 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_gravity %g,%g,%g must be 0,0,0 in a coupled run: the fluid pressure is hydrodynamic and the buoyancy acts on the particles (eq. 11); set gravity with -dem_gravity", (double)fg[0], (double)fg[1], (double)fg[2]);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -150,7 +150,7 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscCall(VecDuplicate(cpl->ex.kv, &cpl->ex.owed));
   PetscCall(VecZeroEntries(cpl->ex.owed));
   cpl->kern.cell_vol = cpl->dom->h[0] * cpl->dom->h[1] * cpl->dom->h[2];
-  PetscCall(DemGetGravity(cpl->dem, cpl->g));
+  PetscCall(DemGetGravity(cpl->dem, cpl->prop.g));
   PetscCall(DemGetFrozen(cpl->dem, &cpl->clock.frozen));
   cpl->clock.correct = (PetscBool)!cpl->clock.frozen;
   PetscCall(DemSetExternal(cpl->dem, PETSC_TRUE));

@@ -12,6 +12,12 @@ typedef struct {         /* cube kernel of one particle: separable 1-D overlap f
   double   wc[3][4], wf[3][4];
 } CplStencil;
 
+/* The fluid's properties, as the fluid's options give them, and the particles' gravity. */
+typedef struct {
+  PetscReal rho, mu; /* kg/m^3, Pa s */
+  PetscReal g[3];    /* m/s^2 */
+} CplFluidProps;
+
 /* The cube kernel (kernel.c): its scale, the per-shape figures, and the cached stencils of the
  * local particles. */
 typedef struct {
@@ -106,13 +112,12 @@ typedef struct {
 
 /* The coupling: the objects it couples, then its state grouped by concern (above). */
 struct _p_Cpl {
-  MPI_Comm comm;
-  Domain  *dom;
-  Dem      dem;
-  Fluid    fl;
-  DM       cda, fda; /* the fluid's */
-  /* fluid properties (the fluid's options) */
-  PetscReal       rho, mu, g[3];
+  MPI_Comm        comm;
+  Domain         *dom;
+  Dem             dem;
+  Fluid           fl;
+  DM              cda, fda; /* the fluid's */
+  CplFluidProps   prop;
   CplKernel       kern;
   CplFilterState  filt;
   CplSmoothing    pw;

@@ -43,7 +43,7 @@ PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscRe
         for (int d = 0; d < 3; d++) {
           if (!CplInteriorFace(cpl->dom, d, idx)) continue;
           const PetscReal ef = 0.5 * (e[cpl_diag_off(&g, idx, d, 0)] + e[cpl_diag_off(&g, idx, d, 1)]);
-          loc[3 + d] += cpl->rho * ef * v[c + d] * cpl->kern.cell_vol;
+          loc[3 + d] += cpl->prop.rho * ef * v[c + d] * cpl->kern.cell_vol;
           loc[6 + d] += o[c + d];
         }
   PetscCall(VecRestoreArrayRead(cpl->ex.owed, &o));
@@ -153,7 +153,7 @@ PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3])
   PetscFunctionBeginUser;
   PetscCall(DemGetArrays(cpl->dem, &pa));
   for (PetscInt p = 0; p < pa.nlocal; p++)
-    for (int k = 0; k < 3; k++) loc[k] += (CplMassOf(cpl, &pa, p) - cpl->rho * CplVolumeOf(cpl, &pa, p)) * cpl->g[k];
+    for (int k = 0; k < 3; k++) loc[k] += (CplMassOf(cpl, &pa, p) - cpl->prop.rho * CplVolumeOf(cpl, &pa, p)) * cpl->prop.g[k];
   PetscCall(MPIU_Allreduce(loc, w, 3, MPIU_REAL, MPIU_SUM, cpl->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -161,7 +161,7 @@ PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3])
 PetscErrorCode CplGetPackedBedGradient(Cpl cpl, PetscReal eps, PetscReal usup, PetscReal *dpdl)
 {
   PetscFunctionBeginUser;
-  *dpdl = CplPackedBedGradient(cpl->drag.law, eps, usup, cpl->kern.diam[0], cpl->rho, cpl->mu);
+  *dpdl = CplPackedBedGradient(cpl->drag.law, eps, usup, cpl->kern.diam[0], cpl->prop.rho, cpl->prop.mu);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -194,22 +194,22 @@ CplUmfPorosity CplGetUmfPorosity(Cpl cpl, PetscReal eps_bed, PetscReal *eps)
 
 PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, PetscReal d, PetscReal rhop, CplFluidization *f)
 {
-  const PetscReal g    = PetscSqrtReal(cpl->g[0] * cpl->g[0] + cpl->g[1] * cpl->g[1] + cpl->g[2] * cpl->g[2]);
-  const PetscReal load = (1 - eps) * (rhop - cpl->rho) * g; /* Pa/m */
+  const PetscReal g    = PetscSqrtReal(cpl->prop.g[0] * cpl->prop.g[0] + cpl->prop.g[1] * cpl->prop.g[1] + cpl->prop.g[2] * cpl->prop.g[2]);
+  const PetscReal load = (1 - eps) * (rhop - cpl->prop.rho) * g; /* Pa/m */
   PetscReal       lo = 0, hi = 1;
 
   PetscFunctionBeginUser;
   f->eps    = eps;
   f->d      = d;
-  f->ar     = cpl->rho * (rhop - cpl->rho) * g * d * d * d / (cpl->mu * cpl->mu);
+  f->ar     = cpl->prop.rho * (rhop - cpl->prop.rho) * g * d * d * d / (cpl->prop.mu * cpl->prop.mu);
   f->re_wy  = PetscSqrtReal(33.7 * 33.7 + 0.0408 * f->ar) - 33.7;
-  f->umf_wy = f->re_wy * cpl->mu / (cpl->rho * d);
+  f->umf_wy = f->re_wy * cpl->prop.mu / (cpl->prop.rho * d);
   f->umf    = 0;
   if (!(load > 0 && eps > 0 && eps < 1)) PetscFunctionReturn(PETSC_SUCCESS); /* no packed bed to carry */
-  while (CplPackedBedGradient(cpl->drag.law, eps, hi, d, cpl->rho, cpl->mu) < load && hi < 1e12) hi *= 2;
+  while (CplPackedBedGradient(cpl->drag.law, eps, hi, d, cpl->prop.rho, cpl->prop.mu) < load && hi < 1e12) hi *= 2;
   for (int it = 0; it < 200 && hi - lo > 1e-14 * hi; it++) { /* the gradient grows with U */
     const PetscReal m = 0.5 * (lo + hi);
-    if (CplPackedBedGradient(cpl->drag.law, eps, m, d, cpl->rho, cpl->mu) < load) lo = m;
+    if (CplPackedBedGradient(cpl->drag.law, eps, m, d, cpl->prop.rho, cpl->prop.mu) < load) lo = m;
     else hi = m;
   }
   f->umf = 0.5 * (lo + hi);

@@ -21,15 +21,15 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
     const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
     for (int k = 0; k < 3; k++) w2 += PetscSqr(ex.u[3 * p + k] - pa.v[3 * p + k]);
-    const PetscReal re = cpl->rho * d * eps[p] * PetscSqrtReal(w2) / cpl->mu;
+    const PetscReal re = cpl->prop.rho * d * eps[p] * PetscSqrtReal(w2) / cpl->prop.mu;
     if (cpl->self.u && fade[p] > 0) {
       PetscBool cap;
       ex.k[p] = CplUndisturbedK(cpl, p, d, eps[p], ex.u + 3 * p, pa.v + 3 * p, fade[p], &cap);
       capped[0] += cap;
-    } else ex.k[p] = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->drag.law, eps[p], re);
+    } else ex.k[p] = 3 * PETSC_PI * cpl->prop.mu * d * CplDragFactor(cpl->drag.law, eps[p], re);
     PetscCheck(PetscIsNormalReal(ex.k[p]), PETSC_COMM_SELF, PETSC_ERR_FP, "particle %" PetscInt_FMT ": drag coefficient %g at porosity %g, Re_p %g is not finite", pa.id[p], (double)ex.k[p], (double)eps[p], (double)re);
     for (int k = 0; k < 3; k++) {
-      ex.fext[3 * p + k] = -cpl->rho * vol * cpl->g[k];
+      ex.fext[3 * p + k] = -cpl->prop.rho * vol * cpl->prop.g[k];
       ex.j[3 * p + k]    = 0;
     }
   }

@@ -43,7 +43,7 @@ PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce)
   PetscFunctionBeginUser;
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
   for (PetscInt s = 0; s < cpl->kern.nshape; s++) {
-    const PetscReal K = 3 * PETSC_PI * cpl->mu * cpl->kern.diam[s] * CplDragFactor(cpl->drag.law, cpl->diag.eps_min0, 0);
+    const PetscReal K = 3 * PETSC_PI * cpl->prop.mu * cpl->kern.diam[s] * CplDragFactor(cpl->drag.law, cpl->diag.eps_min0, 0);
     dmax              = PetscMax(dmax, cpl->kern.diam[s]);
     smax              = PetscMax(smax, cpl->kern.side[s]);
     tau               = PetscMin(tau, cpl->kern.mass[s] / K);
@@ -52,7 +52,7 @@ PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce)
   }
   PetscCall(DemGetOwnSizes(cpl->dem, &poly, &rs[0], &rs[1]));
   for (int a = 0; a < 2 && poly; a++) { /* spheres of their own sizes: the smallest and the largest */
-    const PetscReal v = 4.0 / 3.0 * PETSC_PI * rs[a] * rs[a] * rs[a], K = 3 * PETSC_PI * cpl->mu * 2 * rs[a] * CplDragFactor(cpl->drag.law, cpl->diag.eps_min0, 0);
+    const PetscReal v = 4.0 / 3.0 * PETSC_PI * rs[a] * rs[a] * rs[a], K = 3 * PETSC_PI * cpl->prop.mu * 2 * rs[a] * CplDragFactor(cpl->drag.law, cpl->diag.eps_min0, 0);
     dmax = PetscMax(dmax, 2 * rs[a]);
     smax = PetscMax(smax, cpl->kern.scale * PetscCbrtReal(v));
     tau  = PetscMin(tau, cpl->kern.mass[0] / cpl->kern.vol[0] * v / K);

@@ -217,8 +217,8 @@ static PetscReal CplSelfMean(Cpl cpl, PetscInt p, const PetscReal n2[3], PetscRe
 {
   PetscReal g[3];
 
-  CplSelfGreen(cpl, p, cpl->rho * w / cpl->mu, g);
-  return (n2[0] * g[0] + n2[1] * g[1] + n2[2] * g[2]) / cpl->mu;
+  CplSelfGreen(cpl, p, cpl->prop.rho * w / cpl->prop.mu, g);
+  return (n2[0] * g[0] + n2[1] * g[1] + n2[2] * g[2]) / cpl->prop.mu;
 }
 
 /* The drag coefficient on the undisturbed slip of local particle p (diameter d, seen porosity
@@ -240,7 +240,7 @@ PetscReal CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const
   ws = PetscSqrtReal(w2);
   wt = ws;
   for (int it = 0; it < 30; it++) {
-    k = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->drag.law, eps, cpl->rho * d * eps * wt / cpl->mu);
+    k = 3 * PETSC_PI * cpl->prop.mu * d * CplDragFactor(cpl->drag.law, eps, cpl->prop.rho * d * eps * wt / cpl->prop.mu);
     {
       const PetscReal gk0 = PetscMin(0.9, fade * CplSelfMean(cpl, p, n2, wt) * k);
       gk                  = PetscMin(0.9, fade * CplSelfMean(cpl, p, n2, wt * (1 - gk0)) * k);
