@@ -1,6 +1,6 @@
 /* How Sable's options are read and shown. Two parts:
- *  - the readers of numeric options (SableOptionsReal, SableOptionsInt, SableOptionsRealArray,
- *    SableOptionsRealN, SableOptionsEnum, SableOptionsBool), called inside the PetscOptionsBegin block of the object that owns the
+ *  - the readers of options (SableOptionsReal, SableOptionsInt, SableOptionsRealArray,
+ *    SableOptionsRealN, SableOptionsIntN; SableOptionsEnum, SableOptionsBool, SableOptionsString), called inside the PetscOptionsBegin block of the object that owns the
  *    option, with the option's literal name. Each prints its own -help line, with the true
  *    default ("<none>" when the option has none: a default outside the valid range, or no
  *    default values), the value given, the unit and the valid range, and refuses a value out
@@ -145,6 +145,71 @@ PetscErrorCode SableOptionsInt_Private(PetscOptionItems *PetscOptionsObject, con
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SableOptionsEnum_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char *const names[], PetscInt n, PetscInt def, PetscInt *v, PetscBool *set)
+{
+  char      buf[256], all[512] = "", paren[600];
+  PetscBool flg = PETSC_FALSE, match = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCheck(def >= 0 && def < n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%s: default %" PetscInt_FMT " is not one of its %" PetscInt_FMT " names", opt, def, n);
+  *v = def;
+  for (PetscInt i = 0; i < n; i++) {
+    const size_t len = strlen(all);
+    PetscCall(PetscSNPrintf(all + len, sizeof all - len, "%s%s", i ? ", " : "", names[i]));
+  }
+  PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, buf, sizeof buf, &flg));
+  if (set) *set = flg;
+  for (PetscInt i = 0; flg && i < n && !match; i++) {
+    PetscCall(PetscStrcasecmp(buf, names[i], &match));
+    if (match) *v = i;
+  }
+  if (SableHelpDue(PetscOptionsObject)) {
+    char line[320];
+    SableHelpValue(names[def], PETSC_TRUE, flg ? buf : NULL, line, sizeof line);
+    PetscCall(PetscSNPrintf(paren, sizeof paren, "%s (one of %s)", text, all));
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, paren, NULL, NULL));
+  }
+  PetscCheck(!flg || match, PetscOptionsObject->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s is not known; valid values: %s", opt, buf, all);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionsBool_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscBool def, PetscBool *v, PetscBool *set)
+{
+  PetscBool flg = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  *v = def;
+  PetscCall(PetscOptionsGetBool(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, &flg));
+  if (set) *set = flg;
+  if (SableHelpDue(PetscOptionsObject)) {
+    char line[64];
+    SableHelpValue(def ? "true" : "false", PETSC_TRUE, flg ? (*v ? "true" : "false") : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, text, NULL, NULL));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SableOptionsString_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], char v[], size_t size, PetscBool *set)
+{
+  const char *given = NULL;
+  PetscBool   flg   = PETSC_FALSE;
+  size_t      len   = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsFindPair(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, &given, &flg));
+  if (set) *set = flg;
+  if (SableHelpDue(PetscOptionsObject)) {
+    char line[2 * PETSC_MAX_PATH_LEN + 16];
+    SableHelpValue(v, (PetscBool)(v[0] != 0), flg ? (given ? given : "") : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, text, "text", NULL)); /* "(text)": a word, not a number */
+  }
+  if (!flg) PetscFunctionReturn(PETSC_SUCCESS);
+  if (given) PetscCall(PetscStrlen(given, &len));
+  PetscCheck(len < size, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s %s: at most %zu characters", opt, given, size - 1);
+  PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, size, &flg));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* "a,b,c" of n reals. */
 static PetscErrorCode SableRealList(const PetscReal *v, PetscInt n, char *buf, size_t size)
 {
@@ -183,49 +248,40 @@ PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *PetscOptionsObjec
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SableOptionsEnum_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char *const list[], PetscEnum def, PetscEnum *v, size_t size, PetscBool *set)
+PetscErrorCode SableOptionsIntArray_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char unit[], const char range[], PetscInt v[], PetscInt ndef, PetscInt *n, PetscBool exact, PetscBool *set)
 {
-  PetscBool flg        = PETSC_FALSE;
-  PetscInt  n          = 0;
-  char      names[512] = "", paren[576], line[160];
+  const PetscInt cap = *n;
+  SableRange     r   = {PETSC_NINFINITY, PETSC_INFINITY, PETSC_FALSE, PETSC_FALSE, "-inf", "inf"};
+  PetscInt       got = cap, count = 0;
+  PetscBool      flg        = PETSC_FALSE;
+  char           dtext[512] = "", gtext[512] = "", line[1040];
 
   PetscFunctionBeginUser;
-  PetscCheck(size == sizeof(PetscEnum), PETSC_COMM_SELF, PETSC_ERR_PLIB, "%s: the variable is not an enum (%d bytes)", opt, (int)size);
-  while (list[n]) n++;
-  PetscCheck(n >= 3, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%s: the list of names ends in its type and prefix, then NULL", opt);
-  *v = def;
-  PetscCall(PetscOptionsGetEnum(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, list, v, &flg)); /* an unknown word: PETSc's one line, naming the option and the words */
+  if (range) PetscCall(SableRangeParse(range, &r));
+  for (PetscInt i = 0; i < PetscMin(ndef, cap); i++) {
+    const size_t len = strlen(dtext);
+    PetscCall(PetscSNPrintf(dtext + len, sizeof dtext - len, "%s%" PetscInt_FMT, i ? "," : "", v[i]));
+  }
+  PetscCall(PetscOptionsGetIntArray(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, &got, &flg));
   if (set) *set = flg;
+  *n = flg ? got : 0;
   if (SableHelpDue(PetscOptionsObject)) {
-    for (PetscInt i = 0; i < n - 2; i++) { /* the names; the type and the prefix follow them */
-      PetscCall(PetscStrlcat(names, i ? ", " : "", sizeof names));
-      PetscCall(PetscStrlcat(names, list[i], sizeof names));
+    for (PetscInt i = 0; i < *n; i++) {
+      const size_t len = strlen(gtext);
+      PetscCall(PetscSNPrintf(gtext + len, sizeof gtext - len, "%s%" PetscInt_FMT, i ? "," : "", v[i]));
     }
-    PetscCall(PetscSNPrintf(paren, sizeof paren, "%s (one of %s)", text, names));
-    SableHelpValue(list[def], PETSC_TRUE, flg ? list[*v] : NULL, line, sizeof line);
-    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, paren, NULL, NULL));
+    SableHelpValue(dtext, (PetscBool)(ndef > 0), flg ? gtext : NULL, line, sizeof line);
+    PetscCall(SableHelpLine(PetscOptionsObject, opt, line, text, unit, range));
   }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode SableOptionsBool_Private(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscBool def, PetscBool *v, PetscBool *set)
-{
-  static const char *const words[] = {"true", "yes", "on", "1", "false", "no", "off", "0"};
-  PetscBool                flg = PETSC_FALSE, known = PETSC_FALSE;
-  char                     value[64];
-
-  PetscFunctionBeginUser;
-  *v = def;
-  PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, value, sizeof value, &flg));
-  if (flg) {
-    known = (PetscBool)!value[0]; /* given alone: true */
-    for (size_t i = 0; i < sizeof words / sizeof words[0] && !known; i++) PetscCall(PetscStrcasecmp(value, words[i], &known));
-    PetscCheck(known, PetscOptionsObject->comm, PETSC_ERR_ARG_WRONG, "%s %s must be true or false (also yes/no, on/off, 1/0; alone: true)", opt, value);
-    PetscCall(PetscOptionsStringToBool(value, v));
-  }
-  if (set) *set = flg;
-  /* PETSc's own line for a flag, "-name: <default : value> text", which -help and its checks know */
-  if (SableHelpDue(PetscOptionsObject)) PetscCall((*PetscHelpPrintf)(PetscOptionsObject->comm, "  -%s%s: <%s : %s> %s\n", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", opt + 1, def ? "TRUE" : "FALSE", *v ? "TRUE" : "FALSE", text));
+  if (!flg) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(SableOptionCount(opt, &count)); /* PETSc stops at the array's size without a word */
+  if (exact) PetscCheck(count == cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes %d comma-separated values, got %d", opt, (int)cap, (int)count);
+  else PetscCheck(count <= cap, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s takes at most %d comma-separated values, got %d", opt, (int)cap, (int)count);
+  for (PetscInt i = 0; i < *n; i++)
+    if (!SableRangeHolds(&r, (PetscReal)v[i])) {
+      PetscCall(PetscSNPrintf(gtext, sizeof gtext, "%" PetscInt_FMT, v[i]));
+      PetscCall(SableRangeError(PetscOptionsObject->comm, opt, gtext, unit, range, &r));
+    }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -93,7 +93,7 @@ PetscBool SableOptionIsOwn(const char *name);
  * 4 -lb_, 5 -io_ and -restart, 6 -mon_, 7 -avg_, 8 -sable_), -1 for PETSc's. */
 int SableOptionGroup(const char *name);
 
-/* Readers of options (options.c), inside the PetscOptionsBegin block of the object that
+/* Readers of numeric options (options.c), inside the PetscOptionsBegin block of the object that
  * owns the option, called with its literal name ("-dem_kn": grep finds it). Each prints its own
  * -help line "-name <default>: text (unit; range)" with the true default, and the value given
  * ("<0.9 (default 0.75)>"); an option without a default shows "<none>". unit: SI unit ("m",
@@ -113,19 +113,27 @@ int SableOptionGroup(const char *name);
 /* A list of exactly n reals (a wrong count, fewer or more, is an error naming the option); v
  * holds the ndef default values (n or 0). */
 #define SableOptionsRealN(opt, text, unit, v, ndef, n, set) SableOptionsRealArray_Private(PetscOptionsObject, opt, text, unit, v, ndef, &(PetscInt){(n)}, PETSC_TRUE, set)
-/* A word of list (PETSc's form: the names, the type's name, the prefix, NULL) into the enum
- * variable *v (any enum type: a variable of another size is refused); def its default. An
- * unknown word is PETSc's one-line error naming the option and the words. */
-#define SableOptionsEnum(opt, text, list, def, v, set) SableOptionsEnum_Private(PetscOptionsObject, opt, text, list, (PetscEnum)(def), (PetscEnum *)(v), sizeof *(v), set)
-/* A flag: true when given alone or as true, yes, on or 1; false as false, no, off or 0 (any
- * case); another word is an error of one line naming the option. Its -help line is PETSc's
- * for a flag, "-name: <FALSE : TRUE> text" (default : value). */
+/* One of n names (case as given or not), read into an integer: *v is def (the index of a name)
+ * unless given. A name not in names is an error of one line, on every rank alike, listing the
+ * valid names. For an enum field, read into a PetscInt and assign (never through a cast
+ * pointer: PetscInt may be 64 bits). */
+#define SableOptionsEnum(opt, text, names, n, def, v, set) SableOptionsEnum_Private(PetscOptionsObject, opt, text, names, n, def, v, set)
+/* A flag: *v is def unless given ("-opt", "-opt true|false|yes|no|1|0"). */
 #define SableOptionsBool(opt, text, def, v, set) SableOptionsBool_Private(PetscOptionsObject, opt, text, def, v, set)
+/* A word or a path: v (of size bytes) holds the default on entry (an empty one shown <none>) and
+ * is left as it was unless given; its help line ends "(text)". A value longer than size - 1 characters is an error naming
+ * the option (PETSc would cut it silently). */
+#define SableOptionsString(opt, text, v, size, set) SableOptionsString_Private(PetscOptionsObject, opt, text, v, size, set)
+/* A list of exactly n integers, each in range (a wrong count, or an item out of range, is an
+ * error naming the option); v holds the ndef default values (n or 0). */
+#define SableOptionsIntN(opt, text, unit, range, v, ndef, n, set) SableOptionsIntArray_Private(PetscOptionsObject, opt, text, unit, range, v, ndef, &(PetscInt){(n)}, PETSC_TRUE, set)
 PetscErrorCode SableOptionsReal_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscReal, PetscReal *, PetscBool *);
+PetscErrorCode SableOptionsIntArray_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscInt[], PetscInt, PetscInt *, PetscBool, PetscBool *);
+PetscErrorCode SableOptionsEnum_Private(PetscOptionItems *, const char[], const char[], const char *const[], PetscInt, PetscInt, PetscInt *, PetscBool *);
+PetscErrorCode SableOptionsBool_Private(PetscOptionItems *, const char[], const char[], PetscBool, PetscBool *, PetscBool *);
+PetscErrorCode SableOptionsString_Private(PetscOptionItems *, const char[], const char[], char[], size_t, PetscBool *);
 PetscErrorCode SableOptionsInt_Private(PetscOptionItems *, const char[], const char[], const char[], const char[], PetscInt, PetscInt *, PetscBool *);
 PetscErrorCode SableOptionsRealArray_Private(PetscOptionItems *, const char[], const char[], const char[], PetscReal[], PetscInt, PetscInt *, PetscBool, PetscBool *);
-PetscErrorCode SableOptionsEnum_Private(PetscOptionItems *, const char[], const char[], const char *const[], PetscEnum, PetscEnum *, size_t, PetscBool *);
-PetscErrorCode SableOptionsBool_Private(PetscOptionItems *, const char[], const char[], PetscBool, PetscBool *, PetscBool *);
 
 /* The -help printer (options.c). SableHelpBegin: not collective; call it before PetscInitialize
  * (it installs Sable's PetscHelpPrintf, which keeps the help text when -help is given and

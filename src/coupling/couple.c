@@ -91,12 +91,16 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
 {
   PetscReal fg[3];
   PetscBool remove = PETSC_FALSE;
+  PetscInt  law = cpl->drag.law, mode = cpl->drag.mode, init = cpl->start.init;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
-  PetscCall(SableOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu), schiller (Schiller-Naumann, single sphere)", CplDragNames, cpl->drag.law, &cpl->drag.law, NULL));
-  PetscCall(SableOptionsEnum("-cpl_mode", "twoway: fluid and particles act on each other; oneway: the fluid acts on the particles only (the fluid is single phase: porosity 1 everywhere, no drag reaction)", CplModeNames, cpl->drag.mode, &cpl->drag.mode, NULL));
-  PetscCall(SableOptionsEnum("-cpl_init_fluid", "Fluid velocity before the first step: rest, uniform (the inlet's superficial velocity over the porosity), steady (a steady solve through the initial bed held fixed)", CplInitNames, cpl->start.init, &cpl->start.init, NULL));
+  PetscCall(SableOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu), schiller (Schiller-Naumann, single sphere)", CplDragNames, 4, law, &law, NULL));
+  cpl->drag.law = (CplDragLaw)law;
+  PetscCall(SableOptionsEnum("-cpl_mode", "twoway: fluid and particles act on each other; oneway: the fluid acts on the particles only (the fluid is single phase: porosity 1 everywhere, no drag reaction)", CplModeNames, 2, mode, &mode, NULL));
+  cpl->drag.mode = (CplMode)mode;
+  PetscCall(SableOptionsEnum("-cpl_init_fluid", "Fluid velocity before the first step: rest, uniform (the inlet's superficial velocity over the porosity), steady (a steady solve through the initial bed held fixed)", CplInitNames, 3, init, &init, NULL));
+  cpl->start.init = (CplInitFluid)init;
   PetscCall(SableOptionsReal("-cpl_init_fluid_rtol", "-cpl_init_fluid steady: stop when a pseudo step changes the velocity by less than this times its maximum", NULL, "(0,1)", cpl->start.rtol, &cpl->start.rtol, NULL));
   PetscCall(SableOptionsInt("-cpl_init_fluid_max_steps", "-cpl_init_fluid steady: most pseudo steps (of the coupling step) before the run stops unconverged", NULL, "[1,inf)", cpl->start.max_steps, &cpl->start.max_steps, NULL));
   PetscCall(SableOptionsInt("-cpl_substeps", "DEM steps per fluid step; the fluid step is this times -dem_dt", NULL, "[1,inf)", cpl->clock.substeps, &cpl->clock.substeps, &cpl->clock.substeps_set));

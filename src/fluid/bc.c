@@ -37,8 +37,10 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
       FluidBCType t   = fl->bc.face[d][s].type;
+      PetscInt    k   = t;
       const char *opt = FluidBCOption[d][s], *optv = FluidBCVelocityOption[d][s];
-      PetscCall(SableOptionsEnum(FluidBCOption[d][s], "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", FluidBCNames, t, &t, &set));
+      PetscCall(SableOptionsEnum(FluidBCOption[d][s], "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", FluidBCNames, 5, k, &k, &set));
+      t = (FluidBCType)k;
       PetscCheck(!set || fl->dom->periodic[d] == (t == FLUID_BC_PERIODIC), fl->comm, PETSC_ERR_ARG_WRONG, "%s %s: the %c axis is %speriodic (-domain_periodic_%c); valid values here: %s", opt, FluidBCNames[t], ax[d], fl->dom->periodic[d] ? "" : "not ", ax[d], fl->dom->periodic[d] ? "periodic" : "wall, slip, inlet, outlet");
       fl->bc.face[d][s].type = t;
       PetscCall(SableOptionsRealN(optv, "Inlet velocity on this face", "m/s", fl->bc.face[d][s].vel, 3, 3, &set));

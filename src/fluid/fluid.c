@@ -59,6 +59,8 @@ PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid)
 
 PetscErrorCode FluidSetFromOptions(Fluid fl)
 {
+  PetscInt adv = fl->mom.adv, visc = fl->mom.visc;
+
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid (porosity-averaged Navier-Stokes)", NULL);
   PetscCall(SableOptionsReal("-fluid_density", "Fluid density rho_f", "kg/m^3", "(0,inf)", fl->prop.rho, &fl->prop.rho, NULL));
@@ -66,8 +68,10 @@ PetscErrorCode FluidSetFromOptions(Fluid fl)
   PetscCall(SableOptionsReal("-fluid_dt", "Fluid time step", "s", "(0,inf)", fl->clock.dt, &fl->clock.dt, &fl->clock.dt_set));
   PetscCall(SableOptionsRealN("-fluid_gravity", "Gravity g, acts as rho eps g", "m/s^2", fl->prop.gravity, 3, 3, NULL));
   PetscCall(SableOptionsRealN("-fluid_pressure_gradient", "Imposed mean pressure gradient G, acts as the force -G per unit volume", "Pa/m", fl->prop.dpdx, 3, 3, NULL));
-  PetscCall(SableOptionsEnum("-fluid_advection", "Advection scheme: central (2nd order), tvd (van Leer limited upwind), none (Stokes)", FluidAdvectionNames, fl->mom.adv, &fl->mom.adv, NULL));
-  PetscCall(SableOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", FluidViscousNames, fl->mom.visc, &fl->mom.visc, NULL));
+  PetscCall(SableOptionsEnum("-fluid_advection", "Advection scheme: central (2nd order), tvd (van Leer limited upwind), none (Stokes)", FluidAdvectionNames, 3, adv, &adv, NULL));
+  fl->mom.adv = (FluidAdvection)adv;
+  PetscCall(SableOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", FluidViscousNames, 2, visc, &visc, NULL));
+  fl->mom.visc = (FluidViscous)visc;
   PetscCall(SableOptionsReal("-fluid_cfl_max", "Largest advective CFL number dt*sum|u_d|/h_d allowed", NULL, "(0,1]", fl->clock.cfl_max, &fl->clock.cfl_max, NULL));
   PetscCall(SableOptionsReal("-fluid_viscous_number_max", "Largest explicit viscous number 2 dt nu sum 1/h_d^2 allowed (stability needs <= 1)", NULL, "(0,1]", fl->clock.visc_max, &fl->clock.visc_max, NULL));
   PetscCall(SableOptionsInt("-fluid_poisson_pc_lag", "Keep the Poisson preconditioner for up to this many matrix changes (0: rebuild at every change)", NULL, "[0,inf)", fl->pois.pc_lag, &fl->pois.pc_lag, NULL));

@@ -26,12 +26,12 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
   const char *const table[3][2] = {{"-fluid_bc_xlo_velocity_table", "-fluid_bc_xhi_velocity_table"}, {"-fluid_bc_ylo_velocity_table", "-fluid_bc_yhi_velocity_table"}, {"-fluid_bc_zlo_velocity_table", "-fluid_bc_zhi_velocity_table"}};
   const char       *side[2] = {"lo", "hi"}, *ax = "xyz";
   PetscBool         set;
-  FluidInletInterp  interp = fl->inlet.linear ? FLUID_INLET_LINEAR : FLUID_INLET_STEP;
+  PetscInt          interp = fl->inlet.linear ? FLUID_INLET_LINEAR : FLUID_INLET_STEP;
   PetscReal         buf[4 * FLUID_INLET_TABLE_MAX + 4]; /* one row more than allowed: PETSc stops silently at the array's size */
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid inlet tables", NULL);
-  PetscCall(SableOptionsEnum("-fluid_inlet_interpolation", "Between rows of an inlet table: step (hold the earlier row) or linear (default step)", FluidInletInterpNames, interp, &interp, NULL));
+  PetscCall(SableOptionsEnum("-fluid_inlet_interpolation", "Between rows of an inlet table: step (hold the earlier row) or linear (default step)", FluidInletInterpNames, 2, interp, &interp, NULL));
   fl->inlet.linear = interp == FLUID_INLET_LINEAR ? PETSC_TRUE : PETSC_FALSE;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {

@@ -55,8 +55,9 @@ if [ "$rc" -eq 1 ] && [ "$out" = "sable: error: -options_file needs a file name"
 # The flag and word lists of the value check are generated from the sources at build time
 # (tools/gen-options.sh -> $BUILD/gen/sable_options.h). They are checked here against -help, which
 # shows each option as the call that reads it at run time prints it: every option of Sable's
-# shown as a flag ("-name: <TRUE : TRUE>") must be in SableFlagOptions, every one whose value is a
-# word (an enum's "choose one of", a string, a list of names) in SableWordOptions, and every name
+# shown as a flag ("-name: <TRUE : TRUE>", SableOptionsBool's "<true>") must be in
+# SableFlagOptions, every one whose value is a word (an enum's "choose one of" or "(one of ...)",
+# a string, SableOptionsString's "(text)", a list of names) in SableWordOptions, and every name
 # in those lists must be shown by -help as such. A flag or word option that the generator cannot
 # see (read under a name it does not find) fails here.
 genlist() { sed -n "/$1\[\] = {/,/NULL};/p" "${BUILD:-build}/gen/sable_options.h" | grep -o '"[a-z0-9_%]*"' | tr -d '"'; }
@@ -66,10 +67,11 @@ awk '/^  -(dem|fluid|cpl|domain|io|lb)_[a-z0-9_<>]*[ :]/ {
     if (match(name, /_[0-9]+_/)) name = substr(name, 1, RSTART) "%d" substr(name, RSTART + RLENGTH - 1) # a member: its family
     else if (match(name, /_[0-9]+$/)) name = substr(name, 1, RSTART) "%d"
     if (name ~ /^fluid_(poisson|viscous)_/ && name !~ /^fluid_(poisson_pc_lag|poisson_pc_lag_growth|viscous_number_max)$/) next # PETSc solvers
-    if ($0 ~ "^  -" raw ": <(TRUE|FALSE) : ") { print "flag", name; next }
-    v = $0; sub(/^ *[^ ]*/, "", v); sub(/^[^<]*</, "", v); now = (v ~ /^now /); sub(/^now /, "", v); split(v, t, /[ ,>]/); x = t[1]
+    v = $0; sub(/^ *[^ ]*/, "", v); sub(/^[^<]*</, "", v)
+    if ($0 ~ "^  -" raw ": <(TRUE|FALSE) : " || v ~ /^(true|false)( \(default (true|false)\))?>/) { print "flag", name; next }
+    now = (v ~ /^now /); sub(/^now /, "", v); split(v, t, /[ ,>]/); x = t[1]
     num = (x ~ /^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$/)
-    if ($0 ~ /\(choose (one of|from)\)/ || (now && !num) || (!now && !num && x != "none")) print "word", name
+    if ($0 ~ /\(choose (one of|from)\)/ || $0 ~ /\(one of [^()]*\)$/ || $0 ~ / \(text\)$/ || (now && !num) || (!now && !num && x != "none")) print "word", name
     else print "number", name
   }' "$T/help" > "$T/kinds"
 flags=$(genlist SableFlagOptions); words=$(genlist SableWordOptions)
