@@ -14,13 +14,13 @@
 
 PetscErrorCode CplCheckpointWrite(Cpl cpl, IoCkpt ck)
 {
-  const PetscReal s[CPL_CKPT_NSTATE] = {cpl->t, (PetscReal)cpl->step, (PetscReal)cpl->clipped_total, cpl->solid_grid, cpl->eps_min0};
+  const PetscReal s[CPL_CKPT_NSTATE] = {cpl->clock.t, (PetscReal)cpl->clock.step, (PetscReal)cpl->diag.clipped_total, cpl->diag.solid_grid, cpl->diag.eps_min0};
 
   PetscFunctionBeginUser;
-  PetscCall(FluidCheckpointWriteVec(ck, "cpl/owed", cpl->owed));
+  PetscCall(FluidCheckpointWriteVec(ck, "cpl/owed", cpl->ex.owed));
   PetscCall(IoCkptWriteShared(ck, "cpl/state", IO_CKPT_REAL, CPL_CKPT_NSTATE, s));
-  if (cpl->filter_n > 0) PetscCall(IoCkptWriteShared(ck, "cpl/filter_diameter", IO_CKPT_REAL, 1, &cpl->filter_d));
-  if (cpl->pw_width > 0) PetscCall(IoCkptWriteShared(ck, "cpl/porosity_diameter", IO_CKPT_REAL, 1, &cpl->pw_d));
+  if (cpl->filt.n > 0) PetscCall(IoCkptWriteShared(ck, "cpl/filter_diameter", IO_CKPT_REAL, 1, &cpl->filt.d));
+  if (cpl->pw.width > 0) PetscCall(IoCkptWriteShared(ck, "cpl/porosity_diameter", IO_CKPT_REAL, 1, &cpl->pw.d));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -42,22 +42,22 @@ PetscErrorCode CplCheckpointRead(Cpl cpl, IoCkpt ck)
   PetscReal s[CPL_CKPT_NSTATE];
 
   PetscFunctionBeginUser;
-  PetscCheck(cpl->owed, cpl->comm, PETSC_ERR_ORDER, "call CplSetUp before CplCheckpointRead");
-  PetscCall(FluidCheckpointReadVec(ck, "cpl/owed", cpl->owed));
+  PetscCheck(cpl->ex.owed, cpl->comm, PETSC_ERR_ORDER, "call CplSetUp before CplCheckpointRead");
+  PetscCall(FluidCheckpointReadVec(ck, "cpl/owed", cpl->ex.owed));
   PetscCall(IoCkptReadShared(ck, "cpl/state", IO_CKPT_REAL, CPL_CKPT_NSTATE, s));
-  cpl->t             = s[0];
-  cpl->step          = (PetscInt)s[1];
-  cpl->clipped_total = (PetscInt)s[2];
-  cpl->solid_grid    = s[3]; /* s[4], the writer's start porosity, is not read back: the restart's
+  cpl->clock.t            = s[0];
+  cpl->clock.step         = (PetscInt)s[1];
+  cpl->diag.clipped_total = (PetscInt)s[2];
+  cpl->diag.solid_grid    = s[3]; /* s[4], the writer's start porosity, is not read back: the restart's
                                   pre-flight is of the restored bed (CplSetUp's projection) */
-  if (cpl->filter_n > 0) {   /* the filter's width from the mean diameter at the run's start */
+  if (cpl->filt.n > 0) {          /* the filter's width from the mean diameter at the run's start */
     PetscReal d;
-    PetscCall(CplReadDiameter(cpl, ck, "cpl/filter_diameter", "-cpl_filter_width", cpl->filter_width, &d));
+    PetscCall(CplReadDiameter(cpl, ck, "cpl/filter_diameter", "-cpl_filter_width", cpl->filt.width, &d));
     PetscCall(CplFilterSetUp(cpl, d));
   }
-  if (cpl->pw_width > 0) { /* the same for the drag's porosity width */
+  if (cpl->pw.width > 0) { /* the same for the drag's porosity width */
     PetscReal d;
-    PetscCall(CplReadDiameter(cpl, ck, "cpl/porosity_diameter", "-cpl_porosity_width", cpl->pw_width, &d));
+    PetscCall(CplReadDiameter(cpl, ck, "cpl/porosity_diameter", "-cpl_porosity_width", cpl->pw.width, &d));
     PetscCall(CplSmoothSetUp(cpl, d));
   }
   CplInvalidateStencils(cpl);

@@ -40,26 +40,26 @@ PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
     done = PETSC_TRUE;
   }
   PetscCall(PetscNew(&c));
-  c->comm        = PetscObjectComm((PetscObject)dom->da);
-  c->dom         = dom;
-  c->dem         = dem;
-  c->fl          = fl;
-  c->law         = CPL_DRAG_BEETSTRA;
-  c->substeps    = 2;
-  c->kscale      = 1;
-  c->self_fade   = 0.1;
-  c->eps_floor   = 0.2;
-  c->relax_max   = 1;
-  c->umf_eps     = CPL_UMF_POROSITY;
-  c->init_rtol   = 1e-4;
-  c->init_max    = 1000;
-  c->ev_project  = ev[0];
-  c->ev_drag     = ev[1];
-  c->ev_exchange = ev[2];
-  c->ev_dem      = ev[3];
-  c->ev_filter   = ev[4];
-  c->ev_smooth   = ev[5];
-  *cpl           = c;
+  c->comm            = PetscObjectComm((PetscObject)dom->da);
+  c->dom             = dom;
+  c->dem             = dem;
+  c->fl              = fl;
+  c->drag.law        = CPL_DRAG_BEETSTRA;
+  c->clock.substeps  = 2;
+  c->kern.scale      = 1;
+  c->self.fade       = 0.1;
+  c->drag.eps_floor  = 0.2;
+  c->start.relax_max = 1;
+  c->drag.umf_eps    = CPL_UMF_POROSITY;
+  c->start.rtol      = 1e-4;
+  c->start.max_steps = 1000;
+  c->ev.project      = ev[0];
+  c->ev.drag         = ev[1];
+  c->ev.exchange     = ev[2];
+  c->ev.dem          = ev[3];
+  c->ev.filter       = ev[4];
+  c->ev.smooth       = ev[5];
+  *cpl               = c;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -91,32 +91,36 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
 {
   PetscReal fg[3];
   PetscBool remove = PETSC_FALSE;
+  PetscInt  law = cpl->drag.law, mode = cpl->drag.mode, init = cpl->start.init;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
-  PetscCall(PetscOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu), schiller (Schiller-Naumann, single sphere)", NULL, CplDragNames, (PetscEnum)cpl->law, (PetscEnum *)&cpl->law, NULL));
-  PetscCall(PetscOptionsEnum("-cpl_mode", "twoway: fluid and particles act on each other; oneway: the fluid acts on the particles only (the fluid is single phase: porosity 1 everywhere, no drag reaction)", NULL, CplModeNames, (PetscEnum)cpl->mode, (PetscEnum *)&cpl->mode, NULL));
-  PetscCall(PetscOptionsEnum("-cpl_init_fluid", "Fluid velocity before the first step: rest, uniform (the inlet's superficial velocity over the porosity), steady (a steady solve through the initial bed held fixed)", NULL, CplInitNames, (PetscEnum)cpl->init, (PetscEnum *)&cpl->init, NULL));
-  PetscCall(SableOptionsReal("-cpl_init_fluid_rtol", "-cpl_init_fluid steady: stop when a pseudo step changes the velocity by less than this times its maximum", NULL, "(0,1)", cpl->init_rtol, &cpl->init_rtol, NULL));
-  PetscCall(SableOptionsInt("-cpl_init_fluid_max_steps", "-cpl_init_fluid steady: most pseudo steps (of the coupling step) before the run stops unconverged", NULL, "[1,inf)", cpl->init_max, &cpl->init_max, NULL));
-  PetscCall(SableOptionsInt("-cpl_substeps", "DEM steps per fluid step; the fluid step is this times -dem_dt", NULL, "[1,inf)", cpl->substeps, &cpl->substeps, &cpl->substeps_set));
-  PetscCall(SableOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d", NULL, "(0,inf)", cpl->kscale, &cpl->kscale, NULL));
-  PetscCall(SableOptionsReal("-cpl_filter_width", "Diffusion filter of the solid fraction and the drag fields: Gaussian full width at half maximum, in mean particle diameters (0: off)", NULL, "[0,inf)", cpl->filter_width, &cpl->filter_width, NULL));
-  PetscCall(SableOptionsReal("-cpl_porosity_width", "The drag law's porosity at each particle: the particles' volumes smoothed by a Gaussian of this full width at half maximum, in mean particle diameters, on a grid finer than the fluid's, with the superficial velocity over it (0: the kernel's cell porosity and the cell's velocity)", NULL, "[0,inf)", cpl->pw_width, &cpl->pw_width, NULL));
-  PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->eps_floor, &cpl->eps_floor, NULL));
-  PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->relax_max, &cpl->relax_max, NULL));
-  PetscCall(SableOptionsReal("-cpl_umf_porosity", "Porosity at which the bed: line takes U_mf (default: the bed's own when it is packed, at most 0.445, else 0.40: a packed bed at minimum fluidization)", NULL, "(0,1)", cpl->umf_eps, &cpl->umf_eps, &cpl->umf_eps_set));
-  PetscCall(PetscOptionsBool("-cpl_self_porosity", "The drag law sees the porosity of the other particles: the particle's own kernel dip is removed", NULL, cpl->self_eps, &cpl->self_eps, NULL));
-  PetscCall(PetscOptionsBool("-cpl_self_velocity", "The drag law sees the undisturbed fluid: its own disturbance (the exact discrete response of the grid to its stencil, coupling/self.c) is removed, K' = K / (1 - G K)", NULL, cpl->self_u, &cpl->self_u, NULL));
-  PetscCall(SableOptionsReal("-cpl_self_fade", "-cpl_self_porosity/-cpl_self_velocity: both fade linearly to nothing as the other particles' solid fraction reaches this (0: no fade)", NULL, "[0,1)", cpl->self_fade, &cpl->self_fade, NULL));
-  PetscCall(PetscOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", NULL, remove, &remove, NULL));
+  PetscCall(SableOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu), schiller (Schiller-Naumann, single sphere)", CplDragNames, 4, law, &law, NULL));
+  cpl->drag.law = (CplDragLaw)law;
+  PetscCall(SableOptionsEnum("-cpl_mode", "twoway: fluid and particles act on each other; oneway: the fluid acts on the particles only (the fluid is single phase: porosity 1 everywhere, no drag reaction)", CplModeNames, 2, mode, &mode, NULL));
+  cpl->drag.mode = (CplMode)mode;
+  PetscCall(SableOptionsEnum("-cpl_init_fluid", "Fluid velocity before the first step: rest, uniform (the inlet's superficial velocity over the porosity), steady (a steady solve through the initial bed held fixed)", CplInitNames, 3, init, &init, NULL));
+  cpl->start.init = (CplInitFluid)init;
+  PetscCall(SableOptionsReal("-cpl_init_fluid_rtol", "-cpl_init_fluid steady: stop when a pseudo step changes the velocity by less than this times its maximum", NULL, "(0,1)", cpl->start.rtol, &cpl->start.rtol, NULL));
+  PetscCall(SableOptionsInt("-cpl_init_fluid_max_steps", "-cpl_init_fluid steady: most pseudo steps (of the coupling step) before the run stops unconverged", NULL, "[1,inf)", cpl->start.max_steps, &cpl->start.max_steps, NULL));
+  PetscCall(SableOptionsInt("-cpl_substeps", "DEM steps per fluid step; the fluid step is this times -dem_dt", NULL, "[1,inf)", cpl->clock.substeps, &cpl->clock.substeps, &cpl->clock.substeps_set));
+  PetscCall(SableOptionsReal("-cpl_kernel_scale", "Cube kernel side over the volume-equivalent cube side (pi/6)^(1/3) d", NULL, "(0,inf)", cpl->kern.scale, &cpl->kern.scale, NULL));
+  PetscCall(SableOptionsReal("-cpl_filter_width", "Diffusion filter of the solid fraction and the drag fields: Gaussian full width at half maximum, in mean particle diameters (0: off)", NULL, "[0,inf)", cpl->filt.width, &cpl->filt.width, NULL));
+  PetscCall(SableOptionsReal("-cpl_porosity_width", "The drag law's porosity at each particle: the particles' volumes smoothed by a Gaussian of this full width at half maximum, in mean particle diameters, on a grid finer than the fluid's, with the superficial velocity over it (0: the kernel's cell porosity and the cell's velocity)", NULL, "[0,inf)", cpl->pw.width, &cpl->pw.width, NULL));
+  PetscCall(SableOptionsReal("-cpl_porosity_floor", "Porosity below this is raised to it (counted in the log)", NULL, "(0,1)", cpl->drag.eps_floor, &cpl->drag.eps_floor, NULL));
+  PetscCall(SableOptionsReal("-cpl_relaxation_ratio_max", "Largest allowed coupling step / particle relaxation time m/K (at the smallest initial porosity, Stokes limit)", NULL, "(0,inf)", cpl->start.relax_max, &cpl->start.relax_max, NULL));
+  PetscCall(SableOptionsReal("-cpl_umf_porosity", "Porosity at which the bed: line takes U_mf (default: the bed's own when it is packed, at most 0.445, else 0.40: a packed bed at minimum fluidization)", NULL, "(0,1)", cpl->drag.umf_eps, &cpl->drag.umf_eps, &cpl->drag.umf_eps_set));
+  PetscCall(SableOptionsBool("-cpl_self_porosity", "The drag law sees the porosity of the other particles: the particle's own kernel dip is removed", cpl->self.eps, &cpl->self.eps, NULL));
+  PetscCall(SableOptionsBool("-cpl_self_velocity", "The drag law sees the undisturbed fluid: its own disturbance (the exact discrete response of the grid to its stencil, coupling/self.c) is removed, K' = K / (1 - G K)", cpl->self.u, &cpl->self.u, NULL));
+  PetscCall(SableOptionsReal("-cpl_self_fade", "-cpl_self_porosity/-cpl_self_velocity: both fade linearly to nothing as the other particles' solid fraction reaches this (0: no fade)", NULL, "[0,1)", cpl->self.fade, &cpl->self.fade, NULL));
+  PetscCall(SableOptionsBool("-cpl_outlet_remove", "A particle reaching a fluid outlet face (-fluid_bc_<side> outlet) leaves the run, counted as a DEM outlet, instead of stopping it", remove, &remove, NULL));
   PetscOptionsEnd();
-  PetscCheck(!(cpl->self_eps && cpl->filter_width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_self_porosity removes the particle's unfiltered kernel dip, which -cpl_filter_width %g changes: use one of the two (the filtered dip is not implemented)", (double)cpl->filter_width);
-  PetscCheck(!(cpl->pw_width > 0 && cpl->filter_width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_filter_width %g: both smooth over a width in diameters (the drag's porosity, the spread fields); use one of the two", (double)cpl->pw_width, (double)cpl->filter_width);
-  PetscCheck(!(cpl->pw_width > 0 && cpl->mode == CPL_MODE_ONEWAY), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_mode oneway: a one-way run's drag sees porosity 1; drop one of them", (double)cpl->pw_width);
+  PetscCheck(!(cpl->self.eps && cpl->filt.width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_self_porosity removes the particle's unfiltered kernel dip, which -cpl_filter_width %g changes: use one of the two (the filtered dip is not implemented)", (double)cpl->filt.width);
+  PetscCheck(!(cpl->pw.width > 0 && cpl->filt.width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_filter_width %g: both smooth over a width in diameters (the drag's porosity, the spread fields); use one of the two", (double)cpl->pw.width, (double)cpl->filt.width);
+  PetscCheck(!(cpl->pw.width > 0 && cpl->drag.mode == CPL_MODE_ONEWAY), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_mode oneway: a one-way run's drag sees porosity 1; drop one of them", (double)cpl->pw.width);
   PetscCall(CplOutletFaces(cpl, remove));
-  PetscCall(FluidGetDensity(cpl->fl, &cpl->rho));
-  PetscCall(FluidGetViscosity(cpl->fl, &cpl->mu));
+  PetscCall(FluidGetDensity(cpl->fl, &cpl->prop.rho));
+  PetscCall(FluidGetViscosity(cpl->fl, &cpl->prop.mu));
   PetscCall(FluidGetGravity(cpl->fl, fg));
   PetscCheck(fg[0] == 0 && fg[1] == 0 && fg[2] == 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_gravity %g,%g,%g must be 0,0,0 in a coupled run: the fluid pressure is hydrodynamic and the buoyancy acts on the particles (eq. 11); set gravity with -dem_gravity", (double)fg[0], (double)fg[1], (double)fg[2]);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -125,13 +129,13 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
 static PetscErrorCode CplSetUpShapes(Cpl cpl)
 {
   PetscFunctionBeginUser;
-  PetscCall(DemGetShapeCount(cpl->dem, &cpl->nshape));
-  PetscCall(PetscMalloc4(cpl->nshape, &cpl->side, cpl->nshape, &cpl->vol, cpl->nshape, &cpl->diam, cpl->nshape, &cpl->mass));
-  for (PetscInt s = 0; s < cpl->nshape; s++) {
-    PetscCall(CplKernelSide(cpl, s, &cpl->side[s], &cpl->vol[s], &cpl->diam[s]));
-    PetscCall(DemGetShape(cpl->dem, s, NULL, &cpl->mass[s]));
+  PetscCall(DemGetShapeCount(cpl->dem, &cpl->kern.nshape));
+  PetscCall(PetscMalloc4(cpl->kern.nshape, &cpl->kern.side, cpl->kern.nshape, &cpl->kern.vol, cpl->kern.nshape, &cpl->kern.diam, cpl->kern.nshape, &cpl->kern.mass));
+  for (PetscInt s = 0; s < cpl->kern.nshape; s++) {
+    PetscCall(CplKernelSide(cpl, s, &cpl->kern.side[s], &cpl->kern.vol[s], &cpl->kern.diam[s]));
+    PetscCall(DemGetShape(cpl->dem, s, NULL, &cpl->kern.mass[s]));
     for (int e = 0; e < 3; e++)
-      PetscCheck(cpl->dom->periodic[e] || cpl->side[s] <= cpl->dom->len[e], cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel side %g exceeds the domain length %g on axis %d; lower -cpl_kernel_scale %g", (double)cpl->side[s], (double)cpl->dom->len[e], e, (double)cpl->kscale);
+      PetscCheck(cpl->dom->periodic[e] || cpl->kern.side[s] <= cpl->dom->len[e], cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel side %g exceeds the domain length %g on axis %d; lower -cpl_kernel_scale %g", (double)cpl->kern.side[s], (double)cpl->dom->len[e], e, (double)cpl->kern.scale);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -143,16 +147,16 @@ PetscErrorCode CplSetUp(Cpl cpl)
 
   PetscFunctionBeginUser;
   PetscCall(FluidGetDMs(cpl->fl, &cpl->cda, &cpl->fda));
-  PetscCall(DMCreateLocalVector(cpl->cda, &cpl->cloc));
-  for (int s = 0; s < 3; s++) PetscCall(DMCreateLocalVector(cpl->fda, &cpl->floc[s]));
-  PetscCall(DMCreateGlobalVector(cpl->fda, &cpl->kv));
-  PetscCall(VecDuplicate(cpl->kv, &cpl->jf));
-  PetscCall(VecDuplicate(cpl->kv, &cpl->owed));
-  PetscCall(VecZeroEntries(cpl->owed));
-  cpl->cell_vol = cpl->dom->h[0] * cpl->dom->h[1] * cpl->dom->h[2];
-  PetscCall(DemGetGravity(cpl->dem, cpl->g));
-  PetscCall(DemGetFrozen(cpl->dem, &cpl->frozen));
-  cpl->correct = (PetscBool)!cpl->frozen;
+  PetscCall(DMCreateLocalVector(cpl->cda, &cpl->ex.cloc));
+  for (int s = 0; s < 3; s++) PetscCall(DMCreateLocalVector(cpl->fda, &cpl->ex.floc[s]));
+  PetscCall(DMCreateGlobalVector(cpl->fda, &cpl->ex.kv));
+  PetscCall(VecDuplicate(cpl->ex.kv, &cpl->ex.jf));
+  PetscCall(VecDuplicate(cpl->ex.kv, &cpl->ex.owed));
+  PetscCall(VecZeroEntries(cpl->ex.owed));
+  cpl->kern.cell_vol = cpl->dom->h[0] * cpl->dom->h[1] * cpl->dom->h[2];
+  PetscCall(DemGetGravity(cpl->dem, cpl->prop.g));
+  PetscCall(DemGetFrozen(cpl->dem, &cpl->clock.frozen));
+  cpl->clock.correct = (PetscBool)!cpl->clock.frozen;
   PetscCall(DemSetExternal(cpl->dem, PETSC_TRUE));
   PetscCall(CplSetUpShapes(cpl));
   PetscCall(CplFilterSetUp(cpl, 0));
@@ -160,44 +164,44 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
   PetscCall(FluidGetTimeStep(cpl->fl, &dtf, &fset));
   /* a frozen bed takes no DEM steps: the coupling step is the fluid's */
-  PetscCheck(!cpl->frozen || !cpl->substeps_set, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_substeps %d is ignored with -dem_frozen (no DEM steps; the step is -fluid_dt): give one of them", (int)cpl->substeps);
-  PetscCheck(!cpl->frozen || cpl->mode == CPL_MODE_TWOWAY, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_mode oneway with -dem_frozen: a frozen bed only acts on the fluid, one-way coupling only on the particles; nothing would be coupled");
-  PetscCall(FluidGetAdaptive(cpl->fl, &cpl->adaptive));
-  cpl->dtd  = dtd;
-  cpl->dtf  = dtf;
-  cpl->nsub = cpl->substeps;
-  if (cpl->frozen) cpl->dt = dtf;
+  PetscCheck(!cpl->clock.frozen || !cpl->clock.substeps_set, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_substeps %d is ignored with -dem_frozen (no DEM steps; the step is -fluid_dt): give one of them", (int)cpl->clock.substeps);
+  PetscCheck(!cpl->clock.frozen || cpl->drag.mode == CPL_MODE_TWOWAY, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_mode oneway with -dem_frozen: a frozen bed only acts on the fluid, one-way coupling only on the particles; nothing would be coupled");
+  PetscCall(FluidGetAdaptive(cpl->fl, &cpl->clock.adaptive));
+  cpl->clock.dtd  = dtd;
+  cpl->clock.dtf  = dtf;
+  cpl->clock.nsub = cpl->clock.substeps;
+  if (cpl->clock.frozen) cpl->clock.dt = dtf;
   else {
-    cpl->dt = cpl->substeps * dtd;
-    PetscCheck(!fset || PetscAbsReal(dtf - cpl->dt) <= 1e-9 * cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_dt %g differs from -cpl_substeps %d x -dem_dt %g = %g: give one of them consistently (the fluid step is substeps x dt_dem)", (double)dtf, (int)cpl->substeps, (double)dtd, (double)cpl->dt);
+    cpl->clock.dt = cpl->clock.substeps * dtd;
+    PetscCheck(!fset || PetscAbsReal(dtf - cpl->clock.dt) <= 1e-9 * cpl->clock.dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_dt %g differs from -cpl_substeps %d x -dem_dt %g = %g: give one of them consistently (the fluid step is substeps x dt_dem)", (double)dtf, (int)cpl->clock.substeps, (double)dtd, (double)cpl->clock.dt);
   }
   {
     char name[96];
-    if (cpl->frozen) PetscCall(PetscSNPrintf(name, sizeof name, "-fluid_dt"));
-    else PetscCall(PetscSNPrintf(name, sizeof name, "-cpl_substeps %d x -dem_dt %g s", (int)cpl->substeps, (double)dtd));
+    if (cpl->clock.frozen) PetscCall(PetscSNPrintf(name, sizeof name, "-fluid_dt"));
+    else PetscCall(PetscSNPrintf(name, sizeof name, "-cpl_substeps %d x -dem_dt %g s", (int)cpl->clock.substeps, (double)dtd));
     PetscCall(FluidSetTimeStepName(cpl->fl, name));
   }
   {
     CplStats st;
     PetscCall(CplProjectPorosity(cpl, &st));
-    cpl->eps_min0 = st.eps_min;
+    cpl->diag.eps_min0 = st.eps_min;
   }
-  if (cpl->mode == CPL_MODE_ONEWAY) { /* the solid volume above stays the diagnostics' figure */
+  if (cpl->drag.mode == CPL_MODE_ONEWAY) { /* the solid volume above stays the diagnostics' figure */
     Vec eps;
     PetscCall(FluidGetPorosity(cpl->fl, &eps));
     PetscCall(VecSet(eps, 1.0));
-    cpl->eps_min0 = 1;
+    cpl->diag.eps_min0 = 1;
   }
   PetscCall(FluidInitPorosity(cpl->fl));
   PetscCall(CplPreflight(cpl, NULL, PETSC_TRUE));
-  if (!cpl->restarting) PetscCall(CplInitFluidState(cpl));
+  if (!cpl->start.restarting) PetscCall(CplInitFluidState(cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplRedistribute(Cpl cpl)
 {
   DM   ofda   = cpl->fda;
-  Vec *face[] = {&cpl->kv, &cpl->jf, &cpl->owed};
+  Vec *face[] = {&cpl->ex.kv, &cpl->ex.jf, &cpl->ex.owed};
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectReference((PetscObject)ofda)); /* the fluid drops its old DMs */
@@ -205,11 +209,11 @@ PetscErrorCode CplRedistribute(Cpl cpl)
   PetscCall(FluidGetDMs(cpl->fl, &cpl->cda, &cpl->fda));
   for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) PetscCall(DomainMoveVec(ofda, cpl->fda, face[i]));
   PetscCall(DMDestroy(&ofda));
-  PetscCall(VecDestroy(&cpl->cloc));
-  PetscCall(DMCreateLocalVector(cpl->cda, &cpl->cloc));
+  PetscCall(VecDestroy(&cpl->ex.cloc));
+  PetscCall(DMCreateLocalVector(cpl->cda, &cpl->ex.cloc));
   for (int s = 0; s < 3; s++) {
-    PetscCall(VecDestroy(&cpl->floc[s]));
-    PetscCall(DMCreateLocalVector(cpl->fda, &cpl->floc[s]));
+    PetscCall(VecDestroy(&cpl->ex.floc[s]));
+    PetscCall(DMCreateLocalVector(cpl->fda, &cpl->ex.floc[s]));
   }
   PetscCall(DemRedistribute(cpl->dem));
   PetscCall(CplSmoothDestroyGrid(cpl));
@@ -220,14 +224,14 @@ PetscErrorCode CplRedistribute(Cpl cpl)
 PetscErrorCode CplView(Cpl cpl, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->law], (int)cpl->substeps, (double)(cpl->adaptive ? (cpl->frozen ? cpl->dtf : cpl->substeps * cpl->dtd) : cpl->dt), (double)cpl->kscale, (double)cpl->eps_floor, cpl->frozen ? ", frozen bed (no DEM steps)" : ""));
-  if (cpl->filter_n > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: diffusion filter -cpl_filter_width %g x mean diameter %g m: Gaussian sigma %g m, %d sweeps per field\n", (double)cpl->filter_width, (double)cpl->filter_d, (double)PetscSqrtReal(cpl->filter_var), (int)cpl->filter_n));
-  if (cpl->pw_width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: the drag's porosity -cpl_porosity_width %g x mean diameter %g m: Gaussian sigma %g m on a grid %d x %d x %d times finer than the fluid's\n", (double)cpl->pw_width, (double)cpl->pw_d, (double)cpl->pw_sigma, (int)cpl->pw_n[0], (int)cpl->pw_n[1], (int)cpl->pw_n[2]));
-  if (cpl->mode == CPL_MODE_ONEWAY) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: one-way (-cpl_mode oneway): the fluid acts on the particles only; the fluid is single phase (porosity 1, no drag reaction)\n"));
-  if (cpl->adaptive && cpl->frozen) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): at most -fluid_dt %g s, within 0.9 of the fluid's stability limit\n", (double)cpl->dtf));
-  else if (cpl->adaptive) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): 1 to %d DEM steps of %g s per fluid step, within 0.9 of the fluid's stability limit\n", (int)cpl->substeps, (double)cpl->dtd));
-  if (cpl->init != CPL_INIT_REST) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: initial fluid %s%s\n", CplInitNames[cpl->init], cpl->restarting ? " (not applied: the fluid comes from the checkpoint)" : ""));
-  if (cpl->init == CPL_INIT_STEADY && !cpl->restarting) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: the steady start converged in %d pseudo steps of %g s (-cpl_init_fluid_rtol %g)\n", (int)cpl->init_its, (double)(cpl->frozen ? cpl->dt : cpl->substeps * cpl->dtd), (double)cpl->init_rtol));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->drag.law], (int)cpl->clock.substeps, (double)(cpl->clock.adaptive ? (cpl->clock.frozen ? cpl->clock.dtf : cpl->clock.substeps * cpl->clock.dtd) : cpl->clock.dt), (double)cpl->kern.scale, (double)cpl->drag.eps_floor, cpl->clock.frozen ? ", frozen bed (no DEM steps)" : ""));
+  if (cpl->filt.n > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: diffusion filter -cpl_filter_width %g x mean diameter %g m: Gaussian sigma %g m, %d sweeps per field\n", (double)cpl->filt.width, (double)cpl->filt.d, (double)PetscSqrtReal(cpl->filt.var), (int)cpl->filt.n));
+  if (cpl->pw.width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: the drag's porosity -cpl_porosity_width %g x mean diameter %g m: Gaussian sigma %g m on a grid %d x %d x %d times finer than the fluid's\n", (double)cpl->pw.width, (double)cpl->pw.d, (double)cpl->pw.sigma, (int)cpl->pw.n[0], (int)cpl->pw.n[1], (int)cpl->pw.n[2]));
+  if (cpl->drag.mode == CPL_MODE_ONEWAY) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: one-way (-cpl_mode oneway): the fluid acts on the particles only; the fluid is single phase (porosity 1, no drag reaction)\n"));
+  if (cpl->clock.adaptive && cpl->clock.frozen) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): at most -fluid_dt %g s, within 0.9 of the fluid's stability limit\n", (double)cpl->clock.dtf));
+  else if (cpl->clock.adaptive) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): 1 to %d DEM steps of %g s per fluid step, within 0.9 of the fluid's stability limit\n", (int)cpl->clock.substeps, (double)cpl->clock.dtd));
+  if (cpl->start.init != CPL_INIT_REST) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: initial fluid %s%s\n", CplInitNames[cpl->start.init], cpl->start.restarting ? " (not applied: the fluid comes from the checkpoint)" : ""));
+  if (cpl->start.init == CPL_INIT_STEADY && !cpl->start.restarting) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: the steady start converged in %d pseudo steps of %g s (-cpl_init_fluid_rtol %g)\n", (int)cpl->start.its, (double)(cpl->clock.frozen ? cpl->clock.dt : cpl->clock.substeps * cpl->clock.dtd), (double)cpl->start.rtol));
   PetscCall(CplPreflight(cpl, viewer, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -236,13 +240,13 @@ PetscErrorCode CplDestroy(Cpl *cpl)
 {
   PetscFunctionBeginUser;
   if (!*cpl) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(VecDestroy(&(*cpl)->cloc));
-  for (int s = 0; s < 3; s++) PetscCall(VecDestroy(&(*cpl)->floc[s]));
-  PetscCall(VecDestroy(&(*cpl)->kv));
-  PetscCall(VecDestroy(&(*cpl)->jf));
-  PetscCall(VecDestroy(&(*cpl)->owed));
-  PetscCall(PetscFree4((*cpl)->side, (*cpl)->vol, (*cpl)->diam, (*cpl)->mass));
-  PetscCall(PetscFree((*cpl)->stc));
+  PetscCall(VecDestroy(&(*cpl)->ex.cloc));
+  for (int s = 0; s < 3; s++) PetscCall(VecDestroy(&(*cpl)->ex.floc[s]));
+  PetscCall(VecDestroy(&(*cpl)->ex.kv));
+  PetscCall(VecDestroy(&(*cpl)->ex.jf));
+  PetscCall(VecDestroy(&(*cpl)->ex.owed));
+  PetscCall(PetscFree4((*cpl)->kern.side, (*cpl)->kern.vol, (*cpl)->kern.diam, (*cpl)->kern.mass));
+  PetscCall(PetscFree((*cpl)->kern.stc));
   PetscCall(CplSelfTableDestroy(*cpl));
   PetscCall(CplSmoothDestroy(*cpl));
   PetscCall(PetscFree(*cpl));
@@ -252,63 +256,79 @@ PetscErrorCode CplDestroy(Cpl *cpl)
 PetscErrorCode CplGetTime(Cpl cpl, PetscReal *t, PetscInt *step)
 {
   PetscFunctionBeginUser;
-  if (t) *t = cpl->t;
-  if (step) *step = cpl->step;
+  if (t) *t = cpl->clock.t;
+  if (step) *step = cpl->clock.step;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplGetFluidTime(Cpl cpl, PetscLogDouble *t)
 {
   PetscFunctionBeginUser;
-  *t = cpl->t_fluid;
+  *t = cpl->diag.t_fluid;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplGetSubsteps(Cpl cpl, PetscInt *substeps)
 {
   PetscFunctionBeginUser;
-  *substeps = cpl->substeps;
+  *substeps = cpl->clock.substeps;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplGetClippedCount(Cpl cpl, PetscInt *count)
 {
   PetscFunctionBeginUser;
-  *count = cpl->clipped_total;
+  *count = cpl->diag.clipped_total;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplGetSelfCappedCount(Cpl cpl, PetscInt *count)
 {
   PetscFunctionBeginUser;
-  *count = cpl->self_capped_total;
+  *count = cpl->self.capped_total;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplGetStepQuantum(Cpl cpl, PetscReal *dq)
 {
   PetscFunctionBeginUser;
-  *dq = cpl->adaptive ? (cpl->frozen ? 1e-9 * cpl->dtf : cpl->dtd) : cpl->dt;
+  *dq = cpl->clock.adaptive ? (cpl->clock.frozen ? 1e-9 * cpl->clock.dtf : cpl->clock.dtd) : cpl->clock.dt;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplSetRestarting(Cpl cpl, PetscBool on)
 {
   PetscFunctionBeginUser;
-  cpl->restarting = on;
+  cpl->start.restarting = on;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplGetMode(Cpl cpl, CplMode *mode)
 {
   PetscFunctionBeginUser;
-  *mode = cpl->mode;
+  *mode = cpl->drag.mode;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplGetTimeStep(Cpl cpl, PetscReal *dt)
 {
   PetscFunctionBeginUser;
-  *dt = cpl->dt;
+  *dt = cpl->clock.dt;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetTestView(Cpl cpl, CplTestView *v)
+{
+  PetscFunctionBeginUser;
+  v->cell_vol      = cpl->kern.cell_vol;
+  v->filter_var    = cpl->filt.var;
+  v->filter_sweeps = cpl->filt.n;
+  v->smooth_sigma  = cpl->pw.sigma;
+  v->smooth_solid  = cpl->pw.glob;
+  v->kv            = cpl->ex.kv;
+  for (int d = 0; d < 3; d++) {
+    v->filter_lam[d] = cpl->filt.lam[d];
+    v->smooth_h[d]   = cpl->pw.h[d];
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -154,3 +154,32 @@ PetscReal CplDragFactor(CplDragLaw law, PetscReal eps, PetscReal re);
 /* Pressure gradient magnitude (Pa/m) the law predicts for a uniform bed of spheres of diameter d
  * at porosity eps and superficial velocity U: n K U / eps, n = (1 - eps) / (pi d^3 / 6). */
 PetscReal CplPackedBedGradient(CplDragLaw law, PetscReal eps, PetscReal usup, PetscReal d, PetscReal rho, PetscReal mu);
+
+/* Pieces of a coupling step, public for the unit tests of the filter and the smoothing
+ * (tests/coupling/test_filter.c, test_smooth.c); a run calls them inside CplStep. All collective.
+ *   CplFilter: the diffusion filter (-cpl_filter_width) applied to a global cell (faces false) or
+ *     face Vec of the fluid's DMDAs, in place; nothing when off.
+ *   CplSmoothProject: the particles' solid fraction on the auxiliary grid of -cpl_porosity_width;
+ *   CplSmoothAt: its smoothed value phi at the n local particles and each one's own share (own may
+ *     be NULL); CplSmoothSeen: the porosity the drag sees there (fade may be NULL).
+ *   CplSetParticleDrag, CplSetFluidDrag: the two halves of a step's drag set-up (the particles'
+ *     coefficients and seen velocities; the fluid's face drag and the sum K W v). */
+PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces);
+PetscErrorCode CplSmoothProject(Cpl cpl);
+PetscErrorCode CplSmoothAt(Cpl cpl, PetscInt n, PetscReal *phi, PetscReal *own);
+PetscErrorCode CplSmoothSeen(Cpl cpl, PetscInt n, PetscReal *eps, PetscReal *fade);
+PetscErrorCode CplSetParticleDrag(Cpl cpl);
+PetscErrorCode CplSetFluidDrag(Cpl cpl);
+/* What those tests check (not collective; after CplSetUp): the filter's and the smoothing's own
+ * figures and the fields they fill. The Vecs are the coupling's own: read them, do not destroy. */
+typedef struct {
+  PetscReal cell_vol;      /* fluid cell volume (m^3) */
+  double    filter_var;    /* the filter's added Gaussian variance per direction (m^2); 0: off */
+  PetscReal filter_lam[3]; /* diffusion number of one sweep per axis */
+  PetscInt  filter_sweeps; /* sweeps per filtered field; 0: off */
+  PetscReal smooth_sigma;  /* the smoothing's standard deviation per axis (m) */
+  PetscReal smooth_h[3];   /* its auxiliary grid's spacing (m) */
+  Vec       smooth_solid;  /* its auxiliary grid's solid fraction (global) after CplSmoothProject */
+  Vec       kv;            /* face globals: sum K W v of the last CplSetFluidDrag */
+} CplTestView;
+PetscErrorCode CplGetTestView(Cpl cpl, CplTestView *v);

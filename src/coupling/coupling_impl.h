@@ -12,66 +12,122 @@ typedef struct {         /* cube kernel of one particle: separable 1-D overlap f
   double   wc[3][4], wf[3][4];
 } CplStencil;
 
-struct _p_Cpl {
-  MPI_Comm comm;
-  Domain  *dom;
-  Dem      dem;
-  Fluid    fl;
-  DM       cda, fda;
-  /* options */
-  CplDragLaw            law;
-  CplMode               mode;
-  CplInitFluid          init;
-  PetscReal             init_rtol;  /* -cpl_init_fluid_rtol */
-  PetscInt              init_max;   /* -cpl_init_fluid_max_steps */
-  PetscInt              init_its;   /* pseudo steps the steady start took */
-  PetscBool             restarting; /* CplSetRestarting: the fluid comes from a checkpoint, no initial state */
-  PetscInt              substeps;
-  PetscReal             kscale, eps_floor, relax_max;
-  PetscReal             umf_eps;          /* -cpl_umf_porosity: the porosity of the bed: line's U_mf when the bed is loose */
-  PetscBool             umf_eps_set;      /* given: U_mf at it whatever the bed */
-  PetscBool             self_eps, self_u; /* -cpl_self_porosity, -cpl_self_velocity */
-  PetscReal             self_fade;        /* -cpl_self_fade */
-  struct _CplSelfTable *self_tab;         /* self.c: the discrete self-response, built on first use */
-  PetscBool             substeps_set;
-  PetscReal            *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
-  PetscInt              nshape;
-  /* fluid properties (the fluid's options) */
-  PetscReal rho, mu, g[3];
-  /* state */
-  PetscBool      frozen, correct;
-  PetscBool      adaptive; /* -fluid_adaptive_dt: nsub DEM steps of dtd per step (frozen: the fluid's step) */
-  PetscInt       nsub;     /* DEM steps of the current step (substeps unless adaptive) */
-  PetscReal      dtd, dtf; /* the DEM step, -fluid_dt (s) */
-  PetscReal      dt, t, cell_vol, eps_min0;
-  PetscInt       step;
+/* The fluid's properties, as the fluid's options give them, and the particles' gravity. */
+typedef struct {
+  PetscReal rho, mu; /* kg/m^3, Pa s */
+  PetscReal g[3];    /* m/s^2 */
+} CplFluidProps;
+
+/* The cube kernel (kernel.c): its scale, the per-shape figures, and the cached stencils of the
+ * local particles. */
+typedef struct {
+  PetscReal   scale;                    /* -cpl_kernel_scale: side over the volume-equivalent side */
+  PetscReal  *side, *vol, *diam, *mass; /* per shape: kernel side (m), volume (m^3), diameter, mass */
+  PetscInt    nshape;
+  PetscReal   cell_vol;                  /* fluid cell volume (m^3) */
+  CplStencil *stc;                       /* cached kernel stencils of the local particles */
+  PetscInt    stc_n, stc_cap, stc_state; /* stc_state: DemGetState when the stencils were computed */
+  PetscBool   stc_valid;
+} CplKernel;
+
+/* The diffusion filter (filter.c). */
+typedef struct {
+  double    var;    /* the filter's added Gaussian variance per direction (m^2); 0: off */
+  PetscReal width;  /* -cpl_filter_width: full width at half maximum in mean diameters */
+  PetscReal d;      /* the mean diameter it uses (m) */
+  PetscReal lam[3]; /* diffusion number of one sweep per axis, <= 1/6 */
+  PetscInt  n;      /* sweeps per filtered field; 0: off */
+} CplFilterState;
+
+/* The drag's porosity on a length in diameters (smooth.c). */
+typedef struct {
+  PetscReal width;   /* -cpl_porosity_width: full width at half maximum in mean diameters; 0: off */
+  PetscReal d;       /* the mean diameter it uses (m) */
+  PetscReal sigma;   /* the smoothing's standard deviation per axis (m) */
+  PetscInt  n[3];    /* auxiliary cells per fluid cell along each axis */
+  PetscReal h[3];    /* auxiliary spacing (m) */
+  int       half[3]; /* the 1-D kernels' half widths (nodes) */
+  double   *k[3];    /* the 1-D kernels, 2 half + 1 weights summing to one */
+  DM        da;      /* the auxiliary grid; NULL until used and after a redistribution */
+  Vec       loc, glob;
+} CplSmoothing;
+
+/* The drag law and the coupling mode (couple.c options). */
+typedef struct {
+  CplDragLaw law;
+  CplMode    mode;
+  PetscReal  eps_floor;   /* -cpl_porosity_floor */
+  PetscReal  umf_eps;     /* -cpl_umf_porosity: the porosity of the bed: line's U_mf when the bed is loose */
+  PetscBool  umf_eps_set; /* given: U_mf at it whatever the bed */
+} CplDragSettings;
+
+/* The drag sees the fluid without the particle's own disturbance (self.c). */
+typedef struct {
+  PetscBool             eps, u;       /* -cpl_self_porosity, -cpl_self_velocity */
+  PetscReal             fade;         /* -cpl_self_fade */
+  struct _CplSelfTable *tab;          /* the discrete self-response, built on first use */
+  PetscInt              capped_total; /* particle-steps whose self correction hit its cap (not in checkpoints) */
+} CplSelf;
+
+/* The start: the fluid's initial state (start.c) and the pre-flight limit (preflight.c). */
+typedef struct {
+  CplInitFluid init;
+  PetscReal    rtol;       /* -cpl_init_fluid_rtol */
+  PetscInt     max_steps;  /* -cpl_init_fluid_max_steps */
+  PetscInt     its;        /* pseudo steps the steady start took */
+  PetscBool    restarting; /* CplSetRestarting: the fluid comes from a checkpoint, no initial state */
+  PetscReal    relax_max;  /* -cpl_relaxation_ratio_max */
+} CplStart;
+
+/* Steps and time. */
+typedef struct {
+  PetscInt  substeps;
+  PetscBool substeps_set;
+  PetscBool frozen, correct;
+  PetscBool adaptive; /* -fluid_adaptive_dt: nsub DEM steps of dtd per step (frozen: the fluid's step) */
+  PetscInt  nsub;     /* DEM steps of the current step (substeps unless adaptive) */
+  PetscReal dtd, dtf; /* the DEM step, -fluid_dt (s) */
+  PetscReal dt, t;
+  PetscInt  step;
+} CplClock;
+
+/* The exchange's fields: work locals and face globals (exchange.c, kernel.c). */
+typedef struct {
+  Vec cloc, floc[3]; /* work: cell local, face locals (one per field spread together) */
+  Vec kv, jf, owed;  /* face globals: sum K W v, spread impulse, momentum owed */
+} CplExchange;
+
+/* Diagnostics and measured figures. */
+typedef struct {
   PetscInt       clipped_total;
-  PetscInt       self_capped_total;         /* particle-steps whose self correction hit its cap (not in checkpoints) */
-  PetscReal      solid_grid;                /* last projection, before the floor */
-  Vec            cloc, floc[3];             /* work: cell local, face locals (one per field spread together) */
-  Vec            kv, jf, owed;              /* face globals: sum K W v, spread impulse, momentum owed */
-  CplStencil    *stc;                       /* cached kernel stencils of the local particles */
-  PetscInt       stc_n, stc_cap, stc_state; /* stc_state: DemGetState when the stencils were computed */
-  PetscBool      stc_valid;
-  PetscLogDouble t_fluid; /* wall time in fluid steps (s): the measured cell weight */
-  PetscLogEvent  ev_project, ev_drag, ev_exchange, ev_dem, ev_filter;
-  /* the diffusion filter (filter.c) */
-  double    filter_var;    /* the filter's added Gaussian variance per direction (m^2); 0: off */
-  PetscReal filter_width;  /* -cpl_filter_width: full width at half maximum in mean diameters */
-  PetscReal filter_d;      /* the mean diameter it uses (m) */
-  PetscReal filter_lam[3]; /* diffusion number of one sweep per axis, <= 1/6 */
-  PetscInt  filter_n;      /* sweeps per filtered field; 0: off */
-  /* the drag's porosity on a length in diameters (smooth.c) */
-  PetscReal     pw_width;   /* -cpl_porosity_width: full width at half maximum in mean diameters; 0: off */
-  PetscReal     pw_d;       /* the mean diameter it uses (m) */
-  PetscReal     pw_sigma;   /* the smoothing's standard deviation per axis (m) */
-  PetscInt      pw_n[3];    /* auxiliary cells per fluid cell along each axis */
-  PetscReal     pw_h[3];    /* auxiliary spacing (m) */
-  int           pw_half[3]; /* the 1-D kernels' half widths (nodes) */
-  double       *pw_k[3];    /* the 1-D kernels, 2 half + 1 weights summing to one */
-  DM            ada;        /* the auxiliary grid; NULL until used and after a redistribution */
-  Vec           aloc, aglob;
-  PetscLogEvent ev_smooth;
+  PetscReal      solid_grid; /* last projection, before the floor */
+  PetscReal      eps_min0;   /* the smallest porosity of the initial bed */
+  PetscLogDouble t_fluid;    /* wall time in fluid steps (s): the measured cell weight */
+} CplDiag;
+
+/* Log events. */
+typedef struct {
+  PetscLogEvent project, drag, exchange, dem, filter, smooth;
+} CplEvents;
+
+/* The coupling: the objects it couples, then its state grouped by concern (above). */
+struct _p_Cpl {
+  MPI_Comm        comm;
+  Domain         *dom;
+  Dem             dem;
+  Fluid           fl;
+  DM              cda, fda; /* the fluid's */
+  CplFluidProps   prop;
+  CplKernel       kern;
+  CplFilterState  filt;
+  CplSmoothing    pw;
+  CplDragSettings drag;
+  CplSelf         self;
+  CplStart        start;
+  CplClock        clock;
+  CplExchange     ex;
+  CplDiag         diag;
+  CplEvents       ev;
 };
 
 /* Whether face point idx, component d, is shared by two cells: not on the boundary of a
@@ -92,20 +148,20 @@ static inline PetscBool CplInteriorFace(const Domain *dom, int d, const PetscInt
 static inline PetscReal CplVolumeOf(Cpl cpl, const DemArrays *pa, PetscInt p)
 {
   const PetscReal r = pa->r ? pa->r[p] : 0;
-  return pa->r ? 4.0 / 3.0 * PETSC_PI * r * r * r : cpl->vol[pa->shape[p]];
+  return pa->r ? 4.0 / 3.0 * PETSC_PI * r * r * r : cpl->kern.vol[pa->shape[p]];
 }
 static inline PetscReal CplDiameterOf(Cpl cpl, const DemArrays *pa, PetscInt p)
 {
-  return pa->r ? 2 * pa->r[p] : cpl->diam[pa->shape[p]];
+  return pa->r ? 2 * pa->r[p] : cpl->kern.diam[pa->shape[p]];
 }
 static inline PetscReal CplSideOf(Cpl cpl, const DemArrays *pa, PetscInt p)
 {
-  return pa->r ? cpl->kscale * PetscCbrtReal(CplVolumeOf(cpl, pa, p)) : cpl->side[pa->shape[p]];
+  return pa->r ? cpl->kern.scale * PetscCbrtReal(CplVolumeOf(cpl, pa, p)) : cpl->kern.side[pa->shape[p]];
 }
 static inline PetscReal CplMassOf(Cpl cpl, const DemArrays *pa, PetscInt p)
 {
   const PetscInt s = pa->shape[p];
-  return pa->r ? cpl->mass[s] / cpl->vol[s] * CplVolumeOf(cpl, pa, p) : cpl->mass[s];
+  return pa->r ? cpl->kern.mass[s] / cpl->kern.vol[s] * CplVolumeOf(cpl, pa, p) : cpl->kern.mass[s];
 }
 
 /* kernel.c */
@@ -122,20 +178,16 @@ typedef struct {
   Vec              out; /* global face Vec */
 } CplSpread;
 PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[]);
-/* smooth.c: the drag's porosity on a length in diameters (-cpl_porosity_width) */
+/* smooth.c: the drag's porosity on a length in diameters (-cpl_porosity_width); CplSmoothProject,
+ * CplSmoothAt and CplSmoothSeen are in coupling.h */
 PetscErrorCode CplSmoothSetUp(Cpl cpl, PetscReal dmean);
-PetscErrorCode CplSmoothProject(Cpl cpl);
-PetscErrorCode CplSmoothAt(Cpl cpl, PetscInt n, PetscReal *phi, PetscReal *own);
-PetscErrorCode CplSmoothSeen(Cpl cpl, PetscInt n, PetscReal *eps, PetscReal *fade);
 PetscErrorCode CplSmoothDestroyGrid(Cpl cpl);
 PetscErrorCode CplSmoothDestroy(Cpl cpl);
-/* filter.c */
+/* filter.c (CplFilter is in coupling.h) */
 PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean);
 PetscErrorCode CplMeanDiameter(Cpl cpl, PetscReal *dmean);
-PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces);
-/* exchange.c: the two halves of the drag set-up of a step (the steady start uses them too) */
-PetscErrorCode CplSetParticleDrag(Cpl cpl);
-PetscErrorCode CplSetFluidDrag(Cpl cpl);
+/* exchange.c: the two halves of the drag set-up of a step, CplSetParticleDrag and
+ * CplSetFluidDrag (the steady start uses them too), are in coupling.h */
 /* self.c: the drag sees the fluid without the particle's own disturbance */
 PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps, PetscReal *fade);
 PetscErrorCode CplSelfTableDestroy(Cpl cpl);

@@ -31,23 +31,23 @@ PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscRe
     for (int k = 0; k < 3; k++) loc[k] += CplMassOf(cpl, &pa, p) * pa.v[3 * p + k];
   PetscCall(FluidGetVelocity(cpl->fl, &u));
   PetscCall(FluidGetPorosity(cpl->fl, &eps));
-  PetscCall(DMGlobalToLocal(cpl->cda, eps, INSERT_VALUES, cpl->cloc));
+  PetscCall(DMGlobalToLocal(cpl->cda, eps, INSERT_VALUES, cpl->ex.cloc));
   PetscCall(DMDAGetGhostCorners(cpl->cda, &g.gs[0], &g.gs[1], &g.gs[2], &g.gm[0], &g.gm[1], &g.gm[2]));
   PetscCall(DMDAGetCorners(cpl->fda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(VecGetArrayRead(u, &v));
-  PetscCall(VecGetArrayRead(cpl->cloc, &e));
-  PetscCall(VecGetArrayRead(cpl->owed, &o));
+  PetscCall(VecGetArrayRead(cpl->ex.cloc, &e));
+  PetscCall(VecGetArrayRead(cpl->ex.owed, &o));
   for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
     for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
       for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c += 3)
         for (int d = 0; d < 3; d++) {
           if (!CplInteriorFace(cpl->dom, d, idx)) continue;
           const PetscReal ef = 0.5 * (e[cpl_diag_off(&g, idx, d, 0)] + e[cpl_diag_off(&g, idx, d, 1)]);
-          loc[3 + d] += cpl->rho * ef * v[c + d] * cpl->cell_vol;
+          loc[3 + d] += cpl->prop.rho * ef * v[c + d] * cpl->kern.cell_vol;
           loc[6 + d] += o[c + d];
         }
-  PetscCall(VecRestoreArrayRead(cpl->owed, &o));
-  PetscCall(VecRestoreArrayRead(cpl->cloc, &e));
+  PetscCall(VecRestoreArrayRead(cpl->ex.owed, &o));
+  PetscCall(VecRestoreArrayRead(cpl->ex.cloc, &e));
   PetscCall(VecRestoreArrayRead(u, &v));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 9, MPIU_REAL, MPIU_SUM, cpl->comm));
   for (int k = 0; k < 3; k++) {
@@ -67,7 +67,7 @@ PetscErrorCode CplGetSolidVolume(Cpl cpl, PetscReal *grid, PetscReal *particles)
   PetscCall(DemGetArrays(cpl->dem, &pa));
   for (PetscInt p = 0; p < pa.nlocal; p++) v += CplVolumeOf(cpl, &pa, p);
   PetscCall(MPIU_Allreduce(&v, particles, 1, MPIU_REAL, MPIU_SUM, cpl->comm));
-  *grid = cpl->solid_grid;
+  *grid = cpl->diag.solid_grid;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -86,12 +86,12 @@ PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal
   PetscCall(FluidGetPressure(cpl->fl, &p));
   PetscCall(FluidGetPorosity(cpl->fl, &eps));
   PetscCall(FluidGetVelocity(cpl->fl, &u));
-  PetscCall(DMGlobalToLocal(cpl->cda, eps, INSERT_VALUES, cpl->cloc));
+  PetscCall(DMGlobalToLocal(cpl->cda, eps, INSERT_VALUES, cpl->ex.cloc));
   PetscCall(DMDAGetGhostCorners(cpl->cda, &g.gs[0], &g.gs[1], &g.gs[2], &g.gm[0], &g.gm[1], &g.gm[2]));
   PetscCall(DMDAGetCorners(cpl->cda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(DMDAGetCorners(cpl->fda, &fxs[0], &fxs[1], &fxs[2], &fxm[0], &fxm[1], &fxm[2]));
   PetscCall(VecGetArrayRead(p, &pa));
-  PetscCall(VecGetArrayRead(cpl->cloc, &e));
+  PetscCall(VecGetArrayRead(cpl->ex.cloc, &e));
   PetscCall(VecGetArrayRead(u, &v));
   for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
     for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
@@ -111,7 +111,7 @@ PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal
         loc[2] += ef * v[f + d];
       }
   PetscCall(VecRestoreArrayRead(u, &v));
-  PetscCall(VecRestoreArrayRead(cpl->cloc, &e));
+  PetscCall(VecRestoreArrayRead(cpl->ex.cloc, &e));
   PetscCall(VecRestoreArrayRead(p, &pa));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 4, MPIU_REAL, MPIU_SUM, cpl->comm));
   *pavg = loc[0] / loc[3];
@@ -153,7 +153,7 @@ PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3])
   PetscFunctionBeginUser;
   PetscCall(DemGetArrays(cpl->dem, &pa));
   for (PetscInt p = 0; p < pa.nlocal; p++)
-    for (int k = 0; k < 3; k++) loc[k] += (CplMassOf(cpl, &pa, p) - cpl->rho * CplVolumeOf(cpl, &pa, p)) * cpl->g[k];
+    for (int k = 0; k < 3; k++) loc[k] += (CplMassOf(cpl, &pa, p) - cpl->prop.rho * CplVolumeOf(cpl, &pa, p)) * cpl->prop.g[k];
   PetscCall(MPIU_Allreduce(loc, w, 3, MPIU_REAL, MPIU_SUM, cpl->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -161,7 +161,7 @@ PetscErrorCode CplGetBuoyantWeight(Cpl cpl, PetscReal w[3])
 PetscErrorCode CplGetPackedBedGradient(Cpl cpl, PetscReal eps, PetscReal usup, PetscReal *dpdl)
 {
   PetscFunctionBeginUser;
-  *dpdl = CplPackedBedGradient(cpl->law, eps, usup, cpl->diam[0], cpl->rho, cpl->mu);
+  *dpdl = CplPackedBedGradient(cpl->drag.law, eps, usup, cpl->kern.diam[0], cpl->prop.rho, cpl->prop.mu);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -180,36 +180,36 @@ PetscErrorCode CplGetBedDiameter(Cpl cpl, PetscReal *d32, PetscReal *rhop)
     loc[3] += v;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 4, MPIU_REAL, MPIU_SUM, cpl->comm));
-  *d32  = loc[1] > 0 ? loc[0] / loc[1] : cpl->diam[0];
-  *rhop = loc[3] > 0 ? loc[2] / loc[3] : cpl->mass[0] / cpl->vol[0];
+  *d32  = loc[1] > 0 ? loc[0] / loc[1] : cpl->kern.diam[0];
+  *rhop = loc[3] > 0 ? loc[2] / loc[3] : cpl->kern.mass[0] / cpl->kern.vol[0];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 CplUmfPorosity CplGetUmfPorosity(Cpl cpl, PetscReal eps_bed, PetscReal *eps)
 {
-  const CplUmfPorosity why = cpl->umf_eps_set ? CPL_UMF_OPTION : (eps_bed <= CPL_LOOSE_PACKING ? CPL_UMF_BED : CPL_UMF_LOOSE);
-  *eps                     = why == CPL_UMF_BED ? eps_bed : cpl->umf_eps;
+  const CplUmfPorosity why = cpl->drag.umf_eps_set ? CPL_UMF_OPTION : (eps_bed <= CPL_LOOSE_PACKING ? CPL_UMF_BED : CPL_UMF_LOOSE);
+  *eps                     = why == CPL_UMF_BED ? eps_bed : cpl->drag.umf_eps;
   return why;
 }
 
 PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, PetscReal d, PetscReal rhop, CplFluidization *f)
 {
-  const PetscReal g    = PetscSqrtReal(cpl->g[0] * cpl->g[0] + cpl->g[1] * cpl->g[1] + cpl->g[2] * cpl->g[2]);
-  const PetscReal load = (1 - eps) * (rhop - cpl->rho) * g; /* Pa/m */
+  const PetscReal g    = PetscSqrtReal(cpl->prop.g[0] * cpl->prop.g[0] + cpl->prop.g[1] * cpl->prop.g[1] + cpl->prop.g[2] * cpl->prop.g[2]);
+  const PetscReal load = (1 - eps) * (rhop - cpl->prop.rho) * g; /* Pa/m */
   PetscReal       lo = 0, hi = 1;
 
   PetscFunctionBeginUser;
   f->eps    = eps;
   f->d      = d;
-  f->ar     = cpl->rho * (rhop - cpl->rho) * g * d * d * d / (cpl->mu * cpl->mu);
+  f->ar     = cpl->prop.rho * (rhop - cpl->prop.rho) * g * d * d * d / (cpl->prop.mu * cpl->prop.mu);
   f->re_wy  = PetscSqrtReal(33.7 * 33.7 + 0.0408 * f->ar) - 33.7;
-  f->umf_wy = f->re_wy * cpl->mu / (cpl->rho * d);
+  f->umf_wy = f->re_wy * cpl->prop.mu / (cpl->prop.rho * d);
   f->umf    = 0;
   if (!(load > 0 && eps > 0 && eps < 1)) PetscFunctionReturn(PETSC_SUCCESS); /* no packed bed to carry */
-  while (CplPackedBedGradient(cpl->law, eps, hi, d, cpl->rho, cpl->mu) < load && hi < 1e12) hi *= 2;
+  while (CplPackedBedGradient(cpl->drag.law, eps, hi, d, cpl->prop.rho, cpl->prop.mu) < load && hi < 1e12) hi *= 2;
   for (int it = 0; it < 200 && hi - lo > 1e-14 * hi; it++) { /* the gradient grows with U */
     const PetscReal m = 0.5 * (lo + hi);
-    if (CplPackedBedGradient(cpl->law, eps, m, d, cpl->rho, cpl->mu) < load) lo = m;
+    if (CplPackedBedGradient(cpl->drag.law, eps, m, d, cpl->prop.rho, cpl->prop.mu) < load) lo = m;
     else hi = m;
   }
   f->umf = 0.5 * (lo + hi);

@@ -12,7 +12,7 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
   PetscInt    capped[2] = {0, 0};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(cpl->ev_drag, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(cpl->ev.drag, 0, 0, 0, 0));
   PetscCall(DemGetArrays(cpl->dem, &pa));
   PetscCall(DemGetExternal(cpl->dem, &ex));
   PetscCall(PetscMalloc2(pa.nlocal + 1, &eps, pa.nlocal + 1, &fade));
@@ -21,27 +21,27 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
     const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
     for (int k = 0; k < 3; k++) w2 += PetscSqr(ex.u[3 * p + k] - pa.v[3 * p + k]);
-    const PetscReal re = cpl->rho * d * eps[p] * PetscSqrtReal(w2) / cpl->mu;
-    if (cpl->self_u && fade[p] > 0) {
+    const PetscReal re = cpl->prop.rho * d * eps[p] * PetscSqrtReal(w2) / cpl->prop.mu;
+    if (cpl->self.u && fade[p] > 0) {
       PetscBool cap;
       ex.k[p] = CplUndisturbedK(cpl, p, d, eps[p], ex.u + 3 * p, pa.v + 3 * p, fade[p], &cap);
       capped[0] += cap;
-    } else ex.k[p] = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps[p], re);
+    } else ex.k[p] = 3 * PETSC_PI * cpl->prop.mu * d * CplDragFactor(cpl->drag.law, eps[p], re);
     PetscCheck(PetscIsNormalReal(ex.k[p]), PETSC_COMM_SELF, PETSC_ERR_FP, "particle %" PetscInt_FMT ": drag coefficient %g at porosity %g, Re_p %g is not finite", pa.id[p], (double)ex.k[p], (double)eps[p], (double)re);
     for (int k = 0; k < 3; k++) {
-      ex.fext[3 * p + k] = -cpl->rho * vol * cpl->g[k];
+      ex.fext[3 * p + k] = -cpl->prop.rho * vol * cpl->prop.g[k];
       ex.j[3 * p + k]    = 0;
     }
   }
   PetscCall(PetscFree2(eps, fade));
-  if (cpl->self_u) { /* a counted warning, printed once: the corrected drag is too low there */
+  if (cpl->self.u) { /* a counted warning, printed once: the corrected drag is too low there */
     PetscCall(MPIU_Allreduce(capped, capped + 1, 1, MPIU_INT, MPI_SUM, cpl->comm));
     const PetscReal hmin = PetscMin(PetscMin(cpl->dom->h[0], cpl->dom->h[1]), cpl->dom->h[2]);
-    if (capped[1] > 0 && cpl->self_capped_total == 0)
-      PetscCall(PetscPrintf(cpl->comm, "warning: -cpl_self_velocity capped for %" PetscInt_FMT " particle(s): the grid's response to a particle's own drag reaches its slip (G K >= 0.9), the cube kernel is hydrodynamically smaller than the particle on cells of %g m, its drag stays too low; raise -cpl_kernel_scale (now %g): a kernel side of two cells, %.3g here, held a single sphere within 1.2%% of its law at Re 10 and 100 on cells of 1 to 8 diameters\n", capped[1], (double)hmin, (double)cpl->kscale, (double)(0.999 * 2 * hmin / (PetscCbrtReal(PETSC_PI / 6) * cpl->diam[0]))));
-    cpl->self_capped_total += capped[1];
+    if (capped[1] > 0 && cpl->self.capped_total == 0)
+      PetscCall(PetscPrintf(cpl->comm, "warning: -cpl_self_velocity capped for %" PetscInt_FMT " particle(s): the grid's response to a particle's own drag reaches its slip (G K >= 0.9), the cube kernel is hydrodynamically smaller than the particle on cells of %g m, its drag stays too low; raise -cpl_kernel_scale (now %g): a kernel side of two cells, %.3g here, held a single sphere within 1.2%% of its law at Re 10 and 100 on cells of 1 to 8 diameters\n", capped[1], (double)hmin, (double)cpl->kern.scale, (double)(0.999 * 2 * hmin / (PetscCbrtReal(PETSC_PI / 6) * cpl->kern.diam[0]))));
+    cpl->self.capped_total += capped[1];
   }
-  PetscCall(PetscLogEventEnd(cpl->ev_drag, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(cpl->ev.drag, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -55,7 +55,7 @@ PetscErrorCode CplSetFluidDrag(Cpl cpl)
   Vec                beta, us, src;
   PetscReal         *kv, *ka, *kb, *fd;
   PetscScalar       *u;
-  const PetscBool    smooth = (PetscBool)(cpl->pw_width > 0);
+  const PetscBool    smooth = (PetscBool)(cpl->pw.width > 0);
   const PetscScalar *b, *m;
   PetscInt           n;
 
@@ -75,8 +75,8 @@ PetscErrorCode CplSetFluidDrag(Cpl cpl)
     }
   }
   {
-    const CplSpread sp[3] = {{smooth ? ka : ex.k, PETSC_TRUE, beta}, {kv, PETSC_FALSE, cpl->kv}, {ex.j, PETSC_FALSE, cpl->jf}};
-    PetscCall(CplSpreadFaces(cpl, cpl->correct ? 3 : 2, sp));
+    const CplSpread sp[3] = {{smooth ? ka : ex.k, PETSC_TRUE, beta}, {kv, PETSC_FALSE, cpl->ex.kv}, {ex.j, PETSC_FALSE, cpl->ex.jf}};
+    PetscCall(CplSpreadFaces(cpl, cpl->clock.correct ? 3 : 2, sp));
   }
   if (smooth) {
     Vec bb;
@@ -92,14 +92,14 @@ PetscErrorCode CplSetFluidDrag(Cpl cpl)
   PetscCall(PetscFree4(kv, ka, kb, fd));
   PetscCall(VecGetLocalSize(us, &n));
   PetscCall(VecGetArrayRead(beta, &b));
-  PetscCall(VecGetArrayRead(cpl->kv, &m));
+  PetscCall(VecGetArrayRead(cpl->ex.kv, &m));
   PetscCall(VecGetArray(us, &u));
   for (PetscInt i = 0; i < n; i++) u[i] = b[i] > 0 ? m[i] / b[i] : 0;
   PetscCall(VecRestoreArray(us, &u));
-  PetscCall(VecRestoreArrayRead(cpl->kv, &m));
+  PetscCall(VecRestoreArrayRead(cpl->ex.kv, &m));
   PetscCall(VecRestoreArrayRead(beta, &b));
-  PetscCall(VecCopy(cpl->owed, src));
-  PetscCall(VecScale(src, 1.0 / (cpl->cell_vol * cpl->dt)));
+  PetscCall(VecCopy(cpl->ex.owed, src));
+  PetscCall(VecScale(src, 1.0 / (cpl->kern.cell_vol * cpl->clock.dt)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -113,9 +113,9 @@ static PetscErrorCode CplComputeOwed(Cpl cpl, PetscReal *norm)
   PetscInt           xs[3], xm[3], idx[3], c = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(cpl->owed));
+  PetscCall(VecZeroEntries(cpl->ex.owed));
   *norm = 0;
-  if (!cpl->correct) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!cpl->clock.correct) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(FluidGetDragCoefficient(cpl->fl, &beta));
   PetscCall(FluidGetSolidVelocity(cpl->fl, &us));
   PetscCall(FluidGetVelocity(cpl->fl, &u));
@@ -123,19 +123,19 @@ static PetscErrorCode CplComputeOwed(Cpl cpl, PetscReal *norm)
   PetscCall(VecGetArrayRead(beta, &b));
   PetscCall(VecGetArrayRead(us, &s));
   PetscCall(VecGetArrayRead(u, &v));
-  PetscCall(VecGetArrayRead(cpl->jf, &j));
-  PetscCall(VecGetArray(cpl->owed, &o));
+  PetscCall(VecGetArrayRead(cpl->ex.jf, &j));
+  PetscCall(VecGetArray(cpl->ex.owed, &o));
   for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
     for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
       for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c += 3)
         for (int d = 0; d < 3; d++)
-          if (CplInteriorFace(cpl->dom, d, idx)) o[c + d] = cpl->cell_vol * (b[c + d] * (v[c + d] - s[c + d]) * cpl->dt - j[c + d]);
-  PetscCall(VecRestoreArray(cpl->owed, &o));
-  PetscCall(VecRestoreArrayRead(cpl->jf, &j));
+          if (CplInteriorFace(cpl->dom, d, idx)) o[c + d] = cpl->kern.cell_vol * (b[c + d] * (v[c + d] - s[c + d]) * cpl->clock.dt - j[c + d]);
+  PetscCall(VecRestoreArray(cpl->ex.owed, &o));
+  PetscCall(VecRestoreArrayRead(cpl->ex.jf, &j));
   PetscCall(VecRestoreArrayRead(u, &v));
   PetscCall(VecRestoreArrayRead(us, &s));
   PetscCall(VecRestoreArrayRead(beta, &b));
-  PetscCall(VecNorm(cpl->owed, NORM_2, norm));
+  PetscCall(VecNorm(cpl->ex.owed, NORM_2, norm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -149,12 +149,12 @@ static PetscErrorCode CplDragTotal(Cpl cpl, PetscReal drag[3])
   PetscFunctionBeginUser;
   PetscCall(DemGetArrays(cpl->dem, &pa));
   PetscCall(DemGetExternal(cpl->dem, &ex));
-  if (cpl->frozen) /* no DEM steps: the drag the fixed particles feel at the step's start */
+  if (cpl->clock.frozen) /* no DEM steps: the drag the fixed particles feel at the step's start */
     for (PetscInt p = 0; p < pa.nlocal; p++)
       for (int k = 0; k < 3; k++) loc[k] += ex.k[p] * (ex.u[3 * p + k] - pa.v[3 * p + k]);
   else
     for (PetscInt p = 0; p < pa.nlocal; p++)
-      for (int k = 0; k < 3; k++) loc[k] += ex.j[3 * p + k] / cpl->dt;
+      for (int k = 0; k < 3; k++) loc[k] += ex.j[3 * p + k] / cpl->clock.dt;
   PetscCall(MPIU_Allreduce(loc, drag, 3, MPIU_REAL, MPIU_SUM, cpl->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -170,19 +170,19 @@ static PetscErrorCode CplDragTotal(Cpl cpl, PetscReal drag[3])
 static PetscErrorCode CplChooseStep(Cpl cpl)
 {
   PetscReal dtmax, fit;
-  PetscInt  n = cpl->substeps;
+  PetscInt  n = cpl->clock.substeps;
 
   PetscFunctionBeginUser;
-  if (cpl->frozen) { /* no DEM steps: ask for -fluid_dt; the fluid cuts it */
-    cpl->dt = cpl->dtf;
+  if (cpl->clock.frozen) { /* no DEM steps: ask for -fluid_dt; the fluid cuts it */
+    cpl->clock.dt = cpl->clock.dtf;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(FluidGetStableTimeStep(cpl->fl, &dtmax));
-  fit = 0.9 * dtmax / cpl->dtd;
+  fit = 0.9 * dtmax / cpl->clock.dtd;
   if (fit < (PetscReal)n) n = (PetscInt)PetscFloorReal(fit);
-  PetscCheck(n >= 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "at t = %g s the fluid's stability limit %g s (-fluid_cfl_max, -fluid_viscous_number_max) is below one DEM step -dem_dt %g s: lower -dem_dt, or use -fluid_viscous implicit if the viscous limit binds", (double)cpl->t, (double)dtmax, (double)cpl->dtd);
-  cpl->nsub = n;
-  cpl->dt   = n * cpl->dtd;
+  PetscCheck(n >= 1, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "at t = %g s the fluid's stability limit %g s (-fluid_cfl_max, -fluid_viscous_number_max) is below one DEM step -dem_dt %g s: lower -dem_dt, or use -fluid_viscous implicit if the viscous limit binds", (double)cpl->clock.t, (double)dtmax, (double)cpl->clock.dtd);
+  cpl->clock.nsub = n;
+  cpl->clock.dt   = n * cpl->clock.dtd;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -193,19 +193,19 @@ static PetscErrorCode CplFluidPart(Cpl cpl, PetscBool inserted, CplStats *st)
   PetscLogDouble f0, f1;
 
   PetscFunctionBeginUser;
-  if (cpl->mode == CPL_MODE_TWOWAY) {
+  if (cpl->drag.mode == CPL_MODE_TWOWAY) {
     PetscCall(CplProjectPorosity(cpl, st));
     if (inserted) PetscCall(CplAdmitNewParticles(cpl)); /* the same on every rank */
-    PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(cpl->ev.exchange, 0, 0, 0, 0));
     PetscCall(CplSetFluidDrag(cpl));
-    PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(cpl->ev.exchange, 0, 0, 0, 0));
   } else st->eps_min = 1;
   PetscCall(PetscTime(&f0));
-  PetscCall(FluidStep(cpl->fl, cpl->dt, &st->fluid));
+  PetscCall(FluidStep(cpl->fl, cpl->clock.dt, &st->fluid));
   PetscCall(PetscTime(&f1));
-  cpl->t_fluid += f1 - f0;
-  if (cpl->frozen) cpl->dt = st->fluid.dt; /* no particle moved: the step the fluid took is the step */
-  PetscCheck(st->fluid.dt == cpl->dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "the fluid cut the coupling step %g s to %g s after the DEM substeps had run (the new porosity raised the viscous number beyond the 10%% margin of -fluid_adaptive_dt): lower -cpl_substeps or use -fluid_viscous implicit", (double)cpl->dt, (double)st->fluid.dt);
+  cpl->diag.t_fluid += f1 - f0;
+  if (cpl->clock.frozen) cpl->clock.dt = st->fluid.dt; /* no particle moved: the step the fluid took is the step */
+  PetscCheck(st->fluid.dt == cpl->clock.dt, cpl->comm, PETSC_ERR_ARG_INCOMP, "the fluid cut the coupling step %g s to %g s after the DEM substeps had run (the new porosity raised the viscous number beyond the 10%% margin of -fluid_adaptive_dt): lower -cpl_substeps or use -fluid_viscous implicit", (double)cpl->clock.dt, (double)st->fluid.dt);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -215,21 +215,21 @@ PetscErrorCode CplStep(Cpl cpl, CplStats *st)
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(st, sizeof *st));
-  if (cpl->adaptive) PetscCall(CplChooseStep(cpl));
+  if (cpl->clock.adaptive) PetscCall(CplChooseStep(cpl));
   PetscCall(CplSetParticleDrag(cpl));
   PetscCall(DemGetFlow(cpl->dem, &fl0));
-  if (!cpl->frozen) {
-    PetscCall(PetscLogEventBegin(cpl->ev_dem, 0, 0, 0, 0));
-    for (PetscInt s = 0; s < cpl->nsub; s++) PetscCall(DemStep(cpl->dem));
-    PetscCall(PetscLogEventEnd(cpl->ev_dem, 0, 0, 0, 0));
+  if (!cpl->clock.frozen) {
+    PetscCall(PetscLogEventBegin(cpl->ev.dem, 0, 0, 0, 0));
+    for (PetscInt s = 0; s < cpl->clock.nsub; s++) PetscCall(DemStep(cpl->dem));
+    PetscCall(PetscLogEventEnd(cpl->ev.dem, 0, 0, 0, 0));
   }
   PetscCall(DemGetFlow(cpl->dem, &fl1));
   PetscCall(CplFluidPart(cpl, (PetscBool)(fl1.inserted != fl0.inserted), st));
-  PetscCall(PetscLogEventBegin(cpl->ev_exchange, 0, 0, 0, 0));
-  if (cpl->mode == CPL_MODE_TWOWAY) PetscCall(CplComputeOwed(cpl, &st->owed_norm));
+  PetscCall(PetscLogEventBegin(cpl->ev.exchange, 0, 0, 0, 0));
+  if (cpl->drag.mode == CPL_MODE_TWOWAY) PetscCall(CplComputeOwed(cpl, &st->owed_norm));
   PetscCall(CplDragTotal(cpl, st->drag));
-  PetscCall(PetscLogEventEnd(cpl->ev_exchange, 0, 0, 0, 0));
-  cpl->t += cpl->dt;
-  cpl->step++;
+  PetscCall(PetscLogEventEnd(cpl->ev.exchange, 0, 0, 0, 0));
+  cpl->clock.t += cpl->clock.dt;
+  cpl->clock.step++;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -28,7 +28,7 @@ PetscErrorCode CplMeanDiameter(Cpl cpl, PetscReal *dmean)
   for (PetscInt p = 0; p < pa.nlocal; p++) s[0] += CplDiameterOf(cpl, &pa, p);
   s[1] = (PetscReal)pa.nlocal;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, cpl->comm));
-  *dmean = s[1] > 0 ? s[0] / s[1] : cpl->diam[0];
+  *dmean = s[1] > 0 ? s[0] / s[1] : cpl->kern.diam[0];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -40,17 +40,17 @@ PetscErrorCode CplFilterSetUp(Cpl cpl, PetscReal dmean)
   PetscReal     hmin = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
-  cpl->filter_var = 0;
-  cpl->filter_n   = 0;
-  if (cpl->filter_width <= 0) PetscFunctionReturn(PETSC_SUCCESS);
+  cpl->filt.var = 0;
+  cpl->filt.n   = 0;
+  if (cpl->filt.width <= 0) PetscFunctionReturn(PETSC_SUCCESS);
   if (dmean <= 0) PetscCall(CplMeanDiameter(cpl, &dmean));
-  cpl->filter_d   = dmean;
-  cpl->filter_var = PetscSqr(cpl->filter_width * dmean) / (8 * PetscLogReal(2.0));
+  cpl->filt.d   = dmean;
+  cpl->filt.var = PetscSqr(cpl->filt.width * dmean) / (8 * PetscLogReal(2.0));
   for (int e = 0; e < 3; e++) hmin = PetscMin(hmin, dom->h[e]);
-  cpl->filter_n = (PetscInt)PetscCeilReal(3 * cpl->filter_var / (hmin * hmin) * (1 - 1e-12));
-  cpl->filter_n = PetscMax(cpl->filter_n, 1);
-  PetscCheck(cpl->filter_n <= 100, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_filter_width %g (x mean diameter %g m) takes %" PetscInt_FMT " diffusion sweeps per field and step on cells of %g m; the limit is 100 (a width up to about %.3g): lower the width or coarsen the grid", (double)cpl->filter_width, (double)dmean, cpl->filter_n, (double)hmin, (double)(PetscSqrtReal(100.0 / 3.0 * 8 * PetscLogReal(2.0)) * hmin / dmean));
-  for (int e = 0; e < 3; e++) cpl->filter_lam[e] = cpl->filter_var / (2.0 * cpl->filter_n * dom->h[e] * dom->h[e]);
+  cpl->filt.n = (PetscInt)PetscCeilReal(3 * cpl->filt.var / (hmin * hmin) * (1 - 1e-12));
+  cpl->filt.n = PetscMax(cpl->filt.n, 1);
+  PetscCheck(cpl->filt.n <= 100, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_filter_width %g (x mean diameter %g m) takes %" PetscInt_FMT " diffusion sweeps per field and step on cells of %g m; the limit is 100 (a width up to about %.3g): lower the width or coarsen the grid", (double)cpl->filt.width, (double)dmean, cpl->filt.n, (double)hmin, (double)(PetscSqrtReal(100.0 / 3.0 * 8 * PetscLogReal(2.0)) * hmin / dmean));
+  for (int e = 0; e < 3; e++) cpl->filt.lam[e] = cpl->filt.var / (2.0 * cpl->filt.n * dom->h[e] * dom->h[e]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -74,7 +74,7 @@ static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3]
   const Domain   *dom   = cpl->dom;
   const PetscBool faces = (PetscBool)(dof == 3);
   const PetscInt  st[3] = {dof, dof * gm[0], dof * gm[0] * gm[1]};
-  const double    l0 = cpl->filter_lam[0], l1 = cpl->filter_lam[1], l2 = cpl->filter_lam[2];
+  const double    l0 = cpl->filt.lam[0], l1 = cpl->filt.lam[1], l2 = cpl->filt.lam[2];
 
   /* busy[k]: ghosted z-plane k holds a non-zero value. A plane whose own and neighbouring planes
    * are all zero stays zero (every flux is 0) and is skipped: the freeboard above a bed. */
@@ -131,18 +131,18 @@ static void cpl_filter_sweep(Cpl cpl, const PetscInt gs[3], const PetscInt gm[3]
 PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces)
 {
   DM           da  = faces ? cpl->fda : cpl->cda;
-  Vec          loc = faces ? cpl->floc[0] : cpl->cloc;
+  Vec          loc = faces ? cpl->ex.floc[0] : cpl->ex.cloc;
   PetscInt     gs[3], gm[3], xs[3], xm[3];
   PetscScalar *ga;
   PetscBool   *busy;
 
   PetscFunctionBeginUser;
-  if (cpl->filter_n == 0) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscLogEventBegin(cpl->ev_filter, 0, 0, 0, 0));
+  if (cpl->filt.n == 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(cpl->ev.filter, 0, 0, 0, 0));
   PetscCall(DMDAGetGhostCorners(da, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
   PetscCall(DMDAGetCorners(da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(PetscMalloc1(gm[2], &busy));
-  for (PetscInt s = 0; s < cpl->filter_n; s++) {
+  for (PetscInt s = 0; s < cpl->filt.n; s++) {
     const PetscScalar *a;
     PetscCall(DMGlobalToLocal(da, g, INSERT_VALUES, loc));
     PetscCall(VecGetArrayRead(loc, &a));
@@ -152,6 +152,6 @@ PetscErrorCode CplFilter(Cpl cpl, Vec g, PetscBool faces)
     PetscCall(VecRestoreArrayRead(loc, &a));
   }
   PetscCall(PetscFree(busy));
-  PetscCall(PetscLogEventEnd(cpl->ev_filter, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(cpl->ev.filter, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -49,7 +49,7 @@ PetscErrorCode CplKernelSide(Cpl cpl, PetscInt shape, PetscReal *side, PetscReal
   PetscCall(DemGetShapeGeometry(cpl->dem, shape, &v, &deq));
   if (diam) *diam = deq;
   if (vol) *vol = v;
-  if (side) *side = cpl->kscale * PetscCbrtReal(v);
+  if (side) *side = cpl->kern.scale * PetscCbrtReal(v);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -151,19 +151,19 @@ static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil
 
   PetscFunctionBeginUser;
   PetscCall(DemGetState(cpl->dem, &state));
-  if (!cpl->stc_valid || cpl->stc_n != pa->nlocal || cpl->stc_state != state) {
+  if (!cpl->kern.stc_valid || cpl->kern.stc_n != pa->nlocal || cpl->kern.stc_state != state) {
     PetscCall(CplBoxOf(cpl->cda, &bc));
     PetscCall(CplBoxOf(cpl->fda, &bf));
-    if (pa->nlocal > cpl->stc_cap) {
-      PetscCall(PetscFree(cpl->stc));
-      cpl->stc_cap = PetscMax(pa->nlocal, 2 * cpl->stc_cap);
-      PetscCall(PetscMalloc1(cpl->stc_cap, &cpl->stc));
+    if (pa->nlocal > cpl->kern.stc_cap) {
+      PetscCall(PetscFree(cpl->kern.stc));
+      cpl->kern.stc_cap = PetscMax(pa->nlocal, 2 * cpl->kern.stc_cap);
+      PetscCall(PetscMalloc1(cpl->kern.stc_cap, &cpl->kern.stc));
     }
     for (PetscInt p = 0; p < pa->nlocal; p++) {
-      CplStencil *st1 = &cpl->stc[p];
+      CplStencil *st1 = &cpl->kern.stc[p];
       PetscCall(CplStencilOf(cpl, pa->x + 3 * p, CplSideOf(cpl, pa, p), st1));
       if (!cpl_fits_all(&bc, st1->c0, st1->nc)) PetscCall(CplCheckFits(&bc, st1->c0, st1->nc, pa->id[p]));
-      if (cpl->pw_width > 0) { /* the superficial velocity reads the cells on both sides of each face */
+      if (cpl->pw.width > 0) { /* the superficial velocity reads the cells on both sides of each face */
         PetscInt first[3];
         int      n[3];
         for (int e = 0; e < 3; e++) {
@@ -182,17 +182,17 @@ static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil
         if (!cpl_fits_all(&bf, first, n)) PetscCall(CplCheckFits(&bf, first, n, pa->id[p]));
       }
     }
-    cpl->stc_n     = pa->nlocal;
-    cpl->stc_state = state;
-    cpl->stc_valid = PETSC_TRUE;
+    cpl->kern.stc_n     = pa->nlocal;
+    cpl->kern.stc_state = state;
+    cpl->kern.stc_valid = PETSC_TRUE;
   }
-  *out = cpl->stc;
+  *out = cpl->kern.stc;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 void CplInvalidateStencils(Cpl cpl)
 {
-  cpl->stc_valid = PETSC_FALSE;
+  cpl->kern.stc_valid = PETSC_FALSE;
 }
 
 /* Adds the solid fraction f W of one particle's stencil to the local cell array a. */
@@ -220,16 +220,16 @@ static PetscErrorCode CplSpreadSolid(Cpl cpl, const PetscReal *only, Vec solid)
   PetscCall(DemGetArrays(cpl->dem, &pa));
   PetscCall(CplStencils(cpl, &pa, &stc));
   PetscCall(CplBoxOf(cpl->cda, &b));
-  PetscCall(VecZeroEntries(cpl->cloc));
-  PetscCall(VecGetArray(cpl->cloc, &a));
+  PetscCall(VecZeroEntries(cpl->ex.cloc));
+  PetscCall(VecGetArray(cpl->ex.cloc, &a));
   if (only) { /* two loops: the every-step one tests nothing */
     for (PetscInt p = 0; p < pa.nlocal; p++)
-      if (only[p] == 0) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->cell_vol, a);
+      if (only[p] == 0) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->kern.cell_vol, a);
   } else
-    for (PetscInt p = 0; p < pa.nlocal; p++) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->cell_vol, a);
-  PetscCall(VecRestoreArray(cpl->cloc, &a));
+    for (PetscInt p = 0; p < pa.nlocal; p++) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->kern.cell_vol, a);
+  PetscCall(VecRestoreArray(cpl->ex.cloc, &a));
   PetscCall(VecZeroEntries(solid));
-  PetscCall(DMLocalToGlobal(cpl->cda, cpl->cloc, ADD_VALUES, solid));
+  PetscCall(DMLocalToGlobal(cpl->cda, cpl->ex.cloc, ADD_VALUES, solid));
   PetscCall(CplFilter(cpl, solid, PETSC_FALSE)); /* -cpl_filter_width; nothing when off */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -245,19 +245,19 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
   PetscReal          emin = 1, sum;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(cpl->ev_project, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(cpl->ev.project, 0, 0, 0, 0));
   PetscCall(DMGetGlobalVector(cpl->cda, &solid));
   PetscCall(CplSpreadSolid(cpl, NULL, solid));
   PetscCall(VecSum(solid, &sum));
-  cpl->solid_grid = sum * cpl->cell_vol;
+  cpl->diag.solid_grid = sum * cpl->kern.cell_vol;
   PetscCall(FluidGetPorosity(cpl->fl, &eps));
   PetscCall(VecGetLocalSize(eps, &n));
   PetscCall(VecGetArrayRead(solid, &s));
   PetscCall(VecGetArray(eps, &e));
   for (PetscInt c = 0; c < n; c++) {
     e[c] = 1.0 - s[c];
-    if (e[c] < cpl->eps_floor) {
-      e[c] = cpl->eps_floor;
+    if (e[c] < cpl->drag.eps_floor) {
+      e[c] = cpl->drag.eps_floor;
       clipped++;
     }
     emin = PetscMin(emin, e[c]);
@@ -267,12 +267,12 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
   PetscCall(DMRestoreGlobalVector(cpl->cda, &solid));
   cnt[0] = clipped;
   PetscCall(MPIU_Allreduce(cnt, cnt + 1, 1, MPIU_INT, MPI_SUM, cpl->comm));
-  cpl->clipped_total += cnt[1];
+  cpl->diag.clipped_total += cnt[1];
   if (st) {
     st->clipped = cnt[1];
     PetscCall(MPIU_Allreduce(&emin, &st->eps_min, 1, MPIU_REAL, MPIU_MIN, cpl->comm));
   }
-  PetscCall(PetscLogEventEnd(cpl->ev_project, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(cpl->ev.project, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -293,7 +293,7 @@ PetscErrorCode CplAdmitNewParticles(Cpl cpl)
   PetscInt           n;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(cpl->ev_project, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(cpl->ev.project, 0, 0, 0, 0));
   PetscCall(DemGetExternal(cpl->dem, &ex));
   PetscCall(DMGetGlobalVector(cpl->cda, &solid));
   PetscCall(CplSpreadSolid(cpl, ex.k, solid));
@@ -301,11 +301,11 @@ PetscErrorCode CplAdmitNewParticles(Cpl cpl)
   PetscCall(VecGetLocalSize(old, &n));
   PetscCall(VecGetArrayRead(solid, &s));
   PetscCall(VecGetArray(old, &e));
-  for (PetscInt c = 0; c < n; c++) e[c] = PetscMax(e[c] - s[c], cpl->eps_floor);
+  for (PetscInt c = 0; c < n; c++) e[c] = PetscMax(e[c] - s[c], cpl->drag.eps_floor);
   PetscCall(VecRestoreArray(old, &e));
   PetscCall(VecRestoreArrayRead(solid, &s));
   PetscCall(DMRestoreGlobalVector(cpl->cda, &solid));
-  PetscCall(PetscLogEventEnd(cpl->ev_project, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(cpl->ev.project, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -326,8 +326,8 @@ PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
   PetscCall(CplStencils(cpl, &pa, &stc));
   PetscCall(CplBoxOf(cpl->fda, &b));
   for (PetscInt s = 0; s < n; s++) {
-    PetscCall(VecZeroEntries(cpl->floc[s]));
-    PetscCall(VecGetArray(cpl->floc[s], &a[s]));
+    PetscCall(VecZeroEntries(cpl->ex.floc[s]));
+    PetscCall(VecGetArray(cpl->ex.floc[s], &a[s]));
   }
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     for (int d = 0; d < 3; d++) {
@@ -335,7 +335,7 @@ PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
       int           nn[3];
       const double *w[3];
       double        q[3];
-      for (PetscInt s = 0; s < n; s++) q[s] = (sp[s].scalar ? sp[s].val[p] : sp[s].val[3 * p + d]) / cpl->cell_vol;
+      for (PetscInt s = 0; s < n; s++) q[s] = (sp[s].scalar ? sp[s].val[p] : sp[s].val[3 * p + d]) / cpl->kern.cell_vol;
       cpl_component(&stc[p], d, first, nn, w);
       for (int k = 0; k < nn[2]; k++)
         for (int j = 0; j < nn[1]; j++) {
@@ -348,9 +348,9 @@ PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
     }
   }
   for (PetscInt s = 0; s < n; s++) {
-    PetscCall(VecRestoreArray(cpl->floc[s], &a[s]));
+    PetscCall(VecRestoreArray(cpl->ex.floc[s], &a[s]));
     PetscCall(VecZeroEntries(sp[s].out));
-    PetscCall(DMLocalToGlobal(cpl->fda, cpl->floc[s], ADD_VALUES, sp[s].out));
+    PetscCall(DMLocalToGlobal(cpl->fda, cpl->ex.floc[s], ADD_VALUES, sp[s].out));
     PetscCall(CplFilter(cpl, sp[s].out, PETSC_TRUE)); /* works in floc[0], whose field is summed */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -385,9 +385,9 @@ PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscRe
   PetscCall(CplBoxOf(cpl->cda, &bc));
   PetscCall(FluidGetLocalFields(cpl->fl, &uloc, NULL));
   PetscCall(FluidGetPorosity(cpl->fl, &e));
-  PetscCall(DMGlobalToLocal(cpl->cda, e, INSERT_VALUES, cpl->cloc));
+  PetscCall(DMGlobalToLocal(cpl->cda, e, INSERT_VALUES, cpl->ex.cloc));
   PetscCall(VecGetArrayRead(uloc, &ua));
-  PetscCall(VecGetArrayRead(cpl->cloc, &ea));
+  PetscCall(VecGetArrayRead(cpl->ex.cloc, &ea));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     const CplStencil *st1 = &stc[p];
     double            s   = 0;
@@ -396,7 +396,7 @@ PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscRe
         for (int i = 0; i < st1->nc[0]; i++) s += st1->wc[2][k] * st1->wc[1][j] * st1->wc[0][i] * ea[cpl_off(&bc, st1->c0[0] + i, st1->c0[1] + j, st1->c0[2] + k)];
     eps[p] = s;
     if (self) {
-      double w2 = CplVolumeOf(cpl, &pa, p) / cpl->cell_vol;
+      double w2 = CplVolumeOf(cpl, &pa, p) / cpl->kern.cell_vol;
       for (int e = 0; e < 3; e++) {
         double q = 0;
         for (int i = 0; i < st1->nc[e]; i++) q += st1->wc[e][i] * st1->wc[e][i];
@@ -426,7 +426,7 @@ PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscRe
       }
     }
   }
-  PetscCall(VecRestoreArrayRead(cpl->cloc, &ea));
+  PetscCall(VecRestoreArrayRead(cpl->ex.cloc, &ea));
   PetscCall(VecRestoreArrayRead(uloc, &ua));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -444,9 +444,9 @@ PetscErrorCode CplFacePorosityScale(Cpl cpl, Vec beta)
   PetscFunctionBeginUser;
   PetscCall(CplBoxOf(cpl->cda, &bc));
   PetscCall(FluidGetPorosity(cpl->fl, &e));
-  PetscCall(DMGlobalToLocal(cpl->cda, e, INSERT_VALUES, cpl->cloc));
+  PetscCall(DMGlobalToLocal(cpl->cda, e, INSERT_VALUES, cpl->ex.cloc));
   PetscCall(DMDAGetCorners(cpl->fda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
-  PetscCall(VecGetArrayRead(cpl->cloc, &ea));
+  PetscCall(VecGetArrayRead(cpl->ex.cloc, &ea));
   PetscCall(VecGetArray(beta, &b));
   for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
     for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
@@ -454,6 +454,6 @@ PetscErrorCode CplFacePorosityScale(Cpl cpl, Vec beta)
         for (int d = 0; d < 3; d++)
           if (b[c + d] != 0) b[c + d] *= cpl_face_porosity(cpl->dom, &bc, ea, d, idx[0], idx[1], idx[2]);
   PetscCall(VecRestoreArray(beta, &b));
-  PetscCall(VecRestoreArrayRead(cpl->cloc, &ea));
+  PetscCall(VecRestoreArrayRead(cpl->ex.cloc, &ea));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -21,7 +21,7 @@ static PetscErrorCode CplCheckFaces(Cpl cpl, PetscViewer viewer)
   const char *side[2] = {"lo", "hi"}, *ax = "xyz";
 
   PetscFunctionBeginUser;
-  if (cpl->frozen) PetscFunctionReturn(PETSC_SUCCESS);
+  if (cpl->clock.frozen) PetscFunctionReturn(PETSC_SUCCESS);
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
       FluidBCType t;
@@ -42,32 +42,32 @@ PetscErrorCode CplPreflight(Cpl cpl, PetscViewer viewer, PetscBool enforce)
 
   PetscFunctionBeginUser;
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
-  for (PetscInt s = 0; s < cpl->nshape; s++) {
-    const PetscReal K = 3 * PETSC_PI * cpl->mu * cpl->diam[s] * CplDragFactor(cpl->law, cpl->eps_min0, 0);
-    dmax              = PetscMax(dmax, cpl->diam[s]);
-    smax              = PetscMax(smax, cpl->side[s]);
-    tau               = PetscMin(tau, cpl->mass[s] / K);
+  for (PetscInt s = 0; s < cpl->kern.nshape; s++) {
+    const PetscReal K = 3 * PETSC_PI * cpl->prop.mu * cpl->kern.diam[s] * CplDragFactor(cpl->drag.law, cpl->diag.eps_min0, 0);
+    dmax              = PetscMax(dmax, cpl->kern.diam[s]);
+    smax              = PetscMax(smax, cpl->kern.side[s]);
+    tau               = PetscMin(tau, cpl->kern.mass[s] / K);
     PetscCall(DemGetContactFigures(cpl->dem, s, s, 1.0, &tc, &e));
     dtc = PetscMax(dtc, dtd / tc);
   }
   PetscCall(DemGetOwnSizes(cpl->dem, &poly, &rs[0], &rs[1]));
   for (int a = 0; a < 2 && poly; a++) { /* spheres of their own sizes: the smallest and the largest */
-    const PetscReal v = 4.0 / 3.0 * PETSC_PI * rs[a] * rs[a] * rs[a], K = 3 * PETSC_PI * cpl->mu * 2 * rs[a] * CplDragFactor(cpl->law, cpl->eps_min0, 0);
+    const PetscReal v = 4.0 / 3.0 * PETSC_PI * rs[a] * rs[a] * rs[a], K = 3 * PETSC_PI * cpl->prop.mu * 2 * rs[a] * CplDragFactor(cpl->drag.law, cpl->diag.eps_min0, 0);
     dmax = PetscMax(dmax, 2 * rs[a]);
-    smax = PetscMax(smax, cpl->kscale * PetscCbrtReal(v));
-    tau  = PetscMin(tau, cpl->mass[0] / cpl->vol[0] * v / K);
+    smax = PetscMax(smax, cpl->kern.scale * PetscCbrtReal(v));
+    tau  = PetscMin(tau, cpl->kern.mass[0] / cpl->kern.vol[0] * v / K);
     PetscCall(DemGetContactFiguresSized(cpl->dem, 0, 0, rs[a], rs[a], 1.0, &tc, &e));
     dtc = PetscMax(dtc, dtd / tc);
   }
   if (viewer) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: dt_dem / contact time %.3g%s\n", (double)dtc, cpl->frozen ? " (frozen: no DEM steps)" : ""));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: coupling step / particle relaxation time %.3g (tau = %.4g s at porosity %.3f, the smallest cell's of the %s; limit -cpl_relaxation_ratio_max %g)\n", (double)(cpl->dt / tau), (double)tau, (double)cpl->eps_min0, cpl->restarting ? "checkpoint's bed" : "start", (double)cpl->relax_max));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: dt_dem / contact time %.3g%s\n", (double)dtc, cpl->clock.frozen ? " (frozen: no DEM steps)" : ""));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: coupling step / particle relaxation time %.3g (tau = %.4g s at porosity %.3f, the smallest cell's of the %s; limit -cpl_relaxation_ratio_max %g)\n", (double)(cpl->clock.dt / tau), (double)tau, (double)cpl->diag.eps_min0, cpl->start.restarting ? "checkpoint's bed" : "start", (double)cpl->start.relax_max));
     PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: cell / diameter %.3g, kernel side / cell %.3g (limit 2)\n", (double)(hmin / dmax), (double)(smax / hmin)));
     if (hmin < dmax) PetscCall(PetscViewerASCIIPrintf(viewer, "pre-flight: warning: cells smaller than a particle diameter; the porosity will fluctuate cell by cell\n"));
     PetscCall(CplCheckFaces(cpl, viewer));
   }
   if (!enforce) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCheck(smax <= 2 * hmin * (1 + 1e-12), cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel side %g is %g cells of size %g, above the limit of 2: coarsen the grid (-da_grid_x/y/z) or lower -cpl_kernel_scale %g", (double)smax, (double)(smax / hmin), (double)hmin, (double)cpl->kscale);
-  PetscCheck(cpl->frozen || cpl->dt <= cpl->relax_max * tau, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "coupling step %g s is %g particle relaxation times (tau = m/K = %g s), above -cpl_relaxation_ratio_max %g: lower -dem_dt or -cpl_substeps, or raise the limit knowingly", (double)cpl->dt, (double)(cpl->dt / tau), (double)tau, (double)cpl->relax_max);
+  PetscCheck(smax <= 2 * hmin * (1 + 1e-12), cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel side %g is %g cells of size %g, above the limit of 2: coarsen the grid (-da_grid_x/y/z) or lower -cpl_kernel_scale %g", (double)smax, (double)(smax / hmin), (double)hmin, (double)cpl->kern.scale);
+  PetscCheck(cpl->clock.frozen || cpl->clock.dt <= cpl->start.relax_max * tau, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "coupling step %g s is %g particle relaxation times (tau = m/K = %g s), above -cpl_relaxation_ratio_max %g: lower -dem_dt or -cpl_substeps, or raise the limit knowingly", (double)cpl->clock.dt, (double)(cpl->clock.dt / tau), (double)tau, (double)cpl->start.relax_max);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -66,8 +66,8 @@ static void CplSelfTableAdd(Cpl cpl, struct _CplSelfTable *t, const double th[3]
   }
   if (t->filter_var > 0) {
     double a = 1;
-    for (int e = 0; e < 3; e++) a -= cpl->filter_lam[e] * s2[e] * t->h[e] * t->h[e];
-    phi = PetscPowRealInt(a, cpl->filter_n);
+    for (int e = 0; e < 3; e++) a -= cpl->filt.lam[e] * s2[e] * t->h[e] * t->h[e];
+    phi = PetscPowRealInt(a, cpl->filt.n);
   }
   for (int i = 0; i < nm; i++)
     for (int j = 0; j < nm; j++)
@@ -92,17 +92,17 @@ static PetscErrorCode CplSelfTableSetUp(Cpl cpl, int nm)
     NT = 40,
     NU = 28
   };
-  struct _CplSelfTable *t = cpl->self_tab;
+  struct _CplSelfTable *t = cpl->self.tab;
   double                xt[NT], wt[NT], xu[NU], wu[NU];
 
   PetscFunctionBeginUser;
-  if (t && t->filter_var == cpl->filter_var && t->nm >= nm) PetscFunctionReturn(PETSC_SUCCESS);
+  if (t && t->filter_var == cpl->filt.var && t->nm >= nm) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(CplSelfTableDestroy(cpl));
   PetscCall(PetscNew(&t));
-  cpl->self_tab = t;
+  cpl->self.tab = t;
   t->nm         = PetscMax(2, nm);
   for (int e = 0; e < 3; e++) t->h[e] = cpl->dom->h[e];
-  t->filter_var = cpl->filter_var;
+  t->filter_var = cpl->filt.var;
   for (int r = 0; r < CPL_SELF_NR; r++) t->re[r] = PetscPowReal(10.0, -3 + r / 6.0);
   for (int d = 0; d < 3; d++) PetscCall(PetscCalloc1(CPL_SELF_NR * t->nm * t->nm * t->nm, &t->mom[d]));
   CplGaussLegendre(NT, xt, wt);
@@ -125,9 +125,9 @@ static PetscErrorCode CplSelfTableSetUp(Cpl cpl, int nm)
 PetscErrorCode CplSelfTableDestroy(Cpl cpl)
 {
   PetscFunctionBeginUser;
-  if (!cpl->self_tab) PetscFunctionReturn(PETSC_SUCCESS);
-  for (int d = 0; d < 3; d++) PetscCall(PetscFree(cpl->self_tab->mom[d]));
-  PetscCall(PetscFree(cpl->self_tab));
+  if (!cpl->self.tab) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int d = 0; d < 3; d++) PetscCall(PetscFree(cpl->self.tab->mom[d]));
+  PetscCall(PetscFree(cpl->self.tab));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -138,8 +138,8 @@ PetscErrorCode CplSelfTableDestroy(Cpl cpl)
  * the response table is built (or widened) for the stencils in use. Collective. */
 PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps, PetscReal *fade)
 {
-  const PetscBool oneway = (PetscBool)(cpl->mode == CPL_MODE_ONEWAY), any = (PetscBool)(!oneway && (cpl->self_eps || cpl->self_u));
-  const PetscBool smooth = (PetscBool)(!oneway && cpl->pw_width > 0);
+  const PetscBool oneway = (PetscBool)(cpl->drag.mode == CPL_MODE_ONEWAY), any = (PetscBool)(!oneway && (cpl->self.eps || cpl->self.u));
+  const PetscBool smooth = (PetscBool)(!oneway && cpl->pw.width > 0);
   PetscReal      *self = NULL, *usup = NULL;
 
   PetscFunctionBeginUser;
@@ -156,15 +156,15 @@ PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps
     for (PetscInt p = 0; p < 3 * n; p++) u[p] = fade[p / 3] * u[p] + (1 - fade[p / 3]) * usup[p] / eps[p / 3];
   } else if (any)
     for (PetscInt p = 0; p < n; p++) {
-      if (cpl->self_fade > 0) fade[p] = PetscMax(0, 1 - (1 - eps[p] - self[p]) / cpl->self_fade);
-      if (cpl->self_eps && fade[p] > 0) eps[p] = PetscMin(1, eps[p] + fade[p] * self[p]);
+      if (cpl->self.fade > 0) fade[p] = PetscMax(0, 1 - (1 - eps[p] - self[p]) / cpl->self.fade);
+      if (cpl->self.eps && fade[p] > 0) eps[p] = PetscMin(1, eps[p] + fade[p] * self[p]);
     }
   PetscCall(PetscFree(self));
   PetscCall(PetscFree(usup));
-  if (!oneway && cpl->self_u && n > 0) {
+  if (!oneway && cpl->self.u && n > 0) {
     int nm = 2;
     for (PetscInt p = 0; p < n; p++)
-      for (int e = 0; e < 3; e++) nm = PetscMax(nm, PetscMax(cpl->stc[p].nc[e], cpl->stc[p].nf[e]));
+      for (int e = 0; e < 3; e++) nm = PetscMax(nm, PetscMax(cpl->kern.stc[p].nc[e], cpl->kern.stc[p].nf[e]));
     PetscCall(CplSelfTableSetUp(cpl, nm));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -176,8 +176,8 @@ PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps
  * the first point below 1e-3 (Stokes to O(1e-3)), the last times 1e4 / Re above. */
 static void CplSelfGreen(Cpl cpl, PetscInt p, PetscReal kappa, PetscReal g[3])
 {
-  const struct _CplSelfTable *t  = cpl->self_tab;
-  const CplStencil           *st = &cpl->stc[p];
+  const struct _CplSelfTable *t  = cpl->self.tab;
+  const CplStencil           *st = &cpl->kern.stc[p];
   const int                   nm = t->nm;
 
   for (int d = 0; d < 3; d++) {
@@ -217,8 +217,8 @@ static PetscReal CplSelfMean(Cpl cpl, PetscInt p, const PetscReal n2[3], PetscRe
 {
   PetscReal g[3];
 
-  CplSelfGreen(cpl, p, cpl->rho * w / cpl->mu, g);
-  return (n2[0] * g[0] + n2[1] * g[1] + n2[2] * g[2]) / cpl->mu;
+  CplSelfGreen(cpl, p, cpl->prop.rho * w / cpl->prop.mu, g);
+  return (n2[0] * g[0] + n2[1] * g[1] + n2[2] * g[2]) / cpl->prop.mu;
 }
 
 /* The drag coefficient on the undisturbed slip of local particle p (diameter d, seen porosity
@@ -240,7 +240,7 @@ PetscReal CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const
   ws = PetscSqrtReal(w2);
   wt = ws;
   for (int it = 0; it < 30; it++) {
-    k = 3 * PETSC_PI * cpl->mu * d * CplDragFactor(cpl->law, eps, cpl->rho * d * eps * wt / cpl->mu);
+    k = 3 * PETSC_PI * cpl->prop.mu * d * CplDragFactor(cpl->drag.law, eps, cpl->prop.rho * d * eps * wt / cpl->prop.mu);
     {
       const PetscReal gk0 = PetscMin(0.9, fade * CplSelfMean(cpl, p, n2, wt) * k);
       gk                  = PetscMin(0.9, fade * CplSelfMean(cpl, p, n2, wt * (1 - gk0)) * k);

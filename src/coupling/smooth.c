@@ -38,26 +38,26 @@ PetscErrorCode CplSmoothSetUp(Cpl cpl, PetscReal dmean)
   const Domain *dom = cpl->dom;
 
   PetscFunctionBeginUser;
-  if (cpl->pw_width <= 0) PetscFunctionReturn(PETSC_SUCCESS);
+  if (cpl->pw.width <= 0) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(CplSmoothDestroyGrid(cpl)); /* built anew at first use with these widths */
   if (dmean <= 0) PetscCall(CplMeanDiameter(cpl, &dmean));
-  cpl->pw_d     = dmean;
-  cpl->pw_sigma = cpl->pw_width * dmean / PetscSqrtReal(8 * PetscLogReal(2.0));
+  cpl->pw.d     = dmean;
+  cpl->pw.sigma = cpl->pw.width * dmean / PetscSqrtReal(8 * PetscLogReal(2.0));
   for (int e = 0; e < 3; e++) {
-    const PetscReal sg = cpl->pw_sigma;
+    const PetscReal sg = cpl->pw.sigma;
     PetscInt        n  = (PetscInt)PetscCeilReal(CPL_PW_RES * dom->h[e] / sg * (1 - 1e-12));
     PetscReal       a, var, sum = 0;
     n               = PetscMax(n, 1);
     a               = dom->h[e] / n;
     var             = sg * sg - 2 * a * a / 3;
-    cpl->pw_n[e]    = n;
-    cpl->pw_h[e]    = a;
-    cpl->pw_half[e] = (int)PetscCeilReal(4 * PetscSqrtReal(var) / a);
-    PetscCheck(dom->periodic[e] || cpl->pw_half[e] <= dom->cells[e] * n, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_width %g (x mean diameter %g m) reaches %g m, beyond the domain's length %g m on axis %d: lower the width", (double)cpl->pw_width, (double)dmean, (double)(cpl->pw_half[e] * a), (double)dom->len[e], e);
-    PetscCall(PetscFree(cpl->pw_k[e]));
-    PetscCall(PetscMalloc1(2 * cpl->pw_half[e] + 1, &cpl->pw_k[e]));
-    for (int m = -cpl->pw_half[e]; m <= cpl->pw_half[e]; m++) sum += cpl->pw_k[e][m + cpl->pw_half[e]] = PetscExpReal(-0.5 * m * m * a * a / var);
-    for (int m = 0; m <= 2 * cpl->pw_half[e]; m++) cpl->pw_k[e][m] /= sum;
+    cpl->pw.n[e]    = n;
+    cpl->pw.h[e]    = a;
+    cpl->pw.half[e] = (int)PetscCeilReal(4 * PetscSqrtReal(var) / a);
+    PetscCheck(dom->periodic[e] || cpl->pw.half[e] <= dom->cells[e] * n, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_width %g (x mean diameter %g m) reaches %g m, beyond the domain's length %g m on axis %d: lower the width", (double)cpl->pw.width, (double)dmean, (double)(cpl->pw.half[e] * a), (double)dom->len[e], e);
+    PetscCall(PetscFree(cpl->pw.k[e]));
+    PetscCall(PetscMalloc1(2 * cpl->pw.half[e] + 1, &cpl->pw.k[e]));
+    for (int m = -cpl->pw.half[e]; m <= cpl->pw.half[e]; m++) sum += cpl->pw.k[e][m + cpl->pw.half[e]] = PetscExpReal(-0.5 * m * m * a * a / var);
+    for (int m = 0; m <= 2 * cpl->pw.half[e]; m++) cpl->pw.k[e][m] /= sum;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -67,7 +67,7 @@ PetscErrorCode CplSmoothSetUp(Cpl cpl, PetscReal dmean)
 static PetscInt CplSmoothStencil(Cpl cpl)
 {
   PetscInt sw = 0;
-  for (int e = 0; e < 3; e++) sw = PetscMax(sw, PetscMax(cpl->pw_half[e], cpl->pw_n[e] + 2));
+  for (int e = 0; e < 3; e++) sw = PetscMax(sw, PetscMax(cpl->pw.half[e], cpl->pw.n[e] + 2));
   return sw;
 }
 
@@ -75,9 +75,9 @@ PetscErrorCode CplGetMinBoxWidth(Cpl cpl, PetscInt cells[3])
 {
   PetscFunctionBeginUser;
   for (int e = 0; e < 3; e++) cells[e] = 2; /* the kernel's ghost cells */
-  if (cpl->pw_width > 0 && cpl->pw_n[0] > 0) {
+  if (cpl->pw.width > 0 && cpl->pw.n[0] > 0) {
     const PetscInt sw = CplSmoothStencil(cpl);
-    for (int e = 0; e < 3; e++) cells[e] = PetscMax(2, (sw + cpl->pw_n[e] - 1) / cpl->pw_n[e]);
+    for (int e = 0; e < 3; e++) cells[e] = PetscMax(2, (sw + cpl->pw.n[e] - 1) / cpl->pw.n[e]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -91,23 +91,23 @@ static PetscErrorCode CplSmoothGrid(Cpl cpl)
   DMBoundaryType  bt[3];
 
   PetscFunctionBeginUser;
-  if (cpl->ada) PetscFunctionReturn(PETSC_SUCCESS);
+  if (cpl->pw.da) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(DMDAGetInfo(cpl->cda, NULL, NULL, NULL, NULL, &np[0], &np[1], &np[2], NULL, NULL, NULL, NULL, NULL, NULL));
   PetscCall(DMDAGetOwnershipRanges(cpl->cda, &own[0], &own[1], &own[2]));
   PetscCall(DMDAGetCorners(cpl->cda, NULL, NULL, NULL, &xm[0], &xm[1], &xm[2]));
   sw = CplSmoothStencil(cpl);
   for (int e = 0; e < 3; e++) {
-    PetscInt thin = xm[e] * cpl->pw_n[e];
+    PetscInt thin = xm[e] * cpl->pw.n[e];
     bt[e]         = dom->periodic[e] ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_NONE;
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &thin, 1, MPIU_INT, MPI_MIN, cpl->comm));
-    PetscCheck((np[e] == 1 && !dom->periodic[e]) || thin >= sw, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_width %g reaches %g m beyond a rank's box, more than the thinnest box along axis %d (%g m; periodic on one rank: the domain): lower the width, or use fewer ranks along that axis", (double)cpl->pw_width, (double)(sw * cpl->pw_h[e]), e, (double)(thin * cpl->pw_h[e]));
+    PetscCheck((np[e] == 1 && !dom->periodic[e]) || thin >= sw, cpl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cpl_porosity_width %g reaches %g m beyond a rank's box, more than the thinnest box along axis %d (%g m; periodic on one rank: the domain): lower the width, or use fewer ranks along that axis", (double)cpl->pw.width, (double)(sw * cpl->pw.h[e]), e, (double)(thin * cpl->pw.h[e]));
     PetscCall(PetscMalloc1(np[e], &lx[e]));
-    for (PetscInt r = 0; r < np[e]; r++) lx[e][r] = own[e][r] * cpl->pw_n[e];
+    for (PetscInt r = 0; r < np[e]; r++) lx[e][r] = own[e][r] * cpl->pw.n[e];
   }
-  PetscCall(DMDACreate3d(cpl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, dom->cells[0] * cpl->pw_n[0], dom->cells[1] * cpl->pw_n[1], dom->cells[2] * cpl->pw_n[2], np[0], np[1], np[2], 1, sw, lx[0], lx[1], lx[2], &cpl->ada));
-  PetscCall(DMSetUp(cpl->ada));
-  PetscCall(DMCreateLocalVector(cpl->ada, &cpl->aloc));
-  PetscCall(DMCreateGlobalVector(cpl->ada, &cpl->aglob));
+  PetscCall(DMDACreate3d(cpl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, dom->cells[0] * cpl->pw.n[0], dom->cells[1] * cpl->pw.n[1], dom->cells[2] * cpl->pw.n[2], np[0], np[1], np[2], 1, sw, lx[0], lx[1], lx[2], &cpl->pw.da));
+  PetscCall(DMSetUp(cpl->pw.da));
+  PetscCall(DMCreateLocalVector(cpl->pw.da, &cpl->pw.loc));
+  PetscCall(DMCreateGlobalVector(cpl->pw.da, &cpl->pw.glob));
   for (int e = 0; e < 3; e++) PetscCall(PetscFree(lx[e]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -116,9 +116,9 @@ static PetscErrorCode CplSmoothGrid(Cpl cpl)
 PetscErrorCode CplSmoothDestroyGrid(Cpl cpl)
 {
   PetscFunctionBeginUser;
-  PetscCall(VecDestroy(&cpl->aloc));
-  PetscCall(VecDestroy(&cpl->aglob));
-  PetscCall(DMDestroy(&cpl->ada));
+  PetscCall(VecDestroy(&cpl->pw.loc));
+  PetscCall(VecDestroy(&cpl->pw.glob));
+  PetscCall(DMDestroy(&cpl->pw.da));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -126,7 +126,7 @@ PetscErrorCode CplSmoothDestroy(Cpl cpl)
 {
   PetscFunctionBeginUser;
   PetscCall(CplSmoothDestroyGrid(cpl));
-  for (int e = 0; e < 3; e++) PetscCall(PetscFree(cpl->pw_k[e]));
+  for (int e = 0; e < 3; e++) PetscCall(PetscFree(cpl->pw.k[e]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -147,7 +147,7 @@ static inline void     cpl_spline(const Cpl cpl, int e, double x, PetscInt node[
     if (x - mid > 0.5 * dom->len[e]) x -= dom->len[e];
     else if (x - mid < -0.5 * dom->len[e]) x += dom->len[e];
   } else x = PetscMin(PetscMax(x, dom->lo[e]), dom->hi[e]);
-  u    = (x - dom->lo[e]) / cpl->pw_h[e] - 0.5;
+  u    = (x - dom->lo[e]) / cpl->pw.h[e] - 0.5;
   i0   = (PetscInt)PetscFloorReal(u);
   t    = u - (double)i0;
   s    = 1 - t;
@@ -161,7 +161,7 @@ static inline void     cpl_spline(const Cpl cpl, int e, double x, PetscInt node[
 /* The index a convolution reads for node i + m on axis e: mirrored at a non-periodic side. */
 static inline PetscInt cpl_reflect(const Cpl cpl, int e, PetscInt j)
 {
-  const PetscInt M = cpl->dom->cells[e] * cpl->pw_n[e];
+  const PetscInt M = cpl->dom->cells[e] * cpl->pw.n[e];
   if (cpl->dom->periodic[e]) return j;
   if (j < 0) return -1 - j;
   if (j >= M) return 2 * M - 1 - j;
@@ -200,16 +200,16 @@ PetscErrorCode CplSmoothProject(Cpl cpl)
   PetscScalar *a, *g;
   double      *line;
   PetscInt     xs[3], xm[3];
-  const double va = cpl->pw_h[0] * cpl->pw_h[1] * cpl->pw_h[2];
+  const double va = cpl->pw.h[0] * cpl->pw.h[1] * cpl->pw.h[2];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(cpl->ev_smooth, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(cpl->ev.smooth, 0, 0, 0, 0));
   PetscCall(CplSmoothGrid(cpl));
   PetscCall(DemGetArrays(cpl->dem, &pa));
-  PetscCall(DMDAGetGhostCorners(cpl->ada, &b.gs[0], &b.gs[1], &b.gs[2], &b.gm[0], &b.gm[1], &b.gm[2]));
-  PetscCall(DMDAGetCorners(cpl->ada, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
-  PetscCall(VecZeroEntries(cpl->aloc));
-  PetscCall(VecGetArray(cpl->aloc, &a));
+  PetscCall(DMDAGetGhostCorners(cpl->pw.da, &b.gs[0], &b.gs[1], &b.gs[2], &b.gm[0], &b.gm[1], &b.gm[2]));
+  PetscCall(DMDAGetCorners(cpl->pw.da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecZeroEntries(cpl->pw.loc));
+  PetscCall(VecGetArray(cpl->pw.loc, &a));
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     PetscInt     node[3][CPL_SPLINE];
     double       w[3][CPL_SPLINE];
@@ -219,17 +219,17 @@ PetscErrorCode CplSmoothProject(Cpl cpl)
       for (int j = 0; j < CPL_SPLINE; j++)
         for (int i = 0; i < CPL_SPLINE; i++) a[cpl_aoff(&b, node[0][i], node[1][j], node[2][k])] += f * w[0][i] * w[1][j] * w[2][k];
   }
-  PetscCall(VecRestoreArray(cpl->aloc, &a));
-  PetscCall(VecZeroEntries(cpl->aglob));
-  PetscCall(DMLocalToGlobal(cpl->ada, cpl->aloc, ADD_VALUES, cpl->aglob));
-  PetscCall(PetscMalloc1(PetscMax(PetscMax(xm[0], xm[1]), xm[2]) + 2 * PetscMax(PetscMax(cpl->pw_half[0], cpl->pw_half[1]), cpl->pw_half[2]), &line));
+  PetscCall(VecRestoreArray(cpl->pw.loc, &a));
+  PetscCall(VecZeroEntries(cpl->pw.glob));
+  PetscCall(DMLocalToGlobal(cpl->pw.da, cpl->pw.loc, ADD_VALUES, cpl->pw.glob));
+  PetscCall(PetscMalloc1(PetscMax(PetscMax(xm[0], xm[1]), xm[2]) + 2 * PetscMax(PetscMax(cpl->pw.half[0], cpl->pw.half[1]), cpl->pw.half[2]), &line));
   for (int e = 0; e < 3; e++) { /* one 1-D pass per axis, line by line: ghosts (or mirrors) in, owned nodes out */
-    const int      h = cpl->pw_half[e], e1 = (e + 1) % 3, e2 = (e + 2) % 3;
-    const double  *kw     = cpl->pw_k[e];
+    const int      h = cpl->pw.half[e], e1 = (e + 1) % 3, e2 = (e + 2) % 3;
+    const double  *kw     = cpl->pw.k[e];
     const PetscInt gst[3] = {1, b.gm[0], b.gm[0] * b.gm[1]}, ost[3] = {1, xm[0], xm[0] * xm[1]};
-    PetscCall(DMGlobalToLocal(cpl->ada, cpl->aglob, INSERT_VALUES, cpl->aloc));
-    PetscCall(VecGetArray(cpl->aloc, &a));
-    PetscCall(VecGetArray(cpl->aglob, &g));
+    PetscCall(DMGlobalToLocal(cpl->pw.da, cpl->pw.glob, INSERT_VALUES, cpl->pw.loc));
+    PetscCall(VecGetArray(cpl->pw.loc, &a));
+    PetscCall(VecGetArray(cpl->pw.glob, &g));
     for (PetscInt i2 = xs[e2]; i2 < xs[e2] + xm[e2]; i2++)
       for (PetscInt i1 = xs[e1]; i1 < xs[e1] + xm[e1]; i1++) {
         PetscInt id[3];
@@ -251,12 +251,12 @@ PetscErrorCode CplSmoothProject(Cpl cpl)
           g[ob + i * ost[e]] = acc;
         }
       }
-    PetscCall(VecRestoreArray(cpl->aglob, &g));
-    PetscCall(VecRestoreArray(cpl->aloc, &a));
+    PetscCall(VecRestoreArray(cpl->pw.glob, &g));
+    PetscCall(VecRestoreArray(cpl->pw.loc, &a));
   }
   PetscCall(PetscFree(line));
-  PetscCall(DMGlobalToLocal(cpl->ada, cpl->aglob, INSERT_VALUES, cpl->aloc));
-  PetscCall(PetscLogEventEnd(cpl->ev_smooth, 0, 0, 0, 0));
+  PetscCall(DMGlobalToLocal(cpl->pw.da, cpl->pw.glob, INSERT_VALUES, cpl->pw.loc));
+  PetscCall(PetscLogEventEnd(cpl->ev.smooth, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -266,9 +266,9 @@ PetscErrorCode CplSmoothProject(Cpl cpl)
  * k_(b - a + j M). */
 static double cpl_own_1d(const Cpl cpl, int e, const PetscInt node[CPL_SPLINE], const double w[CPL_SPLINE])
 {
-  const int      h = cpl->pw_half[e];
-  const PetscInt M = cpl->dom->cells[e] * cpl->pw_n[e];
-  const double  *k = cpl->pw_k[e] + h;
+  const int      h = cpl->pw.half[e];
+  const PetscInt M = cpl->dom->cells[e] * cpl->pw.n[e];
+  const double  *k = cpl->pw.k[e] + h;
   double         s = 0;
 
   for (int ia = 0; ia < CPL_SPLINE; ia++)
@@ -296,13 +296,13 @@ PetscErrorCode CplSmoothAt(Cpl cpl, PetscInt n, PetscReal *phi, PetscReal *own)
   DemArrays          pa;
   CplAuxBox          b;
   const PetscScalar *a;
-  const double       va = cpl->pw_h[0] * cpl->pw_h[1] * cpl->pw_h[2];
+  const double       va = cpl->pw.h[0] * cpl->pw.h[1] * cpl->pw.h[2];
 
   PetscFunctionBeginUser;
   PetscCall(DemGetArrays(cpl->dem, &pa));
   PetscCheck(n <= pa.nlocal, PETSC_COMM_SELF, PETSC_ERR_PLIB, "CplSmoothAt: %" PetscInt_FMT " particles asked, %" PetscInt_FMT " local", n, pa.nlocal);
-  PetscCall(DMDAGetGhostCorners(cpl->ada, &b.gs[0], &b.gs[1], &b.gs[2], &b.gm[0], &b.gm[1], &b.gm[2]));
-  PetscCall(VecGetArrayRead(cpl->aloc, &a));
+  PetscCall(DMDAGetGhostCorners(cpl->pw.da, &b.gs[0], &b.gs[1], &b.gs[2], &b.gm[0], &b.gm[1], &b.gm[2]));
+  PetscCall(VecGetArrayRead(cpl->pw.loc, &a));
   for (PetscInt p = 0; p < n; p++) {
     PetscInt node[3][CPL_SPLINE];
     double   w[3][CPL_SPLINE], s = 0;
@@ -313,7 +313,7 @@ PetscErrorCode CplSmoothAt(Cpl cpl, PetscInt n, PetscReal *phi, PetscReal *own)
     phi[p] = s;
     if (own) own[p] = CplVolumeOf(cpl, &pa, p) / va * cpl_own_1d(cpl, 0, node[0], w[0]) * cpl_own_1d(cpl, 1, node[1], w[1]) * cpl_own_1d(cpl, 2, node[2], w[2]);
   }
-  PetscCall(VecRestoreArrayRead(cpl->aloc, &a));
+  PetscCall(VecRestoreArrayRead(cpl->pw.loc, &a));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -322,7 +322,7 @@ PetscErrorCode CplSmoothAt(Cpl cpl, PetscInt n, PetscReal *phi, PetscReal *own)
  * raised to the floor; fade (may be NULL) gets the fade factor. */
 PetscErrorCode CplSmoothSeen(Cpl cpl, PetscInt n, PetscReal *eps, PetscReal *fade)
 {
-  const PetscBool self = (PetscBool)(cpl->self_eps || cpl->self_u);
+  const PetscBool self = (PetscBool)(cpl->self.eps || cpl->self.u);
   PetscReal      *phi, *own;
 
   PetscFunctionBeginUser;
@@ -330,10 +330,10 @@ PetscErrorCode CplSmoothSeen(Cpl cpl, PetscInt n, PetscReal *eps, PetscReal *fad
   PetscCall(CplSmoothAt(cpl, n, phi, self ? own : NULL));
   for (PetscInt p = 0; p < n; p++) {
     PetscReal f = 0;
-    if (self) f = cpl->self_fade > 0 ? PetscMax(0, 1 - (phi[p] - own[p]) / cpl->self_fade) : 1;
+    if (self) f = cpl->self.fade > 0 ? PetscMax(0, 1 - (phi[p] - own[p]) / cpl->self.fade) : 1;
     eps[p] = 1 - phi[p];
-    if (cpl->self_eps && f > 0) eps[p] = PetscMin(1, eps[p] + f * own[p]);
-    eps[p] = PetscMax(eps[p], cpl->eps_floor);
+    if (cpl->self.eps && f > 0) eps[p] = PetscMin(1, eps[p] + f * own[p]);
+    eps[p] = PetscMax(eps[p], cpl->drag.eps_floor);
     if (fade) fade[p] = f;
   }
   PetscCall(PetscFree2(phi, own));

@@ -25,7 +25,7 @@ static PetscErrorCode CplUniformFluid(Cpl cpl)
 
   PetscFunctionBeginUser;
   PetscCall(FluidGetInletVelocity(cpl->fl, U, &n));
-  PetscCheck(n > 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_init_fluid %s: the fluid has no inlet face (-fluid_bc_<side> inlet) to take the velocity from; use -cpl_init_fluid rest", cpl->init == CPL_INIT_STEADY ? "steady" : "uniform");
+  PetscCheck(n > 0, cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_init_fluid %s: the fluid has no inlet face (-fluid_bc_<side> inlet) to take the velocity from; use -cpl_init_fluid rest", cpl->start.init == CPL_INIT_STEADY ? "steady" : "uniform");
   PetscCall(FluidSetSuperficialVelocity(cpl->fl, U));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -41,27 +41,27 @@ static PetscErrorCode CplSteadyFluid(Cpl cpl)
   PetscCall(FluidGetVelocity(cpl->fl, &u));
   PetscCall(VecDuplicate(u, &prev));
   PetscCall(FluidGetClock(cpl->fl, &t0, &n0));
-  for (cpl->init_its = 1; cpl->init_its <= cpl->init_max; cpl->init_its++) {
+  for (cpl->start.its = 1; cpl->start.its <= cpl->start.max_steps; cpl->start.its++) {
     PetscCall(VecCopy(u, prev));
     PetscCall(CplSetParticleDrag(cpl));
-    if (cpl->mode == CPL_MODE_TWOWAY) PetscCall(CplSetFluidDrag(cpl));
-    PetscCall(FluidStep(cpl->fl, cpl->dt, &fs));
+    if (cpl->drag.mode == CPL_MODE_TWOWAY) PetscCall(CplSetFluidDrag(cpl));
+    PetscCall(FluidStep(cpl->fl, cpl->clock.dt, &fs));
     PetscCall(FluidSetClock(cpl->fl, t0, n0));
     PetscCall(VecAXPY(prev, -1.0, u));
     PetscCall(VecNorm(prev, NORM_INFINITY, &change));
     PetscCall(VecNorm(u, NORM_INFINITY, &umax));
-    if (change <= cpl->init_rtol * umax) break;
+    if (change <= cpl->start.rtol * umax) break;
   }
   PetscCall(VecDestroy(&prev));
-  PetscCheck(change <= cpl->init_rtol * umax, cpl->comm, PETSC_ERR_NOT_CONVERGED, "-cpl_init_fluid steady: a pseudo step still changed the velocity by %g of its maximum %g m/s after -cpl_init_fluid_max_steps %d, above -cpl_init_fluid_rtol %g: raise one of them", (double)(umax > 0 ? change / umax : change), (double)umax, (int)cpl->init_max, (double)cpl->init_rtol);
+  PetscCheck(change <= cpl->start.rtol * umax, cpl->comm, PETSC_ERR_NOT_CONVERGED, "-cpl_init_fluid steady: a pseudo step still changed the velocity by %g of its maximum %g m/s after -cpl_init_fluid_max_steps %d, above -cpl_init_fluid_rtol %g: raise one of them", (double)(umax > 0 ? change / umax : change), (double)umax, (int)cpl->start.max_steps, (double)cpl->start.rtol);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CplInitFluidState(Cpl cpl)
 {
   PetscFunctionBeginUser;
-  if (cpl->init == CPL_INIT_REST) PetscFunctionReturn(PETSC_SUCCESS);
+  if (cpl->start.init == CPL_INIT_REST) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(CplUniformFluid(cpl));
-  if (cpl->init == CPL_INIT_STEADY) PetscCall(CplSteadyFluid(cpl));
+  if (cpl->start.init == CPL_INIT_STEADY) PetscCall(CplSteadyFluid(cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -21,7 +21,7 @@ const char *const FluidBCNames[] = {"periodic", "wall", "slip", "inlet", "outlet
 
 /* The face options by axis and side, written out so that grep (and the option lists the Makefile
  * builds from the sources: tools/gen-options.sh) finds them; the enum is read as
- * PetscOptionsEnum(FluidBCOption[d][s], ...), which tells the lists that these take words. */
+ * SableOptionsEnum(FluidBCOption[d][s], ...), which tells the lists that these take words. */
 static const char *const FluidBCOption[3][2]         = {{"-fluid_bc_xlo", "-fluid_bc_xhi"}, {"-fluid_bc_ylo", "-fluid_bc_yhi"}, {"-fluid_bc_zlo", "-fluid_bc_zhi"}};
 static const char *const FluidBCVelocityOption[3][2] = {{"-fluid_bc_xlo_velocity", "-fluid_bc_xhi_velocity"}, {"-fluid_bc_ylo_velocity", "-fluid_bc_yhi_velocity"}, {"-fluid_bc_zlo_velocity", "-fluid_bc_zhi_velocity"}};
 
@@ -31,23 +31,25 @@ PetscErrorCode FluidSetFromOptionsBC(Fluid fl)
   PetscBool   set, any_outlet = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  fl->has_inlet = PETSC_FALSE;
+  fl->bc.has_inlet = PETSC_FALSE;
   PetscOptionsBegin(fl->comm, NULL, "Fluid boundary conditions", NULL);
-  PetscCall(SableOptionsReal("-fluid_outlet_pressure", "Pressure on outlet faces", "Pa", NULL, fl->p_out, &fl->p_out, NULL));
+  PetscCall(SableOptionsReal("-fluid_outlet_pressure", "Pressure on outlet faces", "Pa", NULL, fl->bc.p_out, &fl->bc.p_out, NULL));
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      FluidBCType t   = fl->bc[d][s].type;
+      FluidBCType t   = fl->bc.face[d][s].type;
+      PetscInt    k   = t;
       const char *opt = FluidBCOption[d][s], *optv = FluidBCVelocityOption[d][s];
-      PetscCall(PetscOptionsEnum(FluidBCOption[d][s], "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", NULL, FluidBCNames, (PetscEnum)t, (PetscEnum *)&t, &set));
+      PetscCall(SableOptionsEnum(FluidBCOption[d][s], "Boundary condition of this face: wall (no-slip), slip, inlet, outlet; periodic axes are set by -domain_periodic_*", FluidBCNames, 5, k, &k, &set));
+      t = (FluidBCType)k;
       PetscCheck(!set || fl->dom->periodic[d] == (t == FLUID_BC_PERIODIC), fl->comm, PETSC_ERR_ARG_WRONG, "%s %s: the %c axis is %speriodic (-domain_periodic_%c); valid values here: %s", opt, FluidBCNames[t], ax[d], fl->dom->periodic[d] ? "" : "not ", ax[d], fl->dom->periodic[d] ? "periodic" : "wall, slip, inlet, outlet");
-      fl->bc[d][s].type = t;
-      PetscCall(SableOptionsRealN(optv, "Inlet velocity on this face", "m/s", fl->bc[d][s].vel, 3, 3, &set));
+      fl->bc.face[d][s].type = t;
+      PetscCall(SableOptionsRealN(optv, "Inlet velocity on this face", "m/s", fl->bc.face[d][s].vel, 3, 3, &set));
       PetscCheck(!set || t == FLUID_BC_INLET, fl->comm, PETSC_ERR_ARG_WRONG, "%s is given but %s is %s, not inlet", optv, opt, FluidBCNames[t]);
       if (t == FLUID_BC_OUTLET) any_outlet = PETSC_TRUE;
-      if (t == FLUID_BC_INLET) fl->has_inlet = PETSC_TRUE;
+      if (t == FLUID_BC_INLET) fl->bc.has_inlet = PETSC_TRUE;
     }
   PetscOptionsEnd();
-  fl->singular = any_outlet ? PETSC_FALSE : PETSC_TRUE;
+  fl->pois.singular = any_outlet ? PETSC_FALSE : PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -55,7 +57,7 @@ PetscErrorCode FluidGetBC(Fluid fl, int d, int side, FluidBCType *type)
 {
   PetscFunctionBeginUser;
   PetscCheck(d >= 0 && d < 3 && (side == 0 || side == 1), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "face %d,%d: the axis must be in [0,2], the side 0 or 1", d, side);
-  *type = fl->bc[d][side].type;
+  *type = fl->bc.face[d][side].type;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -75,7 +77,7 @@ static inline PetscScalar fluid_inlet_normal(const FluidGrid *g, const FluidBC *
 static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, const PetscScalar *eps, int d, int s)
 {
   const FluidGrid *g  = &fl->g;
-  const FluidBC   *bc = &fl->bc[d][s];
+  const FluidBC   *bc = &fl->bc.face[d][s];
   const int        a = (d + 1) % 3, b = (d + 2) % 3;
   const PetscInt   N = g->N[d], bnd = s ? N : 0, sg = s ? 1 : -1;
   PetscInt         idx[3];
@@ -146,11 +148,11 @@ PetscErrorCode FluidLocalPorosityOld(Fluid fl, PetscBool force)
   PetscObjectState st;
 
   PetscFunctionBeginUser;
-  if (!force && !fl->has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscObjectStateGet((PetscObject)fl->eps_old, &st));
-  if (!force && st == fl->epsold_state) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(FluidLocalCell(fl, fl->eps_old, fl->epsoldloc, PETSC_FALSE, 0.0));
-  fl->epsold_state = st;
+  if (!force && !fl->bc.has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps_old, &st));
+  if (!force && st == fl->fld.epsold_state) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(FluidLocalCell(fl, fl->fld.eps_old, fl->fld.epsoldloc, PETSC_FALSE, 0.0));
+  fl->fld.epsold_state = st;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -159,10 +161,10 @@ PetscErrorCode FluidLocalPorosityOld(Fluid fl, PetscBool force)
 PetscErrorCode FluidInletsEndStep(Fluid fl)
 {
   PetscFunctionBeginUser;
-  if (!fl->has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(VecCopy(fl->epsloc, fl->epsoldloc));
-  PetscCall(PetscObjectStateGet((PetscObject)fl->eps_old, &fl->epsold_state));
-  PetscCall(FluidInletFaceValues(fl, fl->u));
+  if (!fl->bc.has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecCopy(fl->fld.epsloc, fl->fld.epsoldloc));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps_old, &fl->fld.epsold_state));
+  PetscCall(FluidInletFaceValues(fl, fl->fld.u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -176,7 +178,7 @@ PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *v, PetscBool odd_at_ou
     if (FluidPeriodic(fl, d)) continue;
     for (int s = 0; s < 2; s++) {
       const PetscInt  sg = s ? 1 : -1, first = s ? g->N[d] - 1 : 0;
-      const PetscBool odd = (PetscBool)(odd_at_outlet && fl->bc[d][s].type == FLUID_BC_OUTLET);
+      const PetscBool odd = (PetscBool)(odd_at_outlet && fl->bc.face[d][s].type == FLUID_BC_OUTLET);
       PetscInt        idx[3];
       if (s == 0 && g->xs[d] != 0) continue;
       if (s == 1 && g->xs[d] + g->xm[d] != g->N[d]) continue;
@@ -202,11 +204,11 @@ PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc, Vec epsloc)
   const PetscScalar *e = NULL;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGlobalToLocal(fl->fda, u, INSERT_VALUES, uloc));
+  PetscCall(DMGlobalToLocal(fl->g.fda, u, INSERT_VALUES, uloc));
   PetscCall(VecGetArray(uloc, &a));
-  if (fl->has_inlet) PetscCall(VecGetArrayRead(epsloc, &e));
+  if (fl->bc.has_inlet) PetscCall(VecGetArrayRead(epsloc, &e));
   PetscCall(FluidFillVelocityGhosts(fl, a, e));
-  if (fl->has_inlet) PetscCall(VecRestoreArrayRead(epsloc, &e));
+  if (fl->bc.has_inlet) PetscCall(VecRestoreArrayRead(epsloc, &e));
   PetscCall(VecRestoreArray(uloc, &a));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -216,7 +218,7 @@ PetscErrorCode FluidLocalCell(Fluid fl, Vec v, Vec vloc, PetscBool odd_at_outlet
   PetscScalar *a;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGlobalToLocal(fl->cda, v, INSERT_VALUES, vloc));
+  PetscCall(DMGlobalToLocal(fl->g.cda, v, INSERT_VALUES, vloc));
   PetscCall(VecGetArray(vloc, &a));
   PetscCall(FluidFillCellGhosts(fl, a, odd_at_outlet, outlet_value));
   PetscCall(VecRestoreArray(vloc, &a));
@@ -233,7 +235,7 @@ PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u)
   PetscInt         idx[3];
 
   PetscFunctionBeginUser;
-  PetscCall(DMDAVecGetArrayDOF(fl->fda, u, &a));
+  PetscCall(DMDAVecGetArrayDOF(fl->g.fda, u, &a));
   for (idx[2] = g->xs[2]; idx[2] < g->xs[2] + g->fxm[2]; idx[2]++)
     for (idx[1] = g->xs[1]; idx[1] < g->xs[1] + g->fxm[1]; idx[1]++)
       for (idx[0] = g->xs[0]; idx[0] < g->xs[0] + g->fxm[0]; idx[0]++)
@@ -241,7 +243,7 @@ PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u)
           if (FluidFaceActive(fl, d, idx)) continue;
           a[idx[2]][idx[1]][idx[0]][d] = 0;
         }
-  PetscCall(DMDAVecRestoreArrayDOF(fl->fda, u, &a));
+  PetscCall(DMDAVecRestoreArrayDOF(fl->g.fda, u, &a));
   PetscCall(FluidInletFaceValues(fl, u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -255,20 +257,20 @@ PetscErrorCode FluidInletFaceValues(Fluid fl, Vec u)
   PetscScalar    ****a;
 
   PetscFunctionBeginUser;
-  if (!fl->has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!fl->bc.has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(FluidLocalPorosityOld(fl, PETSC_FALSE));
-  PetscCall(VecGetArrayRead(fl->epsoldloc, &eps));
-  PetscCall(DMDAVecGetArrayDOF(fl->fda, u, &a));
+  PetscCall(VecGetArrayRead(fl->fld.epsoldloc, &eps));
+  PetscCall(DMDAVecGetArrayDOF(fl->g.fda, u, &a));
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
       const int a1 = (d + 1) % 3, b1 = (d + 2) % 3;
       PetscInt  q[3];
-      if (fl->bc[d][s].type != FLUID_BC_INLET || (s ? g->xs[d] + g->xm[d] != g->N[d] : g->xs[d] != 0)) continue;
+      if (fl->bc.face[d][s].type != FLUID_BC_INLET || (s ? g->xs[d] + g->xm[d] != g->N[d] : g->xs[d] != 0)) continue;
       q[d] = s ? g->N[d] : 0;
       for (q[b1] = g->xs[b1]; q[b1] < g->xs[b1] + g->fxm[b1]; q[b1]++)
-        for (q[a1] = g->xs[a1]; q[a1] < g->xs[a1] + g->fxm[a1]; q[a1]++) a[q[2]][q[1]][q[0]][d] = fluid_inlet_normal(g, &fl->bc[d][s], eps, d, s, q);
+        for (q[a1] = g->xs[a1]; q[a1] < g->xs[a1] + g->fxm[a1]; q[a1]++) a[q[2]][q[1]][q[0]][d] = fluid_inlet_normal(g, &fl->bc.face[d][s], eps, d, s, q);
     }
-  PetscCall(DMDAVecRestoreArrayDOF(fl->fda, u, &a));
-  PetscCall(VecRestoreArrayRead(fl->epsoldloc, &eps));
+  PetscCall(DMDAVecRestoreArrayDOF(fl->g.fda, u, &a));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsoldloc, &eps));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -68,7 +68,7 @@ PetscErrorCode FluidCheckpointReadVec(IoCkpt ck, const char *name, Vec v)
 static void FluidCkptFields(Fluid fl, const char *names[11], Vec vecs[11])
 {
   const char *n[11] = {"fluid/p", "fluid/eps", "fluid/eps_old", "fluid/phi", "fluid/eps_pc", "fluid/u", "fluid/beta", "fluid/us", "fluid/src", "fluid/adv_old", "fluid/beta_pc"};
-  Vec         v[11] = {fl->p, fl->eps, fl->eps_old, fl->phi, fl->eps_pc, fl->u, fl->beta, fl->us, fl->src, fl->adv_old, fl->beta_pc};
+  Vec         v[11] = {fl->fld.p, fl->fld.eps, fl->fld.eps_old, fl->pois.phi, fl->pois.eps_pc, fl->fld.u, fl->fld.beta, fl->fld.us, fl->fld.src, fl->mom.adv_old, fl->pois.beta_pc};
   for (int k = 0; k < 11; k++) {
     names[k] = n[k];
     vecs[k]  = v[k];
@@ -82,23 +82,23 @@ static PetscErrorCode FluidCkptState(Fluid fl, PetscReal s[FLUID_CKPT_NSTATE], P
   PetscFunctionBeginUser;
   if (get) {
     PetscObjectState se, sb;
-    PetscCall(PetscObjectStateGet((PetscObject)fl->eps, &se));
-    PetscCall(PetscObjectStateGet((PetscObject)fl->beta, &sb));
-    *current                             = (PetscBool)(fl->dt_mat > 0 && se == fl->eps_state && sb == fl->beta_state);
-    const PetscReal v[FLUID_CKPT_NSTATE] = {fl->time, fl->dt_old, (PetscReal)fl->nsteps, fl->dt_pc, (PetscReal)fl->pc_its0, (PetscReal)fl->pc_age, (PetscReal)fl->pc_its_last, (PetscReal)fl->pc_builds, (PetscReal)fl->pc_retries, fl->dt_mat, (PetscReal)*current};
+    PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps, &se));
+    PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &sb));
+    *current                             = (PetscBool)(fl->pois.dt_mat > 0 && se == fl->pois.eps_state && sb == fl->pois.beta_state);
+    const PetscReal v[FLUID_CKPT_NSTATE] = {fl->clock.time, fl->mom.dt_old, (PetscReal)fl->clock.nsteps, fl->pois.dt_pc, (PetscReal)fl->pois.pc_its0, (PetscReal)fl->pois.pc_age, (PetscReal)fl->pois.pc_its_last, (PetscReal)fl->pois.pc_builds, (PetscReal)fl->pois.pc_retries, fl->pois.dt_mat, (PetscReal)*current};
     for (int k = 0; k < FLUID_CKPT_NSTATE; k++) s[k] = v[k];
   } else {
-    fl->time        = s[0];
-    fl->dt_old      = s[1];
-    fl->nsteps      = (PetscInt)s[2];
-    fl->dt_pc       = s[3];
-    fl->pc_its0     = (PetscInt)s[4];
-    fl->pc_age      = (PetscInt)s[5];
-    fl->pc_its_last = (PetscInt)s[6];
-    fl->pc_builds   = (PetscInt)s[7];
-    fl->pc_retries  = (PetscInt)s[8];
-    fl->dt_mat      = s[9];
-    *current        = (PetscBool)(s[10] != 0);
+    fl->clock.time       = s[0];
+    fl->mom.dt_old       = s[1];
+    fl->clock.nsteps     = (PetscInt)s[2];
+    fl->pois.dt_pc       = s[3];
+    fl->pois.pc_its0     = (PetscInt)s[4];
+    fl->pois.pc_age      = (PetscInt)s[5];
+    fl->pois.pc_its_last = (PetscInt)s[6];
+    fl->pois.pc_builds   = (PetscInt)s[7];
+    fl->pois.pc_retries  = (PetscInt)s[8];
+    fl->pois.dt_mat      = s[9];
+    *current             = (PetscBool)(s[10] != 0);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -118,7 +118,7 @@ PetscErrorCode FluidCheckpointWrite(Fluid fl, IoCkpt ck)
   PetscCall(IoCkptWriteShared(ck, "fluid/state", IO_CKPT_REAL, FLUID_CKPT_NSTATE, s));
   for (int d = 0; d < 3; d++)
     for (int e = 0; e < 2; e++) {
-      const FluidBC *bc = &fl->bc[d][e];
+      const FluidBC *bc = &fl->bc.face[d][e];
       PetscReal     *r  = &inlet[4 * (2 * d + e)];
       r[0]              = (PetscReal)bc->row;
       for (int k = 0; k < 3; k++) r[1 + k] = bc->vel[k];
@@ -136,9 +136,9 @@ PetscErrorCode FluidCheckpointRead(Fluid fl, IoCkpt ck)
 
   PetscFunctionBeginUser;
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidCheckpointRead");
-  if (!fl->eps_pc) { /* the preconditioner is rebuilt from them even if this run writes no checkpoint */
-    PetscCall(VecDuplicate(fl->p, &fl->eps_pc));
-    PetscCall(VecDuplicate(fl->u, &fl->beta_pc));
+  if (!fl->pois.eps_pc) { /* the preconditioner is rebuilt from them even if this run writes no checkpoint */
+    PetscCall(VecDuplicate(fl->fld.p, &fl->pois.eps_pc));
+    PetscCall(VecDuplicate(fl->fld.u, &fl->pois.beta_pc));
     fl->ckpt = PETSC_TRUE;
   }
   FluidCkptFields(fl, names, vecs);
@@ -148,13 +148,13 @@ PetscErrorCode FluidCheckpointRead(Fluid fl, IoCkpt ck)
   PetscCall(IoCkptReadShared(ck, "fluid/inlet", IO_CKPT_REAL, 24, inlet));
   for (int d = 0; d < 3; d++)
     for (int e = 0; e < 2; e++) {
-      FluidBC         *bc = &fl->bc[d][e];
+      FluidBC         *bc = &fl->bc.face[d][e];
       const PetscReal *r  = &inlet[4 * (2 * d + e)];
       if (!bc->ntab) continue; /* a fixed inlet keeps the velocity of its options */
       bc->row = (PetscInt)r[0];
       for (int k = 0; k < 3; k++) bc->vel[k] = r[1 + k];
     }
-  fl->dt_vmat = -1; /* the implicit viscous operator is assembled again at the next step */
+  fl->vimp.dt_mat = -1; /* the implicit viscous operator is assembled again at the next step */
   PetscCall(FluidPoissonRestore(fl, current));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

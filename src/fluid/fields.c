@@ -10,14 +10,14 @@ PetscErrorCode FluidSetPorosityFunction(Fluid fl, FluidScalarFn fn, void *ctx)
   PetscInt         idx[3], c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArray(fl->eps, &e));
+  PetscCall(VecGetArray(fl->fld.eps, &e));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
     PetscReal x[3];
     for (int d = 0; d < 3; d++) x[d] = g->lo[d] + (idx[d] + 0.5) * g->h[d];
     e[o] = fn(x, ctx);
   }
-  PetscCall(VecRestoreArray(fl->eps, &e));
+  PetscCall(VecRestoreArray(fl->fld.eps, &e));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -33,7 +33,7 @@ PetscErrorCode FluidSetVelocityFunction(Fluid fl, FluidVectorFn fn, void *ctx)
   PetscInt         idx[3], f, c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArray(fl->u, &u));
+  PetscCall(VecGetArray(fl->fld.u, &u));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
     PetscReal x[3], v[3];
@@ -41,8 +41,8 @@ PetscErrorCode FluidSetVelocityFunction(Fluid fl, FluidVectorFn fn, void *ctx)
     fn(x, v, ctx);
     u[o + d] = v[d];
   }
-  PetscCall(VecRestoreArray(fl->u, &u));
-  PetscCall(FluidBoundaryFaceValues(fl, fl->u));
+  PetscCall(VecRestoreArray(fl->fld.u, &u));
+  PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -54,7 +54,7 @@ PetscErrorCode FluidVelocityError(Fluid fl, FluidVectorFn fn, void *ctx, PetscRe
   PetscReal          s2 = 0, mx = 0, loc[2], glob[2];
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(fl->u, &u));
+  PetscCall(VecGetArrayRead(fl->fld.u, &u));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
     PetscReal x[3], v[3], err;
@@ -68,7 +68,7 @@ PetscErrorCode FluidVelocityError(Fluid fl, FluidVectorFn fn, void *ctx, PetscRe
     n++;
   skip:;
   }
-  PetscCall(VecRestoreArrayRead(fl->u, &u));
+  PetscCall(VecRestoreArrayRead(fl->fld.u, &u));
   loc[0] = s2;
   loc[1] = (PetscReal)n;
   PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, fl->comm));
@@ -86,7 +86,7 @@ PetscErrorCode FluidCellsToFaces(Fluid fl, Vec cell[3], Vec face)
   PetscInt         idx[3], f, c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetLocalVector(fl->cda, &loc));
+  PetscCall(DMGetLocalVector(fl->g.cda, &loc));
   PetscCall(VecGetArray(face, &out));
   for (int d = 0; d < 3; d++) {
     const PetscScalar *a;
@@ -97,6 +97,6 @@ PetscErrorCode FluidCellsToFaces(Fluid fl, Vec cell[3], Vec face)
     PetscCall(VecRestoreArrayRead(loc, &a));
   }
   PetscCall(VecRestoreArray(face, &out));
-  PetscCall(DMRestoreLocalVector(fl->cda, &loc));
+  PetscCall(DMRestoreLocalVector(fl->g.cda, &loc));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

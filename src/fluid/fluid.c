@@ -26,9 +26,9 @@ static PetscErrorCode FluidRegisterEvents(Fluid fl)
     PetscCall(PetscLogEventRegister("FluidCorrect", cid, &ev[2]));
     done = PETSC_TRUE;
   }
-  fl->ev_predict = ev[0];
-  fl->ev_poisson = ev[1];
-  fl->ev_correct = ev[2];
+  fl->ev.predict = ev[0];
+  fl->ev.poisson = ev[1];
+  fl->ev.correct = ev[2];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -39,19 +39,19 @@ PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&fl));
   PetscCall(PetscObjectGetComm((PetscObject)dom->da, &fl->comm));
-  fl->dom       = dom;
-  fl->rho       = 1000.0;
-  fl->mu        = 1.0e-3;
-  fl->dt        = 1.0e-3;
-  fl->p_out     = 0.0;
-  fl->adv       = FLUID_ADV_CENTRAL;
-  fl->visc      = FLUID_VISC_EXPLICIT;
-  fl->cfl_max   = 0.5;
-  fl->visc_max  = 0.5;
-  fl->pc_lag    = 20;
-  fl->pc_growth = 1.5;
+  fl->dom            = dom;
+  fl->prop.rho       = 1000.0;
+  fl->prop.mu        = 1.0e-3;
+  fl->clock.dt       = 1.0e-3;
+  fl->bc.p_out       = 0.0;
+  fl->mom.adv        = FLUID_ADV_CENTRAL;
+  fl->mom.visc       = FLUID_VISC_EXPLICIT;
+  fl->clock.cfl_max  = 0.5;
+  fl->clock.visc_max = 0.5;
+  fl->pois.pc_lag    = 20;
+  fl->pois.pc_growth = 1.5;
   for (int d = 0; d < 3; d++)
-    for (int s = 0; s < 2; s++) fl->bc[d][s].type = dom->periodic[d] ? FLUID_BC_PERIODIC : FLUID_BC_WALL;
+    for (int s = 0; s < 2; s++) fl->bc.face[d][s].type = dom->periodic[d] ? FLUID_BC_PERIODIC : FLUID_BC_WALL;
   PetscCall(FluidRegisterEvents(fl));
   *fluid = fl;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -59,27 +59,31 @@ PetscErrorCode FluidCreate(Domain *dom, Fluid *fluid)
 
 PetscErrorCode FluidSetFromOptions(Fluid fl)
 {
+  PetscInt adv = fl->mom.adv, visc = fl->mom.visc;
+
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid (porosity-averaged Navier-Stokes)", NULL);
-  PetscCall(SableOptionsReal("-fluid_density", "Fluid density rho_f", "kg/m^3", "(0,inf)", fl->rho, &fl->rho, NULL));
-  PetscCall(SableOptionsReal("-fluid_viscosity", "Dynamic viscosity mu", "Pa s", "(0,inf)", fl->mu, &fl->mu, NULL));
-  PetscCall(SableOptionsReal("-fluid_dt", "Fluid time step", "s", "(0,inf)", fl->dt, &fl->dt, &fl->dt_set));
-  PetscCall(SableOptionsRealN("-fluid_gravity", "Gravity g, acts as rho eps g", "m/s^2", fl->gravity, 3, 3, NULL));
-  PetscCall(SableOptionsRealN("-fluid_pressure_gradient", "Imposed mean pressure gradient G, acts as the force -G per unit volume", "Pa/m", fl->dpdx, 3, 3, NULL));
-  PetscCall(PetscOptionsEnum("-fluid_advection", "Advection scheme: central (2nd order), tvd (van Leer limited upwind), none (Stokes)", NULL, FluidAdvectionNames, (PetscEnum)fl->adv, (PetscEnum *)&fl->adv, NULL));
-  PetscCall(PetscOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", NULL, FluidViscousNames, (PetscEnum)fl->visc, (PetscEnum *)&fl->visc, NULL));
-  PetscCall(SableOptionsReal("-fluid_cfl_max", "Largest advective CFL number dt*sum|u_d|/h_d allowed", NULL, "(0,1]", fl->cfl_max, &fl->cfl_max, NULL));
-  PetscCall(SableOptionsReal("-fluid_viscous_number_max", "Largest explicit viscous number 2 dt nu sum 1/h_d^2 allowed (stability needs <= 1)", NULL, "(0,1]", fl->visc_max, &fl->visc_max, NULL));
-  PetscCall(SableOptionsInt("-fluid_poisson_pc_lag", "Keep the Poisson preconditioner for up to this many matrix changes (0: rebuild at every change)", NULL, "[0,inf)", fl->pc_lag, &fl->pc_lag, NULL));
-  PetscCall(SableOptionsReal("-fluid_poisson_pc_lag_growth", "Rebuild a lagged preconditioner earlier when the iterations exceed growth x those after its build + 1", NULL, "[1,inf)", fl->pc_growth, &fl->pc_growth, NULL));
-  PetscCall(PetscOptionsBool("-fluid_adaptive_dt", "Lower dt to the stability limit instead of stopping", NULL, fl->adaptive, &fl->adaptive, NULL));
+  PetscCall(SableOptionsReal("-fluid_density", "Fluid density rho_f", "kg/m^3", "(0,inf)", fl->prop.rho, &fl->prop.rho, NULL));
+  PetscCall(SableOptionsReal("-fluid_viscosity", "Dynamic viscosity mu", "Pa s", "(0,inf)", fl->prop.mu, &fl->prop.mu, NULL));
+  PetscCall(SableOptionsReal("-fluid_dt", "Fluid time step", "s", "(0,inf)", fl->clock.dt, &fl->clock.dt, &fl->clock.dt_set));
+  PetscCall(SableOptionsRealN("-fluid_gravity", "Gravity g, acts as rho eps g", "m/s^2", fl->prop.gravity, 3, 3, NULL));
+  PetscCall(SableOptionsRealN("-fluid_pressure_gradient", "Imposed mean pressure gradient G, acts as the force -G per unit volume", "Pa/m", fl->prop.dpdx, 3, 3, NULL));
+  PetscCall(SableOptionsEnum("-fluid_advection", "Advection scheme: central (2nd order), tvd (van Leer limited upwind), none (Stokes)", FluidAdvectionNames, 3, adv, &adv, NULL));
+  fl->mom.adv = (FluidAdvection)adv;
+  PetscCall(SableOptionsEnum("-fluid_viscous", "Viscous term: explicit or implicit (backward Euler, component-wise; cross terms explicit)", FluidViscousNames, 2, visc, &visc, NULL));
+  fl->mom.visc = (FluidViscous)visc;
+  PetscCall(SableOptionsReal("-fluid_cfl_max", "Largest advective CFL number dt*sum|u_d|/h_d allowed", NULL, "(0,1]", fl->clock.cfl_max, &fl->clock.cfl_max, NULL));
+  PetscCall(SableOptionsReal("-fluid_viscous_number_max", "Largest explicit viscous number 2 dt nu sum 1/h_d^2 allowed (stability needs <= 1)", NULL, "(0,1]", fl->clock.visc_max, &fl->clock.visc_max, NULL));
+  PetscCall(SableOptionsInt("-fluid_poisson_pc_lag", "Keep the Poisson preconditioner for up to this many matrix changes (0: rebuild at every change)", NULL, "[0,inf)", fl->pois.pc_lag, &fl->pois.pc_lag, NULL));
+  PetscCall(SableOptionsReal("-fluid_poisson_pc_lag_growth", "Rebuild a lagged preconditioner earlier when the iterations exceed growth x those after its build + 1", NULL, "[1,inf)", fl->pois.pc_growth, &fl->pois.pc_growth, NULL));
+  PetscCall(SableOptionsBool("-fluid_adaptive_dt", "Lower dt to the stability limit instead of stopping", fl->clock.adaptive, &fl->clock.adaptive, NULL));
   PetscOptionsEnd();
   PetscCall(FluidSetFromOptionsBC(fl));
   PetscCall(FluidSetFromOptionsInlet(fl));
-  PetscCall(KSPDestroy(&fl->ksp));
-  PetscCall(KSPDestroy(&fl->vksp));
+  PetscCall(KSPDestroy(&fl->pois.ksp));
+  PetscCall(KSPDestroy(&fl->vimp.ksp));
   PetscCall(FluidPoissonCreateKSP(fl));
-  if (fl->visc == FLUID_VISC_IMPLICIT) PetscCall(FluidViscousCreateKSP(fl));
+  if (fl->mom.visc == FLUID_VISC_IMPLICIT) PetscCall(FluidViscousCreateKSP(fl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -115,15 +119,15 @@ PetscErrorCode FluidCreateDMs(Fluid fl)
     g->h[d]  = fl->dom->h[d];
     g->lo[d] = fl->dom->lo[d];
   }
-  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, N[0], N[1], N[2], np[0], np[1], np[2], 1, 2, l[0], l[1], l[2], &fl->cda));
-  PetscCall(DMSetUp(fl->cda));
-  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, N[0] + (bt[0] == DM_BOUNDARY_PERIODIC ? 0 : 1), N[1] + (bt[1] == DM_BOUNDARY_PERIODIC ? 0 : 1), N[2] + (bt[2] == DM_BOUNDARY_PERIODIC ? 0 : 1), np[0], np[1], np[2], 3, 2, lf[0], lf[1], lf[2], &fl->fda));
-  PetscCall(DMSetUp(fl->fda));
+  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, N[0], N[1], N[2], np[0], np[1], np[2], 1, 2, l[0], l[1], l[2], &fl->g.cda));
+  PetscCall(DMSetUp(fl->g.cda));
+  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_BOX, N[0] + (bt[0] == DM_BOUNDARY_PERIODIC ? 0 : 1), N[1] + (bt[1] == DM_BOUNDARY_PERIODIC ? 0 : 1), N[2] + (bt[2] == DM_BOUNDARY_PERIODIC ? 0 : 1), np[0], np[1], np[2], 3, 2, lf[0], lf[1], lf[2], &fl->g.fda));
+  PetscCall(DMSetUp(fl->g.fda));
   for (int d = 0; d < 3; d++) PetscCall(PetscFree(lf[d]));
-  PetscCall(DMDAGetCorners(fl->cda, &g->xs[0], &g->xs[1], &g->xs[2], &g->xm[0], &g->xm[1], &g->xm[2]));
-  PetscCall(DMDAGetGhostCorners(fl->cda, &g->gcs[0], &g->gcs[1], &g->gcs[2], &g->gcm[0], &g->gcm[1], &g->gcm[2]));
-  PetscCall(DMDAGetCorners(fl->fda, NULL, NULL, NULL, &g->fxm[0], &g->fxm[1], &g->fxm[2]));
-  PetscCall(DMDAGetGhostCorners(fl->fda, &g->gfs[0], &g->gfs[1], &g->gfs[2], &g->gfm[0], &g->gfm[1], &g->gfm[2]));
+  PetscCall(DMDAGetCorners(fl->g.cda, &g->xs[0], &g->xs[1], &g->xs[2], &g->xm[0], &g->xm[1], &g->xm[2]));
+  PetscCall(DMDAGetGhostCorners(fl->g.cda, &g->gcs[0], &g->gcs[1], &g->gcs[2], &g->gcm[0], &g->gcm[1], &g->gcm[2]));
+  PetscCall(DMDAGetCorners(fl->g.fda, NULL, NULL, NULL, &g->fxm[0], &g->fxm[1], &g->fxm[2]));
+  PetscCall(DMDAGetGhostCorners(fl->g.fda, &g->gfs[0], &g->gfs[1], &g->gfs[2], &g->gfm[0], &g->gfm[1], &g->gfm[2]));
   g->cs[0] = 1;
   g->cs[1] = g->gcm[0];
   g->cs[2] = g->gcm[0] * g->gcm[1];
@@ -137,12 +141,12 @@ PetscErrorCode FluidCreateDMs(Fluid fl)
 PetscErrorCode FluidCreateLocals(Fluid fl)
 {
   PetscFunctionBeginUser;
-  PetscCall(DMCreateLocalVector(fl->cda, &fl->ploc));
-  PetscCall(VecDuplicate(fl->ploc, &fl->epsloc));
-  PetscCall(VecDuplicate(fl->ploc, &fl->epsoldloc));
-  fl->epsold_state = -1;
-  PetscCall(VecDuplicate(fl->ploc, &fl->philoc));
-  PetscCall(DMCreateLocalVector(fl->fda, &fl->uloc));
+  PetscCall(DMCreateLocalVector(fl->g.cda, &fl->fld.ploc));
+  PetscCall(VecDuplicate(fl->fld.ploc, &fl->fld.epsloc));
+  PetscCall(VecDuplicate(fl->fld.ploc, &fl->fld.epsoldloc));
+  fl->fld.epsold_state = -1;
+  PetscCall(VecDuplicate(fl->fld.ploc, &fl->pois.philoc));
+  PetscCall(DMCreateLocalVector(fl->g.fda, &fl->fld.uloc));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -151,13 +155,13 @@ PetscErrorCode FluidCreateLocals(Fluid fl)
 PetscErrorCode FluidSolversDestroy(Fluid fl)
 {
   PetscFunctionBeginUser;
-  PetscCall(MatNullSpaceDestroy(&fl->nsp));
-  PetscCall(MatDestroy(&fl->A));
-  PetscCall(PetscFree(fl->coo_v));
-  fl->ncoo = 0;
-  PetscCall(DMDestroy(&fl->pda));
-  PetscCall(MatDestroy(&fl->V));
-  PetscCall(DMDestroy(&fl->vda));
+  PetscCall(MatNullSpaceDestroy(&fl->pois.nsp));
+  PetscCall(MatDestroy(&fl->pois.A));
+  PetscCall(PetscFree(fl->pois.coo_v));
+  fl->pois.ncoo = 0;
+  PetscCall(DMDestroy(&fl->pois.pda));
+  PetscCall(MatDestroy(&fl->vimp.V));
+  PetscCall(DMDestroy(&fl->vimp.da));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -165,30 +169,30 @@ PetscErrorCode FluidSetUp(Fluid fl)
 {
   PetscFunctionBeginUser;
   PetscCall(FluidCreateDMs(fl));
-  PetscCall(DMCreateGlobalVector(fl->cda, &fl->p));
-  PetscCall(VecDuplicate(fl->p, &fl->eps));
-  PetscCall(VecDuplicate(fl->p, &fl->eps_old));
-  PetscCall(VecDuplicate(fl->p, &fl->phi));
-  PetscCall(VecDuplicate(fl->p, &fl->rhs));
-  PetscCall(VecSet(fl->eps, 1.0));
-  PetscCall(VecSet(fl->eps_old, 1.0));
-  PetscCall(DMCreateGlobalVector(fl->fda, &fl->u));
-  PetscCall(VecDuplicate(fl->u, &fl->beta));
-  PetscCall(VecDuplicate(fl->u, &fl->us));
-  PetscCall(VecDuplicate(fl->u, &fl->src));
-  PetscCall(VecDuplicate(fl->u, &fl->uhat));
-  PetscCall(VecDuplicate(fl->u, &fl->adv_old));
-  PetscCall(VecDuplicate(fl->u, &fl->advn));
-  PetscCall(VecDuplicate(fl->u, &fl->vis));
+  PetscCall(DMCreateGlobalVector(fl->g.cda, &fl->fld.p));
+  PetscCall(VecDuplicate(fl->fld.p, &fl->fld.eps));
+  PetscCall(VecDuplicate(fl->fld.p, &fl->fld.eps_old));
+  PetscCall(VecDuplicate(fl->fld.p, &fl->pois.phi));
+  PetscCall(VecDuplicate(fl->fld.p, &fl->pois.rhs));
+  PetscCall(VecSet(fl->fld.eps, 1.0));
+  PetscCall(VecSet(fl->fld.eps_old, 1.0));
+  PetscCall(DMCreateGlobalVector(fl->g.fda, &fl->fld.u));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->fld.beta));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->fld.us));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->fld.src));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->mom.uhat));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->mom.adv_old));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->mom.advn));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->mom.vis));
   if (fl->ckpt) {
-    PetscCall(VecDuplicate(fl->p, &fl->eps_pc));
-    PetscCall(VecDuplicate(fl->u, &fl->beta_pc));
+    PetscCall(VecDuplicate(fl->fld.p, &fl->pois.eps_pc));
+    PetscCall(VecDuplicate(fl->fld.u, &fl->pois.beta_pc));
   }
   PetscCall(FluidCreateLocals(fl));
-  PetscCall(FluidBoundaryFaceValues(fl, fl->u));
-  PetscCheck(fl->ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
+  PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
+  PetscCheck(fl->pois.ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
   PetscCall(FluidPoissonSetUp(fl));
-  if (fl->vksp) PetscCall(FluidViscousSetUp(fl));
+  if (fl->vimp.ksp) PetscCall(FluidViscousSetUp(fl));
   fl->setup = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -199,14 +203,14 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
 
   PetscFunctionBeginUser;
   if (!fl) PetscFunctionReturn(PETSC_SUCCESS);
-  Vec *v[] = {&fl->u, &fl->p, &fl->eps, &fl->eps_old, &fl->beta, &fl->us, &fl->src, &fl->uloc, &fl->ploc, &fl->epsloc, &fl->epsoldloc, &fl->uhat, &fl->advn, &fl->adv_old, &fl->vis, &fl->coef, &fl->coefloc, &fl->vbc, &fl->phiu, &fl->phi, &fl->rhs, &fl->philoc, &fl->eps_pc, &fl->beta_pc};
+  Vec *v[] = {&fl->fld.u, &fl->fld.p, &fl->fld.eps, &fl->fld.eps_old, &fl->fld.beta, &fl->fld.us, &fl->fld.src, &fl->fld.uloc, &fl->fld.ploc, &fl->fld.epsloc, &fl->fld.epsoldloc, &fl->mom.uhat, &fl->mom.advn, &fl->mom.adv_old, &fl->mom.vis, &fl->pois.coef, &fl->pois.coefloc, &fl->vimp.bc, &fl->vimp.phiu, &fl->pois.phi, &fl->pois.rhs, &fl->pois.philoc, &fl->pois.eps_pc, &fl->pois.beta_pc};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) PetscCall(VecDestroy(v[i]));
   PetscCall(FluidSolversDestroy(fl));
-  PetscCall(KSPDestroy(&fl->ksp));
-  PetscCall(KSPDestroy(&fl->vksp));
-  PetscCall(DMDestroy(&fl->cda));
-  PetscCall(DMDestroy(&fl->fda));
-  PetscCall(PetscFree(fl->advbuf));
+  PetscCall(KSPDestroy(&fl->pois.ksp));
+  PetscCall(KSPDestroy(&fl->vimp.ksp));
+  PetscCall(DMDestroy(&fl->g.cda));
+  PetscCall(DMDestroy(&fl->g.fda));
+  PetscCall(PetscFree(fl->mom.advbuf));
   PetscCall(PetscFree(*fluid));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -222,29 +226,29 @@ PetscErrorCode FluidSetCheckpointing(Fluid fl, PetscBool on)
 PetscErrorCode FluidGetTimeStep(Fluid fl, PetscReal *dt, PetscBool *given)
 {
   PetscFunctionBeginUser;
-  *dt = fl->dt;
-  if (given) *given = fl->dt_set;
+  *dt = fl->clock.dt;
+  if (given) *given = fl->clock.dt_set;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidGetDensity(Fluid fl, PetscReal *rho)
 {
   PetscFunctionBeginUser;
-  *rho = fl->rho;
+  *rho = fl->prop.rho;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidGetViscosity(Fluid fl, PetscReal *mu)
 {
   PetscFunctionBeginUser;
-  *mu = fl->mu;
+  *mu = fl->prop.mu;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidGetGravity(Fluid fl, PetscReal g[3])
 {
   PetscFunctionBeginUser;
-  for (int d = 0; d < 3; d++) g[d] = fl->gravity[d];
+  for (int d = 0; d < 3; d++) g[d] = fl->prop.gravity[d];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -252,51 +256,51 @@ PetscErrorCode FluidGetDMs(Fluid fl, DM *cda, DM *fda)
 {
   PetscFunctionBeginUser;
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidGetDMs");
-  if (cda) *cda = fl->cda;
-  if (fda) *fda = fl->fda;
+  if (cda) *cda = fl->g.cda;
+  if (fda) *fda = fl->g.fda;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidGetPorosity(Fluid fl, Vec *v)
 {
   PetscFunctionBeginUser;
-  *v = fl->eps;
+  *v = fl->fld.eps;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 PetscErrorCode FluidGetPorosityOld(Fluid fl, Vec *v)
 {
   PetscFunctionBeginUser;
-  *v = fl->eps_old;
+  *v = fl->fld.eps_old;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 PetscErrorCode FluidGetDragCoefficient(Fluid fl, Vec *v)
 {
   PetscFunctionBeginUser;
-  *v = fl->beta;
+  *v = fl->fld.beta;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 PetscErrorCode FluidGetSolidVelocity(Fluid fl, Vec *v)
 {
   PetscFunctionBeginUser;
-  *v = fl->us;
+  *v = fl->fld.us;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 PetscErrorCode FluidGetMomentumSource(Fluid fl, Vec *v)
 {
   PetscFunctionBeginUser;
-  *v = fl->src;
+  *v = fl->fld.src;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 PetscErrorCode FluidGetVelocity(Fluid fl, Vec *v)
 {
   PetscFunctionBeginUser;
-  *v = fl->u;
+  *v = fl->fld.u;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 PetscErrorCode FluidGetPressure(Fluid fl, Vec *v)
 {
   PetscFunctionBeginUser;
-  *v = fl->p;
+  *v = fl->fld.p;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -305,12 +309,12 @@ PetscErrorCode FluidGetLocalFields(Fluid fl, Vec *uloc, Vec *ploc)
   PetscFunctionBeginUser;
   if (uloc) {
     PetscCall(FluidLocalPorosityOld(fl, PETSC_FALSE));
-    PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc));
-    *uloc = fl->uloc;
+    PetscCall(FluidLocalVelocity(fl, fl->fld.u, fl->fld.uloc, fl->fld.epsoldloc));
+    *uloc = fl->fld.uloc;
   }
   if (ploc) {
-    PetscCall(FluidLocalCell(fl, fl->p, fl->ploc, PETSC_TRUE, fl->p_out));
-    *ploc = fl->ploc;
+    PetscCall(FluidLocalCell(fl, fl->fld.p, fl->fld.ploc, PETSC_TRUE, fl->bc.p_out));
+    *ploc = fl->fld.ploc;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -318,14 +322,14 @@ PetscErrorCode FluidGetLocalFields(Fluid fl, Vec *uloc, Vec *ploc)
 PetscErrorCode FluidApplyBoundaryValues(Fluid fl)
 {
   PetscFunctionBeginUser;
-  PetscCall(FluidBoundaryFaceValues(fl, fl->u));
+  PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidInitPorosity(Fluid fl)
 {
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(fl->eps, fl->eps_old));
-  if (fl->setup) PetscCall(FluidInletFaceValues(fl, fl->u)); /* u's level is this porosity: its inlet faces U_n / eps_f */
+  PetscCall(VecCopy(fl->fld.eps, fl->fld.eps_old));
+  if (fl->setup) PetscCall(FluidInletFaceValues(fl, fl->fld.u)); /* u's level is this porosity: its inlet faces U_n / eps_f */
   PetscFunctionReturn(PETSC_SUCCESS);
 }

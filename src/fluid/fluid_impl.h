@@ -28,7 +28,7 @@ typedef struct {
   PetscReal   tab[4 * FLUID_INLET_TABLE_MAX];
 } FluidBC;
 
-/* Geometry of the ghosted local arrays of this rank. */
+/* Geometry of the ghosted local arrays of this rank, and the two DMDAs they come from. */
 typedef struct {
   PetscInt  N[3];           /* global cells per axis */
   PetscInt  xs[3], xm[3];   /* owned cells (also the owned face points, plus the extra face) */
@@ -37,39 +37,68 @@ typedef struct {
   PetscInt  gfs[3], gfm[3]; /* ghosted face box */
   PetscInt  cs[3], fs[3];   /* strides of the cell and face local arrays */
   PetscReal h[3], lo[3];
+  DM        cda, fda; /* cell DMDA (1 dof), face DMDA (3 dofs) */
 } FluidGrid;
 
-struct _p_Fluid {
-  MPI_Comm       comm;
-  Domain        *dom;
-  FluidGrid      g;
-  DM             cda, fda;
-  FluidBC        bc[3][2];
-  PetscReal      rho, mu, dt, gravity[3], dpdx[3], p_out;
-  PetscBool      dt_set;      /* -fluid_dt given */
-  char           dt_name[96]; /* FluidSetTimeStepName: how the caller sets dt, for the stability errors' advice */
+/* Properties and body forces (fluid.c options). */
+typedef struct {
+  PetscReal rho, mu;    /* kg/m^3, Pa s */
+  PetscReal gravity[3]; /* -fluid_gravity (m/s^2) */
+  PetscReal dpdx[3];    /* -fluid_pressure_gradient: imposed mean pressure gradient (Pa/m) */
+} FluidProps;
+
+/* Boundary conditions (bc.c): one per face, the outlet pressure, whether some face is an inlet. */
+typedef struct {
+  FluidBC   face[3][2];
+  PetscReal p_out;     /* outlet pressure (Pa) */
+  PetscBool has_inlet; /* some face is an inlet: velocity ghosts read the porosity */
+} FluidBCs;
+
+/* Inlet tables in time (inlet.c); the faces' tables are in FluidBC. */
+typedef struct {
+  PetscBool linear; /* -fluid_inlet_interpolation linear (else step) */
+  PetscBool told;   /* the inlet tables' rows at the run's start were announced */
+} FluidInlet;
+
+/* The time step and its limits (fluid.c options, step.c). */
+typedef struct {
+  PetscReal dt;
+  PetscBool dt_set;      /* -fluid_dt given */
+  char      dt_name[96]; /* FluidSetTimeStepName: how the caller sets dt, for the stability errors' advice */
+  PetscReal cfl_max, visc_max;
+  PetscBool adaptive; /* -fluid_adaptive_dt */
+  PetscReal time;     /* sum of the steps taken (s): the inlet tables' clock */
+  PetscInt  nsteps;
+} FluidClock;
+
+/* Fields (global) and their ghosted local copies. */
+typedef struct {
+  Vec              u, p, eps, eps_old, beta, us, src;
+  Vec              uloc, ploc, epsloc, epsoldloc;
+  PetscObjectState epsold_state; /* eps_old's state when epsoldloc was filled (-1: never) */
+} FluidFields;
+
+/* The momentum predictor (momentum.c, step.c): schemes, AB2 history of the advection term, work. */
+typedef struct {
   FluidAdvection adv;
   FluidViscous   visc;
-  PetscReal      cfl_max, visc_max;
-  PetscBool      adaptive, setup;
-  PetscBool      inlet_linear; /* -fluid_inlet_interpolation linear (else step) */
-  PetscBool      inlet_told;   /* the inlet tables' rows at the run's start were announced (inlet.c) */
-  PetscBool      has_inlet;    /* some face is an inlet: velocity ghosts read the porosity */
-  PetscReal      time;         /* sum of the steps taken (s): the inlet tables' clock */
-  /* fields (global) */
-  Vec u, p, eps, eps_old, beta, us, src;
-  /* work: ghosted locals, AB2 history of the advection term, predictor, projection */
-  Vec              uloc, ploc, epsloc, epsoldloc, uhat, advn, adv_old, vis, phi, rhs, philoc;
-  PetscObjectState epsold_state; /* eps_old's state when epsoldloc was filled (-1: never) */
-  PetscReal        dt_old;
-  PetscBool        have_adv_old;
+  Vec            uhat, advn, adv_old, vis;
+  PetscReal      dt_old;
+  PetscScalar   *advbuf; /* advection (momentum.c): per ghosted face point, a flux, then a mass flux */
+  PetscInt       advbuf_n;
+} FluidMomentum;
+
+/* The pressure Poisson solve (poisson.c): matrix, KSP and the preconditioner's reuse. */
+typedef struct {
   DM               pda; /* star-stencil copy of cda for the Poisson matrix (same ownership) */
   Vec              coef, coefloc;
+  Vec              phi, rhs, philoc;
   Mat              A;
   PetscCount       ncoo;  /* entries of A in the order FluidPoissonAssemble writes them */
   PetscScalar     *coo_v; /* their values (MatSetValuesCOO) */
   KSP              ksp;
   MatNullSpace     nsp;
+  PetscBool        singular;
   PetscObjectState eps_state, beta_state;
   PetscReal        dt_mat;
   PetscInt         pc_lag;                                              /* -fluid_poisson_pc_lag: matrix changes a preconditioner may serve */
@@ -77,18 +106,39 @@ struct _p_Fluid {
   PetscInt         pc_age, pc_its0, pc_its_last, pc_builds, pc_retries; /* changes served, its after the build, last its, builds, failed solves redone */
   PetscReal        dt_pc;
   Vec              eps_pc, beta_pc; /* with FluidSetCheckpointing: the eps and beta of the matrix the preconditioner was built from */
-  PetscBool        ckpt;            /* FluidSetCheckpointing */
-  PetscBool        singular;
-  PetscInt         nsteps;
-  KSP              vksp; /* implicit viscous solve (only with -fluid_viscous implicit) */
-  DM               vda;  /* star-stencil copy of fda for its matrix */
+} FluidPoisson;
+
+/* The implicit viscous solve (viscous.c; only with -fluid_viscous implicit). */
+typedef struct {
+  KSP              ksp;
+  DM               da; /* star-stencil copy of fda for its matrix */
   Mat              V;
-  Vec              vbc, phiu; /* boundary part of its right-hand side; solution work vector */
-  PetscObjectState veps_state, vbeta_state;
-  PetscReal        dt_vmat;
-  PetscLogEvent    ev_predict, ev_poisson, ev_correct;
-  PetscScalar     *advbuf; /* advection (momentum.c): per ghosted face point, a flux, then a mass flux */
-  PetscInt         advbuf_n;
+  Vec              bc, phiu; /* boundary part of its right-hand side; solution work vector */
+  PetscObjectState eps_state, beta_state;
+  PetscReal        dt_mat;
+} FluidImplicitViscous;
+
+/* Log events of the step's phases. */
+typedef struct {
+  PetscLogEvent predict, poisson, correct;
+} FluidEvents;
+
+/* The Fluid: its state grouped by concern, one struct each (above). */
+struct _p_Fluid {
+  MPI_Comm             comm;
+  Domain              *dom;
+  FluidGrid            g;
+  FluidProps           prop;
+  FluidBCs             bc;
+  FluidInlet           inlet;
+  FluidClock           clock;
+  FluidFields          fld;
+  FluidMomentum        mom;
+  FluidPoisson         pois;
+  FluidImplicitViscous vimp;
+  FluidEvents          ev;
+  PetscBool            setup; /* FluidSetUp done */
+  PetscBool            ckpt;  /* FluidSetCheckpointing */
 };
 
 static inline PetscInt FluidCellOff(const FluidGrid *g, PetscInt i, PetscInt j, PetscInt k)
@@ -101,7 +151,7 @@ static inline PetscInt FluidFaceOff(const FluidGrid *g, PetscInt i, PetscInt j, 
 }
 static inline PetscBool FluidPeriodic(Fluid fl, int d)
 {
-  return fl->bc[d][0].type == FLUID_BC_PERIODIC;
+  return fl->bc.face[d][0].type == FLUID_BC_PERIODIC;
 }
 
 /* Whether component d at face point idx is an unknown of the momentum equation: not a wall or
@@ -113,8 +163,8 @@ static inline PetscBool FluidFaceActive(Fluid fl, int d, const PetscInt idx[3])
     if (e != d && idx[e] == fl->g.N[e]) return PETSC_FALSE;
   }
   if (FluidPeriodic(fl, d)) return PETSC_TRUE;
-  if (idx[d] == 0) return fl->bc[d][0].type == FLUID_BC_OUTLET;
-  if (idx[d] == fl->g.N[d]) return fl->bc[d][1].type == FLUID_BC_OUTLET;
+  if (idx[d] == 0) return fl->bc.face[d][0].type == FLUID_BC_OUTLET;
+  if (idx[d] == fl->g.N[d]) return fl->bc.face[d][1].type == FLUID_BC_OUTLET;
   return PETSC_TRUE;
 }
 

@@ -19,7 +19,7 @@ PetscErrorCode FluidGetInletVelocity(Fluid fl, PetscReal U[3], PetscInt *ninlet)
   for (int k = 0; k < 3; k++) U[k] = 0;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      const FluidBC *bc = &fl->bc[d][s];
+      const FluidBC *bc = &fl->bc.face[d][s];
       if (bc->type != FLUID_BC_INLET) continue;
       PetscCheck(n == 0 || (bc->vel[0] == U[0] && bc->vel[1] == U[1] && bc->vel[2] == U[2]), fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_bc_%c%s_velocity %g,%g,%g differs from another inlet's %g,%g,%g: a uniform initial fluid needs one inlet velocity", "xyz"[d], s ? "hi" : "lo", (double)bc->vel[0], (double)bc->vel[1], (double)bc->vel[2], (double)U[0], (double)U[1], (double)U[2]);
       for (int k = 0; k < 3; k++) U[k] = bc->vel[k];
@@ -38,37 +38,37 @@ PetscErrorCode FluidSetSuperficialVelocity(Fluid fl, const PetscReal U[3])
 
   PetscFunctionBeginUser;
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidSetSuperficialVelocity");
-  PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
-  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
-  PetscCall(VecGetArray(fl->u, &u));
+  PetscCall(FluidLocalCell(fl, fl->fld.eps, fl->fld.epsloc, PETSC_FALSE, 0.0));
+  PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(VecGetArray(fl->fld.u, &u));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++)
     if (FluidFaceActive(fl, d, idx)) u[o + d] = U[d] / (0.5 * (eps[c] + eps[c - g->cs[d]]));
-  PetscCall(VecRestoreArray(fl->u, &u));
-  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
-  PetscCall(FluidBoundaryFaceValues(fl, fl->u));
+  PetscCall(VecRestoreArray(fl->fld.u, &u));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidGetClock(Fluid fl, PetscReal *t, PetscInt *nsteps)
 {
   PetscFunctionBeginUser;
-  *t      = fl->time;
-  *nsteps = fl->nsteps;
+  *t      = fl->clock.time;
+  *nsteps = fl->clock.nsteps;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidSetClock(Fluid fl, PetscReal t, PetscInt nsteps)
 {
   PetscFunctionBeginUser;
-  fl->time   = t;
-  fl->nsteps = nsteps;
+  fl->clock.time   = t;
+  fl->clock.nsteps = nsteps;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidGetAdaptive(Fluid fl, PetscBool *on)
 {
   PetscFunctionBeginUser;
-  *on = fl->adaptive;
+  *on = fl->clock.adaptive;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -26,16 +26,16 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
   const char *const table[3][2] = {{"-fluid_bc_xlo_velocity_table", "-fluid_bc_xhi_velocity_table"}, {"-fluid_bc_ylo_velocity_table", "-fluid_bc_yhi_velocity_table"}, {"-fluid_bc_zlo_velocity_table", "-fluid_bc_zhi_velocity_table"}};
   const char       *side[2] = {"lo", "hi"}, *ax = "xyz";
   PetscBool         set;
-  FluidInletInterp  interp = fl->inlet_linear ? FLUID_INLET_LINEAR : FLUID_INLET_STEP;
+  PetscInt          interp = fl->inlet.linear ? FLUID_INLET_LINEAR : FLUID_INLET_STEP;
   PetscReal         buf[4 * FLUID_INLET_TABLE_MAX + 4]; /* one row more than allowed: PETSc stops silently at the array's size */
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(fl->comm, NULL, "Fluid inlet tables", NULL);
-  PetscCall(PetscOptionsEnum("-fluid_inlet_interpolation", "Between rows of an inlet table: step (hold the earlier row) or linear (default step)", NULL, FluidInletInterpNames, (PetscEnum)interp, (PetscEnum *)&interp, NULL));
-  fl->inlet_linear = interp == FLUID_INLET_LINEAR ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(SableOptionsEnum("-fluid_inlet_interpolation", "Between rows of an inlet table: step (hold the earlier row) or linear (default step)", FluidInletInterpNames, 2, interp, &interp, NULL));
+  fl->inlet.linear = interp == FLUID_INLET_LINEAR ? PETSC_TRUE : PETSC_FALSE;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      FluidBC    *bc  = &fl->bc[d][s];
+      FluidBC    *bc  = &fl->bc.face[d][s];
       PetscInt    n   = 4 * FLUID_INLET_TABLE_MAX + 4;
       const char *opt = table[d][s];
 
@@ -56,7 +56,7 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
       }
     }
   PetscOptionsEnd();
-  PetscCall(FluidUpdateInlets(fl, fl->time, NULL));
+  PetscCall(FluidUpdateInlets(fl, fl->clock.time, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -85,16 +85,16 @@ static inline PetscInt fluid_inlet_at(const FluidBC *bc, PetscBool linear, Petsc
 static PetscErrorCode FluidAnnounceInlets(Fluid fl)
 {
   const char     *side[2] = {"lo", "hi"}, *ax = "xyz";
-  const PetscReal t = fl->time, tol = 1e-9 * PetscMax(1.0, PetscAbsReal(t));
+  const PetscReal t = fl->clock.time, tol = 1e-9 * PetscMax(1.0, PetscAbsReal(t));
 
   PetscFunctionBeginUser;
-  fl->inlet_told = PETSC_TRUE;
+  fl->inlet.told = PETSC_TRUE;
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      const FluidBC *bc = &fl->bc[d][s];
+      const FluidBC *bc = &fl->bc.face[d][s];
       if (!bc->ntab || bc->row < 0) continue;
       const PetscReal *row  = &bc->tab[4 * bc->row];
-      const char      *ramp = fl->inlet_linear && bc->row + 1 < bc->ntab ? ", ramping to the next row" : "";
+      const char      *ramp = fl->inlet.linear && bc->row + 1 < bc->ntab ? ", ramping to the next row" : "";
       if (row[0] >= t - tol) PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s reaches row %d of its table at t = %g s: velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)bc->row + 1, (double)t, (double)row[1], (double)row[2], (double)row[3], ramp));
       else PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s is at row %d of its table (reached at t = %g s, before this run's start at t = %g s): velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)bc->row + 1, (double)row[0], (double)t, (double)row[1], (double)row[2], (double)row[3], ramp));
     }
@@ -113,15 +113,15 @@ PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed_out)
   PetscBool   changed = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  if (fl->setup && !fl->inlet_told) PetscCall(FluidAnnounceInlets(fl));
+  if (fl->setup && !fl->inlet.told) PetscCall(FluidAnnounceInlets(fl));
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      FluidBC  *bc = &fl->bc[d][s];
+      FluidBC  *bc = &fl->bc.face[d][s];
       PetscReal v[3];
       PetscInt  r;
       if (!bc->ntab) continue;
-      r = fluid_inlet_at(bc, fl->inlet_linear, t, v);
-      if (r != bc->row && r >= 0 && fl->setup) PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s reaches row %d of its table at t = %g s: velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)r + 1, (double)t, (double)bc->tab[4 * r + 1], (double)bc->tab[4 * r + 2], (double)bc->tab[4 * r + 3], fl->inlet_linear && r + 1 < bc->ntab ? ", ramping to the next row" : ""));
+      r = fluid_inlet_at(bc, fl->inlet.linear, t, v);
+      if (r != bc->row && r >= 0 && fl->setup) PetscCall(PetscPrintf(fl->comm, "fluid: inlet %c%s reaches row %d of its table at t = %g s: velocity %g,%g,%g m/s%s\n", ax[d], side[s], (int)r + 1, (double)t, (double)bc->tab[4 * r + 1], (double)bc->tab[4 * r + 2], (double)bc->tab[4 * r + 3], fl->inlet.linear && r + 1 < bc->ntab ? ", ramping to the next row" : ""));
       bc->row = r;
       for (int k = 0; k < 3; k++) {
         if (v[k] != bc->vel[k]) changed = PETSC_TRUE;
@@ -129,8 +129,8 @@ PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed_out)
       }
     }
   if (changed && fl->setup) {
-    PetscCall(FluidBoundaryFaceValues(fl, fl->u));
-    fl->dt_vmat = -1; /* the implicit viscous right-hand side holds the inlet values (a ramp rebuilds it every step) */
+    PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
+    fl->vimp.dt_mat = -1; /* the implicit viscous right-hand side holds the inlet values (a ramp rebuilds it every step) */
   }
   if (changed_out) *changed_out = changed;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -50,8 +50,8 @@ static PetscScalar FluidViscousAt(Fluid fl, const PetscScalar *u, const PetscSca
   PetscScalar      sum = 0;
 
   if (!transpose_only) {
-    const PetscScalar tp = 2 * fl->mu * eps[c] * (u[f + fd + d] - u[f + d]) / hd;
-    const PetscScalar tm = 2 * fl->mu * eps[c - cd] * (u[f + d] - u[f - fd + d]) / hd;
+    const PetscScalar tp = 2 * fl->prop.mu * eps[c] * (u[f + fd + d] - u[f + d]) / hd;
+    const PetscScalar tm = 2 * fl->prop.mu * eps[c - cd] * (u[f + d] - u[f - fd + d]) / hd;
     sum += (tp - tm) / hd;
   }
   for (int e = 0; e < 3; e++) {
@@ -64,7 +64,7 @@ static PetscScalar FluidViscousAt(Fluid fl, const PetscScalar *u, const PetscSca
       const PetscScalar ee = 0.25 * (eps[cq] + eps[cq - cd] + eps[cq - ce] + eps[cq - cd - ce]);
       const PetscScalar tr = (u[fq + e] - u[fq - fd + e]) / hd;
       const PetscScalar dn = transpose_only ? 0 : (u[fq + d] - u[fq - fe + d]) / he;
-      tau[s]               = fl->mu * ee * (dn + tr);
+      tau[s]               = fl->prop.mu * ee * (dn + tr);
     }
     sum += (tau[1] - tau[0]) / he;
   }
@@ -74,21 +74,21 @@ static PetscScalar FluidViscousAt(Fluid fl, const PetscScalar *u, const PetscSca
 PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out)
 {
   const FluidGrid *g   = &fl->g;
-  const PetscBool  tvd = (PetscBool)(fl->adv == FLUID_ADV_TVD);
+  const PetscBool  tvd = (PetscBool)(fl->mom.adv == FLUID_ADV_TVD);
   const PetscInt   np  = g->gfm[0] * g->gfm[1] * g->gfm[2];
   PetscInt         idx[3], f, c, o;
 
   PetscFunctionBeginUser;
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) out[o + d] = 0;
-  if (fl->adv == FLUID_ADV_NONE) PetscFunctionReturn(PETSC_SUCCESS);
-  if (fl->advbuf_n < 2 * np) {
-    PetscCall(PetscFree(fl->advbuf));
-    PetscCall(PetscMalloc1(2 * np, &fl->advbuf));
-    fl->advbuf_n = 2 * np;
+  if (fl->mom.adv == FLUID_ADV_NONE) PetscFunctionReturn(PETSC_SUCCESS);
+  if (fl->mom.advbuf_n < 2 * np) {
+    PetscCall(PetscFree(fl->mom.advbuf));
+    PetscCall(PetscMalloc1(2 * np, &fl->mom.advbuf));
+    fl->mom.advbuf_n = 2 * np;
   }
   for (int e = 0; e < 3; e++) {
-    PetscScalar   *M  = fl->advbuf + np; /* mass flux eps u_e by face point, f / 3 */
+    PetscScalar   *M  = fl->mom.advbuf + np; /* mass flux eps u_e by face point, f / 3 */
     const PetscInt pe = g->fs[e] / 3;
     PetscInt       hi[3];
     for (int k = 0; k < 3; k++) hi[k] = g->xs[k] + g->fxm[k] + (k == e);
@@ -100,7 +100,7 @@ PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscSca
         for (idx[0] = g->xs[0] - 1; idx[0] < hi[0]; idx[0]++, f += 3, c++) M[f / 3] = 0.5 * (eps[c] + eps[c - g->cs[e]]) * u[f + e];
       }
     for (int d = 0; d < 3; d++) {
-      PetscScalar *B = fl->advbuf; /* by face point: f / 3 */
+      PetscScalar *B = fl->mom.advbuf; /* by face point: f / 3 */
       /* lower-face fluxes of every owned volume and of the one above the last along e */
       for (idx[2] = g->xs[2]; idx[2] < hi[2]; idx[2]++)
         for (idx[1] = g->xs[1]; idx[1] < hi[1]; idx[1]++) {
@@ -113,7 +113,7 @@ PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscSca
     }
   }
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
-  for (int d = 0; d < 3; d++) out[o + d] = FluidFaceActive(fl, d, idx) ? fl->rho * out[o + d] : 0;
+  for (int d = 0; d < 3; d++) out[o + d] = FluidFaceActive(fl, d, idx) ? fl->prop.rho * out[o + d] : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

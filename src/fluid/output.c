@@ -11,14 +11,14 @@ PetscErrorCode FluidGetCellVelocity(Fluid fl, PetscReal *vel)
 
   PetscFunctionBeginUser;
   PetscCall(FluidLocalPorosityOld(fl, PETSC_FALSE));
-  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc));
-  PetscCall(VecGetArrayRead(fl->uloc, &u));
+  PetscCall(FluidLocalVelocity(fl, fl->fld.u, fl->fld.uloc, fl->fld.epsoldloc));
+  PetscCall(VecGetArrayRead(fl->fld.uloc, &u));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
     const PetscInt f = FluidFaceOff(g, idx[0], idx[1], idx[2]);
     for (int d = 0; d < 3; d++) vel[3 * o + d] = 0.5 * (u[f + d] + u[f + g->fs[d] + d]);
   }
-  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(VecRestoreArrayRead(fl->fld.uloc, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -36,13 +36,13 @@ PetscErrorCode FluidWriteOutput(Fluid fl, Io io)
   PetscCall(IoSetFluidMesh(io, g->lo, g->h, g->N));
   PetscCall(PetscMalloc1(3 * n, &vel));
   PetscCall(FluidGetCellVelocity(fl, vel));
-  PetscCall(VecGetArrayRead(fl->eps, &e));
-  PetscCall(VecGetArrayRead(fl->p, &p));
+  PetscCall(VecGetArrayRead(fl->fld.eps, &e));
+  PetscCall(VecGetArrayRead(fl->fld.p, &p));
   PetscCall(IoWriteField(io, "eps", 1, g->xs, g->xm, e));
   PetscCall(IoWriteField(io, "p", 1, g->xs, g->xm, p));
   PetscCall(IoWriteField(io, "velocity", 3, g->xs, g->xm, vel));
-  PetscCall(VecRestoreArrayRead(fl->p, &p));
-  PetscCall(VecRestoreArrayRead(fl->eps, &e));
+  PetscCall(VecRestoreArrayRead(fl->fld.p, &p));
+  PetscCall(VecRestoreArrayRead(fl->fld.eps, &e));
   PetscCall(PetscFree(vel));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -48,15 +48,15 @@ PetscErrorCode FluidPoissonCreateKSP(Fluid fl)
   PC pc;
 
   PetscFunctionBeginUser;
-  PetscCall(KSPCreate(fl->comm, &fl->ksp));
-  PetscCall(KSPSetOptionsPrefix(fl->ksp, "fluid_poisson_"));
-  PetscCall(KSPSetType(fl->ksp, KSPCG));
-  PetscCall(KSPGetPC(fl->ksp, &pc));
+  PetscCall(KSPCreate(fl->comm, &fl->pois.ksp));
+  PetscCall(KSPSetOptionsPrefix(fl->pois.ksp, "fluid_poisson_"));
+  PetscCall(KSPSetType(fl->pois.ksp, KSPCG));
+  PetscCall(KSPGetPC(fl->pois.ksp, &pc));
   PetscCall(PCSetType(pc, PCHYPRE));
   PetscCall(PCHYPRESetType(pc, "boomeramg"));
-  PetscCall(KSPSetTolerances(fl->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 500));
+  PetscCall(KSPSetTolerances(fl->pois.ksp, 1e-8, 1e-50, PETSC_DEFAULT, 500));
   PetscCall(FluidCheckMGLevelsOption(fl, "-fluid_poisson_pc_mg_levels"));
-  PetscCall(KSPSetFromOptions(fl->ksp));
+  PetscCall(KSPSetFromOptions(fl->pois.ksp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -70,7 +70,7 @@ static PetscErrorCode FluidPoissonCheckMG(Fluid fl)
   const char ax[] = "xyz";
 
   PetscFunctionBeginUser;
-  PetscCall(KSPGetPC(fl->ksp, &pc));
+  PetscCall(KSPGetPC(fl->pois.ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCMG, &mg));
   if (!mg) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PCMGGetLevels(pc, &L));
@@ -100,23 +100,23 @@ PetscErrorCode FluidPoissonSetUp(Fluid fl)
   DMBoundaryType  bt[3];
 
   PetscFunctionBeginUser;
-  PetscCall(DMDAGetInfo(fl->cda, NULL, NULL, NULL, NULL, &np[0], &np[1], &np[2], NULL, NULL, &bt[0], &bt[1], &bt[2], NULL));
-  PetscCall(DMDAGetOwnershipRanges(fl->cda, &l[0], &l[1], &l[2]));
-  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_STAR, fl->g.N[0], fl->g.N[1], fl->g.N[2], np[0], np[1], np[2], 1, 1, l[0], l[1], l[2], &fl->pda));
-  PetscCall(DMSetUp(fl->pda));
-  PetscCall(DMCreateMatrix(fl->pda, &fl->A));
+  PetscCall(DMDAGetInfo(fl->g.cda, NULL, NULL, NULL, NULL, &np[0], &np[1], &np[2], NULL, NULL, &bt[0], &bt[1], &bt[2], NULL));
+  PetscCall(DMDAGetOwnershipRanges(fl->g.cda, &l[0], &l[1], &l[2]));
+  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_STAR, fl->g.N[0], fl->g.N[1], fl->g.N[2], np[0], np[1], np[2], 1, 1, l[0], l[1], l[2], &fl->pois.pda));
+  PetscCall(DMSetUp(fl->pois.pda));
+  PetscCall(DMCreateMatrix(fl->pois.pda, &fl->pois.A));
   PetscCall(FluidPoissonPattern(fl));
-  PetscCall(KSPSetDM(fl->ksp, fl->pda)); /* for geometric multigrid (-fluid_poisson_pc_type mg); the operators stay ours */
-  PetscCall(KSPSetDMActive(fl->ksp, PETSC_FALSE));
+  PetscCall(KSPSetDM(fl->pois.ksp, fl->pois.pda)); /* for geometric multigrid (-fluid_poisson_pc_type mg); the operators stay ours */
+  PetscCall(KSPSetDMActive(fl->pois.ksp, PETSC_FALSE));
   PetscCall(FluidPoissonCheckMG(fl));
-  PetscCall(VecDuplicate(fl->u, &fl->coef));
-  PetscCall(VecDuplicate(fl->uloc, &fl->coefloc));
-  if (fl->singular) {
-    PetscCall(MatNullSpaceCreate(fl->comm, PETSC_TRUE, 0, NULL, &fl->nsp));
-    PetscCall(MatSetNullSpace(fl->A, fl->nsp));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->pois.coef));
+  PetscCall(VecDuplicate(fl->fld.uloc, &fl->pois.coefloc));
+  if (fl->pois.singular) {
+    PetscCall(MatNullSpaceCreate(fl->comm, PETSC_TRUE, 0, NULL, &fl->pois.nsp));
+    PetscCall(MatSetNullSpace(fl->pois.A, fl->pois.nsp));
   }
-  fl->dt_mat  = -1;
-  fl->pc_its0 = -1; /* a new matrix: the first solve builds the preconditioner */
+  fl->pois.dt_mat  = -1;
+  fl->pois.pc_its0 = -1; /* a new matrix: the first solve builds the preconditioner */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -129,16 +129,16 @@ static PetscErrorCode FluidPoissonCoefficients(Fluid fl, PetscReal dt, const Pet
   const PetscScalar *beta;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArray(fl->coef, &cf));
+  PetscCall(VecGetArray(fl->pois.coef, &cf));
   PetscCall(VecGetArrayRead(vbeta, &beta));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
     const PetscScalar ef = 0.5 * (eps[c] + eps[c - g->cs[d]]);
-    cf[o + d]            = FluidFaceActive(fl, d, idx) ? ef / (fl->rho * ef / dt + beta[o + d]) : 0;
+    cf[o + d]            = FluidFaceActive(fl, d, idx) ? ef / (fl->prop.rho * ef / dt + beta[o + d]) : 0;
   }
   PetscCall(VecRestoreArrayRead(vbeta, &beta));
-  PetscCall(VecRestoreArray(fl->coef, &cf));
-  PetscCall(DMGlobalToLocal(fl->fda, fl->coef, INSERT_VALUES, fl->coefloc));
+  PetscCall(VecRestoreArray(fl->pois.coef, &cf));
+  PetscCall(DMGlobalToLocal(fl->g.fda, fl->pois.coef, INSERT_VALUES, fl->pois.coefloc));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -160,7 +160,7 @@ static PetscErrorCode FluidPoissonPattern(Fluid fl)
   PetscCount       n = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(DMDAGetGhostCorners(fl->pda, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
+  PetscCall(DMDAGetGhostCorners(fl->pois.pda, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
   PetscCall(PetscMalloc2(7 * g->xm[0] * g->xm[1] * g->xm[2], &ci, 7 * g->xm[0] * g->xm[1] * g->xm[2], &cj));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
@@ -171,11 +171,11 @@ static PetscErrorCode FluidPoissonPattern(Fluid fl)
       for (int s = 0; s < 2; s++)
         if (fluid_poisson_neighbour(fl, idx, d, s)) ci[n] = row, cj[n++] = row + (s ? step[d] : -step[d]);
   }
-  PetscCall(MatSetPreallocationCOOLocal(fl->A, n, ci, cj));
+  PetscCall(MatSetPreallocationCOOLocal(fl->pois.A, n, ci, cj));
   PetscCall(PetscFree2(ci, cj));
-  PetscCall(PetscFree(fl->coo_v));
-  PetscCall(PetscMalloc1(n, &fl->coo_v));
-  fl->ncoo = n;
+  PetscCall(PetscFree(fl->pois.coo_v));
+  PetscCall(PetscMalloc1(n, &fl->pois.coo_v));
+  fl->pois.ncoo = n;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -185,13 +185,13 @@ static PetscErrorCode FluidPoissonAssemble(Fluid fl, PetscReal dt, const PetscSc
 {
   const FluidGrid   *g = &fl->g;
   const PetscScalar *cf;
-  PetscScalar       *v = fl->coo_v;
+  PetscScalar       *v = fl->pois.coo_v;
   PetscInt           idx[3], c, o;
   PetscCount         n = 0;
 
   PetscFunctionBeginUser;
   PetscCall(FluidPoissonCoefficients(fl, dt, eps, beta));
-  PetscCall(VecGetArrayRead(fl->coefloc, &cf));
+  PetscCall(VecGetArrayRead(fl->pois.coefloc, &cf));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   {
     const PetscInt   f  = FluidFaceOff(g, idx[0], idx[1], idx[2]);
@@ -208,10 +208,10 @@ static PetscErrorCode FluidPoissonAssemble(Fluid fl, PetscReal dt, const PetscSc
       }
     }
   }
-  PetscCheck(n == fl->ncoo, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Poisson matrix: %" PetscCount_FMT " values for a pattern of %" PetscCount_FMT, n, fl->ncoo);
-  PetscCall(VecRestoreArrayRead(fl->coefloc, &cf));
-  PetscCall(MatSetValuesCOO(fl->A, v, INSERT_VALUES));
-  PetscCall(KSPSetOperators(fl->ksp, fl->A, fl->A));
+  PetscCheck(n == fl->pois.ncoo, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Poisson matrix: %" PetscCount_FMT " values for a pattern of %" PetscCount_FMT, n, fl->pois.ncoo);
+  PetscCall(VecRestoreArrayRead(fl->pois.coefloc, &cf));
+  PetscCall(MatSetValuesCOO(fl->pois.A, v, INSERT_VALUES));
+  PetscCall(KSPSetOperators(fl->pois.ksp, fl->pois.A, fl->pois.A));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -223,11 +223,11 @@ static PetscErrorCode FluidPoissonRHS(Fluid fl, PetscReal dt, const PetscScalar 
   PetscInt         idx[3], c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArray(fl->rhs, &b));
+  PetscCall(VecGetArray(fl->pois.rhs, &b));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   b[o] = -(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt);
-  PetscCall(VecRestoreArray(fl->rhs, &b));
-  if (fl->nsp) PetscCall(MatNullSpaceRemove(fl->nsp, fl->rhs));
+  PetscCall(VecRestoreArray(fl->pois.rhs, &b));
+  if (fl->pois.nsp) PetscCall(MatNullSpaceRemove(fl->pois.nsp, fl->pois.rhs));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -240,40 +240,40 @@ static PetscErrorCode FluidCorrect(Fluid fl, const PetscScalar *eps)
   PetscInt           idx[3], f, c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(FluidLocalCell(fl, fl->phi, fl->philoc, PETSC_TRUE, 0.0));
-  PetscCall(VecGetArrayRead(fl->uhat, &uh));
-  PetscCall(VecGetArrayRead(fl->coef, &cf));
-  PetscCall(VecGetArrayRead(fl->philoc, &phi));
-  PetscCall(VecGetArray(fl->u, &u));
+  PetscCall(FluidLocalCell(fl, fl->pois.phi, fl->pois.philoc, PETSC_TRUE, 0.0));
+  PetscCall(VecGetArrayRead(fl->mom.uhat, &uh));
+  PetscCall(VecGetArrayRead(fl->pois.coef, &cf));
+  PetscCall(VecGetArrayRead(fl->pois.philoc, &phi));
+  PetscCall(VecGetArray(fl->fld.u, &u));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
     const PetscScalar ef = 0.5 * (eps[c] + eps[c - g->cs[d]]);
     u[o + d]             = uh[o + d] - (cf[o + d] / ef) * (phi[c] - phi[c - g->cs[d]]) / g->h[d];
   }
-  PetscCall(VecRestoreArray(fl->u, &u));
-  PetscCall(VecRestoreArrayRead(fl->philoc, &phi));
-  PetscCall(VecRestoreArrayRead(fl->coef, &cf));
-  PetscCall(VecRestoreArrayRead(fl->uhat, &uh));
-  PetscCall(VecAXPY(fl->p, 1.0, fl->phi));
+  PetscCall(VecRestoreArray(fl->fld.u, &u));
+  PetscCall(VecRestoreArrayRead(fl->pois.philoc, &phi));
+  PetscCall(VecRestoreArrayRead(fl->pois.coef, &cf));
+  PetscCall(VecRestoreArrayRead(fl->mom.uhat, &uh));
+  PetscCall(VecAXPY(fl->fld.p, 1.0, fl->pois.phi));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Decides, after the matrix changed, whether the preconditioner is rebuilt (see the header). */
 static inline PetscBool fluid_poisson_rebuild_pc(const struct _p_Fluid *fl, PetscReal dt)
 {
-  if (fl->pc_lag == 0 || fl->pc_its0 < 0 || dt != fl->dt_pc) return PETSC_TRUE;
-  if (fl->pc_age >= fl->pc_lag) return PETSC_TRUE;
-  return (PetscBool)(fl->pc_its_last > fl->pc_growth * fl->pc_its0 + 1);
+  if (fl->pois.pc_lag == 0 || fl->pois.pc_its0 < 0 || dt != fl->pois.dt_pc) return PETSC_TRUE;
+  if (fl->pois.pc_age >= fl->pois.pc_lag) return PETSC_TRUE;
+  return (PetscBool)(fl->pois.pc_its_last > fl->pois.pc_growth * fl->pois.pc_its0 + 1);
 }
 
 static PetscErrorCode FluidPoissonSolve(Fluid fl, PetscBool rebuild, KSPConvergedReason *reason, FluidStats *st)
 {
   PetscFunctionBeginUser;
-  PetscCall(KSPSetReusePreconditioner(fl->ksp, (PetscBool)!rebuild));
-  PetscCall(KSPSolve(fl->ksp, fl->rhs, fl->phi));
-  PetscCall(KSPGetConvergedReason(fl->ksp, reason));
-  PetscCall(KSPGetIterationNumber(fl->ksp, &st->poisson_its));
-  PetscCall(KSPGetResidualNorm(fl->ksp, &st->poisson_rnorm));
+  PetscCall(KSPSetReusePreconditioner(fl->pois.ksp, (PetscBool)!rebuild));
+  PetscCall(KSPSolve(fl->pois.ksp, fl->pois.rhs, fl->pois.phi));
+  PetscCall(KSPGetConvergedReason(fl->pois.ksp, reason));
+  PetscCall(KSPGetIterationNumber(fl->pois.ksp, &st->poisson_its));
+  PetscCall(KSPGetResidualNorm(fl->pois.ksp, &st->poisson_rnorm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -285,50 +285,50 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
   PetscBool          changed = PETSC_FALSE, rebuild = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(fl->ev_poisson, 0, 0, 0, 0));
-  PetscCall(FluidLocalVelocity(fl, fl->uhat, fl->uloc, fl->epsloc)); /* the inlets at the new level's porosity */
-  PetscCall(VecGetArrayRead(fl->uloc, &u));
-  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
-  PetscCall(VecGetArrayRead(fl->epsoldloc, &eps0));
-  PetscCall(PetscObjectStateGet((PetscObject)fl->eps, &se));
-  PetscCall(PetscObjectStateGet((PetscObject)fl->beta, &sb));
-  if (se != fl->eps_state || sb != fl->beta_state || dt != fl->dt_mat) {
-    PetscCall(FluidPoissonAssemble(fl, dt, eps, fl->beta));
-    fl->eps_state  = se;
-    fl->beta_state = sb;
-    fl->dt_mat     = dt;
-    changed        = PETSC_TRUE;
-    rebuild        = fluid_poisson_rebuild_pc(fl, dt);
+  PetscCall(PetscLogEventBegin(fl->ev.poisson, 0, 0, 0, 0));
+  PetscCall(FluidLocalVelocity(fl, fl->mom.uhat, fl->fld.uloc, fl->fld.epsloc)); /* the inlets at the new level's porosity */
+  PetscCall(VecGetArrayRead(fl->fld.uloc, &u));
+  PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(VecGetArrayRead(fl->fld.epsoldloc, &eps0));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps, &se));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &sb));
+  if (se != fl->pois.eps_state || sb != fl->pois.beta_state || dt != fl->pois.dt_mat) {
+    PetscCall(FluidPoissonAssemble(fl, dt, eps, fl->fld.beta));
+    fl->pois.eps_state  = se;
+    fl->pois.beta_state = sb;
+    fl->pois.dt_mat     = dt;
+    changed             = PETSC_TRUE;
+    rebuild             = fluid_poisson_rebuild_pc(fl, dt);
   }
   PetscCall(FluidPoissonRHS(fl, dt, u, eps, eps0));
-  PetscCall(VecRestoreArrayRead(fl->epsoldloc, &eps0));
-  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsoldloc, &eps0));
+  PetscCall(VecRestoreArrayRead(fl->fld.uloc, &u));
   PetscCall(FluidPoissonSolve(fl, rebuild, &reason, st));
-  if (reason <= 0 && !rebuild && (changed || fl->pc_age > 0)) { /* a kept preconditioner is never the reason to stop */
+  if (reason <= 0 && !rebuild && (changed || fl->pois.pc_age > 0)) { /* a kept preconditioner is never the reason to stop */
     PetscCall(PetscPrintf(fl->comm, "warning: fluid Poisson solve %s after %d iterations with a kept preconditioner; rebuilt and solved again\n", KSPConvergedReasons[reason], (int)st->poisson_its));
-    fl->pc_retries++;
+    fl->pois.pc_retries++;
     rebuild = PETSC_TRUE;
     PetscCall(FluidPoissonSolve(fl, rebuild, &reason, st));
   }
   PetscCheck(reason > 0, fl->comm, PETSC_ERR_NOT_CONVERGED, "fluid pressure Poisson solve failed: %s after %d iterations, residual %g; try -fluid_poisson_ksp_max_it, -fluid_poisson_ksp_rtol or -fluid_poisson_pc_type", KSPConvergedReasons[reason], (int)st->poisson_its, (double)st->poisson_rnorm);
   if (rebuild) {
-    fl->pc_its0 = st->poisson_its;
-    fl->pc_age  = 0;
-    fl->dt_pc   = dt;
-    fl->pc_builds++;
+    fl->pois.pc_its0 = st->poisson_its;
+    fl->pois.pc_age  = 0;
+    fl->pois.dt_pc   = dt;
+    fl->pois.pc_builds++;
     if (fl->ckpt) { /* what a checkpoint needs to build this preconditioner again */
-      PetscCall(VecCopy(fl->eps, fl->eps_pc));
-      PetscCall(VecCopy(fl->beta, fl->beta_pc));
+      PetscCall(VecCopy(fl->fld.eps, fl->pois.eps_pc));
+      PetscCall(VecCopy(fl->fld.beta, fl->pois.beta_pc));
     }
-  } else if (changed) fl->pc_age++;
-  fl->pc_its_last        = st->poisson_its;
-  st->poisson_pc_builds  = fl->pc_builds;
-  st->poisson_pc_retries = fl->pc_retries;
-  PetscCall(PetscLogEventEnd(fl->ev_poisson, 0, 0, 0, 0));
-  PetscCall(PetscLogEventBegin(fl->ev_correct, 0, 0, 0, 0));
+  } else if (changed) fl->pois.pc_age++;
+  fl->pois.pc_its_last   = st->poisson_its;
+  st->poisson_pc_builds  = fl->pois.pc_builds;
+  st->poisson_pc_retries = fl->pois.pc_retries;
+  PetscCall(PetscLogEventEnd(fl->ev.poisson, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(fl->ev.correct, 0, 0, 0, 0));
   PetscCall(FluidCorrect(fl, eps));
-  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
-  PetscCall(PetscLogEventEnd(fl->ev_correct, 0, 0, 0, 0));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(PetscLogEventEnd(fl->ev.correct, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -342,24 +342,24 @@ PetscErrorCode FluidPoissonRestore(Fluid fl, PetscBool current)
   const PetscScalar *eps;
 
   PetscFunctionBeginUser;
-  if (fl->pc_its0 >= 0) {
-    PetscCall(FluidLocalCell(fl, fl->eps_pc, fl->epsloc, PETSC_FALSE, 0.0));
-    PetscCall(VecGetArrayRead(fl->epsloc, &eps));
-    PetscCall(FluidPoissonAssemble(fl, fl->dt_pc, eps, fl->beta_pc));
-    PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
-    PetscCall(KSPSetReusePreconditioner(fl->ksp, PETSC_FALSE));
-    PetscCall(KSPSetUp(fl->ksp));
+  if (fl->pois.pc_its0 >= 0) {
+    PetscCall(FluidLocalCell(fl, fl->pois.eps_pc, fl->fld.epsloc, PETSC_FALSE, 0.0));
+    PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
+    PetscCall(FluidPoissonAssemble(fl, fl->pois.dt_pc, eps, fl->pois.beta_pc));
+    PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
+    PetscCall(KSPSetReusePreconditioner(fl->pois.ksp, PETSC_FALSE));
+    PetscCall(KSPSetUp(fl->pois.ksp));
   }
   if (!current) {
-    fl->dt_mat = -1;
+    fl->pois.dt_mat = -1;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
-  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
-  PetscCall(FluidPoissonAssemble(fl, fl->dt_mat, eps, fl->beta));
-  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
-  PetscCall(PetscObjectStateGet((PetscObject)fl->eps, &fl->eps_state));
-  PetscCall(PetscObjectStateGet((PetscObject)fl->beta, &fl->beta_state));
+  PetscCall(FluidLocalCell(fl, fl->fld.eps, fl->fld.epsloc, PETSC_FALSE, 0.0));
+  PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(FluidPoissonAssemble(fl, fl->pois.dt_mat, eps, fl->fld.beta));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps, &fl->pois.eps_state));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &fl->pois.beta_state));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -372,15 +372,15 @@ PetscErrorCode FluidDivergenceMax(Fluid fl, PetscReal dt, PetscReal *dmax)
   PetscReal          m = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsloc));
-  PetscCall(VecGetArrayRead(fl->uloc, &u));
-  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
-  PetscCall(VecGetArrayRead(fl->epsoldloc, &eps0));
+  PetscCall(FluidLocalVelocity(fl, fl->fld.u, fl->fld.uloc, fl->fld.epsloc));
+  PetscCall(VecGetArrayRead(fl->fld.uloc, &u));
+  PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(VecGetArrayRead(fl->fld.epsoldloc, &eps0));
   FLUID_FOR_OWNED_CELLS(g, idx, c, o)
   m = PetscMax(m, PetscAbsScalar(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt));
-  PetscCall(VecRestoreArrayRead(fl->epsoldloc, &eps0));
-  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
-  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsoldloc, &eps0));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(VecRestoreArrayRead(fl->fld.uloc, &u));
   PetscCall(MPIU_Allreduce(&m, dmax, 1, MPIU_REAL, MPIU_MAX, fl->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

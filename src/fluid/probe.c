@@ -46,19 +46,19 @@ PetscErrorCode FluidProbePressure(Fluid fl, const PetscReal x[3], PetscReal *p)
     mine   = (PetscBool)(mine && own[d] >= fl->g.xs[d] && own[d] < fl->g.xs[d] + fl->g.xm[d]);
     FluidProbeAxis(fl, d, x[d], &i0[d], &w[d]);
   }
-  PetscCall(DMGetLocalVector(fl->cda, &loc));
-  PetscCall(DMGlobalToLocal(fl->cda, fl->p, INSERT_VALUES, loc));
+  PetscCall(DMGetLocalVector(fl->g.cda, &loc));
+  PetscCall(DMGlobalToLocal(fl->g.cda, fl->fld.p, INSERT_VALUES, loc));
   if (mine) {
     PetscScalar ***a;
-    PetscCall(DMDAVecGetArrayRead(fl->cda, loc, &a));
+    PetscCall(DMDAVecGetArrayRead(fl->g.cda, loc, &a));
     for (int c = 0; c < 8; c++) {
       const int       b[3] = {c & 1, (c >> 1) & 1, (c >> 2) & 1};
       const PetscReal wt   = (b[0] ? w[0] : 1 - w[0]) * (b[1] ? w[1] : 1 - w[1]) * (b[2] ? w[2] : 1 - w[2]);
       if (wt != 0) v += wt * PetscRealPart(a[i0[2] + b[2]][i0[1] + b[1]][i0[0] + b[0]]);
     }
-    PetscCall(DMDAVecRestoreArrayRead(fl->cda, loc, &a));
+    PetscCall(DMDAVecRestoreArrayRead(fl->g.cda, loc, &a));
   }
-  PetscCall(DMRestoreLocalVector(fl->cda, &loc));
+  PetscCall(DMRestoreLocalVector(fl->g.cda, &loc));
   PetscCallMPI(MPI_Allreduce(&v, p, 1, MPIU_REAL, MPI_SUM, fl->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -222,14 +222,14 @@ PetscErrorCode FluidAverageFields(Fluid fl, PetscInt n, const FluidSpan *sp, Pet
     PetscCall(FluidGetCellVelocity(fl, vel));
   }
   f.vel = vel;
-  PetscCall(VecGetArrayRead(fl->p, &f.p));
-  PetscCall(VecGetArrayRead(fl->eps, &f.eps));
+  PetscCall(VecGetArrayRead(fl->fld.p, &f.p));
+  PetscCall(VecGetArrayRead(fl->fld.eps, &f.eps));
   for (PetscInt s = 0; s < n; s++) {
     if (sp[s].line) PetscCall(FluidAverageSegment(fl, &sp[s], &f, avg + 5 * s));
     else PetscCall(FluidAverageBox(fl, &sp[s], &f, avg + 5 * s));
   }
-  PetscCall(VecRestoreArrayRead(fl->eps, &f.eps));
-  PetscCall(VecRestoreArrayRead(fl->p, &f.p));
+  PetscCall(VecRestoreArrayRead(fl->fld.eps, &f.eps));
+  PetscCall(VecRestoreArrayRead(fl->fld.p, &f.p));
   PetscCall(PetscFree(vel));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -12,30 +12,30 @@
 
 PetscErrorCode FluidRedistribute(Fluid fl)
 {
-  DM   ocda = fl->cda, ofda = fl->fda;
-  Vec *cell[] = {&fl->p, &fl->eps, &fl->eps_old, &fl->phi, &fl->rhs};
-  Vec *face[] = {&fl->u, &fl->beta, &fl->us, &fl->src, &fl->uhat, &fl->advn, &fl->adv_old, &fl->vis};
-  Vec *work[] = {&fl->uloc, &fl->ploc, &fl->epsloc, &fl->epsoldloc, &fl->philoc, &fl->coef, &fl->coefloc, &fl->vbc, &fl->phiu};
+  DM   ocda = fl->g.cda, ofda = fl->g.fda;
+  Vec *cell[] = {&fl->fld.p, &fl->fld.eps, &fl->fld.eps_old, &fl->pois.phi, &fl->pois.rhs};
+  Vec *face[] = {&fl->fld.u, &fl->fld.beta, &fl->fld.us, &fl->fld.src, &fl->mom.uhat, &fl->mom.advn, &fl->mom.adv_old, &fl->mom.vis};
+  Vec *work[] = {&fl->fld.uloc, &fl->fld.ploc, &fl->fld.epsloc, &fl->fld.epsoldloc, &fl->pois.philoc, &fl->pois.coef, &fl->pois.coefloc, &fl->vimp.bc, &fl->vimp.phiu};
 
   PetscFunctionBeginUser;
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidRedistribute");
   for (size_t i = 0; i < sizeof work / sizeof work[0]; i++) PetscCall(VecDestroy(work[i]));
   PetscCall(FluidSolversDestroy(fl));
-  fl->cda = fl->fda = NULL;
+  fl->g.cda = fl->g.fda = NULL;
   PetscCall(FluidCreateDMs(fl));
-  for (size_t i = 0; i < sizeof cell / sizeof cell[0]; i++) PetscCall(DomainMoveVec(ocda, fl->cda, cell[i]));
-  for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) PetscCall(DomainMoveVec(ofda, fl->fda, face[i]));
+  for (size_t i = 0; i < sizeof cell / sizeof cell[0]; i++) PetscCall(DomainMoveVec(ocda, fl->g.cda, cell[i]));
+  for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) PetscCall(DomainMoveVec(ofda, fl->g.fda, face[i]));
   if (fl->ckpt) {
-    PetscCall(DomainMoveVec(ocda, fl->cda, &fl->eps_pc));
-    PetscCall(DomainMoveVec(ofda, fl->fda, &fl->beta_pc));
+    PetscCall(DomainMoveVec(ocda, fl->g.cda, &fl->pois.eps_pc));
+    PetscCall(DomainMoveVec(ofda, fl->g.fda, &fl->pois.beta_pc));
   }
   PetscCall(DMDestroy(&ocda));
   PetscCall(DMDestroy(&ofda));
   PetscCall(FluidCreateLocals(fl));
-  PetscCall(KSPReset(fl->ksp)); /* operators of another size follow */
+  PetscCall(KSPReset(fl->pois.ksp)); /* operators of another size follow */
   PetscCall(FluidPoissonSetUp(fl));
-  if (fl->vksp) {
-    PetscCall(KSPReset(fl->vksp));
+  if (fl->vimp.ksp) {
+    PetscCall(KSPReset(fl->vimp.ksp));
     PetscCall(FluidViscousSetUp(fl));
   }
   PetscFunctionReturn(PETSC_SUCCESS);

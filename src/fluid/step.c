@@ -35,7 +35,7 @@ static void FluidLocalLimits(Fluid fl, PetscReal dt, const PetscScalar *u, const
         emin = PetscMin(emin, eps[c + s * g->cs[d]]);
       }
     }
-    const PetscReal vis = 2 * dt * fl->mu / fl->rho * ih2 * emax / emin;
+    const PetscReal vis = 2 * dt * fl->prop.mu / fl->prop.rho * ih2 * emax / emin;
     if (cfl > lim->cfl) {
       lim->cfl = cfl;
       for (int d = 0; d < 3; d++) lim->ccell[d] = idx[d];
@@ -79,34 +79,34 @@ static PetscErrorCode FluidCheckStability(Fluid fl, PetscReal *dt, FluidStats *s
   PetscInt           imin;
 
   PetscFunctionBeginUser;
-  PetscCall(VecMin(fl->eps, &imin, &emin));
+  PetscCall(VecMin(fl->fld.eps, &imin, &emin));
   PetscCheck(emin > 0 && emin <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid porosity %g at global cell index %d is outside (0,1]", (double)emin, (int)imin);
-  PetscCall(VecGetArrayRead(fl->uloc, &u));
-  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
+  PetscCall(VecGetArrayRead(fl->fld.uloc, &u));
+  PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
   FluidLocalLimits(fl, *dt, u, eps, &lim);
-  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
-  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(VecRestoreArrayRead(fl->fld.uloc, &u));
   PetscCall(FluidMaxLoc(fl, lim.cfl, lim.ccell, &st->cfl, cc));
   PetscCall(FluidMaxLoc(fl, lim.vis, lim.vcell, &st->visc_number, vc));
-  if (fl->visc == FLUID_VISC_IMPLICIT) st->visc_number = 0;
-  if (fl->adaptive) {
+  if (fl->mom.visc == FLUID_VISC_IMPLICIT) st->visc_number = 0;
+  if (fl->clock.adaptive) {
     PetscReal scale = 1;
-    if (st->cfl > fl->cfl_max) scale = PetscMin(scale, 0.9 * fl->cfl_max / st->cfl);
-    if (st->visc_number > fl->visc_max) scale = PetscMin(scale, 0.9 * fl->visc_max / st->visc_number);
+    if (st->cfl > fl->clock.cfl_max) scale = PetscMin(scale, 0.9 * fl->clock.cfl_max / st->cfl);
+    if (st->visc_number > fl->clock.visc_max) scale = PetscMin(scale, 0.9 * fl->clock.visc_max / st->visc_number);
     *dt *= scale;
     st->cfl *= scale;
     st->visc_number *= scale;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCheck(st->cfl <= fl->cfl_max, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step dt = %g s gives CFL number %g in cell (%d,%d,%d), above the limit -fluid_cfl_max %g: lower dt%s below %g s or use -fluid_adaptive_dt", (double)*dt, (double)st->cfl, (int)cc[0], (int)cc[1], (int)cc[2], (double)fl->cfl_max, fl->dt_name, (double)(*dt * fl->cfl_max / st->cfl));
-  PetscCheck(st->visc_number <= fl->visc_max, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step dt = %g s gives explicit viscous number %g in cell (%d,%d,%d), above the limit -fluid_viscous_number_max %g: lower dt%s below %g s, use -fluid_viscous implicit or -fluid_adaptive_dt", (double)*dt, (double)st->visc_number, (int)vc[0], (int)vc[1], (int)vc[2], (double)fl->visc_max, fl->dt_name, (double)(*dt * fl->visc_max / st->visc_number));
+  PetscCheck(st->cfl <= fl->clock.cfl_max, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step dt = %g s gives CFL number %g in cell (%d,%d,%d), above the limit -fluid_cfl_max %g: lower dt%s below %g s or use -fluid_adaptive_dt", (double)*dt, (double)st->cfl, (int)cc[0], (int)cc[1], (int)cc[2], (double)fl->clock.cfl_max, fl->clock.dt_name, (double)(*dt * fl->clock.cfl_max / st->cfl));
+  PetscCheck(st->visc_number <= fl->clock.visc_max, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step dt = %g s gives explicit viscous number %g in cell (%d,%d,%d), above the limit -fluid_viscous_number_max %g: lower dt%s below %g s, use -fluid_viscous implicit or -fluid_adaptive_dt", (double)*dt, (double)st->visc_number, (int)vc[0], (int)vc[1], (int)vc[2], (double)fl->clock.visc_max, fl->clock.dt_name, (double)(*dt * fl->clock.visc_max / st->visc_number));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidSetTimeStepName(Fluid fl, const char *name)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(fl->dt_name, sizeof fl->dt_name, " (%s)", name));
+  PetscCall(PetscSNPrintf(fl->clock.dt_name, sizeof fl->clock.dt_name, " (%s)", name));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -120,18 +120,18 @@ PetscErrorCode FluidGetStableTimeStep(Fluid fl, PetscReal *dtmax)
   PetscFunctionBeginUser;
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidGetStableTimeStep");
   PetscCall(FluidLocalPorosityOld(fl, PETSC_FALSE));
-  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc));
-  PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
-  PetscCall(VecGetArrayRead(fl->uloc, &u));
-  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
+  PetscCall(FluidLocalVelocity(fl, fl->fld.u, fl->fld.uloc, fl->fld.epsoldloc));
+  PetscCall(FluidLocalCell(fl, fl->fld.eps, fl->fld.epsloc, PETSC_FALSE, 0.0));
+  PetscCall(VecGetArrayRead(fl->fld.uloc, &u));
+  PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
   FluidLocalLimits(fl, 1.0, u, eps, &lim); /* both numbers are proportional to dt */
-  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
-  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(VecRestoreArrayRead(fl->fld.uloc, &u));
   PetscCall(FluidMaxLoc(fl, lim.cfl, lim.ccell, &cfl, cell));
   PetscCall(FluidMaxLoc(fl, lim.vis, lim.vcell, &vis, cell));
   *dtmax = PETSC_MAX_REAL;
-  if (cfl > 0) *dtmax = fl->cfl_max / cfl;
-  if (fl->visc == FLUID_VISC_EXPLICIT && vis > 0) *dtmax = PetscMin(*dtmax, fl->visc_max / vis);
+  if (cfl > 0) *dtmax = fl->clock.cfl_max / cfl;
+  if (fl->mom.visc == FLUID_VISC_EXPLICIT && vis > 0) *dtmax = PetscMin(*dtmax, fl->clock.visc_max / vis);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -139,21 +139,21 @@ PetscErrorCode FluidGetStableTimeStep(Fluid fl, PetscReal *dtmax)
 static PetscErrorCode FluidPredictorRHS(Fluid fl, PetscReal dt, const PetscScalar *eps0, const PetscScalar *p)
 {
   const FluidGrid   *g  = &fl->g;
-  const PetscReal    r  = fl->nsteps ? dt / fl->dt_old : 0;
+  const PetscReal    r  = fl->clock.nsteps ? dt / fl->mom.dt_old : 0;
   const PetscReal    a1 = 1 + 0.5 * r, a0 = -0.5 * r;
   const PetscScalar *u, *A, *A0, *V, *beta, *us, *src;
   PetscScalar       *rhs;
   PetscInt           idx[3], f, c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(fl->u, &u));
-  PetscCall(VecGetArrayRead(fl->advn, &A));
-  PetscCall(VecGetArrayRead(fl->adv_old, &A0));
-  PetscCall(VecGetArrayRead(fl->vis, &V));
-  PetscCall(VecGetArrayRead(fl->beta, &beta));
-  PetscCall(VecGetArrayRead(fl->us, &us));
-  PetscCall(VecGetArrayRead(fl->src, &src));
-  PetscCall(VecGetArray(fl->uhat, &rhs));
+  PetscCall(VecGetArrayRead(fl->fld.u, &u));
+  PetscCall(VecGetArrayRead(fl->mom.advn, &A));
+  PetscCall(VecGetArrayRead(fl->mom.adv_old, &A0));
+  PetscCall(VecGetArrayRead(fl->mom.vis, &V));
+  PetscCall(VecGetArrayRead(fl->fld.beta, &beta));
+  PetscCall(VecGetArrayRead(fl->fld.us, &us));
+  PetscCall(VecGetArrayRead(fl->fld.src, &src));
+  PetscCall(VecGetArray(fl->mom.uhat, &rhs));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
     if (!FluidFaceActive(fl, d, idx)) {
@@ -162,16 +162,16 @@ static PetscErrorCode FluidPredictorRHS(Fluid fl, PetscReal dt, const PetscScala
     }
     const PetscScalar ef0 = 0.5 * (eps0[c] + eps0[c - g->cs[d]]);
     const PetscScalar gp  = (p[c] - p[c - g->cs[d]]) / g->h[d];
-    rhs[o + d]            = fl->rho * ef0 * u[o + d] / dt - (a1 * A[o + d] + a0 * A0[o + d]) + V[o + d] - gp + fl->rho * ef0 * fl->gravity[d] - fl->dpdx[d] + src[o + d] + beta[o + d] * us[o + d];
+    rhs[o + d]            = fl->prop.rho * ef0 * u[o + d] / dt - (a1 * A[o + d] + a0 * A0[o + d]) + V[o + d] - gp + fl->prop.rho * ef0 * fl->prop.gravity[d] - fl->prop.dpdx[d] + src[o + d] + beta[o + d] * us[o + d];
   }
-  PetscCall(VecRestoreArray(fl->uhat, &rhs));
-  PetscCall(VecRestoreArrayRead(fl->src, &src));
-  PetscCall(VecRestoreArrayRead(fl->us, &us));
-  PetscCall(VecRestoreArrayRead(fl->beta, &beta));
-  PetscCall(VecRestoreArrayRead(fl->vis, &V));
-  PetscCall(VecRestoreArrayRead(fl->adv_old, &A0));
-  PetscCall(VecRestoreArrayRead(fl->advn, &A));
-  PetscCall(VecRestoreArrayRead(fl->u, &u));
+  PetscCall(VecRestoreArray(fl->mom.uhat, &rhs));
+  PetscCall(VecRestoreArrayRead(fl->fld.src, &src));
+  PetscCall(VecRestoreArrayRead(fl->fld.us, &us));
+  PetscCall(VecRestoreArrayRead(fl->fld.beta, &beta));
+  PetscCall(VecRestoreArrayRead(fl->mom.vis, &V));
+  PetscCall(VecRestoreArrayRead(fl->mom.adv_old, &A0));
+  PetscCall(VecRestoreArrayRead(fl->mom.advn, &A));
+  PetscCall(VecRestoreArrayRead(fl->fld.u, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -184,16 +184,16 @@ static PetscErrorCode FluidPredictorDiagonal(Fluid fl, PetscReal dt, const Petsc
   PetscInt           idx[3], f, c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(fl->beta, &beta));
-  PetscCall(VecGetArray(fl->uhat, &uh));
+  PetscCall(VecGetArrayRead(fl->fld.beta, &beta));
+  PetscCall(VecGetArray(fl->mom.uhat, &uh));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
     if (!FluidFaceActive(fl, d, idx)) continue;
     const PetscScalar ef1 = 0.5 * (eps[c] + eps[c - g->cs[d]]);
-    uh[o + d] /= fl->rho * ef1 / dt + beta[o + d];
+    uh[o + d] /= fl->prop.rho * ef1 / dt + beta[o + d];
   }
-  PetscCall(VecRestoreArray(fl->uhat, &uh));
-  PetscCall(VecRestoreArrayRead(fl->beta, &beta));
+  PetscCall(VecRestoreArray(fl->mom.uhat, &uh));
+  PetscCall(VecRestoreArrayRead(fl->fld.beta, &beta));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -203,27 +203,27 @@ static PetscErrorCode FluidPredict(Fluid fl, PetscReal dt)
   PetscScalar       *A, *V;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(fl->ev_predict, 0, 0, 0, 0));
-  PetscCall(FluidLocalCell(fl, fl->p, fl->ploc, PETSC_TRUE, fl->p_out));
-  PetscCall(VecGetArrayRead(fl->uloc, &u));
-  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
-  PetscCall(VecGetArrayRead(fl->epsoldloc, &eps0));
-  PetscCall(VecGetArrayRead(fl->ploc, &p));
-  PetscCall(VecGetArray(fl->advn, &A));
-  PetscCall(VecGetArray(fl->vis, &V));
+  PetscCall(PetscLogEventBegin(fl->ev.predict, 0, 0, 0, 0));
+  PetscCall(FluidLocalCell(fl, fl->fld.p, fl->fld.ploc, PETSC_TRUE, fl->bc.p_out));
+  PetscCall(VecGetArrayRead(fl->fld.uloc, &u));
+  PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(VecGetArrayRead(fl->fld.epsoldloc, &eps0));
+  PetscCall(VecGetArrayRead(fl->fld.ploc, &p));
+  PetscCall(VecGetArray(fl->mom.advn, &A));
+  PetscCall(VecGetArray(fl->mom.vis, &V));
   PetscCall(FluidAdvectionTerm(fl, u, eps0, A));
-  PetscCall(FluidViscousTerm(fl, u, eps0, (PetscBool)(fl->visc == FLUID_VISC_IMPLICIT), V));
-  PetscCall(VecRestoreArray(fl->vis, &V));
-  PetscCall(VecRestoreArray(fl->advn, &A));
+  PetscCall(FluidViscousTerm(fl, u, eps0, (PetscBool)(fl->mom.visc == FLUID_VISC_IMPLICIT), V));
+  PetscCall(VecRestoreArray(fl->mom.vis, &V));
+  PetscCall(VecRestoreArray(fl->mom.advn, &A));
   PetscCall(FluidPredictorRHS(fl, dt, eps0, p));
-  if (fl->visc == FLUID_VISC_EXPLICIT) PetscCall(FluidPredictorDiagonal(fl, dt, eps));
-  PetscCall(VecRestoreArrayRead(fl->ploc, &p));
-  PetscCall(VecRestoreArrayRead(fl->epsoldloc, &eps0));
-  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
-  PetscCall(VecRestoreArrayRead(fl->uloc, &u));
-  if (fl->visc == FLUID_VISC_IMPLICIT) PetscCall(FluidViscousSolve(fl, dt, fl->uhat, fl->uhat));
-  PetscCall(VecCopy(fl->advn, fl->adv_old));
-  PetscCall(PetscLogEventEnd(fl->ev_predict, 0, 0, 0, 0));
+  if (fl->mom.visc == FLUID_VISC_EXPLICIT) PetscCall(FluidPredictorDiagonal(fl, dt, eps));
+  PetscCall(VecRestoreArrayRead(fl->fld.ploc, &p));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsoldloc, &eps0));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(VecRestoreArrayRead(fl->fld.uloc, &u));
+  if (fl->mom.visc == FLUID_VISC_IMPLICIT) PetscCall(FluidViscousSolve(fl, dt, fl->mom.uhat, fl->mom.uhat));
+  PetscCall(VecCopy(fl->mom.advn, fl->mom.adv_old));
+  PetscCall(PetscLogEventEnd(fl->ev.predict, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -233,23 +233,23 @@ PetscErrorCode FluidStep(Fluid fl, PetscReal dt, FluidStats *st)
   PetscCheck(fl->setup, fl->comm, PETSC_ERR_ORDER, "call FluidSetUp before FluidStep");
   PetscCheck(dt > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "fluid time step %g must be > 0 (s)", (double)dt);
   PetscCall(PetscMemzero(st, sizeof *st));
-  PetscCall(FluidLocalCell(fl, fl->eps, fl->epsloc, PETSC_FALSE, 0.0));
+  PetscCall(FluidLocalCell(fl, fl->fld.eps, fl->fld.epsloc, PETSC_FALSE, 0.0));
   PetscCall(FluidLocalPorosityOld(fl, PETSC_TRUE));
-  PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc)); /* u^n: inlets at eps^n */
+  PetscCall(FluidLocalVelocity(fl, fl->fld.u, fl->fld.uloc, fl->fld.epsoldloc)); /* u^n: inlets at eps^n */
   PetscCall(FluidCheckStability(fl, &dt, st));
   /* the inlets at the end of the step actually taken (adaptive stepping may have cut dt); a
    * changed inlet refills the ghosts, and the next step's check sees its velocity */
   PetscBool changed;
-  PetscCall(FluidUpdateInlets(fl, fl->time + dt, &changed));
-  if (changed) PetscCall(FluidLocalVelocity(fl, fl->u, fl->uloc, fl->epsoldloc));
+  PetscCall(FluidUpdateInlets(fl, fl->clock.time + dt, &changed));
+  if (changed) PetscCall(FluidLocalVelocity(fl, fl->fld.u, fl->fld.uloc, fl->fld.epsoldloc));
   PetscCall(FluidPredict(fl, dt));
   PetscCall(FluidProject(fl, dt, st));
   PetscCall(FluidDivergenceMax(fl, dt, &st->div_max));
-  PetscCall(VecCopy(fl->eps, fl->eps_old));
+  PetscCall(VecCopy(fl->fld.eps, fl->fld.eps_old));
   PetscCall(FluidInletsEndStep(fl)); /* u^{n+1}'s level is eps_old now */
-  fl->dt_old = dt;
-  fl->nsteps++;
-  fl->time += dt;
+  fl->mom.dt_old = dt;
+  fl->clock.nsteps++;
+  fl->clock.time += dt;
   st->dt = dt;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

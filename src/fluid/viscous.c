@@ -17,15 +17,15 @@ PetscErrorCode FluidViscousCreateKSP(Fluid fl)
   PC pc;
 
   PetscFunctionBeginUser;
-  PetscCall(KSPCreate(fl->comm, &fl->vksp));
-  PetscCall(KSPSetOptionsPrefix(fl->vksp, "fluid_viscous_"));
-  PetscCall(KSPSetType(fl->vksp, KSPCG));
-  PetscCall(KSPGetPC(fl->vksp, &pc));
+  PetscCall(KSPCreate(fl->comm, &fl->vimp.ksp));
+  PetscCall(KSPSetOptionsPrefix(fl->vimp.ksp, "fluid_viscous_"));
+  PetscCall(KSPSetType(fl->vimp.ksp, KSPCG));
+  PetscCall(KSPGetPC(fl->vimp.ksp, &pc));
   PetscCall(PCSetType(pc, PCJACOBI));
-  PetscCall(KSPSetTolerances(fl->vksp, 1e-10, 1e-50, PETSC_DEFAULT, 1000));
-  PetscCall(KSPSetInitialGuessNonzero(fl->vksp, PETSC_TRUE));
+  PetscCall(KSPSetTolerances(fl->vimp.ksp, 1e-10, 1e-50, PETSC_DEFAULT, 1000));
+  PetscCall(KSPSetInitialGuessNonzero(fl->vimp.ksp, PETSC_TRUE));
   PetscCall(FluidCheckMGLevelsOption(fl, "-fluid_viscous_pc_mg_levels"));
-  PetscCall(KSPSetFromOptions(fl->vksp));
+  PetscCall(KSPSetFromOptions(fl->vimp.ksp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -37,14 +37,14 @@ PetscErrorCode FluidViscousSetUp(Fluid fl)
   DMBoundaryType  bt[3];
 
   PetscFunctionBeginUser;
-  PetscCall(DMDAGetInfo(fl->fda, NULL, &M[0], &M[1], &M[2], &np[0], &np[1], &np[2], NULL, NULL, &bt[0], &bt[1], &bt[2], NULL));
-  PetscCall(DMDAGetOwnershipRanges(fl->fda, &l[0], &l[1], &l[2]));
-  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_STAR, M[0], M[1], M[2], np[0], np[1], np[2], 3, 1, l[0], l[1], l[2], &fl->vda));
-  PetscCall(DMSetUp(fl->vda));
-  PetscCall(DMCreateMatrix(fl->vda, &fl->V));
-  PetscCall(VecDuplicate(fl->u, &fl->vbc));
-  PetscCall(VecDuplicate(fl->u, &fl->phiu));
-  fl->dt_vmat = -1;
+  PetscCall(DMDAGetInfo(fl->g.fda, NULL, &M[0], &M[1], &M[2], &np[0], &np[1], &np[2], NULL, NULL, &bt[0], &bt[1], &bt[2], NULL));
+  PetscCall(DMDAGetOwnershipRanges(fl->g.fda, &l[0], &l[1], &l[2]));
+  PetscCall(DMDACreate3d(fl->comm, bt[0], bt[1], bt[2], DMDA_STENCIL_STAR, M[0], M[1], M[2], np[0], np[1], np[2], 3, 1, l[0], l[1], l[2], &fl->vimp.da));
+  PetscCall(DMSetUp(fl->vimp.da));
+  PetscCall(DMCreateMatrix(fl->vimp.da, &fl->vimp.V));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->vimp.bc));
+  PetscCall(VecDuplicate(fl->fld.u, &fl->vimp.phiu));
+  fl->vimp.dt_mat = -1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -52,7 +52,7 @@ PetscErrorCode FluidViscousSetUp(Fluid fl)
  * ghost = alpha u(P) + gamma (bc.c). */
 static void FluidGhostRelation(Fluid fl, int d, int e, int s, PetscScalar *alpha, PetscScalar *gamma)
 {
-  const FluidBC *bc = &fl->bc[e][s];
+  const FluidBC *bc = &fl->bc.face[e][s];
   *gamma            = 0;
   if (d == e) {
     *alpha = 1;
@@ -77,8 +77,8 @@ static void FluidGhostRelation(Fluid fl, int d, int e, int s, PetscScalar *alpha
 static PetscScalar FluidFixedValue(Fluid fl, const PetscScalar *eps, PetscInt cb, int d, int s)
 {
   const FluidGrid *g = &fl->g;
-  if (fl->bc[d][s].type != FLUID_BC_INLET) return 0;
-  return fl->bc[d][s].vel[d] / (0.5 * (eps[cb] + eps[cb + (s ? 1 : -1) * g->cs[d]]));
+  if (fl->bc.face[d][s].type != FLUID_BC_INLET) return 0;
+  return fl->bc.face[d][s].vel[d] / (0.5 * (eps[cb] + eps[cb + (s ? 1 : -1) * g->cs[d]]));
 }
 
 /* One row of the matrix (and its boundary right-hand side) for component d at point idx. */
@@ -95,22 +95,22 @@ static PetscErrorCode FluidViscousRow(Fluid fl, PetscReal dt, const PetscScalar 
   vbc[o + d] = 0;
   if (!FluidFaceActive(fl, d, idx)) {
     v[0] = 1;
-    PetscCall(MatSetValuesStencil(fl->V, 1, &row, 1, col, v, ADD_VALUES));
+    PetscCall(MatSetValuesStencil(fl->vimp.V, 1, &row, 1, col, v, ADD_VALUES));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  v[0] = fl->rho * 0.5 * (eps[c] + eps[c - g->cs[d]]) / dt + beta[o + d];
+  v[0] = fl->prop.rho * 0.5 * (eps[c] + eps[c - g->cs[d]]) / dt + beta[o + d];
   for (int e = 0; e < 3; e++)
     for (int s = 0; s < 2; s++) {
       const PetscInt cd = g->cs[d], ce = g->cs[e], nb = idx[e] + (s ? 1 : -1);
       PetscScalar    k;
-      if (e == d) k = 2 * fl->mu * eps[s ? c : c - cd] / (g->h[d] * g->h[d]);
+      if (e == d) k = 2 * fl->prop.mu * eps[s ? c : c - cd] / (g->h[d] * g->h[d]);
       else {
         const PetscInt cq = s ? c + ce : c;
-        k                 = fl->mu * 0.25 * (eps[cq] + eps[cq - cd] + eps[cq - ce] + eps[cq - cd - ce]) / (g->h[e] * g->h[e]);
+        k                 = fl->prop.mu * 0.25 * (eps[cq] + eps[cq - cd] + eps[cq - ce] + eps[cq - cd - ce]) / (g->h[e] * g->h[e]);
       }
       v[0] += k;
       const PetscInt top = (e == d) ? g->N[e] : g->N[e] - 1; /* last in-domain index */
-      if (FluidPeriodic(fl, e) || (nb >= 0 && nb <= top && (e != d || (nb > 0 && nb < g->N[e]) || fl->bc[e][nb ? 1 : 0].type == FLUID_BC_OUTLET))) {
+      if (FluidPeriodic(fl, e) || (nb >= 0 && nb <= top && (e != d || (nb > 0 && nb < g->N[e]) || fl->bc.face[e][nb ? 1 : 0].type == FLUID_BC_OUTLET))) {
         col[n] = row;
         if (e == 0) col[n].i = nb;
         if (e == 1) col[n].j = nb;
@@ -124,7 +124,7 @@ static PetscErrorCode FluidViscousRow(Fluid fl, PetscReal dt, const PetscScalar 
         vbc[o + d] += k * gamma;
       }
     }
-  PetscCall(MatSetValuesStencil(fl->V, 1, &row, n, col, v, ADD_VALUES)); /* ADD: with two cells on a periodic axis both neighbours are one point */
+  PetscCall(MatSetValuesStencil(fl->vimp.V, 1, &row, n, col, v, ADD_VALUES)); /* ADD: with two cells on a periodic axis both neighbours are one point */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -136,18 +136,18 @@ static PetscErrorCode FluidViscousAssemble(Fluid fl, PetscReal dt)
   PetscInt           idx[3], f, c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(MatZeroEntries(fl->V));
-  PetscCall(VecGetArrayRead(fl->epsloc, &eps));
-  PetscCall(VecGetArrayRead(fl->beta, &beta));
-  PetscCall(VecGetArray(fl->vbc, &vbc));
+  PetscCall(MatZeroEntries(fl->vimp.V));
+  PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(VecGetArrayRead(fl->fld.beta, &beta));
+  PetscCall(VecGetArray(fl->vimp.bc, &vbc));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) PetscCall(FluidViscousRow(fl, dt, eps, beta, idx, f, c, o, d, vbc));
-  PetscCall(VecRestoreArray(fl->vbc, &vbc));
-  PetscCall(VecRestoreArrayRead(fl->beta, &beta));
-  PetscCall(VecRestoreArrayRead(fl->epsloc, &eps));
-  PetscCall(MatAssemblyBegin(fl->V, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(fl->V, MAT_FINAL_ASSEMBLY));
-  PetscCall(KSPSetOperators(fl->vksp, fl->V, fl->V));
+  PetscCall(VecRestoreArray(fl->vimp.bc, &vbc));
+  PetscCall(VecRestoreArrayRead(fl->fld.beta, &beta));
+  PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
+  PetscCall(MatAssemblyBegin(fl->vimp.V, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(fl->vimp.V, MAT_FINAL_ASSEMBLY));
+  PetscCall(KSPSetOperators(fl->vimp.ksp, fl->vimp.V, fl->vimp.V));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -160,21 +160,21 @@ PetscErrorCode FluidViscousSolve(Fluid fl, PetscReal dt, Vec rhs, Vec uhat)
   PetscReal          rnorm;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectStateGet((PetscObject)fl->eps, &se));
-  PetscCall(PetscObjectStateGet((PetscObject)fl->beta, &sb));
-  if (se != fl->veps_state || sb != fl->vbeta_state || dt != fl->dt_vmat) {
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps, &se));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &sb));
+  if (se != fl->vimp.eps_state || sb != fl->vimp.beta_state || dt != fl->vimp.dt_mat) {
     PetscCall(FluidViscousAssemble(fl, dt));
-    fl->veps_state  = se;
-    fl->vbeta_state = sb;
-    fl->dt_vmat     = dt;
+    fl->vimp.eps_state  = se;
+    fl->vimp.beta_state = sb;
+    fl->vimp.dt_mat     = dt;
   }
-  PetscCall(VecAXPY(rhs, 1.0, fl->vbc));
-  PetscCall(VecCopy(fl->u, fl->phiu)); /* initial guess: the old velocity */
-  PetscCall(KSPSolve(fl->vksp, rhs, fl->phiu));
-  PetscCall(KSPGetConvergedReason(fl->vksp, &reason));
-  PetscCall(KSPGetIterationNumber(fl->vksp, &its));
-  PetscCall(KSPGetResidualNorm(fl->vksp, &rnorm));
+  PetscCall(VecAXPY(rhs, 1.0, fl->vimp.bc));
+  PetscCall(VecCopy(fl->fld.u, fl->vimp.phiu)); /* initial guess: the old velocity */
+  PetscCall(KSPSolve(fl->vimp.ksp, rhs, fl->vimp.phiu));
+  PetscCall(KSPGetConvergedReason(fl->vimp.ksp, &reason));
+  PetscCall(KSPGetIterationNumber(fl->vimp.ksp, &its));
+  PetscCall(KSPGetResidualNorm(fl->vimp.ksp, &rnorm));
   PetscCheck(reason > 0, fl->comm, PETSC_ERR_NOT_CONVERGED, "fluid implicit viscous solve failed: %s after %d iterations, residual %g; try -fluid_viscous_ksp_max_it or -fluid_viscous_pc_type", KSPConvergedReasons[reason], (int)its, (double)rnorm);
-  PetscCall(VecCopy(fl->phiu, uhat));
+  PetscCall(VecCopy(fl->vimp.phiu, uhat));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -32,10 +32,11 @@ check porosity_width_filter '-cpl_porosity_width 3.5 with -cpl_filter_width 2.: 
 check porosity_width_oneway '-cpl_porosity_width 3.5 with -cpl_mode oneway: a one-way run.s drag sees porosity 1' -cpl_porosity_width 3.5 -cpl_mode oneway
 check porosity_width_negative '-cpl_porosity_width -1.? must be >= 0' -cpl_porosity_width -1
 check porosity_width_too_wide '-cpl_porosity_width 40.? .* reaches .* beyond the domain.s length' -cpl_porosity_width 40
-check bad_drag_name 'Unknown option stokes for -cpl_drag. Available options: beetstra difelice gidaspow' -cpl_drag stokes
+check bad_drag_name '-cpl_drag stokes is not known; valid values: beetstra, difelice, gidaspow, schiller' -cpl_drag stokes
 check fluid_gravity '-fluid_gravity .* must be 0,0,0 in a coupled run' -fluid_gravity 0,0,-1
 check misspelled_option 'option -cpl_substep 3 was given but nothing reads it' -cpl_substep 3
-check bad_mode 'Unknown option both for -cpl_mode. Available options: twoway oneway' -cpl_mode both
+check bad_mode '-cpl_mode both is not known; valid values: twoway, oneway' -cpl_mode both
+check self_porosity_word 'option -cpl_self_porosity maybe: Unknown logical value: maybe' -cpl_self_porosity maybe
 CASE=cases/packed_bed/packed_bed.opts; check oneway_frozen '-cpl_mode oneway with -dem_frozen: .*nothing would be coupled' -cpl_mode oneway
 CASE=
 CASE=tests/coupling/test_conserve.opts; check init_uniform_no_inlet '-cpl_init_fluid uniform: the fluid has no inlet face' -cpl_init_fluid uniform

@@ -16,14 +16,29 @@
  *     axis is split in two). */
 /* ranks: 1 2 */
 #include "cpl_common.h"
-#include "coupling/coupling_impl.h"
 
 #define BOX_P "-domain_lo 0,0,0 -domain_hi 24,30,36 -da_grid_x 24 -da_grid_y 24 -da_grid_z 24 -domain_periodic_x -domain_periodic_y -domain_periodic_z -dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 1e-3 -dem_gravity 0,0,0 -dem_lattice 1,1,1 -dem_lattice_spacing 1 -dem_lattice_origin 11.3,14.1,17.8 -fluid_density 1 -fluid_viscosity 0.1 -cpl_substeps 5 -fluid_poisson_pc_hypre_boomeramg_relax_type_coarse symmetric-SOR/Jacobi "
 #define BOX_W "-domain_lo 0,0,0 -domain_hi 24,30,36 -da_grid_x 24 -da_grid_y 24 -da_grid_z 24 -dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 1e-3 -dem_gravity 0,0,0 -dem_lattice 4,4,4 -dem_lattice_spacing 1 -dem_lattice_origin 0,0,0 -fluid_density 1 -fluid_viscosity 0.1 -cpl_substeps 5 "
 
+/* What the checks read of a set-up: the coupling's figures and the fluid's DMDAs. */
+typedef struct {
+  CplTestView tv;
+  DM          cda, fda;
+  PetscInt    cells[3];
+} View;
+
+static PetscErrorCode GetView(const TestCpl *t, View *w)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CplGetTestView(t->cpl, &w->tv));
+  PetscCall(FluidGetDMs(t->fl, &w->cda, &w->fda));
+  for (int e = 0; e < 3; e++) w->cells[e] = t->dom.cells[e];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Largest deviation of v (dof 1: cells; 3: faces, component d) from the one-sweep stencil of a
  * unit at c (the share lost towards a missing neighbour stays at c), and the sum of v. */
-static PetscErrorCode StencilError(Cpl cpl, DM da, Vec v, int d, const PetscInt c[3], const PetscInt missing[3][2], PetscReal *err, PetscReal *sum)
+static PetscErrorCode StencilError(const View *w, DM da, Vec v, int d, const PetscInt c[3], const PetscInt missing[3][2], PetscReal *err, PetscReal *sum)
 {
   PetscInt     xs[3], xm[3], dof;
   PetscScalar *a;
@@ -43,13 +58,13 @@ static PetscErrorCode StencilError(Cpl cpl, DM da, Vec v, int d, const PetscInt 
           off += idx[e] != c[e];
           if (idx[e] != c[e]) at = e;
         }
-        for (int e = 0; e < 3; e++) ctr -= (2 - missing[e][0] - missing[e][1]) * cpl->filter_lam[e];
+        for (int e = 0; e < 3; e++) ctr -= (2 - missing[e][0] - missing[e][1]) * w->tv.filter_lam[e];
         if (off == 0) want = ctr;
         else if (off == 1) {
-          const PetscInt dd = idx[at] - c[at], n = cpl->dom->cells[at];
+          const PetscInt dd = idx[at] - c[at], n = w->cells[at];
           const PetscInt s = (dd == 1 || dd == 1 - n) ? 1 : (dd == -1 || dd == n - 1) ? 0
                                                                                       : -1;
-          if (s >= 0 && !missing[at][s]) want = cpl->filter_lam[at];
+          if (s >= 0 && !missing[at][s]) want = w->tv.filter_lam[at];
         }
         loc[0] = PetscMax(loc[0], PetscAbsReal(a[o + d] - want));
         for (int q = 0; q < dof; q++) loc[1] += a[o + q];
@@ -115,40 +130,43 @@ static PetscErrorCode Moments(const Domain *dom, DM da, Vec v, const PetscReal x
 static PetscErrorCode OneSweep(void)
 {
   TestCpl        t;
+  View           w;
   Vec            v;
   PetscReal      err, sum;
   const PetscInt c[3] = {12, 12, 12}, none[3][2] = {{0}};
 
   PetscFunctionBeginUser;
   PetscCall(TestCplCreate(BOX_P "-cpl_filter_width 1.2", &t));
-  PetscCall(CheckTrue("W = 1.2 on cells 1 x 1.25 x 1.5 is one sweep", (PetscBool)(t.cpl->filter_n == 1), t.cpl->filter_n == 1 ? "1 sweep" : "not 1 sweep"));
-  CheckDetail("bound 1e-15; lam = %.4f %.4f %.4f", (double)t.cpl->filter_lam[0], (double)t.cpl->filter_lam[1], (double)t.cpl->filter_lam[2]);
-  PetscCall(CheckClose("lam_x h_x^2 = sigma^2/2 = W^2/(16 ln 2)", t.cpl->filter_lam[0], 1.44 / (16 * PetscLogReal(2.0)), 1e-14));
-  PetscCall(DMGetGlobalVector(t.cpl->cda, &v));
-  PetscCall(Unit(t.cpl->cda, v, 0, c));
+  PetscCall(GetView(&t, &w));
+  PetscCall(CheckTrue("W = 1.2 on cells 1 x 1.25 x 1.5 is one sweep", (PetscBool)(w.tv.filter_sweeps == 1), w.tv.filter_sweeps == 1 ? "1 sweep" : "not 1 sweep"));
+  CheckDetail("bound 1e-15; lam = %.4f %.4f %.4f", (double)w.tv.filter_lam[0], (double)w.tv.filter_lam[1], (double)w.tv.filter_lam[2]);
+  PetscCall(CheckClose("lam_x h_x^2 = sigma^2/2 = W^2/(16 ln 2)", w.tv.filter_lam[0], 1.44 / (16 * PetscLogReal(2.0)), 1e-14));
+  PetscCall(DMGetGlobalVector(w.cda, &v));
+  PetscCall(Unit(w.cda, v, 0, c));
   PetscCall(CplFilter(t.cpl, v, PETSC_FALSE));
-  PetscCall(StencilError(t.cpl, t.cpl->cda, v, 0, c, none, &err, &sum));
+  PetscCall(StencilError(&w, w.cda, v, 0, c, none, &err, &sum));
   PetscCall(CheckBelow("one sweep of a unit cell vs the discrete stencil (periodic, anisotropic): max error", err, 1e-15));
   PetscCall(CheckClose("one sweep of a unit cell: sum", sum, 1, 1e-15));
-  PetscCall(DMRestoreGlobalVector(t.cpl->cda, &v));
-  PetscCall(DMGetGlobalVector(t.cpl->fda, &v));
-  PetscCall(Unit(t.cpl->fda, v, 1, c));
+  PetscCall(DMRestoreGlobalVector(w.cda, &v));
+  PetscCall(DMGetGlobalVector(w.fda, &v));
+  PetscCall(Unit(w.fda, v, 1, c));
   PetscCall(CplFilter(t.cpl, v, PETSC_TRUE));
-  PetscCall(StencilError(t.cpl, t.cpl->fda, v, 1, c, none, &err, &sum));
+  PetscCall(StencilError(&w, w.fda, v, 1, c, none, &err, &sum));
   PetscCall(CheckBelow("one sweep of a unit y-face value vs the discrete stencil (periodic): max error", err, 1e-15));
-  PetscCall(DMRestoreGlobalVector(t.cpl->fda, &v));
+  PetscCall(DMRestoreGlobalVector(w.fda, &v));
   PetscCall(TestCplDestroy(&t));
 
   PetscCall(TestCplCreate(BOX_W "-cpl_filter_width 1.2", &t));
+  PetscCall(GetView(&t, &w));
   {
     const PetscInt f[3] = {5, 7, 1}, miss[3][2] = {{0, 0}, {0, 0}, {1, 0}}; /* z-face 1: face 0 is the wall's */
-    PetscCall(DMGetGlobalVector(t.cpl->fda, &v));
-    PetscCall(Unit(t.cpl->fda, v, 2, f));
+    PetscCall(DMGetGlobalVector(w.fda, &v));
+    PetscCall(Unit(w.fda, v, 2, f));
     PetscCall(CplFilter(t.cpl, v, PETSC_TRUE));
-    PetscCall(StencilError(t.cpl, t.cpl->fda, v, 2, f, miss, &err, &sum));
+    PetscCall(StencilError(&w, w.fda, v, 2, f, miss, &err, &sum));
     PetscCall(CheckBelow("one sweep of a unit z-face value above a wall (no flux to the wall's face): max error", err, 1e-15));
     PetscCall(CheckClose("one sweep of a unit z-face value above a wall: sum", sum, 1, 1e-15));
-    PetscCall(DMRestoreGlobalVector(t.cpl->fda, &v));
+    PetscCall(DMRestoreGlobalVector(w.fda, &v));
   }
   PetscCall(TestCplDestroy(&t));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -158,6 +176,7 @@ static PetscErrorCode OneSweep(void)
 static PetscErrorCode Variance(void)
 {
   TestCpl         t;
+  View            w;
   Vec             v, eps;
   PetscReal       m, mean[3], var[3], mean0[3], var0[3], sig2, err = 0, cerr = 0;
   const PetscInt  c[3]  = {12, 12, 12};
@@ -165,25 +184,27 @@ static PetscErrorCode Variance(void)
 
   PetscFunctionBeginUser;
   PetscCall(TestCplCreate(BOX_P, &t)); /* filter off: the kernel's own spread */
+  PetscCall(GetView(&t, &w));
   PetscCall(FluidGetPorosity(t.fl, &eps));
-  PetscCall(DMGetGlobalVector(t.cpl->cda, &v));
+  PetscCall(DMGetGlobalVector(w.cda, &v));
   PetscCall(VecSet(v, 1.0));
   PetscCall(VecAXPY(v, -1.0, eps));
-  PetscCall(Moments(&t.dom, t.cpl->cda, v, xp, &m, mean0, var0));
-  PetscCall(DMRestoreGlobalVector(t.cpl->cda, &v));
+  PetscCall(Moments(&t.dom, w.cda, v, xp, &m, mean0, var0));
+  PetscCall(DMRestoreGlobalVector(w.cda, &v));
   PetscCall(TestCplDestroy(&t));
 
   PetscCall(TestCplCreate(BOX_P "-cpl_filter_width 4", &t));
+  PetscCall(GetView(&t, &w));
   sig2 = 16 / (8 * PetscLogReal(2.0));
-  PetscCall(CheckClose("W = 4: the filter's variance (W d)^2 / (8 ln 2)", t.cpl->filter_var, sig2, 1e-14));
-  CheckDetail("bound 1/6; %d sweeps", (int)t.cpl->filter_n);
-  PetscCall(CheckAtMost("W = 4: largest diffusion number of a sweep", PetscMax(t.cpl->filter_lam[0], PetscMax(t.cpl->filter_lam[1], t.cpl->filter_lam[2])), 1.0 / 6));
-  PetscCall(DMGetGlobalVector(t.cpl->cda, &v));
+  PetscCall(CheckClose("W = 4: the filter's variance (W d)^2 / (8 ln 2)", w.tv.filter_var, sig2, 1e-14));
+  CheckDetail("bound 1/6; %d sweeps", (int)w.tv.filter_sweeps);
+  PetscCall(CheckAtMost("W = 4: largest diffusion number of a sweep", PetscMax(w.tv.filter_lam[0], PetscMax(w.tv.filter_lam[1], w.tv.filter_lam[2])), 1.0 / 6));
+  PetscCall(DMGetGlobalVector(w.cda, &v));
   {
     const PetscReal xc[3] = {12.5, 15.625, 18.75}; /* cell 12's centre */
-    PetscCall(Unit(t.cpl->cda, v, 0, c));
+    PetscCall(Unit(w.cda, v, 0, c));
     PetscCall(CplFilter(t.cpl, v, PETSC_FALSE));
-    PetscCall(Moments(&t.dom, t.cpl->cda, v, xc, &m, mean, var));
+    PetscCall(Moments(&t.dom, w.cda, v, xc, &m, mean, var));
     for (int e = 0; e < 3; e++) err = PetscMax(err, PetscAbsReal(var[e] - sig2) / sig2);
     PetscCall(CheckBelow("W = 4 (9 sweeps): variance of a unit cell vs sigma^2, max over axes, relative", err, 1e-12));
     PetscCall(CheckClose("W = 4: sum of a unit cell", m, 1, 1e-14));
@@ -191,7 +212,7 @@ static PetscErrorCode Variance(void)
   PetscCall(FluidGetPorosity(t.fl, &eps));
   PetscCall(VecSet(v, 1.0));
   PetscCall(VecAXPY(v, -1.0, eps));
-  PetscCall(Moments(&t.dom, t.cpl->cda, v, xp, &m, mean, var));
+  PetscCall(Moments(&t.dom, w.cda, v, xp, &m, mean, var));
   err = 0;
   for (int e = 0; e < 3; e++) {
     err  = PetscMax(err, PetscAbsReal(var[e] - var0[e] - sig2) / sig2);
@@ -200,7 +221,7 @@ static PetscErrorCode Variance(void)
   CheckDetail("bound 1e-10; kernel's own variance %.4f %.4f %.4f, filtered %.4f %.4f %.4f", (double)var0[0], (double)var0[1], (double)var0[2], (double)var[0], (double)var[1], (double)var[2]);
   PetscCall(CheckBelow("W = 4: a sphere's solid fraction, variance filtered - unfiltered vs sigma^2, max over axes, relative", err, 1e-10));
   PetscCall(CheckBelow("W = 4: a sphere's solid fraction, centroid shift (d)", cerr, 1e-10));
-  PetscCall(DMRestoreGlobalVector(t.cpl->cda, &v));
+  PetscCall(DMRestoreGlobalVector(w.cda, &v));
   PetscCall(TestCplDestroy(&t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

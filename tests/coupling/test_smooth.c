@@ -22,7 +22,6 @@
  * On 1 and 2 ranks (the periodic y axis split at y = 12). */
 /* ranks: 1 2 */
 #include "cpl_common.h"
-#include "coupling/coupling_impl.h"
 
 #define BASE "-domain_lo 0,0,0 -domain_hi 12,24,12 -domain_periodic_y -dem_radius 0.5 -dem_density 2 -dem_kn 1e4 -dem_dt 1e-3 -dem_gravity 0,0,0 -fluid_density 1 -fluid_viscosity 0.1 "
 
@@ -76,17 +75,19 @@ static PetscReal K1(const Domain *dom, int e, PetscReal s, PetscReal x, PetscRea
 /* phi at every particle (by id, gathered on all ranks; nid ids) on cells of h, width w. */
 static PetscErrorCode PhiById(PetscReal h, PetscReal w, PetscInt nid, PetscReal *phi, PetscReal *ana, PetscReal *sum_err)
 {
-  TestCpl    t;
-  DemArrays  pa;
-  char       opts[1024];
-  PetscReal *ph, vsum[2] = {0, 0};
-  PetscInt   count;
-  const int  n = (int)(12 / h + 0.5);
+  TestCpl     t;
+  CplTestView tv;
+  DemArrays   pa;
+  char        opts[1024];
+  PetscReal  *ph, vsum[2] = {0, 0};
+  PetscInt    count;
+  const int   n = (int)(12 / h + 0.5);
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(opts, sizeof opts, BASE "-da_grid_x %d -da_grid_y %d -da_grid_z %d -dem_lattice 5,5,5 -dem_lattice_spacing 1.1 -dem_lattice_origin 0.5,0.5,0.5 -cpl_porosity_width %g%s", n, 2 * n, n, (double)w, Split()));
   PetscCall(TestCplCreateWith(opts, AddScatter, &t));
   PetscCall(CplSmoothProject(t.cpl));
+  PetscCall(CplGetTestView(t.cpl, &tv));
   PetscCall(DemGetArrays(t.dem, &pa));
   PetscCall(PetscMalloc1(pa.nlocal + 1, &ph));
   PetscCall(CplSmoothAt(t.cpl, pa.nlocal, ph, NULL));
@@ -105,15 +106,15 @@ static PetscErrorCode PhiById(PetscReal h, PetscReal w, PetscInt nid, PetscReal 
     for (PetscInt i = 0; i < nid; i++)
       for (PetscInt j = 0; j < nid; j++) {
         PetscReal k = PETSC_PI / 6;
-        for (int e = 0; e < 3; e++) k *= K1(&t.dom, e, t.cpl->pw_sigma, xs[3 * i + e], xs[3 * j + e]);
+        for (int e = 0; e < 3; e++) k *= K1(&t.dom, e, tv.smooth_sigma, xs[3 * i + e], xs[3 * j + e]);
         ana[i] += k;
       }
     PetscCall(PetscFree(xs));
   }
   { /* the solid volume on the auxiliary grid against the particles' */
-    const PetscReal va = t.cpl->pw_h[0] * t.cpl->pw_h[1] * t.cpl->pw_h[2];
+    const PetscReal va = tv.smooth_h[0] * tv.smooth_h[1] * tv.smooth_h[2];
     PetscReal       s;
-    PetscCall(VecSum(t.cpl->aglob, &s));
+    PetscCall(VecSum(tv.smooth_solid, &s));
     vsum[0] = s * va;
     PetscCall(DemGetLocalCount(t.dem, &count));
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &count, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
@@ -159,6 +160,7 @@ static PetscErrorCode Lone(const char *box, const char *split, const PetscReal x
 static PetscErrorCode FaceBalance(void)
 {
   TestCpl            t;
+  CplTestView        tv;
   CplStats           st;
   DemArrays          pa;
   DemExternal        ex;
@@ -174,6 +176,7 @@ static PetscErrorCode FaceBalance(void)
   PetscCall(TestCplRun(&t, 10, &st));
   PetscCall(CplSetParticleDrag(t.cpl));
   PetscCall(CplSetFluidDrag(t.cpl));
+  PetscCall(CplGetTestView(t.cpl, &tv));
   PetscCall(DemGetArrays(t.dem, &pa));
   PetscCall(DemGetExternal(t.dem, &ex));
   for (PetscInt p = 0; p < pa.nlocal; p++)
@@ -185,11 +188,11 @@ static PetscErrorCode FaceBalance(void)
   PetscCall(FluidGetVelocity(t.fl, &u));
   PetscCall(VecGetLocalSize(beta, &n));
   PetscCall(VecGetArrayRead(beta, &b));
-  PetscCall(VecGetArrayRead(t.cpl->kv, &kv));
+  PetscCall(VecGetArrayRead(tv.kv, &kv));
   PetscCall(VecGetArrayRead(u, &uf));
-  for (PetscInt i = 0; i < n; i++) loc[3 + i % 3] += t.cpl->cell_vol * (b[i] * uf[i] - kv[i]);
+  for (PetscInt i = 0; i < n; i++) loc[3 + i % 3] += tv.cell_vol * (b[i] * uf[i] - kv[i]);
   PetscCall(VecRestoreArrayRead(u, &uf));
-  PetscCall(VecRestoreArrayRead(t.cpl->kv, &kv));
+  PetscCall(VecRestoreArrayRead(tv.kv, &kv));
   PetscCall(VecRestoreArrayRead(beta, &b));
   PetscCall(MPIU_Allreduce(loc, sum, 6, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &scale, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));

@@ -35,12 +35,12 @@ check inlet_table_row_count '-fluid_bc_xlo_velocity_table takes rows of 4 values
 check inlet_table_times_decrease '-fluid_bc_xlo_velocity_table: times must increase strictly, row 2 has 0.5 after 1' 1 -fluid_bc_xlo_velocity_table 1,1,0,0,0.5,2,0,0
 check inlet_table_negative_time '-fluid_bc_xlo_velocity_table: time -1\.? of row 1 must be >= 0' 1 -fluid_bc_xlo_velocity_table -1,1,0,0
 check inlet_table_too_many_rows '-fluid_bc_xlo_velocity_table takes rows of 4 values t,u,v,w, 1 to 32 rows; got more than 128 values' 1 -fluid_bc_xlo_velocity_table "$(awk 'BEGIN {for (i = 0; i < 33; i++) printf "%s%d,1,0,0", i ? "," : "", i}')"
-check inlet_interpolation_name 'Unknown option cubic for -fluid_inlet_interpolation' 1 -fluid_inlet_interpolation cubic
+check inlet_interpolation_name '-fluid_inlet_interpolation cubic is not known; valid values: step, linear' 1 -fluid_inlet_interpolation cubic
 check mg_levels_too_many '-fluid_poisson_pc_mg_levels 2: the fluid grid \(-da_grid_x 16\) has 16 cells along the bounded x axis after 0 coarsenings and cannot be coarsened again' 1 -fluid_poisson_pc_type mg -fluid_poisson_pc_mg_levels 2
 check mg_levels_zero '-fluid_poisson_pc_mg_levels 0: the number of multigrid levels must be an integer in \[1,30\]' 1 -fluid_poisson_pc_type mg -fluid_poisson_pc_mg_levels 0
 check negative_pc_lag '-fluid_poisson_pc_lag -1 must be >= 0' 1 -fluid_poisson_pc_lag -1
 check pc_lag_growth_below_1 '-fluid_poisson_pc_lag_growth 0.5 must be >= 1' 1 -fluid_poisson_pc_lag_growth 0.5
-check bad_advection_name 'Unknown option upwind3 for -fluid_advection. Available options: central tvd none' 1 -fluid_advection upwind3
+check bad_advection_name '-fluid_advection upwind3 is not known; valid values: central, tvd, none' 1 -fluid_advection upwind3
 # the same too-large dt with adaptive stepping: the step is cut to 0.9 of the CFL limit
 "$exe" -io_dir "${out}.d" -fluid_dt 0.5 -fluid_adaptive_dt >"$out" 2>&1; rc=$?
 rm -rf "${out}.d"
