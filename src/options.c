@@ -179,6 +179,15 @@ PetscErrorCode SableOptionsBool_Private(PetscOptionItems *PetscOptionsObject, co
 
   PetscFunctionBeginUser;
   *v = def;
+  { /* PETSc's own refusal of a word names the first option given that word, not this one */
+    static const char *const words[] = {"true", "false", "yes", "no", "on", "off", "1", "0"};
+    char                     buf[64] = "";
+    PetscBool                given = PETSC_FALSE, ok = PETSC_FALSE;
+
+    PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, buf, sizeof buf, &given));
+    for (size_t i = 0; given && buf[0] && !ok && i < sizeof words / sizeof words[0]; i++) PetscCall(PetscStrcasecmp(buf, words[i], &ok));
+    PetscCheck(!given || !buf[0] || ok, PetscOptionsObject->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %s is not a flag; valid values: true, false (or yes, no, on, off, 1, 0; alone, it means true)", opt, buf);
+  }
   PetscCall(PetscOptionsGetBool(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, &flg));
   if (set) *set = flg;
   if (SableHelpDue(PetscOptionsObject)) {

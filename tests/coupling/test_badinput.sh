@@ -36,7 +36,9 @@ check bad_drag_name '-cpl_drag stokes is not known; valid values: beetstra, dife
 check fluid_gravity '-fluid_gravity .* must be 0,0,0 in a coupled run' -fluid_gravity 0,0,-1
 check misspelled_option 'option -cpl_substep 3 was given but nothing reads it' -cpl_substep 3
 check bad_mode '-cpl_mode both is not known; valid values: twoway, oneway' -cpl_mode both
-check self_porosity_word 'option -cpl_self_porosity maybe: Unknown logical value: maybe' -cpl_self_porosity maybe
+check self_porosity_word '^sable: error: -cpl_self_porosity maybe is not a flag; valid values: true, false' -cpl_self_porosity maybe
+# a word another option also takes: the line names this option, not the first one given the word
+check self_porosity_number '^sable: error: -cpl_self_porosity 2 is not a flag' -cpl_substeps 2 -cpl_self_porosity 2
 CASE=cases/packed_bed/packed_bed.opts; check oneway_frozen '-cpl_mode oneway with -dem_frozen: .*nothing would be coupled' -cpl_mode oneway
 CASE=
 CASE=tests/coupling/test_conserve.opts; check init_uniform_no_inlet '-cpl_init_fluid uniform: the fluid has no inlet face' -cpl_init_fluid uniform
