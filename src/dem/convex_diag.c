@@ -51,7 +51,7 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
       const DemShape  *s  = &dem->shapes.shp[dem->p.shape[i]];
       const ConvexPose pi = DemPose(dem->p.x + 3 * i, dem->p.q + 4 * i);
       ConvexContact    cc;
-      PetscCall(ConvexCollidePlane(s->cvx, &pi, wl->p, wl->n, &cc));
+      PetscCall(ConvexCollidePlane(s->cvx, &pi, wl->s.p, wl->s.n, &cc));
       if (!cc.overlap || !DemWallCovers(wl, cc.point, pi.x)) continue;
       c[2]++;
       r[3] += dem_elastic(dem, &dem->contact.pw[dem->p.shape[i]], cc.depth, dem->contact.law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);

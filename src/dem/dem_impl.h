@@ -12,9 +12,9 @@
 #include "geom/sat.h"
 #include "geom/trimesh.h"
 #include "dem/psd.h"
+#include "dem/walls.h" /* the analytic walls: DemWall, DemWalls, their contact kernels */
 
 #define DEM_MAX_SHAPES 32
-#define DEM_MAX_WALLS  24
 
 typedef struct {
   double r, rho, m, inertia, invm, invi; /* sphere radius (m), density, mass, moment of inertia */
@@ -25,108 +25,6 @@ typedef struct {
   ConvexAxes         ax;            /* a polyhedron's separating-axis candidates and box frame (geom/sat.h) */
   PetscBool          iso;           /* J1 = J2 = J3 (cube, regular polyhedra): rotation about w in one step */
 } DemShape;
-
-typedef enum {
-  DEM_WALL_PLANE,
-  DEM_WALL_RECT,
-  DEM_WALL_POLYGON,
-  DEM_WALL_CYLINDER
-} DemWallKind;
-#define DEM_POLY_MAX 8
-
-typedef struct {
-  DemWallKind kind;
-  char        name[32];         /* the option that made it, for messages: -dem_plane_0, -dem_box zlo */
-  double      p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity;
-                              a cylinder: a point of its axis, the unit axis, v = 0 */
-  double      moved;            /* distance moved since the last list build (m) */
-  /* finite rectangle p + s e1 + t e2, s,t in [0,1], touched from the front only (-dem_rect_k) */
-  PetscBool finite; /* a rectangle or a polygon: touched from the front only */
-  double    e1[3], e2[3];
-  /* convex polygon (walls_polygon.c): vertices, unit in-plane edge normals pointing inside, and
-     whether an edge is a free rim (edge contacts) or a joint with a neighbour wall (face only) */
-  PetscInt  nv;
-  double    vert[DEM_POLY_MAX][3], en[DEM_POLY_MAX][3];
-  PetscBool rim[DEM_POLY_MAX];
-  double    R; /* cylinder radius (m), particles inside (walls_cylinder.c) */
-  /* rotation about an axis (drum and its end caps): surface velocity v + omega u x (x - a) */
-  double omega, ax_p[3], ax_u[3];
-  double mu; /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
-  /* removal (-dem_plane_<k>_remove_time): from the first step whose forces act at t >= t_remove the
-     wall is gone (no list, no contacts, no travel); removed says it went */
-  double    t_remove;
-  PetscBool removed;
-  /* list of particles within reach, with their tangential springs */
-  PetscInt *idx;
-  double   *hist;
-  PetscInt  cnt, cap;
-} DemWall;
-
-/* Whether a contact at point pt of a particle centred at xc is on the wall: always for an
- * infinite plane; for a rectangle or a polygon, pt projects inside it and xc is on its front
- * side (the face rule; convex particles use it for polygons, spheres see rim edges too). */
-static inline PetscBool DemWallCovers(const DemWall *w, const double *pt, const double *xc)
-{
-  if (!w->finite) return PETSC_TRUE;
-  const double d[3] = {pt[0] - w->p[0], pt[1] - w->p[1], pt[2] - w->p[2]};
-  const double c[3] = {xc[0] - w->p[0], xc[1] - w->p[1], xc[2] - w->p[2]};
-  if (dem_dot(c, w->n) <= 0) return PETSC_FALSE;
-  if (w->kind == DEM_WALL_POLYGON) {
-    for (PetscInt e = 0; e < w->nv; e++) {
-      const double de[3] = {pt[0] - w->vert[e][0], pt[1] - w->vert[e][1], pt[2] - w->vert[e][2]};
-      if (dem_dot(de, w->en[e]) < 0) return PETSC_FALSE;
-    }
-    return PETSC_TRUE;
-  }
-  const double s = dem_dot(d, w->e1) / dem_dot(w->e1, w->e1), t = dem_dot(d, w->e2) / dem_dot(w->e2, w->e2);
-  return (PetscBool)(s >= 0 && s <= 1 && t >= 0 && t <= 1);
-}
-
-/* Sphere (centre x, radius r) against a polygon's free rim: the nearest point of the rim edges
- * the centre lies outside of; no contact if it lies outside a joint edge (the neighbour wall
- * takes over) or behind the plane. Returns the distance and the unit direction to that point. */
-static inline double dem_wall_rim(const DemWall *w, const double *x, double nrm[3])
-{
-  double best = 1e300;
-  for (PetscInt e = 0; e < w->nv; e++) {
-    const double *a = w->vert[e], *b = w->vert[(e + 1) % w->nv];
-    const double  d[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]}, ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    if (dem_dot(d, w->en[e]) >= 0) continue;
-    if (!w->rim[e]) return 1e300;
-    const double t    = PetscMin(1.0, PetscMax(0.0, dem_dot(d, ab) / dem_dot(ab, ab)));
-    const double q[3] = {a[0] + t * ab[0] - x[0], a[1] + t * ab[1] - x[1], a[2] + t * ab[2] - x[2]};
-    const double l    = sqrt(dem_dot(q, q));
-    if (l < best && l > 0) {
-      best = l;
-      for (int k = 0; k < 3; k++) nrm[k] = q[k] / l;
-    }
-  }
-  return best;
-}
-
-/* Contact of a sphere (centre x, radius r) with wall w: the overlap (> 0 when touching) and the
- * unit normal from the centre towards the wall. Plane and rectangle: the face rule above;
- * polygon: face, or its free rim; cylinder (particles inside): radial. */
-static inline double dem_wall_sphere(const DemWall *w, const double *x, double r, double nrm[3])
-{
-  const double d[3] = {x[0] - w->p[0], x[1] - w->p[1], x[2] - w->p[2]};
-  if (w->kind == DEM_WALL_CYLINDER) {
-    const double a = dem_dot(d, w->n), rho[3] = {d[0] - a * w->n[0], d[1] - a * w->n[1], d[2] - a * w->n[2]};
-    const double l = sqrt(dem_dot(rho, rho));
-    if (l <= 0) return -1;
-    for (int k = 0; k < 3; k++) nrm[k] = rho[k] / l;
-    return r + l - w->R;
-  }
-  const double h = dem_dot(d, w->n);
-  for (int k = 0; k < 3; k++) nrm[k] = -w->n[k];
-  if (w->kind == DEM_WALL_POLYGON) {
-    if (h <= 0) return -1;
-    if (DemWallCovers(w, x, x)) return r - h;
-    return r - dem_wall_rim(w, x, nrm);
-  }
-  if (!DemWallCovers(w, x, x)) return -1;
-  return r - h;
-}
 
 /* A position wrapped into the box along the periodic axes ([lo, hi)): between list builds a
  * particle may be up to skin/2 past a periodic side; frames hold it wrapped, and a frame read back
@@ -160,18 +58,6 @@ static inline PetscBool dem_in_box(const Domain *dom, const double *x)
     if (x[k] < dom->sublo[k] || (last ? x[k] > dom->subhi[k] : x[k] >= dom->subhi[k])) return PETSC_FALSE;
   }
   return PETSC_TRUE;
-}
-
-/* Velocity of the wall's surface at point c (m/s). */
-static inline void dem_wall_velocity(const DemWall *w, const double *c, double vw[3])
-{
-  for (int k = 0; k < 3; k++) vw[k] = w->v[k];
-  if (w->omega != 0) {
-    const double d[3] = {c[0] - w->ax_p[0], c[1] - w->ax_p[1], c[2] - w->ax_p[2]};
-    double       t[3];
-    dem_cross(w->ax_u, d, t);
-    for (int k = 0; k < 3; k++) vw[k] += w->omega * t[k];
-  }
 }
 
 /* Pair parameters of shape s with wall w from the contact model cm (a copy with the wall's own
@@ -320,12 +206,6 @@ typedef struct {
   PetscInt        *rot_stamp;                    /* each valid where its stamp is the loop's pass number */
   PetscInt         rot_cap, rot_pass, rot_pairs; /* rot_pairs: pairs the last pass tested */
 } DemConvexNarrow;
-
-/* The walls (walls.c). */
-typedef struct {
-  DemWall  wall[DEM_MAX_WALLS];
-  PetscInt nwall;
-} DemWalls;
 
 /* Triangle-mesh walls (walls_mesh.c, walls_mesh_options.c): -dem_mesh_<k>_file, k < 8. A mesh
  * is placed at t = 0 (ref) and moves rigidly: x(t) = a + v t + Rot(u, theta(t)) (x_ref - a),

@@ -26,11 +26,10 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
   PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
   PetscCall(DemWallAdd(dem, opt, r, n, z));
   w         = &dem->walls.wall[dem->walls.nwall - 1];
-  w->finite = PETSC_TRUE;
-  w->kind   = DEM_WALL_RECT;
+  w->s.kind = SURFACE_RECT;
   for (int k = 0; k < 3; k++) {
-    w->e1[k] = e1[k];
-    w->e2[k] = e2[k];
+    w->s.e1[k] = e1[k];
+    w->s.e2[k] = e2[k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -72,9 +71,8 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
     if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_remove_time", k));
-    PetscCall(PetscOptionsReal(optv, "Time at which the plane wall is removed (a gate opening, as a silo's plate); 0: never", "s", trm, &trm, &rset));
+    PetscCall(SableOptionsReal(optv, "Time at which the plane wall is removed (a gate opening, as a silo's plate); 0: never", "s", "[0,inf)", 0, &trm, &rset));
     PetscCheck(set || !rset || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
-    PetscCheck(!rset || (trm >= 0 && !PetscIsInfOrNanReal(trm)), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be finite and >= 0 (s)", optv, (double)trm);
     if (rset && trm > 0) dem->walls.wall[dem->walls.nwall - 1].t_remove = trm;
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
     if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, set ? dem->walls.nwall - 1 : -1));
@@ -91,5 +89,9 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
   PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem));  /* -dem_cylinder (drum) */
   PetscCall(DemMeshesSetFromOptions(PetscOptionsObject, dem)); /* -dem_mesh_<k>_* (walls_mesh_options.c) */
   PetscOptionsEnd();
+  for (PetscInt k = 0; k < dem->walls.nwall; k++) { /* convex particles meet a wall through its plane */
+    const DemWall *w = &dem->walls.wall[k];
+    PetscCheck(!dem->shapes.convex || SurfaceKinds[w->s.kind].planar, dem->comm, PETSC_ERR_SUP, "%s: a %s wall takes spheres only, not the convex shapes of -dem_shape", w->name, SurfaceKinds[w->s.kind].name);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
