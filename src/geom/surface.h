@@ -19,6 +19,7 @@
  *   bbox(s, lo, hi)       a box holding the surface (+-PETSC_MAX_REAL where it is unbounded)
  *   closes_face(s, d, side, c, tol)  whether it closes the domain face of axis d, side 0 lo / 1 hi,
  *                         corners c[4]: nothing crosses the face without crossing the surface
+ *   example(s, lo, hi)    an instance in a box that it closes a face of (tests/geom/test_surface)
  * and its SurfaceKindInfo: its name, whether it is planar (a convex body meets it through its
  * plane: ConvexCollidePlane with p and n, then covers) and one-sided (touched from the front
  * only: the pruning drops points more than the skin behind it).
@@ -161,9 +162,22 @@ static inline void surface_bbox(const Surface *s, double lo[3], double hi[3])
   switch (s->kind) {
     SURFACE_KINDS(SURFACE_BBOX)
   default:
+    for (int k = 0; k < 3; k++) lo[k] = -PETSC_MAX_REAL, hi[k] = PETSC_MAX_REAL;
     return;
   }
 #undef SURFACE_BBOX
+}
+
+/* An instance of the kind in a box lo..hi, closing at least one of its faces (the unit test's). */
+static inline void surface_example(SurfaceKind kind, Surface *s, double lo[3], double hi[3])
+{
+#define SURFACE_EXAMPLE(K, k) SURFACE_CASE_VOID(K, k, example(s, lo, hi))
+  switch (kind) {
+    SURFACE_KINDS(SURFACE_EXAMPLE)
+  default:
+    return;
+  }
+#undef SURFACE_EXAMPLE
 }
 #undef SURFACE_CASE_VOID
 

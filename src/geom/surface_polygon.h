@@ -80,3 +80,20 @@ static inline PetscBool surface_polygon_closes_face(const Surface *s, int d, int
     }
   return PETSC_TRUE;
 }
+
+/* The unit test's instance: a pentagon at z = 0 holding the floor of the box [-1,1]^2 x [0,1]
+ * (it closes zlo), two of its edges free rims. */
+static inline void surface_polygon_example(Surface *s, double lo[3], double hi[3])
+{
+  const double v[5][3] = {{-1, -1, 0}, {1, -1, 0}, {1.4, 0, 0}, {1, 1, 0}, {-1, 1, 0}};
+  *s                   = (Surface){.kind = SURFACE_POLYGON, .n = {0, 0, 1}, .nv = 5};
+  for (PetscInt e = 0; e < 5; e++) {
+    const double *a = v[e], *b = v[(e + 1) % 5], d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double        m[3];
+    convex_cross(s->n, d, m);
+    const double lm = sqrt(convex_dot(m, m));
+    for (int k = 0; k < 3; k++) s->vert[e][k] = a[k], s->en[e][k] = m[k] / lm;
+    s->rim[e] = (PetscBool)(e == 0 || e == 2);
+  }
+  for (int k = 0; k < 3; k++) s->p[k] = v[0][k], lo[k] = k < 2 ? -1 : 0, hi[k] = 1;
+}
