@@ -3,8 +3,8 @@
  * or a finite rectangle, a convex polygon (walls_polygon.c), a cylinder with particles inside,
  * rotating about its axis (walls_cylinder.c). The options that make them are read in
  * walls_options.c, which calls the readers of those files; they add walls here (DemWallAdd).
- * A sphere touches a wall when its overlap (dem_impl.h: dem_wall_sphere) is positive: for a
- * plane r - (x - p).n; for a cylinder r + |rho| - R. The contact uses the same kernels as a
+ * A sphere touches a wall when its overlap (walls.h: dem_wall_sphere; each kind's kernels, written
+ * once, are in geom/surface_<kind>.h) is positive: for a plane r - (x - p).n; for a cylinder r + |rho| - R. The contact uses the same kernels as a
  * particle pair, with the wall as a partner of infinite mass and radius (m* = m, R* = r) whose
  * surface velocity at the contact point c is v + omega u x (c - a) (dem_wall_velocity: a
  * translating plane, a rotating drum), so a moving wall drags particles by friction. Each wall
@@ -17,8 +17,10 @@
  * projects inside it and lies in front of it; a sphere overhanging a joint edge feels no force
  * from that face (the neighbouring face takes over, as in a box corner or a hopper's corners).
  * Only edges marked as free rims (the hopper's orifice) are touched as segments. At most
- * DEM_MAX_WALLS walls in all. A domain face is closed (DemWallsCloseFace) by a wall at it or
- * inside before it, or by a mesh at rest whose triangles tile the face itself. */
+ * DEM_MAX_WALLS walls in all. A wall's list keeps the particles its kind's gap puts within reach
+ * (surface_near). A domain face is closed (DemWallsCloseFace) by a wall whose kind says so
+ * (surface_closes_face: at the face or inside before it), or by a mesh at rest whose triangles
+ * tile the face itself. */
 #include "dem/dem_impl.h"
 
 /* Adds a plane wall; name is the option that made it (messages name the wall by it). */

@@ -2,7 +2,7 @@
  *
  * Axis through point a with unit direction u, radius R. A sphere of centre x, radius r has
  * radial offset rho = (x - a) - ((x - a).u) u and overlap delta = r + |rho| - R; the normal from
- * the centre to the wall is rho/|rho| (dem_impl.h: dem_wall_sphere). The drum turns at omega
+ * the centre to the wall is rho/|rho| (geom/surface_cylinder.h). The drum turns at omega
  * (rad/s, right-handed about u): its surface velocity at the contact point c = x + (r - delta/2)
  * rho/|rho| is omega u x (c - a), and it enters the relative velocity of the contact, hence the
  * tangential (friction) force, exactly as a translating plane's velocity does (walls.c). The

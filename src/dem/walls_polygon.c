@@ -8,7 +8,7 @@
  * Checked at set-up: the vertices lie within 1e-6 L of their plane (L the largest edge), every
  * turn (v_(e+1) - v_e) x (v_(e+2) - v_(e+1)) has the sign of n (convex and in order), area > 0.
  *
- * Contacts (dem_impl.h: DemWallCovers, dem_wall_sphere): a sphere whose centre is in front of the
+ * Contacts (geom/surface_polygon.h): a sphere whose centre is in front of the
  * plane touches the face where its centre projects inside the polygon, with overlap r - (x - v0).n
  * (the rule of -dem_rect_<k>). Where the centre projects outside across an edge, the edge is
  * either a joint with a neighbour wall (no contact: the neighbour's face takes over, as for
