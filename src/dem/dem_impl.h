@@ -424,8 +424,6 @@ PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const do
 PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first);                       /* walls.c; first < 0: -help, no wall */
 PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const DemShapeTable *st, double skin, const DemSpring *recs, PetscInt nrec); /* walls.c */
 PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt);                      /* walls.c */
-PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                    /* walls_polygon.c */
-PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                   /* walls_cylinder.c */
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                                                                                                         /* walls_options.c */
 PetscErrorCode DemWallPairsFill(Dem dem, const DemMaterial *wm, DemPairParams *pw, PetscReal *tc);                                                      /* contact_laws.c: (shape, wall) pairs of material wm */
 PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                  /* walls_mesh_options.c */

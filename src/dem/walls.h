@@ -5,6 +5,7 @@
  * list of particles within reach with their tangential springs. Triangle meshes are not walls
  * (walls_mesh.c). Invariant: between list builds no wall has moved more than skin/2. */
 #pragma once
+#include "dem/dem.h"
 #include "geom/surface.h"
 
 #define DEM_MAX_WALLS 24
@@ -29,6 +30,15 @@ typedef struct {
   DemWall  wall[DEM_MAX_WALLS];
   PetscInt nwall;
 } DemWalls;
+
+/* The option reader of each surface kind, DemWall<Kind>Options (walls_options.c: the box and the
+ * planes, the rectangles; walls_polygon.c; walls_cylinder.c), called inside the walls' options
+ * block in the order of SURFACE_KINDS: it adds its walls (DemWallAdd) and sets their kind and
+ * parameters. A new kind is its geometry (geom/surface_<kind>.h), its line in SURFACE_KINDS and
+ * this reader, in a file of its own. */
+#define DEM_WALL_READER(K, k, C) PetscErrorCode DemWall##C##Options(PetscOptionItems *PetscOptionsObject, Dem dem);
+SURFACE_KINDS(DEM_WALL_READER)
+#undef DEM_WALL_READER
 
 /* Whether a contact at point pt of a particle centred at xc is on the wall (the face rule of the
  * finite kinds; convex particles use it with the plane's contact). */

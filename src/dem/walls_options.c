@@ -6,7 +6,9 @@
  * points to; -dem_quad_<k> (4 vertices), -dem_hopper (walls_polygon.c); -dem_cylinder,
  * -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); triangle meshes -dem_mesh_<k>_*
  * (walls_mesh_options.c, not counted among the walls); -dem_<wall>_friction overrides
- * -dem_wall_friction for that wall. The walls are added to the store (walls.c) in this order. */
+ * -dem_wall_friction for that wall. The block calls each surface kind's reader in the order of
+ * SURFACE_KINDS (geom/surface.h); those of the plane (with the box) and the rectangle are here.
+ * The walls are added to the store (walls.c) in this order. */
 #include "dem/dem_impl.h"
 
 /* Adds the rectangle p0 + s (p1 - p0) + t (p2 - p0), s, t in [0,1], facing the side (p1 - p0) x
@@ -34,7 +36,9 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemWallsSetFromOptions(Dem dem)
+/* Reads -dem_box and -dem_plane_<k> (+ _velocity, _remove_time, _friction) inside the walls'
+ * options block: the plane kind's reader. */
+PetscErrorCode DemWallPlaneOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
 {
   PetscReal box[6], pl[6], vel[3], trm;
   PetscBool set, vset, rset, help;
@@ -42,7 +46,6 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help: every wall's options listed, given or not */
-  PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
   PetscCall(SableOptionsRealN("-dem_box", "Closed box of six inward-facing walls: xlo,ylo,zlo,xhi,yhi,zhi", "m", box, 0, 6, &set));
   if (set) {
     for (int k = 0; k < 3; k++) {
@@ -77,6 +80,17 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
     if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, set ? dem->walls.nwall - 1 : -1));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Reads -dem_rect_<k> (+ _friction) inside the walls' options block: the rectangle kind's reader. */
+PetscErrorCode DemWallRectOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
+{
+  PetscBool set, help;
+  char      opt[64], optv[80];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
   for (int k = 0; k < 10; k++) {
     PetscReal r[9];
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_rect_%d", k));
@@ -85,8 +99,18 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
     if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, set ? dem->walls.nwall - 1 : -1));
   }
-  PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));   /* -dem_quad_<k>, -dem_hopper */
-  PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem));  /* -dem_cylinder (drum) */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The walls' options block: each surface kind's reader, DemWall<Kind>Options (dem/walls.h), in the
+ * order of SURFACE_KINDS (geom/surface.h), then the meshes; the walls are numbered in this order. */
+PetscErrorCode DemWallsSetFromOptions(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
+#define DEM_WALL_READ(K, k, C) PetscCall(DemWall##C##Options(PetscOptionsObject, dem));
+  SURFACE_KINDS(DEM_WALL_READ) /* -dem_box, -dem_plane_<k>, -dem_rect_<k>, -dem_quad_<k>, -dem_hopper, -dem_cylinder */
+#undef DEM_WALL_READ
   PetscCall(DemMeshesSetFromOptions(PetscOptionsObject, dem)); /* -dem_mesh_<k>_* (walls_mesh_options.c) */
   PetscOptionsEnd();
   for (PetscInt k = 0; k < dem->walls.nwall; k++) { /* convex particles meet a wall through its plane */

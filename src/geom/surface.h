@@ -29,14 +29,15 @@
 #include <petscsys.h>
 #include "geom/quat.h"
 
-/* The registry: one line per kind, X(ENUM_NAME, file_name). */
+/* The registry: one line per kind, X(ENUM_NAME, file_name, CamelName); the DEM reads each kind's
+ * options with DemWall<CamelName>Options, in this order (src/dem/walls.h). */
 #define SURFACE_KINDS(X) \
-  X(PLANE, plane) \
-  X(RECT, rect) \
-  X(POLYGON, polygon) \
-  X(CYLINDER, cylinder)
+  X(PLANE, plane, Plane) \
+  X(RECT, rect, Rect) \
+  X(POLYGON, polygon, Polygon) \
+  X(CYLINDER, cylinder, Cylinder)
 
-#define SURFACE_ENUM(K, k) SURFACE_##K,
+#define SURFACE_ENUM(K, k, C) SURFACE_##K,
 typedef enum {
   SURFACE_KINDS(SURFACE_ENUM)
   SURFACE_NKINDS
@@ -101,7 +102,7 @@ static inline PetscBool surface_plane_behind(const Surface *s, const double c[4]
 #include "geom/surface_cylinder.h"
 
 /* The dispatchers: a switch over the registry. */
-#define SURFACE_INFO(K, k) SURFACE_INFO_##K, /* in the order of the enum */
+#define SURFACE_INFO(K, k, C) SURFACE_INFO_##K, /* in the order of the enum */
 static const SurfaceKindInfo SurfaceKinds[SURFACE_NKINDS] = {SURFACE_KINDS(SURFACE_INFO)};
 #undef SURFACE_INFO
 
@@ -110,7 +111,7 @@ static const SurfaceKindInfo SurfaceKinds[SURFACE_NKINDS] = {SURFACE_KINDS(SURFA
     return surface_##k##_##call;
 static inline double surface_sphere(const Surface *s, const double *x, double r, double nrm[3])
 {
-#define SURFACE_SPHERE(K, k) SURFACE_CASE(K, k, sphere(s, x, r, nrm))
+#define SURFACE_SPHERE(K, k, C) SURFACE_CASE(K, k, sphere(s, x, r, nrm))
   switch (s->kind) {
     SURFACE_KINDS(SURFACE_SPHERE)
   default:
@@ -121,7 +122,7 @@ static inline double surface_sphere(const Surface *s, const double *x, double r,
 
 static inline double surface_gap(const Surface *s, const double *x)
 {
-#define SURFACE_GAP(K, k) SURFACE_CASE(K, k, gap(s, x))
+#define SURFACE_GAP(K, k, C) SURFACE_CASE(K, k, gap(s, x))
   switch (s->kind) {
     SURFACE_KINDS(SURFACE_GAP)
   default:
@@ -132,7 +133,7 @@ static inline double surface_gap(const Surface *s, const double *x)
 
 static inline PetscBool surface_covers(const Surface *s, const double *pt, const double *xc)
 {
-#define SURFACE_COVERS(K, k) SURFACE_CASE(K, k, covers(s, pt, xc))
+#define SURFACE_COVERS(K, k, C) SURFACE_CASE(K, k, covers(s, pt, xc))
   switch (s->kind) {
     SURFACE_KINDS(SURFACE_COVERS)
   default:
@@ -147,7 +148,7 @@ static inline PetscBool surface_covers(const Surface *s, const double *pt, const
     return;
 static inline void surface_velocity(const Surface *s, const double *c, double vw[3])
 {
-#define SURFACE_VELOCITY(K, k) SURFACE_CASE_VOID(K, k, velocity(s, c, vw))
+#define SURFACE_VELOCITY(K, k, C) SURFACE_CASE_VOID(K, k, velocity(s, c, vw))
   switch (s->kind) {
     SURFACE_KINDS(SURFACE_VELOCITY)
   default:
@@ -158,7 +159,7 @@ static inline void surface_velocity(const Surface *s, const double *c, double vw
 
 static inline void surface_bbox(const Surface *s, double lo[3], double hi[3])
 {
-#define SURFACE_BBOX(K, k) SURFACE_CASE_VOID(K, k, bbox(s, lo, hi))
+#define SURFACE_BBOX(K, k, C) SURFACE_CASE_VOID(K, k, bbox(s, lo, hi))
   switch (s->kind) {
     SURFACE_KINDS(SURFACE_BBOX)
   default:
@@ -171,7 +172,7 @@ static inline void surface_bbox(const Surface *s, double lo[3], double hi[3])
 /* An instance of the kind in a box lo..hi, closing at least one of its faces (the unit test's). */
 static inline void surface_example(SurfaceKind kind, Surface *s, double lo[3], double hi[3])
 {
-#define SURFACE_EXAMPLE(K, k) SURFACE_CASE_VOID(K, k, example(s, lo, hi))
+#define SURFACE_EXAMPLE(K, k, C) SURFACE_CASE_VOID(K, k, example(s, lo, hi))
   switch (kind) {
     SURFACE_KINDS(SURFACE_EXAMPLE)
   default:
@@ -183,7 +184,7 @@ static inline void surface_example(SurfaceKind kind, Surface *s, double lo[3], d
 
 static inline PetscBool surface_closes_face(const Surface *s, int d, int side, const double c[4][3], double tol)
 {
-#define SURFACE_CLOSES(K, k) SURFACE_CASE(K, k, closes_face(s, d, side, c, tol))
+#define SURFACE_CLOSES(K, k, C) SURFACE_CASE(K, k, closes_face(s, d, side, c, tol))
   switch (s->kind) {
     SURFACE_KINDS(SURFACE_CLOSES)
   default:
