@@ -19,7 +19,8 @@
  *   bbox(s, lo, hi)       a box holding the surface (+-PETSC_MAX_REAL where it is unbounded)
  *   closes_face(s, d, side, c, tol)  whether it closes the domain face of axis d, side 0 lo / 1 hi,
  *                         corners c[4]: nothing crosses the face without crossing the surface
- *   example(s, lo, hi)    an instance in a box that it closes a face of (tests/geom/test_surface)
+ *   example(s, lo, hi)    an instance in a box, and how many faces of the box it closes (the
+ *                         unit test's case, tests/geom/test_surface.c)
  * and its SurfaceKindInfo: its name, whether it is planar (a convex body meets it through its
  * plane: ConvexCollidePlane with p and n, then covers) and one-sided (touched from the front
  * only: the pruning drops points more than the skin behind it).
@@ -169,14 +170,14 @@ static inline void surface_bbox(const Surface *s, double lo[3], double hi[3])
 #undef SURFACE_BBOX
 }
 
-/* An instance of the kind in a box lo..hi, closing at least one of its faces (the unit test's). */
-static inline void surface_example(SurfaceKind kind, Surface *s, double lo[3], double hi[3])
+/* An instance of the kind in a box lo..hi (the unit test's): the number of the box's faces it closes. */
+static inline int surface_example(SurfaceKind kind, Surface *s, double lo[3], double hi[3])
 {
-#define SURFACE_EXAMPLE(K, k, C) SURFACE_CASE_VOID(K, k, example(s, lo, hi))
+#define SURFACE_EXAMPLE(K, k, C) SURFACE_CASE(K, k, example(s, lo, hi))
   switch (kind) {
     SURFACE_KINDS(SURFACE_EXAMPLE)
   default:
-    return;
+    return -1;
   }
 #undef SURFACE_EXAMPLE
 }

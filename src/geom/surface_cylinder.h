@@ -56,9 +56,10 @@ static inline PetscBool surface_cylinder_closes_face(const Surface *s, int d, in
 }
 
 /* The unit test's instance: radius 1 about the y axis in the box [-1,1] x [0,1] x [-1,1] (it
- * closes the x and z faces). */
-static inline void surface_cylinder_example(Surface *s, double lo[3], double hi[3])
+ * closes the 4 x and z faces). */
+static inline int surface_cylinder_example(Surface *s, double lo[3], double hi[3])
 {
   *s = (Surface){.kind = SURFACE_CYLINDER, .n = {0, 1, 0}, .R = 1};
   for (int k = 0; k < 3; k++) lo[k] = k == 1 ? 0 : -1, hi[k] = 1;
+  return 4;
 }

@@ -82,8 +82,8 @@ static inline PetscBool surface_polygon_closes_face(const Surface *s, int d, int
 }
 
 /* The unit test's instance: a pentagon at z = 0 holding the floor of the box [-1,1]^2 x [0,1]
- * (it closes zlo), two of its edges free rims. */
-static inline void surface_polygon_example(Surface *s, double lo[3], double hi[3])
+ * closing 1 face (zlo), two of its edges free rims. */
+static inline int surface_polygon_example(Surface *s, double lo[3], double hi[3])
 {
   const double v[5][3] = {{-1, -1, 0}, {1, -1, 0}, {1.4, 0, 0}, {1, 1, 0}, {-1, 1, 0}};
   *s                   = (Surface){.kind = SURFACE_POLYGON, .n = {0, 0, 1}, .nv = 5};
@@ -96,4 +96,5 @@ static inline void surface_polygon_example(Surface *s, double lo[3], double hi[3
     s->rim[e] = (PetscBool)(e == 0 || e == 2);
   }
   for (int k = 0; k < 3; k++) s->p[k] = v[0][k], lo[k] = k < 2 ? -1 : 0, hi[k] = 1;
+  return 1;
 }

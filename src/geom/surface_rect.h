@@ -57,9 +57,10 @@ static inline PetscBool surface_rect_closes_face(const Surface *s, int d, int si
   return PETSC_TRUE;
 }
 
-/* The unit test's instance: the floor z = 0 of the box [-1,1]^2 x [0,1] (it closes zlo). */
-static inline void surface_rect_example(Surface *s, double lo[3], double hi[3])
+/* The unit test's instance: the floor z = 0 of the box [-1,1]^2 x [0,1]: it closes 1 face (zlo). */
+static inline int surface_rect_example(Surface *s, double lo[3], double hi[3])
 {
   *s = (Surface){.kind = SURFACE_RECT, .p = {-1, -1, 0}, .n = {0, 0, 1}, .e1 = {2, 0, 0}, .e2 = {0, 2, 0}};
   for (int k = 0; k < 3; k++) lo[k] = k < 2 ? -1 : 0, hi[k] = 1;
+  return 1;
 }
