@@ -36,7 +36,8 @@
   X(PLANE, plane, Plane) \
   X(RECT, rect, Rect) \
   X(POLYGON, polygon, Polygon) \
-  X(CYLINDER, cylinder, Cylinder)
+  X(CYLINDER, cylinder, Cylinder) \
+  /* a new kind: one line above, and its #include below */
 
 #define SURFACE_ENUM(K, k, C) SURFACE_##K,
 typedef enum {
