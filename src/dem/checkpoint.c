@@ -85,7 +85,7 @@ static PetscErrorCode DemCkptWriteLists(Dem dem, IoCkpt ck)
     for (PetscInt a = 0; a < dem->ex.nsend[d]; a++) send[ns++] = dem->ex.send[d][a];
   for (PetscInt w = 0; w < W->nwall; w++) {
     const DemWall *wl = &W->wall[w];
-    for (int k = 0; k < 3; k++) wd[4 * w + k] = wl->p[k];
+    for (int k = 0; k < 3; k++) wd[4 * w + k] = wl->s.p[k];
     wd[4 * w + 3] = wl->moved;
     wcnt[w]       = wl->cnt;
     for (PetscInt a = 0; a < wl->cnt; a++, nw++) {
@@ -219,7 +219,7 @@ static PetscErrorCode DemCkptReadLists(Dem dem, IoCkpt ck, const char *path)
   PetscCall(IoCkptReadRows(ck, "dem/wall_hist", IO_CKPT_REAL, &ns, (void **)&whist));
   for (PetscInt w = 0; w < W->nwall; w++) {
     DemWall *wl = &W->wall[w];
-    for (int k = 0; k < 3; k++) wl->p[k] = wd[4 * w + k];
+    for (int k = 0; k < 3; k++) wl->s.p[k] = wd[4 * w + k];
     wl->moved = wd[4 * w + 3];
     wl->cnt   = wcnt[w];
     PetscCheck(nw + wl->cnt <= n && 3 * (nw + wl->cnt) <= ns, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the datasets wall_idx, wall_hist are shorter than wall_cnt says", path);

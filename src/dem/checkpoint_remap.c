@@ -140,7 +140,7 @@ static PetscErrorCode DemRemapCounters(Dem dem, DemRemap *b)
   PetscCall(PetscMalloc1(4 * dem->walls.nwall + 1, &wd));
   PetscCall(IoCkptReadSlabAll(b->ck, "dem/wall_state", IO_CKPT_REAL, 0, 4 * dem->walls.nwall, wd));
   for (PetscInt w = 0; w < dem->walls.nwall; w++)
-    for (int k = 0; k < 3; k++) dem->walls.wall[w].p[k] = wd[4 * w + k];
+    for (int k = 0; k < 3; k++) dem->walls.wall[w].s.p[k] = wd[4 * w + k];
   PetscCall(PetscFree(wd));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

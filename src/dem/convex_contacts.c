@@ -379,8 +379,8 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
   for (PetscInt wi = 0; wi < dem->walls.nwall; wi++) {
     DemWall      *w = &dem->walls.wall[wi];
     DemPairParams pwl;
-    in.xj = w->p;
-    in.vj = w->v;
+    in.xj = w->s.p;
+    in.vj = w->s.v;
     for (PetscInt a = 0; a < w->cnt; a++) {
       const PetscInt i    = w->idx[a];
       double        *xi_t = dem->contact.law != DEM_LAW_LINEAR_NOHIST ? w->hist + 3 * a : NULL;
@@ -388,7 +388,7 @@ PetscErrorCode DemContactsWallsConvex(Dem dem)
       ConvexPose     pose = DemPose(x, dem->p.q + 4 * i);
       ConvexContact  c;
       double         F[3], Ti[3], Tj[3];
-      PetscCall(ConvexCollidePlane(dem->shapes.shp[dem->p.shape[i]].cvx, &pose, w->p, w->n, &c));
+      PetscCall(ConvexCollidePlane(dem->shapes.shp[dem->p.shape[i]].cvx, &pose, w->s.p, w->s.n, &c));
       if (!c.overlap || !DemWallCovers(w, c.point, x)) {
         if (xi_t) xi_t[0] = xi_t[1] = xi_t[2] = 0;
         continue;

@@ -7,7 +7,6 @@
  * in the world frame, x + R v for the shape's hull vertices v, as one triangle mesh that ParaView
  * draws directly (XDMF grid "surface"; a cylinder is drawn as a 24-sided prism). */
 #include "dem/dem_core.h"
-#include "dem/dem_walls.h"
 #include "geom/quat.h"
 
 #define DEM_CYL_SIDES 24
@@ -52,7 +51,7 @@ PetscErrorCode DemConvexStatsLocal(Dem dem, double r[5], PetscInt c[3], double *
       const DemShape  *s  = &dem->shapes.shp[dem->p.shape[i]];
       const ConvexPose pi = DemPose(dem->p.x + 3 * i, dem->p.q + 4 * i);
       ConvexContact    cc;
-      PetscCall(ConvexCollidePlane(s->cvx, &pi, wl->p, wl->n, &cc));
+      PetscCall(ConvexCollidePlane(s->cvx, &pi, wl->s.p, wl->s.n, &cc));
       if (!cc.overlap || !DemWallCovers(wl, cc.point, pi.x)) continue;
       c[2]++;
       r[3] += dem_elastic(dem, &dem->contact.pw[dem->p.shape[i]], cc.depth, dem->contact.law != DEM_LAW_LINEAR_NOHIST ? wl->hist + 3 * a : NULL);

@@ -308,8 +308,8 @@ PetscErrorCode DemStep(Dem dem)
       wl->cnt     = 0;
     }
     if (wl->removed) continue;
-    for (int k = 0; k < 3; k++) wl->p[k] += wl->v[k] * dem->clock.dt;
-    wl->moved += sqrt(dem_dot(wl->v, wl->v)) * dem->clock.dt;
+    for (int k = 0; k < 3; k++) wl->s.p[k] += wl->s.v[k] * dem->clock.dt;
+    wl->moved += sqrt(dem_dot(wl->s.v, wl->s.v)) * dem->clock.dt;
     wmax = PetscMax(wmax, wl->moved);
   }
   if (dem->meshes.n) { /* a moving mesh's travel bound counts as a wall's (walls_mesh.c) */

@@ -5,82 +5,33 @@
 #pragma once
 #include "dem/dem_core.h"
 
-/* Whether a contact at point pt of a particle centred at xc is on the wall: always for an
- * infinite plane; for a rectangle or a polygon, pt projects inside it and xc is on its front
- * side (the face rule; convex particles use it for polygons, spheres see rim edges too). */
+/* The option reader of each surface kind, DemWall<Kind>Options (walls_options.c: the box and the
+ * planes, the rectangles; walls_polygon.c; walls_cylinder.c), called inside the walls' options
+ * block in the order of SURFACE_KINDS: it adds its walls (DemWallAdd) and sets their kind and
+ * parameters. A new kind is its geometry (geom/surface_<kind>.h), its line in SURFACE_KINDS and
+ * this reader, in a file of its own. */
+#define DEM_WALL_READER(K, k, C) PetscErrorCode DemWall##C##Options(PetscOptionItems *PetscOptionsObject, Dem dem);
+SURFACE_KINDS(DEM_WALL_READER)
+#undef DEM_WALL_READER
+
+/* Whether a contact at point pt of a particle centred at xc is on the wall (the face rule of the
+ * finite kinds; convex particles use it with the plane's contact). */
 static inline PetscBool DemWallCovers(const DemWall *w, const double *pt, const double *xc)
 {
-  if (!w->finite) return PETSC_TRUE;
-  const double d[3] = {pt[0] - w->p[0], pt[1] - w->p[1], pt[2] - w->p[2]};
-  const double c[3] = {xc[0] - w->p[0], xc[1] - w->p[1], xc[2] - w->p[2]};
-  if (dem_dot(c, w->n) <= 0) return PETSC_FALSE;
-  if (w->kind == DEM_WALL_POLYGON) {
-    for (PetscInt e = 0; e < w->nv; e++) {
-      const double de[3] = {pt[0] - w->vert[e][0], pt[1] - w->vert[e][1], pt[2] - w->vert[e][2]};
-      if (dem_dot(de, w->en[e]) < 0) return PETSC_FALSE;
-    }
-    return PETSC_TRUE;
-  }
-  const double s = dem_dot(d, w->e1) / dem_dot(w->e1, w->e1), t = dem_dot(d, w->e2) / dem_dot(w->e2, w->e2);
-  return (PetscBool)(s >= 0 && s <= 1 && t >= 0 && t <= 1);
-}
-
-/* Sphere (centre x, radius r) against a polygon's free rim: the nearest point of the rim edges
- * the centre lies outside of; no contact if it lies outside a joint edge (the neighbour wall
- * takes over) or behind the plane. Returns the distance and the unit direction to that point. */
-static inline double dem_wall_rim(const DemWall *w, const double *x, double nrm[3])
-{
-  double best = 1e300;
-  for (PetscInt e = 0; e < w->nv; e++) {
-    const double *a = w->vert[e], *b = w->vert[(e + 1) % w->nv];
-    const double  d[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]}, ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    if (dem_dot(d, w->en[e]) >= 0) continue;
-    if (!w->rim[e]) return 1e300;
-    const double t    = PetscMin(1.0, PetscMax(0.0, dem_dot(d, ab) / dem_dot(ab, ab)));
-    const double q[3] = {a[0] + t * ab[0] - x[0], a[1] + t * ab[1] - x[1], a[2] + t * ab[2] - x[2]};
-    const double l    = sqrt(dem_dot(q, q));
-    if (l < best && l > 0) {
-      best = l;
-      for (int k = 0; k < 3; k++) nrm[k] = q[k] / l;
-    }
-  }
-  return best;
+  return surface_covers(&w->s, pt, xc);
 }
 
 /* Contact of a sphere (centre x, radius r) with wall w: the overlap (> 0 when touching) and the
- * unit normal from the centre towards the wall. Plane and rectangle: the face rule above;
- * polygon: face, or its free rim; cylinder (particles inside): radial. */
+ * unit normal from the centre towards the wall (geom/surface.h, the kind's sphere kernel). */
 static inline double dem_wall_sphere(const DemWall *w, const double *x, double r, double nrm[3])
 {
-  const double d[3] = {x[0] - w->p[0], x[1] - w->p[1], x[2] - w->p[2]};
-  if (w->kind == DEM_WALL_CYLINDER) {
-    const double a = dem_dot(d, w->n), rho[3] = {d[0] - a * w->n[0], d[1] - a * w->n[1], d[2] - a * w->n[2]};
-    const double l = sqrt(dem_dot(rho, rho));
-    if (l <= 0) return -1;
-    for (int k = 0; k < 3; k++) nrm[k] = rho[k] / l;
-    return r + l - w->R;
-  }
-  const double h = dem_dot(d, w->n);
-  for (int k = 0; k < 3; k++) nrm[k] = -w->n[k];
-  if (w->kind == DEM_WALL_POLYGON) {
-    if (h <= 0) return -1;
-    if (DemWallCovers(w, x, x)) return r - h;
-    return r - dem_wall_rim(w, x, nrm);
-  }
-  if (!DemWallCovers(w, x, x)) return -1;
-  return r - h;
+  return surface_sphere(&w->s, x, r, nrm);
 }
 
 /* Velocity of the wall's surface at point c (m/s). */
 static inline void dem_wall_velocity(const DemWall *w, const double *c, double vw[3])
 {
-  for (int k = 0; k < 3; k++) vw[k] = w->v[k];
-  if (w->omega != 0) {
-    const double d[3] = {c[0] - w->ax_p[0], c[1] - w->ax_p[1], c[2] - w->ax_p[2]};
-    double       t[3];
-    dem_cross(w->ax_u, d, t);
-    for (int k = 0; k < 3; k++) vw[k] += w->omega * t[k];
-  }
+  surface_velocity(&w->s, c, vw);
 }
 
 /* Pair parameters of shape s with wall w from the contact model cm (a copy with the wall's own
@@ -126,8 +77,6 @@ PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const do
 PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first);                       /* walls.c; first < 0: -help, no wall */
 PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const DemShapeTable *st, double skin, const DemSpring *recs, PetscInt nrec); /* walls.c */
 PetscErrorCode DemContactsWalls(DemParticles *pt, const DemShapeTable *st, const DemContactModel *cm, DemWalls *walls, double dt);                      /* walls.c */
-PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                    /* walls_polygon.c */
-PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                   /* walls_cylinder.c */
 PetscErrorCode DemWallsSetFromOptions(Dem dem);                                                                                                         /* walls_options.c */
 PetscErrorCode DemWallPairsFill(Dem dem, const DemMaterial *wm, DemPairParams *pw, PetscReal *tc);                                                      /* contact_laws.c: (shape, wall) pairs of material wm */
 PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                  /* walls_mesh_options.c */

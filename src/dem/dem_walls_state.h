@@ -1,9 +1,12 @@
 /* The walls' and meshes' state that struct _p_Dem embeds (walls.c, walls_polygon.c,
- * walls_cylinder.c, walls_mesh.c): struct definitions only, included by dem_core.h where the
+ * walls_cylinder.c, walls_mesh.c): struct definitions only (a wall is a surface of
+ * geom/surface.h, where each kind's geometry is written once, plus what the DEM keeps of it),
+ * included by dem_core.h where the
  * layout needs them (after DEM_MAX_SHAPES and DemMaterial); the functions and the contact
  * kernels of walls are in dem_walls.h. */
 #pragma once
 #include "dem/contact_laws.h"
+#include "geom/surface.h"
 #include "geom/trimesh.h"
 #ifndef DEM_MAX_SHAPES
   #error "dem_walls_state.h is included by dem_core.h (it needs DEM_MAX_SHAPES and DemMaterial); include dem_walls.h"
@@ -11,32 +14,11 @@
 
 #define DEM_MAX_WALLS 24
 
-typedef enum {
-  DEM_WALL_PLANE,
-  DEM_WALL_RECT,
-  DEM_WALL_POLYGON,
-  DEM_WALL_CYLINDER
-} DemWallKind;
-#define DEM_POLY_MAX 8
-
 typedef struct {
-  DemWallKind kind;
-  char        name[32];         /* the option that made it, for messages: -dem_plane_0, -dem_box zlo */
-  double      p[3], n[3], v[3]; /* a point, the unit normal pointing into the granular side, velocity;
-                              a cylinder: a point of its axis, the unit axis, v = 0 */
-  double      moved;            /* distance moved since the last list build (m) */
-  /* finite rectangle p + s e1 + t e2, s,t in [0,1], touched from the front only (-dem_rect_k) */
-  PetscBool finite; /* a rectangle or a polygon: touched from the front only */
-  double    e1[3], e2[3];
-  /* convex polygon (walls_polygon.c): vertices, unit in-plane edge normals pointing inside, and
-     whether an edge is a free rim (edge contacts) or a joint with a neighbour wall (face only) */
-  PetscInt  nv;
-  double    vert[DEM_POLY_MAX][3], en[DEM_POLY_MAX][3];
-  PetscBool rim[DEM_POLY_MAX];
-  double    R; /* cylinder radius (m), particles inside (walls_cylinder.c) */
-  /* rotation about an axis (drum and its end caps): surface velocity v + omega u x (x - a) */
-  double omega, ax_p[3], ax_u[3];
-  double mu; /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
+  Surface s;        /* the geometry and its motion (geom/surface.h) */
+  char    name[32]; /* the option that made it, for messages: -dem_plane_0, -dem_box zlo */
+  double  moved;    /* distance moved since the last list build (m) */
+  double  mu;       /* friction override (-dem_box_friction, -dem_plane_<k>_friction), < 0: none */
   /* removal (-dem_plane_<k>_remove_time): from the first step whose forces act at t >= t_remove the
      wall is gone (no list, no contacts, no travel); removed says it went */
   double    t_remove;

@@ -233,8 +233,8 @@ PetscErrorCode DemCheckInDomain(Dem dem)
       for (PetscInt w = 0; w < dem->walls.nwall; w++) { /* wholly behind an unbounded plane: it went through, the step cannot resolve the contact */
         const DemWall *wl = &dem->walls.wall[w];
         double         s  = 0;
-        if (wl->kind != DEM_WALL_PLANE || wl->finite || wl->removed) continue;
-        for (int c = 0; c < 3; c++) s += (dem->p.x[3 * i + c] - wl->p[c]) * wl->n[c];
+        if (wl->s.kind != SURFACE_PLANE || wl->removed) continue;
+        for (int c = 0; c < 3; c++) s += (dem->p.x[3 * i + c] - wl->s.p[c]) * wl->s.n[c];
         PetscCheck(s >= -r, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "t = %g s: particle %" PetscInt_FMT " went through wall %s and left the domain (%c = %g m): the run is diverging; lower -dem_dt (now %g s) or raise -dem_kn", (double)dem->clock.t, dem->p.id[i], wl->name, "xyz"[k], x, (double)dem -> clock.dt);
       }
       SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "t = %g s: particle %" PetscInt_FMT " left the domain across its %s %c side (%c = %g m, domain [%g, %g] m); close that side with walls (-dem_box, -dem_plane_k) or enlarge -domain_lo/-domain_hi", (double)dem->clock.t, dem->p.id[i], x < dom->lo[k] ? "lower" : "upper", "xyz"[k], "xyz"[k], x, (double)dom -> lo[k], (double)dom -> hi[k]);

@@ -111,7 +111,7 @@ static PetscErrorCode DemPlaceWallDepth(Dem dem, PetscInt wi, PetscInt i, double
   if (dem->shapes.convex) {
     const ConvexPose pose = DemPose(x, dem->p.q + 4 * i);
     ConvexContact    c;
-    PetscCall(ConvexCollidePlane(s->cvx, &pose, w->p, w->n, &c));
+    PetscCall(ConvexCollidePlane(s->cvx, &pose, w->s.p, w->s.n, &c));
     if (c.overlap && DemWallCovers(w, c.point, x)) *depth = c.depth / s->req;
   } else {
     double nrm[3];
@@ -178,10 +178,10 @@ static PetscErrorCode DemPlaceWallText(Dem dem, PetscInt wi, char *buf, size_t l
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscSNPrintf(buf, len, "%s", w->name));
-  if (w->kind == DEM_WALL_CYLINDER) PetscCall(PetscSNPrintf(buf, len, "%s (radius %.6g)", w->name, w->R));
-  else if (w->kind == DEM_WALL_PLANE)
+  if (w->s.kind == SURFACE_CYLINDER) PetscCall(PetscSNPrintf(buf, len, "%s (radius %.6g)", w->name, w->s.R));
+  else if (w->s.kind == SURFACE_PLANE)
     for (int k = 0; k < 3; k++)
-      if (PetscAbsReal(w->n[k]) > 1 - 1e-12) PetscCall(PetscSNPrintf(buf, len, "%s (%c = %.6g)", w->name, "xyz"[k], w -> p[k]));
+      if (PetscAbsReal(w->s.n[k]) > 1 - 1e-12) PetscCall(PetscSNPrintf(buf, len, "%s (%c = %.6g)", w->name, "xyz"[k], w -> s.p[k]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -205,11 +205,11 @@ static PetscErrorCode DemPlaceOriginHint(Dem dem, const DemWall *w, const double
 {
   PetscFunctionBeginUser;
   buf[0] = 0;
-  if (w->kind != DEM_WALL_PLANE) PetscFunctionReturn(PETSC_SUCCESS);
+  if (w->s.kind != SURFACE_PLANE) PetscFunctionReturn(PETSC_SUCCESS);
   for (int k = 0; k < 3; k++) {
     double o[3] = {dem->insert.lat_origin[0], dem->insert.lat_origin[1], dem->insert.lat_origin[2]};
-    if (PetscAbsReal(w->n[k]) <= 1 - 1e-12) continue;
-    o[k] = w->n[k] > 0 ? w->p[k] : w->p[k] - ext[k];
+    if (PetscAbsReal(w->s.n[k]) <= 1 - 1e-12) continue;
+    o[k] = w->s.n[k] > 0 ? w->s.p[k] : w->s.p[k] - ext[k];
     PetscCall(PetscSNPrintf(buf, len, " (e.g. -dem_lattice_origin %.6g,%.6g,%.6g puts it on the wall)", o[0], o[1], o[2]));
   }
   PetscFunctionReturn(PETSC_SUCCESS);

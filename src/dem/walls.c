@@ -3,8 +3,8 @@
  * or a finite rectangle, a convex polygon (walls_polygon.c), a cylinder with particles inside,
  * rotating about its axis (walls_cylinder.c). The options that make them are read in
  * walls_options.c, which calls the readers of those files; they add walls here (DemWallAdd).
- * A sphere touches a wall when its overlap (dem_impl.h: dem_wall_sphere) is positive: for a
- * plane r - (x - p).n; for a cylinder r + |rho| - R. The contact uses the same kernels as a
+ * A sphere touches a wall when its overlap (dem_walls.h: dem_wall_sphere; each kind's kernels, written
+ * once, are in geom/surface_<kind>.h) is positive: for a plane r - (x - p).n; for a cylinder r + |rho| - R. The contact uses the same kernels as a
  * particle pair, with the wall as a partner of infinite mass and radius (m* = m, R* = r) whose
  * surface velocity at the contact point c is v + omega u x (c - a) (dem_wall_velocity: a
  * translating plane, a rotating drum), so a moving wall drags particles by friction. Each wall
@@ -17,8 +17,10 @@
  * projects inside it and lies in front of it; a sphere overhanging a joint edge feels no force
  * from that face (the neighbouring face takes over, as in a box corner or a hopper's corners).
  * Only edges marked as free rims (the hopper's orifice) are touched as segments. At most
- * DEM_MAX_WALLS walls in all. A domain face is closed (DemWallsCloseFace) by a wall at it or
- * inside before it, or by a mesh at rest whose triangles tile the face itself. */
+ * DEM_MAX_WALLS walls in all. A wall's list keeps the particles its kind's gap puts within reach
+ * (surface_near). A domain face is closed (DemWallsCloseFace) by a wall whose kind says so
+ * (surface_closes_face: at the face or inside before it), or by a mesh at rest whose triangles
+ * tile the face itself. */
 #include "dem/dem_core.h"
 #include "dem/dem_walls.h"
 
@@ -37,9 +39,9 @@ PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const do
   w->t_remove = PETSC_MAX_REAL; /* never removed */
   PetscCall(PetscStrncpy(w->name, name, sizeof w->name));
   for (int k = 0; k < 3; k++) {
-    w->p[k] = p[k];
-    w->n[k] = n[k] / nn;
-    w->v[k] = v[k];
+    w->s.p[k] = p[k];
+    w->s.n[k] = n[k] / nn;
+    w->s.v[k] = v[k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -48,37 +50,21 @@ PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const do
  * Called inside the walls' options block. */
 PetscErrorCode DemWallFrictionOption(PetscOptionItems *PetscOptionsObject, Dem dem, const char *opt, PetscInt n, PetscInt first)
 {
-  PetscReal mu[7];
-  PetscInt  got = 7; /* room for one value too many, to report it */
+  PetscReal mu[6];
   PetscBool set;
 
   PetscFunctionBeginUser;
-  for (int k = 0; k < 7; k++) mu[k] = dem->contact.wmat.mu; /* the default -help shows */
-  PetscCall(PetscOptionsRealArray(opt, "Friction coefficient of this wall, overriding -dem_wall_friction (box: xlo,ylo,zlo,xhi,yhi,zhi)", NULL, mu, &got, &set));
+  PetscCheck(n >= 1 && n <= 6, dem->comm, PETSC_ERR_PLIB, "%s: %" PetscInt_FMT " walls, at most 6", opt, n);
+  for (int k = 0; k < 6; k++) mu[k] = dem->contact.wmat.mu; /* the default -help shows */
+  /* exactly n values (another count is an error naming the option); the sign checked below */
+  PetscCall(SableOptionsRealN(opt, "Friction coefficient of this wall, overriding -dem_wall_friction (box: xlo,ylo,zlo,xhi,yhi,zhi)", NULL, mu, n, n, &set));
   if (!set || first < 0) PetscFunctionReturn(PETSC_SUCCESS); /* first < 0: -help lists it, no wall */
-  PetscCheck(got == n, dem->comm, PETSC_ERR_ARG_SIZ, "%s takes %" PetscInt_FMT " values, got %" PetscInt_FMT, opt, n, got);
   for (PetscInt k = 0; k < n; k++) {
     PetscCheck(mu[k] >= 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be >= 0", opt, (double)mu[k]);
     /* box walls were added as xlo, xhi, ylo, yhi, zlo, zhi */
     dem->walls.wall[first + (n == 6 ? 2 * (k % 3) + k / 3 : k)].mu = mu[k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Whether corner c, behind or on wall w's plane, projects onto the rectangle or polygon. */
-static PetscBool dem_wall_spans(const DemWall *w, const double c[3], double tol)
-{
-  const double d[3] = {c[0] - w->p[0], c[1] - w->p[1], c[2] - w->p[2]};
-  if (w->kind == DEM_WALL_POLYGON) {
-    for (PetscInt e = 0; e < w->nv; e++) {
-      const double de[3] = {c[0] - w->vert[e][0], c[1] - w->vert[e][1], c[2] - w->vert[e][2]};
-      if (dem_dot(de, w->en[e]) < -tol) return PETSC_FALSE;
-    }
-    return PETSC_TRUE;
-  }
-  const double l1 = sqrt(dem_dot(w->e1, w->e1)), l2 = sqrt(dem_dot(w->e2, w->e2));
-  const double s = dem_dot(d, w->e1) / l1, t = dem_dot(d, w->e2) / l2;
-  return (PetscBool)(s >= -tol && s <= l1 + tol && t >= -tol && t <= l2 + tol);
 }
 
 PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
@@ -96,19 +82,9 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed)
   }
   *closed = PETSC_FALSE;
   for (PetscInt wi = 0; wi < dem->walls.nwall && !*closed; wi++) {
-    const DemWall *w      = &dem->walls.wall[wi];
-    PetscBool      behind = PETSC_TRUE, spans = PETSC_TRUE;
+    const DemWall *w = &dem->walls.wall[wi];
     if (w->t_remove < PETSC_MAX_REAL) continue; /* a gate that opens closes nothing */
-    if (w->kind == DEM_WALL_CYLINDER) {         /* parallel to the face and wholly inside of it */
-      if (PetscAbsReal(w->n[d]) < 1e-12) *closed = (PetscBool)(side ? w->p[d] + w->R <= dom->hi[d] + tol : w->p[d] - w->R >= dom->lo[d] - tol);
-      continue;
-    }
-    for (int q = 0; q < 4; q++) {
-      const double dq[3] = {c[q][0] - w->p[0], c[q][1] - w->p[1], c[q][2] - w->p[2]};
-      behind             = (PetscBool)(behind && dem_dot(dq, w->n) <= tol);
-      if (w->finite) spans = (PetscBool)(spans && dem_wall_spans(w, c[q], tol));
-    }
-    *closed = (PetscBool)(behind && spans);
+    *closed = surface_closes_face(&w->s, d, side, (const double(*)[3])c, tol);
   }
   if (!*closed && dem->meshes.n) PetscCall(DemMeshesCloseFace(dem, d, side, tol, closed)); /* walls_mesh.c */
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -123,15 +99,7 @@ PetscErrorCode DemWallsBuildLists(DemWalls *walls, const DemParticles *pt, const
     DemWall *w = &walls->wall[wi];
     w->cnt     = 0;
     for (PetscInt i = 0; i < pt->n && !w->removed; i++) {
-      const double d[3]  = {pt->x[3 * i] - w->p[0], pt->x[3 * i + 1] - w->p[1], pt->x[3 * i + 2] - w->p[2]};
-      const double reach = DemRadius(pt, st, i) + skin;
-      if (w->kind == DEM_WALL_CYLINDER) { /* distance from the curved surface, inside */
-        const double a = dem_dot(d, w->n), rho2 = dem_dot(d, d) - a * a;
-        if (w->R - sqrt(PetscMax(rho2, 0.0)) >= reach) continue;
-      } else {
-        if (dem_dot(d, w->n) >= reach) continue;
-        if (w->finite && dem_dot(d, w->n) < -skin) continue; /* behind a rectangle or polygon */
-      }
+      if (!surface_near(&w->s, pt->x + 3 * i, DemRadius(pt, st, i) + skin, skin)) continue;
       if (w->cnt == w->cap) {
         w->cap = 2 * w->cap + 256;
         PetscCall(PetscRealloc(sizeof(PetscInt) * (size_t)w->cap, &w->idx));
@@ -173,7 +141,7 @@ static inline void dem_walls_body(DemParticles *pt, const double *rad, const Dem
       }
       const double l     = r - 0.5 * delta;
       const double pc[3] = {xi[0] + l * nrm[0], xi[1] + l * nrm[1], xi[2] + l * nrm[2]}; /* contact point */
-      const double ww[3] = {w->omega * w->ax_u[0], w->omega * w->ax_u[1], w->omega * w->ax_u[2]};
+      const double ww[3] = {w->s.omega * w->s.ax_u[0], w->s.omega * w->s.ax_u[1], w->s.omega * w->s.ax_u[2]};
       double       vw[3];
       dem_wall_velocity(w, pc, vw);
       dem_sphere_wall_force(pt, i, r, delta, nrm, vw, ww, p, cm, poly ? dem_pair_inertia(pt->m[i], r, 0, 0) : p->ieff, xi_t, dt);

@@ -2,7 +2,7 @@
  *
  * Axis through point a with unit direction u, radius R. A sphere of centre x, radius r has
  * radial offset rho = (x - a) - ((x - a).u) u and overlap delta = r + |rho| - R; the normal from
- * the centre to the wall is rho/|rho| (dem_impl.h: dem_wall_sphere). The drum turns at omega
+ * the centre to the wall is rho/|rho| (geom/surface_cylinder.h). The drum turns at omega
  * (rad/s, right-handed about u): its surface velocity at the contact point c = x + (r - delta/2)
  * rho/|rho| is omega u x (c - a), and it enters the relative velocity of the contact, hence the
  * tangential (friction) force, exactly as a translating plane's velocity does (walls.c). The
@@ -27,7 +27,7 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help: the friction listed without a cylinder */
   PetscCall(SableOptionsRealN("-dem_cylinder", "Cylinder wall, particles inside: axis point ax,ay,az (m), axis direction ux,uy,uz (-), radius R (m)", NULL, cyl, 0, 7, &set));
-  PetscCall(PetscOptionsReal("-dem_cylinder_omega", "Angular velocity of the cylinder (and its caps) about its axis, right-handed (rad/s)", NULL, omega, &omega, &oset));
+  PetscCall(SableOptionsReal("-dem_cylinder_omega", "Angular velocity of the cylinder (and its caps) about its axis, right-handed", "rad/s", "(-inf,inf)", 0, &omega, &oset));
   PetscCall(SableOptionsRealN("-dem_cylinder_caps", "End caps: axial positions s0,s1 (from the axis point along the axis) of two planes perpendicular to the axis, co-rotating; default no caps", "m", caps, 0, 2, &cset));
   PetscCheck(set || (!oset && !cset) || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without -dem_cylinder", oset ? "-dem_cylinder_omega" : "-dem_cylinder_caps");
   if (!set && help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_cylinder_friction", 1, -1));
@@ -35,26 +35,24 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
   const double u[3] = {cyl[3], cyl[4], cyl[5]}, lu = sqrt(dem_dot(u, u));
   PetscCheck(lu > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder: the axis direction %g,%g,%g must be non-zero", (double)u[0], (double)u[1], (double)u[2]);
   PetscCheck(cyl[6] > 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder: radius %g must be > 0 (m)", (double)cyl[6]);
-  PetscCheck(PetscIsNormalReal(omega) || omega == 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder_omega %g must be finite (rad/s)", (double)omega);
   PetscCheck(!cset || caps[1] > caps[0], dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dem_cylinder_caps: s1 %g must exceed s0 %g (m)", (double)caps[1], (double)caps[0]);
-  PetscCheck(!dem->shapes.convex, dem->comm, PETSC_ERR_SUP, "-dem_cylinder: implemented for spheres only, not with -dem_shape");
   const double   a[3] = {cyl[0], cyl[1], cyl[2]}, un[3] = {u[0] / lu, u[1] / lu, u[2] / lu};
   const PetscInt first = dem->walls.nwall;
   PetscCall(DemWallAdd(dem, "-dem_cylinder", a, un, (double[3]){0, 0, 0}));
-  w       = &dem->walls.wall[dem->walls.nwall - 1];
-  w->kind = DEM_WALL_CYLINDER;
-  w->R    = cyl[6];
+  w         = &dem->walls.wall[dem->walls.nwall - 1];
+  w->s.kind = SURFACE_CYLINDER;
+  w->s.R    = cyl[6];
   for (int c = 0; c < 2 && cset; c++) { /* caps facing inward: +u at s0, -u at s1 */
     const double p[3] = {a[0] + caps[c] * un[0], a[1] + caps[c] * un[1], a[2] + caps[c] * un[2]};
     const double n[3] = {c ? -un[0] : un[0], c ? -un[1] : un[1], c ? -un[2] : un[2]};
     PetscCall(DemWallAdd(dem, c ? "-dem_cylinder_caps s1" : "-dem_cylinder_caps s0", p, n, (double[3]){0, 0, 0}));
   }
   for (PetscInt k = first; k < dem->walls.nwall; k++) {
-    w        = &dem->walls.wall[k];
-    w->omega = omega;
+    w          = &dem->walls.wall[k];
+    w->s.omega = omega;
     for (int c = 0; c < 3; c++) {
-      w->ax_p[c] = a[c];
-      w->ax_u[c] = un[c];
+      w->s.ax_p[c] = a[c];
+      w->s.ax_u[c] = un[c];
     }
   }
   PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_cylinder_friction", 1, first));

@@ -60,12 +60,11 @@ static PetscErrorCode DemMeshMotion(PetscOptionItems *PetscOptionsObject, Dem de
   PetscCall(PetscSNPrintf(o[4], sizeof o[4], "-dem_mesh_%d_omega_table", k));
   m->ax_u[2] = 1;
   PetscCall(SableOptionsRealN(o[0], "Translation velocity of this mesh", "m/s", m->vel, 3, 3, &vset));
-  PetscCall(SableOptionsReal(o[1], "Angular velocity of this mesh about its axis (right hand)", "rad/s", NULL, 0, &m->omega, &wset));
+  PetscCall(SableOptionsReal(o[1], "Angular velocity of this mesh about its axis (right hand)", "rad/s", "(-inf,inf)", 0, &m->omega, &wset));
   PetscCall(SableOptionsRealN(o[2], "A point of the rotation axis at t = 0 (it moves with -dem_mesh_<k>_velocity)", "m", m->ax_p, 3, 3, &pset));
   PetscCall(SableOptionsRealN(o[3], "Direction of the rotation axis", NULL, m->ax_u, 3, 3, &aset));
   PetscCall(SableOptionsRealArray(o[4], "Angular velocity table t0,w0,t1,w1,... (s, rad/s), times increasing: piecewise linear, constant outside", NULL, tab, 0, &nt, &tset));
   for (int j = 0; j < 3; j++) PetscCheck(!PetscIsInfOrNanReal(m->vel[j]) && !PetscIsInfOrNanReal(m->ax_p[j]) && !PetscIsInfOrNanReal(m->ax_u[j]), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s, %s and %s must be finite", o[0], o[2], o[3]);
-  PetscCheck(!PetscIsInfOrNanReal(m->omega), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be finite (rad/s)", o[1], (double)m->omega);
   PetscCheck(!(wset && tset), dem->comm, PETSC_ERR_ARG_INCOMP, "%s and %s both set the rotation: give one of them", o[1], o[4]);
   PetscCheck(!(pset || aset) || wset || tset, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s or %s", pset ? o[2] : o[3], o[1], o[4]);
   const double ul = sqrt(dem_dot(m->ax_u, m->ax_u));

@@ -6,7 +6,9 @@
  * points to; -dem_quad_<k> (4 vertices), -dem_hopper (walls_polygon.c); -dem_cylinder,
  * -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); triangle meshes -dem_mesh_<k>_*
  * (walls_mesh_options.c, not counted among the walls); -dem_<wall>_friction overrides
- * -dem_wall_friction for that wall. The walls are added to the store (walls.c) in this order. */
+ * -dem_wall_friction for that wall. The block calls each surface kind's reader in the order of
+ * SURFACE_KINDS (geom/surface.h); those of the plane (with the box) and the rectangle are here.
+ * The walls are added to the store (walls.c) in this order. */
 #include "dem/dem_walls.h"
 
 /* Adds the rectangle p0 + s (p1 - p0) + t (p2 - p0), s, t in [0,1], facing the side (p1 - p0) x
@@ -26,16 +28,17 @@ static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r
   PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
   PetscCall(DemWallAdd(dem, opt, r, n, z));
   w         = &dem->walls.wall[dem->walls.nwall - 1];
-  w->finite = PETSC_TRUE;
-  w->kind   = DEM_WALL_RECT;
+  w->s.kind = SURFACE_RECT;
   for (int k = 0; k < 3; k++) {
-    w->e1[k] = e1[k];
-    w->e2[k] = e2[k];
+    w->s.e1[k] = e1[k];
+    w->s.e2[k] = e2[k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DemWallsSetFromOptions(Dem dem)
+/* Reads -dem_box and -dem_plane_<k> (+ _velocity, _remove_time, _friction) inside the walls'
+ * options block: the plane kind's reader. */
+PetscErrorCode DemWallPlaneOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
 {
   PetscReal box[6], pl[6], vel[3], trm;
   PetscBool set, vset, rset, help;
@@ -43,7 +46,6 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help: every wall's options listed, given or not */
-  PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
   PetscCall(SableOptionsRealN("-dem_box", "Closed box of six inward-facing walls: xlo,ylo,zlo,xhi,yhi,zhi", "m", box, 0, 6, &set));
   if (set) {
     for (int k = 0; k < 3; k++) {
@@ -72,13 +74,23 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCheck(!set || pl[3] != 0 || pl[4] != 0 || pl[5] != 0, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: the normal (the last 3 values) must be non-zero", opt, (double)pl[0], (double)pl[1], (double)pl[2], (double)pl[3], (double)pl[4], (double)pl[5]);
     if (set) PetscCall(DemWallAdd(dem, opt, pl, pl + 3, vel));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_remove_time", k));
-    PetscCall(PetscOptionsReal(optv, "Time at which the plane wall is removed (a gate opening, as a silo's plate); 0: never", "s", trm, &trm, &rset));
+    PetscCall(SableOptionsReal(optv, "Time at which the plane wall is removed (a gate opening, as a silo's plate); 0: never", "s", "[0,inf)", 0, &trm, &rset));
     PetscCheck(set || !rset || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
-    PetscCheck(!rset || (trm >= 0 && !PetscIsInfOrNanReal(trm)), dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g must be finite and >= 0 (s)", optv, (double)trm);
     if (rset && trm > 0) dem->walls.wall[dem->walls.nwall - 1].t_remove = trm;
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
     if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, set ? dem->walls.nwall - 1 : -1));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Reads -dem_rect_<k> (+ _friction) inside the walls' options block: the rectangle kind's reader. */
+PetscErrorCode DemWallRectOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
+{
+  PetscBool set, help;
+  char      opt[64], optv[80];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
   for (int k = 0; k < 10; k++) {
     PetscReal r[9];
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_rect_%d", k));
@@ -87,9 +99,23 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem)
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
     if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, set ? dem->walls.nwall - 1 : -1));
   }
-  PetscCall(DemWallPolygonOptions(PetscOptionsObject, dem));   /* -dem_quad_<k>, -dem_hopper */
-  PetscCall(DemWallCylinderOptions(PetscOptionsObject, dem));  /* -dem_cylinder (drum) */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The walls' options block: each surface kind's reader, DemWall<Kind>Options (dem/dem_walls.h), in the
+ * order of SURFACE_KINDS (geom/surface.h), then the meshes; the walls are numbered in this order. */
+PetscErrorCode DemWallsSetFromOptions(Dem dem)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
+#define DEM_WALL_READ(K, k, C) PetscCall(DemWall##C##Options(PetscOptionsObject, dem));
+  SURFACE_KINDS(DEM_WALL_READ) /* -dem_box, -dem_plane_<k>, -dem_rect_<k>, -dem_quad_<k>, -dem_hopper, -dem_cylinder */
+#undef DEM_WALL_READ
   PetscCall(DemMeshesSetFromOptions(PetscOptionsObject, dem)); /* -dem_mesh_<k>_* (walls_mesh_options.c) */
   PetscOptionsEnd();
+  for (PetscInt k = 0; k < dem->walls.nwall; k++) { /* convex particles meet a wall through its plane */
+    const DemWall *w = &dem->walls.wall[k];
+    PetscCheck(!dem->shapes.convex || SurfaceKinds[w->s.kind].planar, dem->comm, PETSC_ERR_SUP, "%s: a %s wall takes spheres only, not the convex shapes of -dem_shape", w->name, SurfaceKinds[w->s.kind].name);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

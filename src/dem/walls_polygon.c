@@ -8,7 +8,7 @@
  * Checked at set-up: the vertices lie within 1e-6 L of their plane (L the largest edge), every
  * turn (v_(e+1) - v_e) x (v_(e+2) - v_(e+1)) has the sign of n (convex and in order), area > 0.
  *
- * Contacts (dem_impl.h: DemWallCovers, dem_wall_sphere): a sphere whose centre is in front of the
+ * Contacts (geom/surface_polygon.h): a sphere whose centre is in front of the
  * plane touches the face where its centre projects inside the polygon, with overlap r - (x - v0).n
  * (the rule of -dem_rect_<k>). Where the centre projects outside across an edge, the edge is
  * either a joint with a neighbour wall (no contact: the neighbour's face takes over, as for
@@ -26,7 +26,7 @@ static PetscErrorCode DemWallAddPolygon(Dem dem, const char *opt, PetscInt nv, c
   DemWall *w;
 
   PetscFunctionBeginUser;
-  PetscCheck(nv >= 3 && nv <= DEM_POLY_MAX, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: %" PetscInt_FMT " vertices, must be in [3,%d]", opt, nv, DEM_POLY_MAX);
+  PetscCheck(nv >= 3 && nv <= SURFACE_POLY_MAX, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: %" PetscInt_FMT " vertices, must be in [3,%d]", opt, nv, SURFACE_POLY_MAX);
   for (PetscInt e = 0; e < nv; e++) { /* Newell's normal: twice the vector area */
     const double *a = v + 3 * e, *b = v + 3 * ((e + 1) % nv);
     const double  d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
@@ -57,9 +57,8 @@ static PetscErrorCode DemWallAddPolygon(Dem dem, const char *opt, PetscInt nv, c
   }
   PetscCall(DemWallAdd(dem, opt, v, n, (double[3]){0, 0, 0}));
   w         = &dem->walls.wall[dem->walls.nwall - 1];
-  w->kind   = DEM_WALL_POLYGON;
-  w->finite = PETSC_TRUE;
-  w->nv     = nv;
+  w->s.kind = SURFACE_POLYGON;
+  w->s.nv   = nv;
   for (PetscInt e = 0; e < nv; e++) {
     const double *a = v + 3 * e, *b = v + 3 * ((e + 1) % nv);
     const double  d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
@@ -67,10 +66,10 @@ static PetscErrorCode DemWallAddPolygon(Dem dem, const char *opt, PetscInt nv, c
     dem_cross(n, d, m);
     const double lm = sqrt(dem_dot(m, m));
     for (int k = 0; k < 3; k++) {
-      w->vert[e][k] = a[k];
-      w->en[e][k]   = m[k] / lm;
+      w->s.vert[e][k] = a[k];
+      w->s.en[e][k]   = m[k] / lm;
     }
-    w->rim[e] = rim ? rim[e] : PETSC_FALSE;
+    w->s.rim[e] = rim ? rim[e] : PETSC_FALSE;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

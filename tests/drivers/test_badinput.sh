@@ -37,7 +37,7 @@ expect "cylinder of zero radius" "-dem_cylinder: radius 0. must be > 0" $OK -dem
 expect "cylinder with zero axis" "-dem_cylinder: the axis direction 0.,0.,0. must be non-zero" $OK -dem_cylinder 0.05,0.05,0.05,0,0,0,0.04
 expect "drum speed without a drum" "-dem_cylinder_omega given without -dem_cylinder" $OK -dem_cylinder_omega 2
 expect "plate removal without a plate" "-dem_plane_3_remove_time given without -dem_plane_3" $OK -dem_plane_3_remove_time 1
-expect "negative plate removal time" "-dem_plane_0_remove_time -1.* must be finite and >= 0 (s)" $OK -dem_plane_0 0,0,0,0,0,1 -dem_plane_0_remove_time -1
+expect "negative plate removal time" "-dem_plane_0_remove_time -1.* must be >= 0 (s)" $OK -dem_plane_0 0,0,0,0,0,1 -dem_plane_0_remove_time -1
 expect "caps in the wrong order" "-dem_cylinder_caps: s1 -0.04 must exceed s0 0.04" $OK -dem_cylinder 0.05,0.05,0.05,1,0,0,0.04 -dem_cylinder_caps 0.04,-0.04
 # a good run for contrast: exit 0
 if $S $OK >/dev/null 2>&1; then echo "PASS good input runs: exit 0"; else echo "FAIL good input runs: exit $?"; fi
