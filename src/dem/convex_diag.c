@@ -7,6 +7,7 @@
  * in the world frame, x + R v for the shape's hull vertices v, as one triangle mesh that ParaView
  * draws directly (XDMF grid "surface"; a cylinder is drawn as a 24-sided prism). */
 #include "dem/dem_core.h"
+#include "dem/dem_walls.h"
 #include "geom/quat.h"
 
 #define DEM_CYL_SIDES 24
