@@ -48,9 +48,13 @@ $(BUILD)/gen/sable_options.h: $(LIB_SRC) src/main.c tools/gen-options.sh
 $(BUILD)/src/sable.o: $(BUILD)/gen/sable_options.h
 $(BUILD)/src/sable.o: CFLAGS += -I$(BUILD)/gen
 
-$(BUILD)/%.o: %.c
+# An object whose %.d is missing (built before, or by a Makefile without it) is rebuilt, since
+# nothing then says which headers it saw.
+$(BUILD)/%.o: %.c $(BUILD)/%.d
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
+$(BUILD)/%.d: ;
+.PRECIOUS: $(BUILD)/%.d
 
 $(BUILD)/libsable.a: $(LIB_OBJ)
 	@rm -f $@
