@@ -11,27 +11,21 @@
  * The walls are added to the store (walls.c) in this order. */
 #include "dem/dem_walls.h"
 
-/* Adds the rectangle p0 + s (p1 - p0) + t (p2 - p0), s, t in [0,1], facing the side (p1 - p0) x
- * (p2 - p0) points to; r = p0, p1, p2. */
-static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const PetscReal r[9])
+/* Adds the rectangle r (a patch region: p0 + s e1 + t e2, s, t in [0,1], e1 = p1 - p0 and
+ * e2 = p2 - p0 perpendicular), facing the side e1 x e2 points to. */
+static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const GeomRegion *r)
 {
-  double   e1[3], e2[3], n[3], z[3] = {0, 0, 0};
+  double   n[3], z[3] = {0, 0, 0};
   DemWall *w;
 
   PetscFunctionBeginUser;
-  for (int k = 0; k < 3; k++) {
-    e1[k] = r[3 + k] - r[k];
-    e2[k] = r[6 + k] - r[k];
-  }
-  dem_cross(e1, e2, n);
-  const double l1 = sqrt(dem_dot(e1, e1)), l2 = sqrt(dem_dot(e2, e2));
-  PetscCheck(l1 > 0 && l2 > 0 && PetscAbsReal(dem_dot(e1, e2)) <= 1e-9 * l1 * l2, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: p1 - p0 and p2 - p0 must be non-zero and perpendicular (cosine %g)", opt, l1 > 0 && l2 > 0 ? dem_dot(e1, e2) / (l1 * l2) : 0.0);
-  PetscCall(DemWallAdd(dem, opt, r, n, z));
+  dem_cross(r->g + 3, r->g + 6, n);
+  PetscCall(DemWallAdd(dem, opt, r->g, n, z));
   w         = &dem->walls.wall[dem->walls.nwall - 1];
   w->s.kind = SURFACE_RECT;
   for (int k = 0; k < 3; k++) {
-    w->s.e1[k] = e1[k];
-    w->s.e2[k] = e2[k];
+    w->s.e1[k] = r->g[3 + k];
+    w->s.e2[k] = r->g[6 + k];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -92,10 +86,10 @@ PetscErrorCode DemWallRectOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   for (int k = 0; k < 10; k++) {
-    PetscReal r[9];
+    GeomRegion r; /* the region reader's patch: the one syntax and check of a rectangle */
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_rect_%d", k));
-    PetscCall(SableOptionsRealN(opt, "Finite rectangular wall: corners p0, p1, p2; faces the side (p1-p0)x(p2-p0) points to", "m", r, 0, 9, &set));
-    if (set) PetscCall(DemWallAddRect(dem, opt, r));
+    PetscCall(GeomRegionOption(opt, GEOM_REGION_PATCH, "Finite rectangular wall: corners p0, p1, p2 (p1-p0 perpendicular to p2-p0); faces the side (p1-p0)x(p2-p0) points to", &r, &set));
+    if (set) PetscCall(DemWallAddRect(dem, opt, &r));
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_rect_%d_friction", k));
     if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, set ? dem->walls.nwall - 1 : -1));
   }

@@ -5,9 +5,11 @@
  * sources' patches always were; the outlets' patches took a corner and two edge vectors
  * p,e1,e2 before. Both are nine numbers, so the old spelling cannot be told by its form: values
  * whose edges p1 - p0, p2 - p0 are not a rectangle while e1 = p1, e2 = p2 would be one are
- * refused in one line that gives the corners p, p + e1, p + e2 to write instead. */
+ * refused in one line that gives the corners p, p + e1, p + e2 to write instead (for an outlet's
+ * patch only: the other patches never took edges). */
 #include "geom/region.h"
 #include "sable.h"
+#include <string.h>
 
 const char *const GeomRegionKinds[] = {"box", "cylinder", "patch"};
 
@@ -35,7 +37,7 @@ static PetscErrorCode GeomRegionPatch(MPI_Comm comm, const char *opt, const Pets
   if (!GeomRegionRectangle(e1, e2, &l1, &l2)) {
     char corners[256]; /* C's printf: the numbers as a user writes them (PETSc's adds a '.') */
     snprintf(corners, sizeof corners, "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g", (double)v[0], (double)v[1], (double)v[2], (double)(v[0] + v[3]), (double)(v[1] + v[4]), (double)(v[2] + v[5]), (double)(v[0] + v[6]), (double)(v[1] + v[7]), (double)(v[2] + v[8]));
-    PetscCheck(!GeomRegionRectangle(v + 3, v + 6, &m1, &m2), comm, PETSC_ERR_ARG_WRONG, "%s takes three corners p0,p1,p2 now (as -dem_rect_<k>), not a corner and two edges p,e1,e2: write %s for the rectangle p + s e1 + t e2", opt, corners);
+    PetscCheck(!strstr(opt, "_outlet_") || !GeomRegionRectangle(v + 3, v + 6, &m1, &m2), comm, PETSC_ERR_ARG_WRONG, "%s takes three corners p0,p1,p2 now (as -dem_rect_<k>), not a corner and two edges p,e1,e2: write %s for the rectangle p + s e1 + t e2", opt, corners);
     SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the edges p1 - p0 = %g,%g,%g and p2 - p0 = %g,%g,%g must be non-zero and perpendicular (a degenerate patch)", opt, (double)e1[0], (double)e1[1], (double)e1[2], (double)e2[0], (double)e2[1], (double)e2[2]);
   }
   convex_cross(e1, e2, n);

@@ -23,7 +23,7 @@ expect "spheres with polyhedra" "spheres and convex shapes in one scene are not 
 expect "polyhedron without file" "needs a vertex file" $OK -dem_shape polyhedron
 expect "missing vertex file" "none.txt" $OK -dem_shape polyhedron -dem_shape_file none.txt
 expect "cylinder aspect" "-dem_cylinder_aspect -1.* must be > 0" $OK -dem_shape cylinder -dem_shape_size 0.01 -dem_cylinder_aspect -1
-expect "skewed rectangle" "-dem_rect_0: p1 - p0 and p2 - p0 must be non-zero and perpendicular" $OK -dem_shape cube -dem_shape_size 0.01 -dem_rect_0 0,0,0,1,0,0,1,1,0
+expect "skewed rectangle" "-dem_rect_0: the edges p1 - p0 = 1.,0.,0. and p2 - p0 = 1.,1.,0. must be non-zero and perpendicular" $OK -dem_shape cube -dem_shape_size 0.01 -dem_rect_0 0,0,0,1,0,0,1,1,0
 expect "negative wall friction" "-dem_box_friction -0.5 must be >= 0" $OK -dem_shape cube -dem_shape_size 0.01 -dem_box_friction 0.5,0.5,-0.5,0.5,0.5,0.5
 expect "wall friction count" "-dem_plane_0_friction takes 1 comma-separated values, got 2" $OK -dem_shape cube -dem_shape_size 0.01 -dem_plane_0 0,0,0,0,0,1 -dem_plane_0_friction 0.1,0.2
 expect "contact point model" "-dem_convex_contact_point foo is not known; valid values: patch, support" $OK -dem_shape cube -dem_shape_size 0.01 -dem_convex_contact_point foo
