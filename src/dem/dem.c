@@ -8,6 +8,7 @@
  * particles pass through each other while every number stays finite) stops at the next progress
  * line or output frame when the largest overlap exceeds -dem_overlap_max radii (diag.c). */
 #include "dem/dem_impl.h"
+#include "dem/dem_fields.h"
 
 static const char *DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
 
@@ -408,19 +409,7 @@ PetscErrorCode DemDestroy(Dem *dem)
     PetscCall(PetscFree((*dem)->walls.wall[w].idx));
     PetscCall(PetscFree((*dem)->walls.wall[w].hist));
   }
-  PetscCall(PetscFree((*dem)->p.x));
-  PetscCall(PetscFree((*dem)->p.v));
-  PetscCall(PetscFree((*dem)->p.w));
-  PetscCall(PetscFree((*dem)->p.f));
-  PetscCall(PetscFree((*dem)->p.tq));
-  PetscCall(PetscFree((*dem)->p.q));
-  PetscCall(PetscFree((*dem)->p.x0));
-  PetscCall(PetscFree((*dem)->p.id));
-  PetscCall(PetscFree((*dem)->p.shape));
-  PetscCall(PetscFree((*dem)->p.rad));
-  PetscCall(PetscFree((*dem)->p.m));
-  PetscCall(PetscFree((*dem)->p.invm));
-  PetscCall(PetscFree((*dem)->p.invi));
+  PetscCall(DemParticlesDestroy(*dem)); /* particles.c: every array of the field table */
   PetscCall(PetscFree(*dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
