@@ -94,6 +94,10 @@ int DemFieldsResolve(Dem dem, unsigned flags, DemFieldRef ref[DEM_MAX_FIELDS], s
 double *DemFieldsPack(const DemFieldRef *ref, int nf, PetscInt i, const double shift[3], double *b);
 /* The record b into particle i's slot; returns b's end. */
 const double *DemFieldsUnpack(const DemFieldRef *ref, int nf, PetscInt i, const double *b);
+/* The same for many particles, row by row (the ghost messages): particles idx[0..cnt) into
+ * records of stride doubles from b; records into the slots g0..g0+cnt. */
+void DemFieldsPackList(const DemFieldRef *ref, int nf, const PetscInt *idx, PetscInt cnt, const double shift[3], double *b, size_t stride);
+void DemFieldsUnpackRange(const DemFieldRef *ref, int nf, PetscInt g0, PetscInt cnt, const double *b, size_t stride);
 /* The rows' arrival rules for particle i (DemField.arrive). */
 void DemFieldsArrive(Dem dem, const DemFieldRef *ref, int nf, PetscInt i);
 /* Every array of the scene set to 0 for particle i. */

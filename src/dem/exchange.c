@@ -301,23 +301,15 @@ PetscErrorCode DemGhostsCreate(Dem dem)
   soff[0] = 0;
   for (int d = 0; d < 27; d++) soff[d + 1] = soff[d] + GW * (size_t)ex->nsend[d];
   PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, soff[27] + 1));
-  for (int d = 0; d < 27; d++)
-    for (PetscInt a = 0; a < ex->nsend[d]; a++) {
-      const PetscInt i = ex->send[d][a];
-      (void)DemFieldsPack(ref, nf, i, ex->shift[d], ex->sbuf + soff[d] + GW * a);
-    }
+  for (int d = 0; d < 27; d++) DemFieldsPackList(ref, nf, ex->send[d], ex->nsend[d], ex->shift[d], ex->sbuf + soff[d], GW);
   PetscCall(DemExchangeVariable(dem, soff, roff));
   PetscCall(DemParticlesReserve(dem, dem->p.n + (PetscInt)(roff[27] / GW)));
   nf = DemFieldsResolve(dem, DEM_FIELD_GHOST, ref, &GW); /* the arrays may have moved */
   for (int d = 0; d < 27; d++) {
     ex->recvstart[d] = dem->p.n + dem->p.ng;
     ex->nrecv[d]     = (PetscInt)((roff[d + 1] - roff[d]) / GW);
-    for (PetscInt a = 0; a < ex->nrecv[d]; a++) {
-      const double  *b = ex->rbuf + roff[d] + GW * a;
-      const PetscInt g = dem->p.n + dem->p.ng++;
-      (void)DemFieldsUnpack(ref, nf, g, b);
-      DemFieldsArrive(dem, ref, nf, g); /* the owner's mass and inertia, to the bit */
-    }
+    DemFieldsUnpackRange(ref, nf, ex->recvstart[d], ex->nrecv[d], ex->rbuf + roff[d], GW);
+    for (PetscInt a = 0; a < ex->nrecv[d]; a++) DemFieldsArrive(dem, ref, nf, dem->p.n + dem->p.ng++); /* the owner's mass and inertia, to the bit */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -348,18 +340,11 @@ PetscErrorCode DemGhostsUpdate(Dem dem)
     if (ex->rank[d] >= 0 && ex->nrecv[d]) PetscCallMPI(MPI_Irecv(ex->rbuf + roff[d], (PetscMPIInt)W * (PetscMPIInt)ex->nrecv[d], MPI_DOUBLE, ex->rank[d], 26 - d, dem->comm, &req[nr++]));
   for (int d = 0; d < 27; d++) {
     if (ex->rank[d] < 0 || !ex->nsend[d]) continue;
-    for (PetscInt a = 0; a < ex->nsend[d]; a++) {
-      const PetscInt i = ex->send[d][a];
-      (void)DemFieldsPack(ref, nf, i, ex->shift[d], ex->sbuf + soff[d] + W * a);
-    }
+    DemFieldsPackList(ref, nf, ex->send[d], ex->nsend[d], ex->shift[d], ex->sbuf + soff[d], W);
     PetscCallMPI(MPI_Isend(ex->sbuf + soff[d], (PetscMPIInt)W * (PetscMPIInt)ex->nsend[d], MPI_DOUBLE, ex->rank[d], d, dem->comm, &req[nr++]));
   }
   PetscCallMPI(MPI_Waitall(nr, req, MPI_STATUSES_IGNORE));
-  for (int d = 0; d < 27; d++)
-    for (PetscInt a = 0; a < ex->nrecv[d]; a++) {
-      const PetscInt g = ex->recvstart[d] + a;
-      (void)DemFieldsUnpack(ref, nf, g, ex->rbuf + roff[d] + W * a);
-    }
+  for (int d = 0; d < 27; d++) DemFieldsUnpackRange(ref, nf, ex->recvstart[d], ex->nrecv[d], ex->rbuf + roff[d], W);
   PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

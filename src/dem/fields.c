@@ -120,3 +120,60 @@ void DemFieldsClear(Dem dem, PetscInt i)
     memset((char *)*DemFieldPtr(dem, f) + sz * (size_t)f->width * (size_t)i, 0, sz * (size_t)f->width);
   }
 }
+
+/* The list's rows, one row at a time over the particles (the inner loop of one width). */
+void DemFieldsPackList(const DemFieldRef *ref, int nf, const PetscInt *idx, PetscInt cnt, const double shift[3], double *b, size_t stride)
+{
+  size_t o = 0;
+  for (int f = 0; f < nf; o += (size_t)ref[f].width, f++) {
+    const int w = ref[f].width;
+    double   *d = b + o;
+    if (ref[f].isint) {
+      const PetscInt *s = (const PetscInt *)ref[f].a;
+      for (PetscInt a = 0; a < cnt; a++)
+        for (int k = 0; k < w; k++) d[stride * (size_t)a + k] = (double)s[(size_t)w * idx[a] + k];
+    } else if (ref[f].shift) {
+      const double *s = (const double *)ref[f].a;
+      for (PetscInt a = 0; a < cnt; a++)
+        for (int k = 0; k < 3; k++) d[stride * (size_t)a + k] = s[3 * idx[a] + k] + shift[k];
+    } else if (w == 3) {
+      const double *s = (const double *)ref[f].a;
+      for (PetscInt a = 0; a < cnt; a++)
+        for (int k = 0; k < 3; k++) d[stride * (size_t)a + k] = s[3 * idx[a] + k];
+    } else if (w == 4) {
+      const double *s = (const double *)ref[f].a;
+      for (PetscInt a = 0; a < cnt; a++)
+        for (int k = 0; k < 4; k++) d[stride * (size_t)a + k] = s[4 * idx[a] + k];
+    } else {
+      const double *s = (const double *)ref[f].a;
+      for (PetscInt a = 0; a < cnt; a++)
+        for (int k = 0; k < w; k++) d[stride * (size_t)a + k] = s[(size_t)w * idx[a] + k];
+    }
+  }
+}
+
+void DemFieldsUnpackRange(const DemFieldRef *ref, int nf, PetscInt g0, PetscInt cnt, const double *b, size_t stride)
+{
+  size_t o = 0;
+  for (int f = 0; f < nf; o += (size_t)ref[f].width, f++) {
+    const int     w = ref[f].width;
+    const double *e = b + o;
+    if (ref[f].isint) {
+      PetscInt *d = (PetscInt *)ref[f].a + (size_t)w * g0;
+      for (PetscInt a = 0; a < cnt; a++)
+        for (int k = 0; k < w; k++) d[(size_t)w * a + k] = (PetscInt)e[stride * (size_t)a + k];
+    } else if (w == 3) {
+      double *d = (double *)ref[f].a + 3 * g0;
+      for (PetscInt a = 0; a < cnt; a++)
+        for (int k = 0; k < 3; k++) d[3 * a + k] = e[stride * (size_t)a + k];
+    } else if (w == 4) {
+      double *d = (double *)ref[f].a + 4 * g0;
+      for (PetscInt a = 0; a < cnt; a++)
+        for (int k = 0; k < 4; k++) d[4 * a + k] = e[stride * (size_t)a + k];
+    } else {
+      double *d = (double *)ref[f].a + (size_t)w * g0;
+      for (PetscInt a = 0; a < cnt; a++)
+        for (int k = 0; k < w; k++) d[(size_t)w * a + k] = e[stride * (size_t)a + k];
+    }
+  }
+}

@@ -11,7 +11,8 @@
  *   records: the migration record of a particle (no springs) is the migration rows' widths plus
  *     its spring count (DemMigSize, DemMigPack), and unpacked (DemMigUnpack) every value of those
  *     rows arrives bitwise, the id 2^31 - 2 included (a float would make it 2^31), the mass and inertia from the radius too;
- *     the ghost rows' record likewise (DemFieldsPack, DemFieldsUnpack). */
+ *     the ghost rows' record likewise, one particle (DemFieldsPack, DemFieldsUnpack) and a list
+ *     (DemFieldsPackList, DemFieldsUnpackRange, as the ghost messages). */
 #include "dem_common.h"
 #include "dem/dem_fields.h"
 
@@ -136,14 +137,17 @@ static PetscErrorCode CheckRecords(PetscBool poly)
   PetscCall(CheckEqual(CheckName("migration (%s): rows of the arrived copy not bitwise the particle's (id 2^31-2)", what), differ, 0));
   nf        = DemFieldsResolve(dem, DEM_FIELD_GHOST, ref, &w);
   double *e = DemFieldsPack(ref, nf, i, (double[3]){0, 0, 0}, b);
-  PetscCall(DemParticlesReserve(dem, n + 2));
+  PetscCall(DemParticlesReserve(dem, n + 3));
   nf              = DemFieldsResolve(dem, DEM_FIELD_GHOST, ref, &w);
   const double *r = DemFieldsUnpack(ref, nf, n + 1, b);
   DemFieldsArrive(dem, ref, nf, n + 1);
+  DemFieldsPackList(ref, nf, (PetscInt[2]){i, i}, 2, (double[3]){0, 0, 0}, b, w); /* the messages' way */
+  DemFieldsUnpackRange(ref, nf, n + 2, 1, b + w, w);
+  DemFieldsArrive(dem, ref, nf, n + 2);
   differ = 0;
   for (int k = 0; k < dem_nfields; k++) {
     const DemField *f = &dem_fields[k];
-    if (DemFieldOn(dem, f) && (f->flags & DEM_FIELD_GHOST || (poly && f->when == DEM_FIELD_POLY)) && !SameRow(dem, f, i, n + 1)) differ++;
+    if (DemFieldOn(dem, f) && (f->flags & DEM_FIELD_GHOST || (poly && f->when == DEM_FIELD_POLY))) differ += !SameRow(dem, f, i, n + 1) + !SameRow(dem, f, i, n + 2);
   }
   PetscCall(CheckEqual(CheckName("ghost record (%s): packed and read = the ghost rows' widths", what), (PetscInt)(e - b) + (PetscInt)(r - b), 2 * (PetscInt)w));
   PetscCall(CheckEqual(CheckName("ghost record (%s): rows of the ghost (and its mass, 1/m, 1/I) not bitwise the owner's", what), differ, 0));
