@@ -80,9 +80,18 @@ static inline void **DemFieldPtr(Dem dem, const DemField *f)
 }
 
 /* A row as a message packer sees it, its array resolved (once per message, after any growth). */
+typedef enum {
+  DEM_REF_SHIFT3, /* the position: 3 doubles, the shift added */
+  DEM_REF_REAL1,
+  DEM_REF_REAL3,
+  DEM_REF_REAL4,
+  DEM_REF_INT1,
+  DEM_REF_ANY /* doubles of another width (an integer row has width 1) */
+} DemRefKind;
 typedef struct {
   void           *a;
-  int             width, shift, isint;
+  int             width;
+  DemRefKind      kind;
   const DemField *f;
 } DemFieldRef;
 #define DEM_MAX_FIELDS 32
@@ -94,8 +103,8 @@ int DemFieldsResolve(Dem dem, unsigned flags, DemFieldRef ref[DEM_MAX_FIELDS], s
 double *DemFieldsPack(const DemFieldRef *ref, int nf, PetscInt i, const double shift[3], double *b);
 /* The record b into particle i's slot; returns b's end. */
 const double *DemFieldsUnpack(const DemFieldRef *ref, int nf, PetscInt i, const double *b);
-/* The same for many particles, row by row (the ghost messages): particles idx[0..cnt) into
- * records of stride doubles from b; records into the slots g0..g0+cnt. */
+/* The same for many particles (the ghost messages): particles idx[0..cnt) into records of
+ * stride doubles from b; records into the slots g0..g0+cnt. */
 void DemFieldsPackList(const DemFieldRef *ref, int nf, const PetscInt *idx, PetscInt cnt, const double shift[3], double *b, size_t stride);
 void DemFieldsUnpackRange(const DemFieldRef *ref, int nf, PetscInt g0, PetscInt cnt, const double *b, size_t stride);
 /* The rows' arrival rules for particle i (DemField.arrive). */

@@ -54,55 +54,17 @@ int DemFieldsResolve(Dem dem, unsigned flags, DemFieldRef ref[DEM_MAX_FIELDS], s
   for (int k = 0; k < dem_nfields; k++) {
     const DemField *f = &dem_fields[k];
     if ((f->flags & flags) != flags || !DemFieldOn(dem, f)) continue;
-    ref[nf] = (DemFieldRef){*DemFieldPtr(dem, f), f->width, (f->flags & DEM_FIELD_SHIFT) != 0, f->type == DEM_FIELD_INT, f};
+    DemRefKind kind = DEM_REF_ANY;
+    if (f->flags & DEM_FIELD_SHIFT) kind = DEM_REF_SHIFT3;
+    else if (f->type == DEM_FIELD_INT) kind = f->width == 1 ? DEM_REF_INT1 : DEM_REF_ANY;
+    else if (f->width == 1) kind = DEM_REF_REAL1;
+    else if (f->width == 3) kind = DEM_REF_REAL3;
+    else if (f->width == 4) kind = DEM_REF_REAL4;
+    ref[nf] = (DemFieldRef){*DemFieldPtr(dem, f), f->width, kind, f};
     *width += (size_t)f->width;
     nf++;
   }
   return nf;
-}
-
-double *DemFieldsPack(const DemFieldRef *ref, int nf, PetscInt i, const double shift[3], double *b)
-{
-  for (int f = 0; f < nf; f++) {
-    const int w = ref[f].width;
-    if (ref[f].isint) {
-      const PetscInt *s = (const PetscInt *)ref[f].a + (size_t)w * i;
-      for (int k = 0; k < w; k++) b[k] = (double)s[k];
-    } else {
-      const double *s = (const double *)ref[f].a + (size_t)w * i;
-      if (ref[f].shift)
-        for (int k = 0; k < 3; k++) b[k] = s[k] + shift[k];
-      else if (w == 3) {
-        b[0] = s[0];
-        b[1] = s[1];
-        b[2] = s[2];
-      } else
-        for (int k = 0; k < w; k++) b[k] = s[k];
-    }
-    b += w;
-  }
-  return b;
-}
-
-const double *DemFieldsUnpack(const DemFieldRef *ref, int nf, PetscInt i, const double *b)
-{
-  for (int f = 0; f < nf; f++) {
-    const int w = ref[f].width;
-    if (ref[f].isint) {
-      PetscInt *d = (PetscInt *)ref[f].a + (size_t)w * i;
-      for (int k = 0; k < w; k++) d[k] = (PetscInt)b[k];
-    } else if (w == 3) {
-      double *d = (double *)ref[f].a + (size_t)w * i;
-      d[0]      = b[0];
-      d[1]      = b[1];
-      d[2]      = b[2];
-    } else {
-      double *d = (double *)ref[f].a + (size_t)w * i;
-      for (int k = 0; k < w; k++) d[k] = b[k];
-    }
-    b += w;
-  }
-  return b;
 }
 
 void DemFieldsArrive(Dem dem, const DemFieldRef *ref, int nf, PetscInt i)
@@ -121,59 +83,92 @@ void DemFieldsClear(Dem dem, PetscInt i)
   }
 }
 
-/* The list's rows, one row at a time over the particles (the inner loop of one width). */
-void DemFieldsPackList(const DemFieldRef *ref, int nf, const PetscInt *idx, PetscInt cnt, const double shift[3], double *b, size_t stride)
+/* The messages' loops. Particles go in blocks of DEM_PACK_BLOCK whose records stay in the first
+ * level cache; within a block row after row, each by a loop of its width known to the compiler
+ * (the position with its shift; 1, 3, 4), so the loops are the hand-written layout's. */
+#define DEM_PACK_BLOCK 64
+#define DEM_PACK_LOOP(W, EXPR) \
+  for (PetscInt a = 0; a < cnt; a++) \
+    for (int k = 0; k < (W); k++) d[stride * (size_t)a + k] = (EXPR)
+#define DEM_UNPACK_LOOP(W, T) \
+  for (PetscInt a = 0; a < cnt; a++) \
+    for (int k = 0; k < (W); k++) ((T *)r->a)[(size_t)(W) * (g0 + a) + k] = (T)e[stride * (size_t)a + k]
+
+static void dem_pack_rows(const DemFieldRef *ref, int nf, const PetscInt *idx, PetscInt cnt, const double shift[3], double *b, size_t stride)
 {
-  size_t o = 0;
-  for (int f = 0; f < nf; o += (size_t)ref[f].width, f++) {
-    const int w = ref[f].width;
-    double   *d = b + o;
-    if (ref[f].isint) {
-      const PetscInt *s = (const PetscInt *)ref[f].a;
-      for (PetscInt a = 0; a < cnt; a++)
-        for (int k = 0; k < w; k++) d[stride * (size_t)a + k] = (double)s[(size_t)w * idx[a] + k];
-    } else if (ref[f].shift) {
-      const double *s = (const double *)ref[f].a;
-      for (PetscInt a = 0; a < cnt; a++)
-        for (int k = 0; k < 3; k++) d[stride * (size_t)a + k] = s[3 * idx[a] + k] + shift[k];
-    } else if (w == 3) {
-      const double *s = (const double *)ref[f].a;
-      for (PetscInt a = 0; a < cnt; a++)
-        for (int k = 0; k < 3; k++) d[stride * (size_t)a + k] = s[3 * idx[a] + k];
-    } else if (w == 4) {
-      const double *s = (const double *)ref[f].a;
-      for (PetscInt a = 0; a < cnt; a++)
-        for (int k = 0; k < 4; k++) d[stride * (size_t)a + k] = s[4 * idx[a] + k];
-    } else {
-      const double *s = (const double *)ref[f].a;
-      for (PetscInt a = 0; a < cnt; a++)
-        for (int k = 0; k < w; k++) d[stride * (size_t)a + k] = s[(size_t)w * idx[a] + k];
+  double *d = b;
+  for (int f = 0; f < nf; d += ref[f].width, f++) {
+    const DemFieldRef *r = &ref[f];
+    const double      *s = (const double *)r->a;
+    switch (r->kind) {
+    case DEM_REF_SHIFT3:
+      DEM_PACK_LOOP(3, s[3 * idx[a] + k] + shift[k]);
+      break;
+    case DEM_REF_REAL1:
+      DEM_PACK_LOOP(1, s[idx[a]]);
+      break;
+    case DEM_REF_REAL3:
+      DEM_PACK_LOOP(3, s[3 * idx[a] + k]);
+      break;
+    case DEM_REF_REAL4:
+      DEM_PACK_LOOP(4, s[4 * idx[a] + k]);
+      break;
+    case DEM_REF_INT1:
+      DEM_PACK_LOOP(1, (double)((const PetscInt *)r->a)[idx[a]]);
+      break;
+    default:
+      DEM_PACK_LOOP(r->width, s[(size_t)r->width * idx[a] + k]);
     }
   }
 }
 
-void DemFieldsUnpackRange(const DemFieldRef *ref, int nf, PetscInt g0, PetscInt cnt, const double *b, size_t stride)
+static void dem_unpack_rows(const DemFieldRef *ref, int nf, PetscInt g0, PetscInt cnt, const double *b, size_t stride)
 {
-  size_t o = 0;
-  for (int f = 0; f < nf; o += (size_t)ref[f].width, f++) {
-    const int     w = ref[f].width;
-    const double *e = b + o;
-    if (ref[f].isint) {
-      PetscInt *d = (PetscInt *)ref[f].a + (size_t)w * g0;
-      for (PetscInt a = 0; a < cnt; a++)
-        for (int k = 0; k < w; k++) d[(size_t)w * a + k] = (PetscInt)e[stride * (size_t)a + k];
-    } else if (w == 3) {
-      double *d = (double *)ref[f].a + 3 * g0;
-      for (PetscInt a = 0; a < cnt; a++)
-        for (int k = 0; k < 3; k++) d[3 * a + k] = e[stride * (size_t)a + k];
-    } else if (w == 4) {
-      double *d = (double *)ref[f].a + 4 * g0;
-      for (PetscInt a = 0; a < cnt; a++)
-        for (int k = 0; k < 4; k++) d[4 * a + k] = e[stride * (size_t)a + k];
-    } else {
-      double *d = (double *)ref[f].a + (size_t)w * g0;
-      for (PetscInt a = 0; a < cnt; a++)
-        for (int k = 0; k < w; k++) d[(size_t)w * a + k] = e[stride * (size_t)a + k];
+  const double *e = b;
+  for (int f = 0; f < nf; e += ref[f].width, f++) {
+    const DemFieldRef *r = &ref[f];
+    switch (r->kind) {
+    case DEM_REF_SHIFT3:
+    case DEM_REF_REAL3:
+      DEM_UNPACK_LOOP(3, double);
+      break;
+    case DEM_REF_REAL1:
+      DEM_UNPACK_LOOP(1, double);
+      break;
+    case DEM_REF_REAL4:
+      DEM_UNPACK_LOOP(4, double);
+      break;
+    case DEM_REF_INT1:
+      DEM_UNPACK_LOOP(1, PetscInt);
+      break;
+    default:
+      DEM_UNPACK_LOOP(r->width, double);
     }
   }
+}
+
+void DemFieldsPackList(const DemFieldRef *ref, int nf, const PetscInt *idx, PetscInt cnt, const double shift[3], double *b, size_t stride)
+{
+  for (PetscInt a0 = 0; a0 < cnt; a0 += DEM_PACK_BLOCK) dem_pack_rows(ref, nf, idx + a0, PetscMin(DEM_PACK_BLOCK, cnt - a0), shift, b + stride * (size_t)a0, stride);
+}
+
+void DemFieldsUnpackRange(const DemFieldRef *ref, int nf, PetscInt g0, PetscInt cnt, const double *b, size_t stride)
+{
+  for (PetscInt a0 = 0; a0 < cnt; a0 += DEM_PACK_BLOCK) dem_unpack_rows(ref, nf, g0 + a0, PetscMin(DEM_PACK_BLOCK, cnt - a0), b + stride * (size_t)a0, stride);
+}
+
+double *DemFieldsPack(const DemFieldRef *ref, int nf, PetscInt i, const double shift[3], double *b)
+{
+  size_t w = 0;
+  for (int f = 0; f < nf; f++) w += (size_t)ref[f].width;
+  dem_pack_rows(ref, nf, &i, 1, shift, b, w);
+  return b + w;
+}
+
+const double *DemFieldsUnpack(const DemFieldRef *ref, int nf, PetscInt i, const double *b)
+{
+  size_t w = 0;
+  for (int f = 0; f < nf; f++) w += (size_t)ref[f].width;
+  dem_unpack_rows(ref, nf, i, 1, b, w);
+  return b + w;
 }
