@@ -1,7 +1,7 @@
 /* The per-particle fields (dem_fields.h): one row per array of the particle store, and the
  * packing of a particle's rows into a message of doubles and back. The rows' order is the order
- * of the values in a record and of the frames' particle datasets (position, velocity,
- * angular_velocity, quaternion, radius, id, shape). Ids and shapes travel as doubles, exact
+ * of the values in a record, of the frames' particle datasets (position, velocity,
+ * angular_velocity, quaternion, radius, id, shape) and of the arrays' allocation. Ids and shapes travel as doubles, exact
  * below 2^53. A particle of its own size sends only its radius: mass, 1/m and 1/I follow from
  * it on arrival (DemParticleSetSize), the same bits as the sender's. */
 #include "dem/dem_fields.h"
@@ -21,20 +21,20 @@ const DemField dem_fields[] = {
   {"dem/x", DEM_FIELD_REAL, 3, DEM_FIELD_AT(p.x), DEM_FIELD_ALWAYS, ALL_MSG | DEM_FIELD_SHIFT, "position", DEM_FRAME_WRAPPED, NULL},
   {"dem/v", DEM_FIELD_REAL, 3, DEM_FIELD_AT(p.v), DEM_FIELD_ALWAYS, ALL_MSG, "velocity", DEM_FRAME_STORED, NULL},
   {"dem/w", DEM_FIELD_REAL, 3, DEM_FIELD_AT(p.w), DEM_FIELD_ALWAYS, ALL_MSG, "angular_velocity", DEM_FRAME_STORED, NULL},
-  {"dem/q", DEM_FIELD_REAL, 4, DEM_FIELD_AT(p.q), DEM_FIELD_ALWAYS, ALL_MSG, "quaternion", DEM_FRAME_STORED, NULL},
-  {"dem/radius", DEM_FIELD_REAL, 1, DEM_FIELD_AT(p.rad), DEM_FIELD_POLY, OWNED, "radius", DEM_FRAME_RADIUS, DemFieldSizesArrive},
-  {"dem/id", DEM_FIELD_INT, 1, DEM_FIELD_AT(p.id), DEM_FIELD_ALWAYS, OWNED, "id", DEM_FRAME_STORED, NULL},
-  {"dem/shape", DEM_FIELD_INT, 1, DEM_FIELD_AT(p.shape), DEM_FIELD_ALWAYS, OWNED, "shape", DEM_FRAME_STORED, NULL},
   {"dem/f", DEM_FIELD_REAL, 3, DEM_FIELD_AT(p.f), DEM_FIELD_ALWAYS, STATE | DEM_FIELD_CKPT_GHOSTS, NULL, DEM_FRAME_STORED, NULL},
   {"dem/tq", DEM_FIELD_REAL, 3, DEM_FIELD_AT(p.tq), DEM_FIELD_ALWAYS, STATE | DEM_FIELD_CKPT_GHOSTS, NULL, DEM_FRAME_STORED, NULL},
+  {"dem/q", DEM_FIELD_REAL, 4, DEM_FIELD_AT(p.q), DEM_FIELD_ALWAYS, ALL_MSG, "quaternion", DEM_FRAME_STORED, NULL},
   {"dem/x0", DEM_FIELD_REAL, 3, DEM_FIELD_AT(p.x0), DEM_FIELD_ALWAYS, DEM_FIELD_PERMUTE | DEM_FIELD_CKPT, NULL, DEM_FRAME_STORED, NULL}, /* set from x on arrival and at list builds */
   {"dem/ext_fext", DEM_FIELD_REAL, 3, DEM_FIELD_AT(ext.fext), DEM_FIELD_COUPLED, STATE, NULL, DEM_FRAME_STORED, NULL},
   {"dem/ext_k", DEM_FIELD_REAL, 1, DEM_FIELD_AT(ext.kdrag), DEM_FIELD_COUPLED, STATE, NULL, DEM_FRAME_STORED, NULL},
   {"dem/ext_u", DEM_FIELD_REAL, 3, DEM_FIELD_AT(ext.udrag), DEM_FIELD_COUPLED, STATE, NULL, DEM_FRAME_STORED, NULL},
   {"dem/ext_j", DEM_FIELD_REAL, 3, DEM_FIELD_AT(ext.jdrag), DEM_FIELD_COUPLED, STATE, NULL, DEM_FRAME_STORED, NULL},
+  {"dem/radius", DEM_FIELD_REAL, 1, DEM_FIELD_AT(p.rad), DEM_FIELD_POLY, OWNED, "radius", DEM_FRAME_RADIUS, DemFieldSizesArrive},
   {"dem/mass", DEM_FIELD_REAL, 1, DEM_FIELD_AT(p.m), DEM_FIELD_POLY, DEM_FIELD_PERMUTE | DEM_FIELD_CKPT | DEM_FIELD_CKPT_GHOSTS, NULL, DEM_FRAME_STORED, NULL}, /* from the radius */
   {"dem/inv_mass", DEM_FIELD_REAL, 1, DEM_FIELD_AT(p.invm), DEM_FIELD_POLY, DEM_FIELD_PERMUTE | DEM_FIELD_CKPT | DEM_FIELD_CKPT_GHOSTS, NULL, DEM_FRAME_STORED, NULL},
   {"dem/inv_inertia", DEM_FIELD_REAL, 1, DEM_FIELD_AT(p.invi), DEM_FIELD_POLY, DEM_FIELD_PERMUTE | DEM_FIELD_CKPT | DEM_FIELD_CKPT_GHOSTS, NULL, DEM_FRAME_STORED, NULL},
+  {"dem/id", DEM_FIELD_INT, 1, DEM_FIELD_AT(p.id), DEM_FIELD_ALWAYS, OWNED, "id", DEM_FRAME_STORED, NULL},
+  {"dem/shape", DEM_FIELD_INT, 1, DEM_FIELD_AT(p.shape), DEM_FIELD_ALWAYS, OWNED, "shape", DEM_FRAME_STORED, NULL},
 };
 const int dem_nfields = (int)(sizeof dem_fields / sizeof dem_fields[0]);
 
