@@ -24,18 +24,19 @@
 #include "dem/dem_walls.h"
 #include "dem/dem_sources.h"
 #include "dem/dem_checkpoint.h"
+#include "dem/dem_fields.h"
 
-/* Collective. Every per-particle dataset of the table, this rank's rows (x0 and id apart). */
+/* Collective. Every per-particle dataset of the field table (dem_fields.h), this rank's rows. */
 static PetscErrorCode DemCkptFields(Dem dem, IoCkpt ck, PetscBool write)
 {
   PetscFunctionBeginUser;
-  for (size_t f = 0; f < dem_ckpt_nfields; f++) {
-    const DemCkptField *fd   = &dem_ckpt_fields[f];
-    void               *data = *(void **)((char *)dem + fd->at);
-    const PetscInt      rows = fd->ncomp * (dem->p.n + (fd->ghosts ? dem->p.ng : 0));
-    if ((fd->coupled && !dem->ext.on) || (fd->poly && !dem->shapes.poly)) continue;
-    if (write) PetscCall(IoCkptWriteRows(ck, fd->name, fd->type, rows, data));
-    else PetscCall(IoCkptReadRowsInto(ck, fd->name, fd->type, rows, data));
+  for (int f = 0; f < dem_nfields; f++) {
+    const DemField  *fd   = &dem_fields[f];
+    const IoCkptType type = fd->type == DEM_FIELD_INT ? IO_CKPT_INT : IO_CKPT_REAL;
+    const PetscInt   rows = fd->width * (dem->p.n + (fd->flags & DEM_FIELD_CKPT_GHOSTS ? dem->p.ng : 0));
+    if (!(fd->flags & DEM_FIELD_CKPT) || !DemFieldOn(dem, fd)) continue;
+    if (write) PetscCall(IoCkptWriteRows(ck, fd->ckpt, type, rows, *DemFieldPtr(dem, fd)));
+    else PetscCall(IoCkptReadRowsInto(ck, fd->ckpt, type, rows, *DemFieldPtr(dem, fd)));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -134,7 +135,7 @@ static PetscErrorCode DemCkptWriteWalls(Dem dem, IoCkpt ck)
 
 PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
 {
-  PetscInt c[DEM_CKPT_NCOUNT], N, m;
+  PetscInt c[DEM_CKPT_NCOUNT], m;
   double   clk[3];
 
   PetscFunctionBeginUser;
@@ -142,13 +143,10 @@ PetscErrorCode DemCheckpointWrite(Dem dem, IoCkpt ck)
   clk[0] = dem->clock.t;
   clk[1] = dem->initial.checksum;
   clk[2] = dem->clock.dt;
-  N      = dem->p.n + dem->p.ng;
   m      = dem->p.n ? dem->nl.start[dem->p.n] : 0;
   PetscCall(IoCkptWriteRows(ck, "dem/counters", IO_CKPT_INT, DEM_CKPT_NCOUNT, c));
   PetscCall(IoCkptWriteRows(ck, "dem/clock", IO_CKPT_REAL, 3, clk));
   PetscCall(DemCkptFields(dem, ck, PETSC_TRUE));
-  PetscCall(IoCkptWriteRows(ck, "dem/x0", IO_CKPT_REAL, 3 * dem->p.n, dem->p.x0));
-  PetscCall(IoCkptWriteRows(ck, "dem/id", IO_CKPT_INT, N, dem->p.id));
   PetscCall(IoCkptWriteRows(ck, "dem/nl_start", IO_CKPT_INT, dem->p.n ? dem->p.n + 1 : 0, dem->nl.start));
   PetscCall(IoCkptWriteRows(ck, "dem/nl_nbr", IO_CKPT_INT, m, dem->nl.nbr));
   PetscCall(IoCkptWriteRows(ck, "dem/nl_own", IO_CKPT_INT, m, dem->nl.own));
@@ -303,8 +301,6 @@ PetscErrorCode DemCheckpointRead(Dem dem, IoCkpt ck)
   PetscCall(DemExternalCheckpointCheck(dem, ck));
   PetscCall(DemCkptPolyCheck(dem, ck, path));
   PetscCall(DemCkptFields(dem, ck, PETSC_FALSE));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/x0", IO_CKPT_REAL, 3 * dem->p.n, dem->p.x0));
-  PetscCall(IoCkptReadRowsInto(ck, "dem/id", IO_CKPT_INT, N, dem->p.id));
   PetscCall(DemCkptReadList(dem, ck, path));
   PetscCall(DemCkptReadLists(dem, ck, path));
   PetscCall(DemCkptReadConvex(dem, ck));

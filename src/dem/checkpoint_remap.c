@@ -24,26 +24,7 @@
 #include "dem/dem_walls.h"
 #include "dem/dem_checkpoint.h"
 #include <stddef.h>
-
-/* The per-particle datasets (dem_impl.h), walked by the writer and both readers. */
-const DemCkptField dem_ckpt_fields[] = {
-  {"dem/shape", IO_CKPT_INT, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.shape), PETSC_FALSE, PETSC_FALSE},
-  {"dem/x", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.x), PETSC_FALSE, PETSC_FALSE},
-  {"dem/v", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.v), PETSC_FALSE, PETSC_FALSE},
-  {"dem/w", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.w), PETSC_FALSE, PETSC_FALSE},
-  {"dem/q", IO_CKPT_REAL, 4, PETSC_TRUE, offsetof(struct _p_Dem, p.q), PETSC_FALSE, PETSC_FALSE},
-  {"dem/f", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.f), PETSC_FALSE, PETSC_FALSE},
-  {"dem/tq", IO_CKPT_REAL, 3, PETSC_TRUE, offsetof(struct _p_Dem, p.tq), PETSC_FALSE, PETSC_FALSE},
-  {"dem/ext_fext", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.fext), PETSC_TRUE, PETSC_FALSE},
-  {"dem/ext_k", IO_CKPT_REAL, 1, PETSC_FALSE, offsetof(struct _p_Dem, ext.kdrag), PETSC_TRUE, PETSC_FALSE},
-  {"dem/ext_u", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.udrag), PETSC_TRUE, PETSC_FALSE},
-  {"dem/ext_j", IO_CKPT_REAL, 3, PETSC_FALSE, offsetof(struct _p_Dem, ext.jdrag), PETSC_TRUE, PETSC_FALSE},
-  {"dem/radius", IO_CKPT_REAL, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.rad), PETSC_FALSE, PETSC_TRUE},
-  {"dem/mass", IO_CKPT_REAL, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.m), PETSC_FALSE, PETSC_TRUE},
-  {"dem/inv_mass", IO_CKPT_REAL, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.invm), PETSC_FALSE, PETSC_TRUE},
-  {"dem/inv_inertia", IO_CKPT_REAL, 1, PETSC_TRUE, offsetof(struct _p_Dem, p.invi), PETSC_FALSE, PETSC_TRUE},
-};
-const size_t dem_ckpt_nfields = sizeof dem_ckpt_fields / sizeof dem_ckpt_fields[0];
+#include "dem/dem_fields.h"
 
 #define CNT(b, r, k) ((b)->cnt[DEM_CKPT_NCOUNT * (r) + (k)])
 
@@ -160,23 +141,22 @@ static PetscErrorCode DemRemapParticles(Dem dem, DemRemap *b)
   PetscCall(DemParticlesReserve(dem, b->nown));
   dem->p.n  = b->nown;
   dem->p.ng = 0;
-  for (size_t f = 0; f < dem_ckpt_nfields; f++) {
-    const DemCkptField *fd = &dem_ckpt_fields[f];
-    const size_t        sz = IoCkptTypeSize(fd->type) * (size_t)fd->ncomp;
-    char               *o;
-    if ((fd->coupled && !dem->ext.on) || (fd->poly && !dem->shapes.poly)) continue;
-    o = *(char **)((char *)dem + fd->at);
-    for (PetscInt r = 0; r < b->R; r++) rows[r] = fd->ncomp * (CNT(b, r, CK_N) + (fd->ghosts ? CNT(b, r, CK_NG) : 0));
-    PetscCall(DemRemapSlab(b, fd->name, fd->type, rows, PETSC_FALSE, &s));
+  for (int f = 0; f < dem_nfields; f++) { /* the owned rows of every dataset of the field table (dem/id again) */
+    const DemField  *fd   = &dem_fields[f];
+    const IoCkptType type = fd->type == DEM_FIELD_INT ? IO_CKPT_INT : IO_CKPT_REAL;
+    const size_t     sz   = IoCkptTypeSize(type) * (size_t)fd->width;
+    char            *o;
+    if (!(fd->flags & DEM_FIELD_CKPT) || !DemFieldOn(dem, fd)) continue;
+    o = *(char **)DemFieldPtr(dem, fd);
+    for (PetscInt r = 0; r < b->R; r++) rows[r] = fd->width * (CNT(b, r, CK_N) + (fd->flags & DEM_FIELD_CKPT_GHOSTS ? CNT(b, r, CK_NG) : 0));
+    PetscCall(DemRemapSlab(b, fd->ckpt, type, rows, PETSC_FALSE, &s));
     for (PetscInt r = b->r0; r < b->r1; r++) { /* the owned rows come first */
-      PetscCall(PetscMemcpy(o, (char *)s.v + IoCkptTypeSize(fd->type) * (size_t)s.off[r - b->r0], sz * (size_t)CNT(b, r, CK_N)));
+      PetscCall(PetscMemcpy(o, (char *)s.v + IoCkptTypeSize(type) * (size_t)s.off[r - b->r0], sz * (size_t)CNT(b, r, CK_N)));
       o += sz * (size_t)CNT(b, r, CK_N);
     }
     PetscCall(DemSlabFree(&s));
   }
   PetscCall(PetscFree(rows));
-  for (PetscInt r = b->r0, i = 0; r < b->r1; r++) /* the owned ids, in the particles' order */
-    for (PetscInt a = 0; a < CNT(b, r, CK_N); a++) dem->p.id[i++] = b->gid[b->goff[r - b->r0] + a];
   for (PetscInt i = 0; i < dem->p.n; i++) PetscCheck(dem->p.shape[i] >= 0 && dem->p.shape[i] < dem->shapes.nshape, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the dataset dem/shape gives particle %" PetscInt_FMT " shape %" PetscInt_FMT ", the case has shapes [0, %" PetscInt_FMT ")", b->path, dem->p.id[i], dem->p.shape[i], dem->shapes.nshape);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

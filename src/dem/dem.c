@@ -10,6 +10,7 @@
 #include "dem/dem_core.h"
 #include "dem/dem_walls.h"
 #include "dem/dem_sources.h"
+#include "dem/dem_fields.h"
 
 static const char *const DemLawNames[] = {"linear_nohist", "linear", "hertz", "DemLaw", "DEM_LAW_", NULL};
 
@@ -386,19 +387,7 @@ PetscErrorCode DemDestroy(Dem *dem)
     PetscCall(PetscFree((*dem)->walls.wall[w].idx));
     PetscCall(PetscFree((*dem)->walls.wall[w].hist));
   }
-  PetscCall(PetscFree((*dem)->p.x));
-  PetscCall(PetscFree((*dem)->p.v));
-  PetscCall(PetscFree((*dem)->p.w));
-  PetscCall(PetscFree((*dem)->p.f));
-  PetscCall(PetscFree((*dem)->p.tq));
-  PetscCall(PetscFree((*dem)->p.q));
-  PetscCall(PetscFree((*dem)->p.x0));
-  PetscCall(PetscFree((*dem)->p.id));
-  PetscCall(PetscFree((*dem)->p.shape));
-  PetscCall(PetscFree((*dem)->p.rad));
-  PetscCall(PetscFree((*dem)->p.m));
-  PetscCall(PetscFree((*dem)->p.invm));
-  PetscCall(PetscFree((*dem)->p.invi));
+  PetscCall(DemParticlesDestroy(*dem)); /* particles.c: every array of the field table */
   PetscCall(PetscFree(*dem));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -25,19 +25,3 @@ enum {
   CK_NEED_BUILD,
   DEM_CKPT_NCOUNT
 };
-/* A per-particle dataset of a checkpoint: rows of ncomp values, per rank its n owned particles
- * then (if ghosts) its ng ghosts, from and into the array whose pointer sits at offset at of
- * struct _p_Dem; coupled: the coupling's arrays (external.c), only in a coupled run's
- * checkpoint. The same-grid read, the writer and the remap (which moves the owned rows with the
- * migration record, exchange.c) all walk this table. */
-typedef struct {
-  const char *name;
-  IoCkptType  type;
-  int         ncomp;
-  PetscBool   ghosts;
-  size_t      at;
-  PetscBool   coupled;
-  PetscBool   poly; /* only in a scene of spheres of their own sizes (DemParticles.rad) */
-} DemCkptField;
-extern const DemCkptField dem_ckpt_fields[];
-extern const size_t       dem_ckpt_nfields;

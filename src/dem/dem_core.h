@@ -234,7 +234,7 @@ PetscErrorCode       DemSpringsSave(Dem dem, DemSpring **recs, PetscInt *nrec, P
 PetscErrorCode       DemSpringsRestore(Dem dem, const DemSpring *recs, PetscInt nrec);                /* springs.c */
 PetscErrorCode       DemParticlesReserve(Dem dem, PetscInt n);                                        /* particles.c */
 PetscErrorCode       DemParticlesPermute(Dem dem, const PetscInt *perm);                              /* particles.c */
-void                 DemParticleSetSize(Dem dem, PetscInt i, double r);                               /* particles.c: radius, mass, 1/m, 1/I of a poly scene's particle i */
+void                 DemParticleSetSize(Dem dem, PetscInt i, double r);                               /* fields.c: radius, mass, 1/m, 1/I of a poly scene's particle i */
 PetscErrorCode       DemMaterialsSetUp(Dem dem);                                                      /* contact_laws.c */
 PetscErrorCode       DemHertzRestitutionMap(double e, double *ch, double *tau);                       /* contact_laws.c */
 PetscErrorCode       DemCheckTimeStepSizes(Dem dem);                                                  /* contact_laws.c: spheres of their own sizes */
@@ -244,11 +244,7 @@ PetscErrorCode       DemShapesDestroy(Dem dem);                                 
 PetscErrorCode       DemExchangeSetUp(Dem dem);                                                       /* exchange.c */
 PetscErrorCode       DemExchangeDestroy(Dem dem);                                                     /* exchange.c */
 PetscErrorCode       DemMigrate(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *caprec);         /* exchange.c */
-#define MIG_HEAD                 22                                                                   /* id, shape, x, v, w, q, f, tq (3 each, q 4), number of springs */
-#define MIG_EXT                  10                                                                   /* with a coupling attached: fext[3], kdrag, udrag[3], jdrag[3] (external.c) */
-#define MIG_POLY                 1                                                                    /* in a scene of own sizes: the radius (mass and inertia follow from it) */
-#define MIG_RECORD_SIZE(dem, ns) (MIG_HEAD + ((dem)->ext.on ? MIG_EXT : 0) + ((dem)->shapes.poly ? MIG_POLY : 0) + 4 * (size_t)(ns))
-PetscErrorCode DemBufReserve(double **buf, size_t *cap, size_t n); /* exchange.c */
+PetscErrorCode       DemBufReserve(double **buf, size_t *cap, size_t n);                              /* exchange.c */
 /* exchange.c: the migration record of local particle i (position + shift, state, coupling
  * state, springs): doubles written; unpack appends the particle and its springs */
 size_t         DemMigSize(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec);

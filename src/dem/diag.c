@@ -5,6 +5,7 @@
  * 8/15 E* sqrt(R*) delta^(5/2) (the tangential spring energy is left out for hertz). */
 #include "dem/dem_core.h"
 #include "dem/dem_walls.h"
+#include "dem/dem_fields.h"
 
 static double dem_spring_energy(const Dem dem, const DemPairParams *p, double delta, const double *xi)
 {
@@ -193,13 +194,13 @@ PetscErrorCode DemWriteOutput(Dem dem, Io io)
     PetscCall(PetscArraycpy(x, dem->p.x, 3 * dem->p.n));
     for (PetscInt i = 0; i < dem->p.n; i++) DemWrapPeriodic(dem->dom, x + 3 * i);
   }
-  PetscCall(IoWriteParticles(io, "position", dem->p.n, 3, x));
-  PetscCall(IoWriteParticles(io, "velocity", dem->p.n, 3, dem->p.v));
-  PetscCall(IoWriteParticles(io, "angular_velocity", dem->p.n, 3, dem->p.w));
-  PetscCall(IoWriteParticles(io, "quaternion", dem->p.n, 4, dem->p.q));
-  PetscCall(IoWriteParticles(io, "radius", dem->p.n, 1, r));
-  PetscCall(IoWriteParticlesInt(io, "id", dem->p.n, dem->p.id));
-  PetscCall(IoWriteParticlesInt(io, "shape", dem->p.n, dem->p.shape));
+  for (int k = 0; k < dem_nfields; k++) { /* the frame rows of the field table (dem_fields.h), in its order */
+    const DemField *f = &dem_fields[k];
+    if (!f->frame || (f->frame_from != DEM_FRAME_RADIUS && !DemFieldOn(dem, f))) continue;
+    if (f->type == DEM_FIELD_INT) PetscCall(IoWriteParticlesInt(io, f->frame, dem->p.n, (const PetscInt *)*DemFieldPtr(dem, f)));
+    else PetscCall(IoWriteParticles(io, f->frame, dem->p.n, f->width, f->frame_from == DEM_FRAME_WRAPPED ? x : f->frame_from == DEM_FRAME_RADIUS ? r
+                                                                                                                                                 : (const double *)*DemFieldPtr(dem, f)));
+  }
   PetscCall(IoFrameWants(io, "surface", "surface", &want));
   if (dem->shapes.convex && want) PetscCall(DemConvexWriteSurface(dem, x, io)); /* convex_diag.c */
   PetscCall(PetscFree(r));

@@ -15,8 +15,11 @@
  * message to self with a shift), so periodicity has one code path. A box thinner than the halo
  * along a split or periodic axis is an error (a particle could then reach past a neighbour). */
 #include "dem/dem_core.h"
+#include "dem/dem_fields.h"
 
-#define GHOST_WIDTH 15 /* id, shape, x[3], v[3], w[3], q[4]; then the radius in a scene of own sizes */
+/* The records are the field table's rows (dem_fields.h): migration all of a particle's state
+ * (DEM_FIELD_MIGRATE), then the number of its springs and the springs (partner, xi: 4 each);
+ * ghost creation the rows of DEM_FIELD_GHOST, the forward update those of DEM_FIELD_UPDATE. */
 
 static void dem_dir_offsets(int d, int o[3])
 {
@@ -136,84 +139,60 @@ static const DemSpring *dem_springs_of(const DemSpring *recs, PetscInt nrec, Pet
 
 size_t DemMigSize(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec)
 {
-  PetscInt ns;
+  DemFieldRef ref[DEM_MAX_FIELDS];
+  size_t      w;
+  PetscInt    ns;
+
   (void)dem_springs_of(recs, nrec, dem->p.id[i], &ns);
-  return MIG_RECORD_SIZE(dem, ns);
+  (void)DemFieldsResolve(dem, DEM_FIELD_MIGRATE, ref, &w);
+  return w + 1 + 4 * (size_t)ns;
 }
 
 size_t DemMigPack(Dem dem, PetscInt i, const DemSpring *recs, PetscInt nrec, const double shift[3], double *b)
 {
+  DemFieldRef      ref[DEM_MAX_FIELDS];
+  size_t           w;
   PetscInt         ns;
   const DemSpring *s0 = dem_springs_of(recs, nrec, dem->p.id[i], &ns);
-  const size_t     hw = MIG_HEAD + (dem->ext.on ? MIG_EXT : 0) + (dem->shapes.poly ? MIG_POLY : 0);
+  const int        nf = DemFieldsResolve(dem, DEM_FIELD_MIGRATE, ref, &w);
+  double          *e  = DemFieldsPack(ref, nf, i, shift, b);
 
-  b[0] = (double)dem->p.id[i];
-  b[1] = (double)dem->p.shape[i];
-  for (int k = 0; k < 3; k++) {
-    b[2 + k]  = dem->p.x[3 * i + k] + shift[k];
-    b[5 + k]  = dem->p.v[3 * i + k];
-    b[8 + k]  = dem->p.w[3 * i + k];
-    b[15 + k] = dem->p.f[3 * i + k];
-    b[18 + k] = dem->p.tq[3 * i + k];
-  }
-  for (int k = 0; k < 4; k++) b[11 + k] = dem->p.q[4 * i + k];
-  b[21] = (double)ns;
-  if (dem->ext.on) { /* the coupling's per-particle state, so its impulse count stays exact */
-    b[MIG_HEAD + 3] = dem->ext.kdrag[i];
-    for (int k = 0; k < 3; k++) {
-      b[MIG_HEAD + k]     = dem->ext.fext[3 * i + k];
-      b[MIG_HEAD + 4 + k] = dem->ext.udrag[3 * i + k];
-      b[MIG_HEAD + 7 + k] = dem->ext.jdrag[3 * i + k];
-    }
-  }
-  if (dem->shapes.poly) b[hw - MIG_POLY] = dem->p.rad[i];
+  e[0] = (double)ns;
   for (PetscInt a = 0; a < ns; a++) {
-    b[hw + 4 * a] = (double)s0[a].partner;
-    for (int k = 0; k < 3; k++) b[hw + 4 * a + 1 + k] = s0[a].xi[k];
+    e[1 + 4 * a] = (double)s0[a].partner;
+    for (int k = 0; k < 3; k++) e[2 + 4 * a + k] = s0[a].xi[k];
   }
-  return hw + 4 * (size_t)ns;
+  return w + 1 + 4 * (size_t)ns;
 }
 
 PetscErrorCode DemMigUnpack(Dem dem, const double *b, DemSpring **recs, PetscInt *nrec, PetscInt *caprec, size_t *used)
 {
-  DemParticle    p  = {0};
-  const PetscInt ns = (PetscInt)b[21], i = dem->p.n;
-  const size_t   hw = MIG_HEAD + (dem->ext.on ? MIG_EXT : 0) + (dem->shapes.poly ? MIG_POLY : 0);
+  DemFieldRef    ref[DEM_MAX_FIELDS];
+  size_t         w;
+  const PetscInt i = dem->p.n;
+  const double  *e;
+  PetscInt       ns, id;
+  int            nf;
 
   PetscFunctionBeginUser;
-  if (dem->shapes.poly) p.r = b[hw - MIG_POLY];
-  p.id    = (PetscInt)b[0];
-  p.shape = (PetscInt)b[1];
-  for (int k = 0; k < 3; k++) {
-    p.x[k] = b[2 + k];
-    p.v[k] = b[5 + k];
-    p.w[k] = b[8 + k];
-  }
-  for (int k = 0; k < 4; k++) p.q[k] = b[11 + k];
-  PetscCall(DemAddParticle(dem, &p));
-  for (int k = 0; k < 3; k++) {
-    dem->p.f[3 * i + k]  = b[15 + k];
-    dem->p.tq[3 * i + k] = b[18 + k];
-  }
-  if (dem->ext.on) {
-    dem->ext.kdrag[i] = b[MIG_HEAD + 3];
-    for (int k = 0; k < 3; k++) {
-      dem->ext.fext[3 * i + k]  = b[MIG_HEAD + k];
-      dem->ext.udrag[3 * i + k] = b[MIG_HEAD + 4 + k];
-      dem->ext.jdrag[3 * i + k] = b[MIG_HEAD + 7 + k];
-    }
-  }
+  PetscCall(DemParticlesReserve(dem, i + 1));
+  nf = DemFieldsResolve(dem, DEM_FIELD_MIGRATE, ref, &w);
+  DemFieldsClear(dem, i);
+  e  = DemFieldsUnpack(ref, nf, i, b);
+  ns = (PetscInt)e[0];
+  id = dem->p.id[i];
+  PetscCall(DemParticleArrive(dem, ref, nf));
   if (*nrec + ns > *caprec) {
     *caprec = 2 * (*nrec + ns) + 64;
     PetscCall(PetscRealloc(sizeof(DemSpring) * (size_t)*caprec, recs));
   }
   for (PetscInt a = 0; a < ns; a++) {
     DemSpring *r = *recs + (*nrec)++;
-    r->owner     = p.id;
-    r->partner   = (PetscInt)b[hw + 4 * a];
-    for (int k = 0; k < 3; k++) r->xi[k] = b[hw + 4 * a + 1 + k];
+    r->owner     = id;
+    r->partner   = (PetscInt)e[1 + 4 * a];
+    for (int k = 0; k < 3; k++) r->xi[k] = e[2 + 4 * a + k];
   }
-  *used = hw + 4 * (size_t)ns;
+  *used = w + 1 + 4 * (size_t)ns;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -292,8 +271,9 @@ PetscErrorCode DemGhostsCreate(Dem dem)
   DemExchange  *ex  = &dem->ex;
   const Domain *dom = dem->dom;
   const double  h   = dem->nl.reach;
-  size_t        soff[28], roff[28];
-  const size_t  GW = GHOST_WIDTH + (dem->shapes.poly ? 1 : 0);
+  size_t        soff[28], roff[28], GW;
+  DemFieldRef   ref[DEM_MAX_FIELDS];
+  int           nf = DemFieldsResolve(dem, DEM_FIELD_GHOST, ref, &GW);
 
   PetscFunctionBeginUser;
   dem->p.ng = 0;
@@ -322,38 +302,15 @@ PetscErrorCode DemGhostsCreate(Dem dem)
   soff[0] = 0;
   for (int d = 0; d < 27; d++) soff[d + 1] = soff[d] + GW * (size_t)ex->nsend[d];
   PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, soff[27] + 1));
-  for (int d = 0; d < 27; d++)
-    for (PetscInt a = 0; a < ex->nsend[d]; a++) {
-      const PetscInt i = ex->send[d][a];
-      double        *b = ex->sbuf + soff[d] + GW * a;
-      b[0]             = (double)dem->p.id[i];
-      b[1]             = (double)dem->p.shape[i];
-      for (int k = 0; k < 3; k++) {
-        b[2 + k] = dem->p.x[3 * i + k] + ex->shift[d][k];
-        b[5 + k] = dem->p.v[3 * i + k];
-        b[8 + k] = dem->p.w[3 * i + k];
-      }
-      for (int k = 0; k < 4; k++) b[11 + k] = dem->p.q[4 * i + k];
-      if (dem->shapes.poly) b[15] = dem->p.rad[i];
-    }
+  for (int d = 0; d < 27; d++) DemFieldsPackList(ref, nf, ex->send[d], ex->nsend[d], ex->shift[d], ex->sbuf + soff[d], GW);
   PetscCall(DemExchangeVariable(dem, soff, roff));
   PetscCall(DemParticlesReserve(dem, dem->p.n + (PetscInt)(roff[27] / GW)));
+  nf = DemFieldsResolve(dem, DEM_FIELD_GHOST, ref, &GW); /* the arrays may have moved */
   for (int d = 0; d < 27; d++) {
     ex->recvstart[d] = dem->p.n + dem->p.ng;
     ex->nrecv[d]     = (PetscInt)((roff[d + 1] - roff[d]) / GW);
-    for (PetscInt a = 0; a < ex->nrecv[d]; a++) {
-      const double  *b = ex->rbuf + roff[d] + GW * a;
-      const PetscInt g = dem->p.n + dem->p.ng++;
-      dem->p.id[g]     = (PetscInt)b[0];
-      dem->p.shape[g]  = (PetscInt)b[1];
-      for (int k = 0; k < 3; k++) {
-        dem->p.x[3 * g + k] = b[2 + k];
-        dem->p.v[3 * g + k] = b[5 + k];
-        dem->p.w[3 * g + k] = b[8 + k];
-      }
-      for (int k = 0; k < 4; k++) dem->p.q[4 * g + k] = b[11 + k];
-      if (dem->shapes.poly) DemParticleSetSize(dem, g, b[15]); /* the owner's mass and inertia, to the bit */
-    }
+    DemFieldsUnpackRange(ref, nf, ex->recvstart[d], ex->nrecv[d], ex->rbuf + roff[d], GW);
+    for (PetscInt a = 0; a < ex->nrecv[d]; a++) DemFieldsArrive(dem, ref, nf, dem->p.n + dem->p.ng++); /* the owner's mass and inertia, to the bit */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -362,7 +319,9 @@ PetscErrorCode DemGhostsCreate(Dem dem)
 PetscErrorCode DemGhostsUpdate(Dem dem)
 {
   DemExchange *ex = &dem->ex;
-  const int    W  = 13; /* x, v, w, q */
+  DemFieldRef  ref[DEM_MAX_FIELDS];
+  size_t       W;
+  const int    nf = DemFieldsResolve(dem, DEM_FIELD_UPDATE, ref, &W);
   MPI_Request  req[54];
   int          nr = 0;
   size_t       so = 0, ro = 0, soff[27], roff[27];
@@ -379,33 +338,14 @@ PetscErrorCode DemGhostsUpdate(Dem dem)
   PetscCall(DemBufReserve(&ex->sbuf, &ex->capsbuf, so + 1));
   PetscCall(DemBufReserve(&ex->rbuf, &ex->caprbuf, ro + 1));
   for (int d = 0; d < 27; d++)
-    if (ex->rank[d] >= 0 && ex->nrecv[d]) PetscCallMPI(MPI_Irecv(ex->rbuf + roff[d], W * (PetscMPIInt)ex->nrecv[d], MPI_DOUBLE, ex->rank[d], 26 - d, dem->comm, &req[nr++]));
+    if (ex->rank[d] >= 0 && ex->nrecv[d]) PetscCallMPI(MPI_Irecv(ex->rbuf + roff[d], (PetscMPIInt)W * (PetscMPIInt)ex->nrecv[d], MPI_DOUBLE, ex->rank[d], 26 - d, dem->comm, &req[nr++]));
   for (int d = 0; d < 27; d++) {
     if (ex->rank[d] < 0 || !ex->nsend[d]) continue;
-    for (PetscInt a = 0; a < ex->nsend[d]; a++) {
-      const PetscInt i = ex->send[d][a];
-      double        *b = ex->sbuf + soff[d] + W * a;
-      for (int k = 0; k < 3; k++) {
-        b[k]     = dem->p.x[3 * i + k] + ex->shift[d][k];
-        b[3 + k] = dem->p.v[3 * i + k];
-        b[6 + k] = dem->p.w[3 * i + k];
-      }
-      for (int k = 0; k < 4; k++) b[9 + k] = dem->p.q[4 * i + k];
-    }
-    PetscCallMPI(MPI_Isend(ex->sbuf + soff[d], W * (PetscMPIInt)ex->nsend[d], MPI_DOUBLE, ex->rank[d], d, dem->comm, &req[nr++]));
+    DemFieldsPackList(ref, nf, ex->send[d], ex->nsend[d], ex->shift[d], ex->sbuf + soff[d], W);
+    PetscCallMPI(MPI_Isend(ex->sbuf + soff[d], (PetscMPIInt)W * (PetscMPIInt)ex->nsend[d], MPI_DOUBLE, ex->rank[d], d, dem->comm, &req[nr++]));
   }
   PetscCallMPI(MPI_Waitall(nr, req, MPI_STATUSES_IGNORE));
-  for (int d = 0; d < 27; d++)
-    for (PetscInt a = 0; a < ex->nrecv[d]; a++) {
-      const PetscInt g = ex->recvstart[d] + a;
-      const double  *b = ex->rbuf + roff[d] + W * a;
-      for (int k = 0; k < 3; k++) {
-        dem->p.x[3 * g + k] = b[k];
-        dem->p.v[3 * g + k] = b[3 + k];
-        dem->p.w[3 * g + k] = b[6 + k];
-      }
-      for (int k = 0; k < 4; k++) dem->p.q[4 * g + k] = b[9 + k];
-    }
+  for (int d = 0; d < 27; d++) DemFieldsUnpackRange(ref, nf, ex->recvstart[d], ex->nrecv[d], ex->rbuf + roff[d], W);
   PetscCall(PetscLogEventEnd(DEM_Exchange, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -10,6 +10,7 @@
  * holds the arrays of the local particles (dem/ext_fext, ext_k, ext_u, ext_j: the first rows of
  * the particle arrays, in the same local order). */
 #include "dem/dem_core.h"
+#include "dem/dem_fields.h"
 
 /* The translational half kick of length h with the coupling's forces: writes the local
  * particles' v and the impulse j; reads f, the coupling's fext, k, u and the shapes' masses. */
@@ -32,14 +33,13 @@ void DemExternalKick(DemParticles *p, const DemShapeTable *st, DemExternalState 
 
 PetscErrorCode DemSetExternal(Dem dem, PetscBool on)
 {
-  double **a[4] = {&dem->ext.fext, &dem->ext.kdrag, &dem->ext.udrag, &dem->ext.jdrag};
-  int      w[4] = {3, 1, 3, 3};
-
   PetscFunctionBeginUser;
   if (on == dem->ext.on) PetscFunctionReturn(PETSC_SUCCESS);
-  for (int k = 0; k < 4; k++) {
-    if (on) PetscCall(PetscCalloc1((size_t)w[k] * (size_t)dem->p.cap + 1, a[k]));
-    else PetscCall(PetscFree(*a[k]));
+  for (int k = 0; k < dem_nfields; k++) { /* the coupled rows of the field table */
+    const DemField *f = &dem_fields[k];
+    if (f->when != DEM_FIELD_COUPLED) continue;
+    if (on) PetscCall(PetscCalloc((f->type == DEM_FIELD_INT ? sizeof(PetscInt) : sizeof(double)) * ((size_t)f->width * (size_t)dem->p.cap + 1), DemFieldPtr(dem, f)));
+    else PetscCall(PetscFree(*DemFieldPtr(dem, f)));
   }
   dem->ext.on = on;
   PetscFunctionReturn(PETSC_SUCCESS);
