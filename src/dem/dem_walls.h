@@ -7,12 +7,13 @@
 
 /* The option reader of each surface kind, DemWall<Kind>Options (walls_options.c: the box and the
  * planes, the rectangles; walls_polygon.c; walls_cylinder.c), called inside the walls' options
- * block in the order of SURFACE_KINDS: it adds its walls (DemWallAdd) and sets their kind and
- * parameters. A new kind is its geometry (geom/surface_<kind>.h), its line in SURFACE_KINDS and
- * this reader, in a file of its own. */
-#define DEM_WALL_READER(K, k, C) PetscErrorCode DemWall##C##Options(PetscOptionItems *PetscOptionsObject, Dem dem);
-SURFACE_KINDS(DEM_WALL_READER)
-#undef DEM_WALL_READER
+ * block in the order of the kinds (geom/surface.h): it adds its walls (DemWallAdd) and sets their
+ * kind and parameters. A new kind is its geometry (geom/surface_<kind>.h and its lines in
+ * surface.h) and this reader, in a file of its own, named in DemWallsSetFromOptions' table. */
+PetscErrorCode DemWallPlaneOptions(PetscOptionItems *PetscOptionsObject, Dem dem);    /* walls_options.c: -dem_box, -dem_plane_<k> */
+PetscErrorCode DemWallRectOptions(PetscOptionItems *PetscOptionsObject, Dem dem);     /* walls_options.c: -dem_rect_<k> */
+PetscErrorCode DemWallPolygonOptions(PetscOptionItems *PetscOptionsObject, Dem dem);  /* walls_polygon.c: -dem_quad_<k>, -dem_hopper */
+PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem); /* walls_cylinder.c: -dem_cylinder */
 
 /* Whether a contact at point pt of a particle centred at xc is on the wall (the face rule of the
  * finite kinds; convex particles use it with the plane's contact). */

@@ -7,7 +7,7 @@
  * -dem_cylinder_omega, -dem_cylinder_caps (walls_cylinder.c); triangle meshes -dem_mesh_<k>_*
  * (walls_mesh_options.c, not counted among the walls); -dem_<wall>_friction overrides
  * -dem_wall_friction for that wall. The block calls each surface kind's reader in the order of
- * SURFACE_KINDS (geom/surface.h); those of the plane (with the box) and the rectangle are here.
+ * the kinds (geom/surface.h); those of the plane (with the box) and the rectangle are here.
  * The walls are added to the store (walls.c) in this order. */
 #include "dem/dem_walls.h"
 
@@ -96,20 +96,26 @@ PetscErrorCode DemWallRectOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The walls' options block: each surface kind's reader, DemWall<Kind>Options (dem/dem_walls.h), in the
- * order of SURFACE_KINDS (geom/surface.h), then the meshes; the walls are numbered in this order. */
+/* The walls' options block: each surface kind's reader (dem_walls.h), in the order of the kinds
+ * (geom/surface.h), then the meshes; the walls are numbered in this order. */
 PetscErrorCode DemWallsSetFromOptions(Dem dem)
 {
+  /* one line a kind: -dem_box and -dem_plane_<k>; -dem_rect_<k>; -dem_quad_<k> and -dem_hopper; -dem_cylinder */
+  PetscErrorCode (*const reader[SURFACE_NKINDS])(PetscOptionItems *, Dem) = {
+    [SURFACE_PLANE]    = DemWallPlaneOptions,
+    [SURFACE_RECT]     = DemWallRectOptions,
+    [SURFACE_POLYGON]  = DemWallPolygonOptions,
+    [SURFACE_CYLINDER] = DemWallCylinderOptions,
+  };
+
   PetscFunctionBeginUser;
   PetscOptionsBegin(dem->comm, NULL, "DEM walls", NULL);
-#define DEM_WALL_READ(K, k, C) PetscCall(DemWall##C##Options(PetscOptionsObject, dem));
-  SURFACE_KINDS(DEM_WALL_READ) /* -dem_box, -dem_plane_<k>, -dem_rect_<k>, -dem_quad_<k>, -dem_hopper, -dem_cylinder */
-#undef DEM_WALL_READ
+  for (int k = 0; k < SURFACE_NKINDS; k++) PetscCall(reader[k](PetscOptionsObject, dem));
   PetscCall(DemMeshesSetFromOptions(PetscOptionsObject, dem)); /* -dem_mesh_<k>_* (walls_mesh_options.c) */
   PetscOptionsEnd();
   for (PetscInt k = 0; k < dem->walls.nwall; k++) { /* convex particles meet a wall through its plane */
     const DemWall *w = &dem->walls.wall[k];
-    PetscCheck(!dem->shapes.convex || SurfaceKinds[w->s.kind].planar, dem->comm, PETSC_ERR_SUP, "%s: a %s wall takes spheres only, not the convex shapes of -dem_shape", w->name, SurfaceKinds[w->s.kind].name);
+    PetscCheck(!dem->shapes.convex || SurfaceKinds[w->s.kind]->planar, dem->comm, PETSC_ERR_SUP, "%s: a %s wall takes spheres only, not the convex shapes of -dem_shape", w->name, SurfaceKinds[w->s.kind]->name);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

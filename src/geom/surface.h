@@ -1,7 +1,8 @@
 /* Analytic surfaces: the kinds of wall a particle meets (planes, rectangles, convex polygons,
  * cylinders), each written once. A kind is one header surface_<kind>.h of static inline
- * kernels and one line in SURFACE_KINDS below (with the #include of its header); the dispatchers
- * at the end switch on the kind, so the DEM's sphere-wall loop inlines the kernels it meets.
+ * kernels ending in its entry, a SurfaceKindInfo (name, flags, kernels), and one line in each of
+ * the enum SurfaceKind, the #includes and the table SurfaceKinds below; the dispatchers call
+ * the kernels through the table.
  *
  * A Surface is placed in the world frame: a point p and a unit normal n pointing into the
  * granular side (a cylinder: a point of its axis and the unit axis), a translation velocity v and
@@ -30,21 +31,15 @@
 #include <petscsys.h>
 #include "geom/quat.h"
 
-/* The registry: one line per kind, X(ENUM_NAME, file_name, CamelName); the DEM reads each kind's
- * options with DemWall<CamelName>Options, in this order (src/dem/walls.h). */
-#define SURFACE_KINDS(X) \
-  X(PLANE, plane, Plane) \
-  X(RECT, rect, Rect) \
-  X(POLYGON, polygon, Polygon) \
-  X(CYLINDER, cylinder, Cylinder) \
-  /* a new kind: one line above, and its #include below */
-
-#define SURFACE_ENUM(K, k, C) SURFACE_##K,
+/* The kinds, in the order of the table SurfaceKinds below. A new kind: one line here, its
+ * header's #include and its line in the table. */
 typedef enum {
-  SURFACE_KINDS(SURFACE_ENUM)
+  SURFACE_PLANE,
+  SURFACE_RECT,
+  SURFACE_POLYGON,
+  SURFACE_CYLINDER,
   SURFACE_NKINDS
 } SurfaceKind;
-#undef SURFACE_ENUM
 
 #define SURFACE_POLY_MAX 8
 
@@ -62,9 +57,18 @@ typedef struct {
   double    omega, ax_p[3], ax_u[3]; /* rotation (rad/s) about the axis through ax_p along ax_u */
 } Surface;
 
+/* A kind: its name, whether it is planar (a convex body meets it through its plane, then the
+ * face rule) and one-sided, and its kernels (surface_<kind>_*, above). */
 typedef struct {
   const char *name;
   PetscBool   planar, one_sided;
+  double (*sphere)(const Surface *s, const double *x, double r, double nrm[3]);
+  double (*gap)(const Surface *s, const double *x);
+  PetscBool (*covers)(const Surface *s, const double *pt, const double *xc);
+  void (*velocity)(const Surface *s, const double *c, double vw[3]);
+  void (*bbox)(const Surface *s, double lo[3], double hi[3]);
+  PetscBool (*closes_face)(const Surface *s, int d, int side, const double c[4][3], double tol);
+  int (*example)(Surface *s, double lo[3], double hi[3]);
 } SurfaceKindInfo;
 
 /* The surface velocity of a rigid motion: v + omega u x (c - a). */
@@ -103,98 +107,49 @@ static inline PetscBool surface_plane_behind(const Surface *s, const double c[4]
 #include "geom/surface_polygon.h"
 #include "geom/surface_cylinder.h"
 
-/* The dispatchers: a switch over the registry. */
-#define SURFACE_INFO(K, k, C) SURFACE_INFO_##K, /* in the order of the enum */
-static const SurfaceKindInfo SurfaceKinds[SURFACE_NKINDS] = {SURFACE_KINDS(SURFACE_INFO)};
-#undef SURFACE_INFO
+/* The table of kinds, indexed by SurfaceKind, and the dispatchers through it. */
+static const SurfaceKindInfo *const SurfaceKinds[SURFACE_NKINDS] = {
+  [SURFACE_PLANE]    = &surface_plane_kind,
+  [SURFACE_RECT]     = &surface_rect_kind,
+  [SURFACE_POLYGON]  = &surface_polygon_kind,
+  [SURFACE_CYLINDER] = &surface_cylinder_kind,
+};
 
-#define SURFACE_CASE(K, k, call) \
-  case SURFACE_##K: \
-    return surface_##k##_##call;
 static inline double surface_sphere(const Surface *s, const double *x, double r, double nrm[3])
 {
-#define SURFACE_SPHERE(K, k, C) SURFACE_CASE(K, k, sphere(s, x, r, nrm))
-  switch (s->kind) {
-    SURFACE_KINDS(SURFACE_SPHERE)
-  default:
-    return -1;
-  }
-#undef SURFACE_SPHERE
+  return SurfaceKinds[s->kind]->sphere(s, x, r, nrm);
 }
 
 static inline double surface_gap(const Surface *s, const double *x)
 {
-#define SURFACE_GAP(K, k, C) SURFACE_CASE(K, k, gap(s, x))
-  switch (s->kind) {
-    SURFACE_KINDS(SURFACE_GAP)
-  default:
-    return -PETSC_MAX_REAL;
-  }
-#undef SURFACE_GAP
+  return SurfaceKinds[s->kind]->gap(s, x);
 }
 
 static inline PetscBool surface_covers(const Surface *s, const double *pt, const double *xc)
 {
-#define SURFACE_COVERS(K, k, C) SURFACE_CASE(K, k, covers(s, pt, xc))
-  switch (s->kind) {
-    SURFACE_KINDS(SURFACE_COVERS)
-  default:
-    return PETSC_FALSE;
-  }
-#undef SURFACE_COVERS
+  return SurfaceKinds[s->kind]->covers(s, pt, xc);
 }
 
-#define SURFACE_CASE_VOID(K, k, call) \
-  case SURFACE_##K: \
-    surface_##k##_##call; \
-    return;
 static inline void surface_velocity(const Surface *s, const double *c, double vw[3])
 {
-#define SURFACE_VELOCITY(K, k, C) SURFACE_CASE_VOID(K, k, velocity(s, c, vw))
-  switch (s->kind) {
-    SURFACE_KINDS(SURFACE_VELOCITY)
-  default:
-    return;
-  }
-#undef SURFACE_VELOCITY
+  SurfaceKinds[s->kind]->velocity(s, c, vw);
 }
 
 static inline void surface_bbox(const Surface *s, double lo[3], double hi[3])
 {
-#define SURFACE_BBOX(K, k, C) SURFACE_CASE_VOID(K, k, bbox(s, lo, hi))
-  switch (s->kind) {
-    SURFACE_KINDS(SURFACE_BBOX)
-  default:
-    for (int k = 0; k < 3; k++) lo[k] = -PETSC_MAX_REAL, hi[k] = PETSC_MAX_REAL;
-    return;
-  }
-#undef SURFACE_BBOX
+  SurfaceKinds[s->kind]->bbox(s, lo, hi);
 }
 
 /* An instance of the kind in a box lo..hi (the unit test's): the number of the box's faces it closes. */
 static inline int surface_example(SurfaceKind kind, Surface *s, double lo[3], double hi[3])
 {
-#define SURFACE_EXAMPLE(K, k, C) SURFACE_CASE(K, k, example(s, lo, hi))
-  switch (kind) {
-    SURFACE_KINDS(SURFACE_EXAMPLE)
-  default:
-    return -1;
-  }
-#undef SURFACE_EXAMPLE
+  return SurfaceKinds[kind]->example(s, lo, hi);
 }
-#undef SURFACE_CASE_VOID
 
 static inline PetscBool surface_closes_face(const Surface *s, int d, int side, const double c[4][3], double tol)
 {
-#define SURFACE_CLOSES(K, k, C) SURFACE_CASE(K, k, closes_face(s, d, side, c, tol))
-  switch (s->kind) {
-    SURFACE_KINDS(SURFACE_CLOSES)
-  default:
-    return PETSC_FALSE;
-  }
-#undef SURFACE_CLOSES
+  return SurfaceKinds[s->kind]->closes_face(s, d, side, c, tol);
 }
-#undef SURFACE_CASE
 
 /* Whether a sphere of reach (radius + skin) centred at x may touch s before the next list build:
  * the gap is below the reach, and a one-sided surface has x at most skin behind it. */
@@ -202,5 +157,5 @@ static inline PetscBool surface_near(const Surface *s, const double *x, double r
 {
   const double g = surface_gap(s, x);
   if (g >= reach) return PETSC_FALSE;
-  return (PetscBool) !(SurfaceKinds[s->kind].one_sided && g < -skin);
+  return (PetscBool) !(SurfaceKinds[s->kind]->one_sided && g < -skin);
 }

@@ -4,11 +4,6 @@
  * along its axis; not planar (convex bodies do not meet it). It closes a domain face when its
  * axis is parallel to the face and it lies wholly on the domain's side of it. */
 #pragma once
-#define SURFACE_INFO_CYLINDER \
-  { \
-    "cylinder", PETSC_FALSE, PETSC_FALSE \
-  }
-
 static inline double surface_cylinder_gap(const Surface *s, const double *x)
 {
   const double d[3] = {x[0] - s->p[0], x[1] - s->p[1], x[2] - s->p[2]};
@@ -63,3 +58,6 @@ static inline int surface_cylinder_example(Surface *s, double lo[3], double hi[3
   for (int k = 0; k < 3; k++) lo[k] = k == 1 ? 0 : -1, hi[k] = 1;
   return 4;
 }
+
+/* The kind's entry in the table of kinds (surface.h). */
+static const SurfaceKindInfo surface_cylinder_kind = {"cylinder", PETSC_FALSE, PETSC_FALSE, surface_cylinder_sphere, surface_cylinder_gap, surface_cylinder_covers, surface_cylinder_velocity, surface_cylinder_bbox, surface_cylinder_closes_face, surface_cylinder_example};

@@ -2,11 +2,6 @@
  * both sides by the face rule, overlap r - (x - p).n; unbounded; it closes a domain face when
  * the face's four corners lie behind it or on it. */
 #pragma once
-#define SURFACE_INFO_PLANE \
-  { \
-    "plane", PETSC_TRUE, PETSC_FALSE \
-  }
-
 static inline double surface_plane_gap(const Surface *s, const double *x)
 {
   return surface_plane_distance(s, x);
@@ -49,3 +44,6 @@ static inline int surface_plane_example(Surface *s, double lo[3], double hi[3])
   for (int k = 0; k < 3; k++) lo[k] = k < 2 ? -1 : 0, hi[k] = 1;
   return 1;
 }
+
+/* The kind's entry in the table of kinds (surface.h). */
+static const SurfaceKindInfo surface_plane_kind = {"plane", PETSC_TRUE, PETSC_FALSE, surface_plane_sphere, surface_plane_gap, surface_plane_covers, surface_plane_velocity, surface_plane_bbox, surface_plane_closes_face, surface_plane_example};

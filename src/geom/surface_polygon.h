@@ -5,11 +5,6 @@
  * with a neighbour wall (no contact) or a free rim (rim[e]: the nearest point of the edge segment
  * is touched, a hopper's orifice). One-sided; it closes a domain face as a rectangle does. */
 #pragma once
-#define SURFACE_INFO_POLYGON \
-  { \
-    "polygon", PETSC_TRUE, PETSC_TRUE \
-  }
-
 static inline double surface_polygon_gap(const Surface *s, const double *x)
 {
   return surface_plane_distance(s, x);
@@ -98,3 +93,6 @@ static inline int surface_polygon_example(Surface *s, double lo[3], double hi[3]
   for (int k = 0; k < 3; k++) s->p[k] = v[0][k], lo[k] = k < 2 ? -1 : 0, hi[k] = 1;
   return 1;
 }
+
+/* The kind's entry in the table of kinds (surface.h). */
+static const SurfaceKindInfo surface_polygon_kind = {"polygon", PETSC_TRUE, PETSC_TRUE, surface_polygon_sphere, surface_polygon_gap, surface_polygon_covers, surface_polygon_velocity, surface_polygon_bbox, surface_polygon_closes_face, surface_polygon_example};

@@ -4,11 +4,6 @@
  * its neighbour takes over, as in a box corner); one-sided. It closes a domain face when the
  * face's corners lie behind it and project onto it (within tol). */
 #pragma once
-#define SURFACE_INFO_RECT \
-  { \
-    "rectangle", PETSC_TRUE, PETSC_TRUE \
-  }
-
 static inline double surface_rect_gap(const Surface *s, const double *x)
 {
   return surface_plane_distance(s, x);
@@ -64,3 +59,6 @@ static inline int surface_rect_example(Surface *s, double lo[3], double hi[3])
   for (int k = 0; k < 3; k++) lo[k] = k < 2 ? -1 : 0, hi[k] = 1;
   return 1;
 }
+
+/* The kind's entry in the table of kinds (surface.h). */
+static const SurfaceKindInfo surface_rect_kind = {"rectangle", PETSC_TRUE, PETSC_TRUE, surface_rect_sphere, surface_rect_gap, surface_rect_covers, surface_rect_velocity, surface_rect_bbox, surface_rect_closes_face, surface_rect_example};

@@ -99,7 +99,7 @@ int main(int argc, char **argv)
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, "surface kinds test"));
   for (int kind = 0; kind < SURFACE_NKINDS; kind++) {
-    const char *name = SurfaceKinds[kind].name;
+    const char *name = SurfaceKinds[kind]->name;
     Surface     s;
     double      lo[3], hi[3], rigid = 0, worst;
     Stats       st = {0};
