@@ -75,6 +75,7 @@ PetscErrorCode GeomRegionOption_Private(PetscOptionItems *PetscOptionsObject, co
   PetscCall(SableOptionsRealN(opt, text ? text : GeomRegionSyntax[kind], "m", v, 0, GeomRegionCount[kind], &given));
   if (set) *set = given;
   if (!given) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscMemzero(r, sizeof *r)); /* the fields the kind does not use are 0, not the caller's */
   if (kind == GEOM_REGION_PATCH) PetscCall(GeomRegionPatch(comm, opt, v, r));
   else if (kind == GEOM_REGION_BOX) {
     for (int d = 0; d < 3; d++) PetscCheck(v[d] < v[3 + d], comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: need lo < hi on every axis (m)", opt, (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4], (double)v[5]);
