@@ -135,7 +135,7 @@ PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem
     PetscBool set;
     PetscCall(PetscSNPrintf(opt, sizeof opt, DemMeshWordOptions[0], k));
     PetscCall(PetscMemzero(m, sizeof *m));
-    PetscCall(PetscOptionsString(opt, "Triangle-mesh wall: an STL file (ASCII or binary)", NULL, m->file, m->file, sizeof m->file, &set));
+    PetscCall(SableOptionsString(opt, "Triangle-mesh wall: an STL file (ASCII or binary)", m->file, sizeof m->file, &set));
     PetscCall(PetscSNPrintf(m->name, sizeof m->name, "-dem_mesh_%d", k));
     if (help && (!set || !m->file[0])) {
       DemMesh   scratch;
