@@ -87,7 +87,7 @@ expect "box outside the domain" "-dem_outlet_3_box: the box is outside the domai
 expect "patch outside the domain" "-dem_outlet_3_patch: corner" -dem_outlet_3_patch 0,0,0.3,0.1,0,0.3,0,0.1,0.3
 expect "old patch spelling p,e1,e2" "-dem_outlet_3_patch takes three corners p0,p1,p2 now.*write 0,0,0.08,0.07,0,0.08,0,0.1449,0.08" -dem_outlet_3_patch 0,0,0.08,0.07,0,0,0,0.1449,0
 expect "degenerate patch" "-dem_outlet_3_patch: the edges" -dem_outlet_3_patch 0,0,0.1,0.1,0,0,0.1,0,0
-expect "unknown side" "-dem_outlet_3_side" -dem_outlet_3_side bottom
+expect "unknown side" "-dem_outlet_3_side bottom is not known; valid values: xlo, xhi, ylo, yhi, zlo, zhi" -dem_outlet_3_side bottom
 expect "start after stop" "-dem_outlet_3_start 0.5 s is after -dem_outlet_3_stop 0.2 s" -dem_outlet_3_box 0,0,0,0.1,0.1,0.01 -dem_outlet_3_start 0.5 -dem_outlet_3_stop 0.2
 expect "two regions" "-dem_outlet_3: give one of" -dem_outlet_3_box 0,0,0,0.1,0.1,0.01 -dem_outlet_3_side zhi
 expect "time without a region" "-dem_outlet_4_stop given without" -dem_outlet_4_stop 1
