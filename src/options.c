@@ -214,7 +214,7 @@ PetscErrorCode SableOptionsString_Private(PetscOptionItems *PetscOptionsObject, 
   }
   if (!flg) PetscFunctionReturn(PETSC_SUCCESS);
   if (given) PetscCall(PetscStrlen(given, &len));
-  PetscCheck(len < size, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s %s: at most %zu characters", opt, given, size - 1);
+  PetscCheck(len<size, PetscOptionsObject->comm, PETSC_ERR_ARG_SIZ, "%s %.200s%s: at most %zu characters", opt, given, len> 200 ? "..." : "", size - 1); /* a long value cut short: PETSc's message has little room */
   PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, size, &flg));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

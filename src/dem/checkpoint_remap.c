@@ -1,8 +1,8 @@
 /* Restart on another rank count: a checkpoint written by R ranks read by a run of P != R ranks.
  * The writer's per-rank state (checkpoint.c) is translated into what does not depend on the
  * decomposition: the owned particles with their state (each writing rank's first n rows of the
- * per-particle datasets; its ghosts are skipped), and every tangential spring keyed by ids:
- * (id_i, id_j, xi) for an entry of a rank's Verlet list, in a half list the reverse
+ * per-particle datasets, those of the field table, dem_fields.h; its ghosts are skipped), and
+ * every tangential spring keyed by ids: (id_i, id_j, xi) for an entry of a rank's Verlet list, in a half list the reverse
  * (id_j, id_i, -xi) as well for a pair of two owned particles (each particle takes its own side
  * along, as DemSpringsSave does), (id, wall) for an entry of a wall list, and a mesh's loaded
  * slots as the two records of DemMeshesSaveSprings (spring, normal); a mesh's pose is a function

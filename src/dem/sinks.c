@@ -85,7 +85,7 @@ static PetscErrorCode DemOutletOptions(PetscOptionItems *PetscOptionsObject, Dem
   PetscCall(PetscSNPrintf(o1, sizeof o1, "-dem_outlet_%d_stop", k));
   PetscCall(PetscStrncpy(os, DemOutletSideOption[k], sizeof os));
   PetscCall(GeomRegionOptions(&spec, &reg, &rset)); /* box or patch (geom/region.h) */
-  PetscCall(PetscOptionsEList(DemOutletSideOption[k], "Outlet side: a particle leaving the domain across it is removed instead of stopping the run", NULL, DemSideNames, 6, DemSideNames[0], &side, &sset));
+  PetscCall(SableOptionsEnum(DemOutletSideOption[k], "Outlet side: a particle leaving the domain across it is removed instead of stopping the run", DemSideNames, 6, 0, &side, &sset));
   PetscCall(SableOptionsReal(o0, "Time the outlet starts removing particles", "s", "[0,inf)", t0, &t0, &s0));
   PetscCall(SableOptionsReal(o1, "Time the outlet stops removing particles; default: never", "s", "[0,inf)", -1, &t1, &s1));
   PetscCheck((int)rset + (int)sset <= 1, dem->comm, PETSC_ERR_ARG_INCOMP, "%s: give one of %s, %s, %s", opt, ob, op, os);

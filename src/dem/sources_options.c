@@ -77,7 +77,7 @@ static PetscErrorCode DemSourceParticleOptions(PetscOptionItems *PetscOptionsObj
   PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_velocity_spread", k));
   PetscCall(SableOptionsReal(opt, "Each velocity component gets a uniform random term in +-this", "m/s", "[0,inf)", 0, &s->vspread, NULL));
   s->random_orient = dem->shapes.convex;
-  PetscCall(PetscOptionsBool(DemSourceOrientOption[k], "Uniformly random orientations (default: for convex shapes)", NULL, s->random_orient, &s->random_orient, NULL));
+  PetscCall(SableOptionsBool(DemSourceOrientOption[k], "Uniformly random orientations (default: for convex shapes)", s->random_orient, &s->random_orient, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_insert_%d_shape", k));
   PetscCall(SableOptionsInt(opt, "Shape (material) index of the inserted particles, as in -dem_radius / -dem_shape", NULL, "[0,inf)", 0, &s->shape, NULL));
   PetscCheck(s->shape < dem->shapes.nshape, dem->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT " must be in [0, %" PetscInt_FMT "] (the shapes of -dem_radius or -dem_shape)", opt, s->shape, dem->shapes.nshape - 1);
@@ -117,7 +117,7 @@ PetscErrorCode DemSourcesSetFromOptions(Dem dem)
     DemSource *s      = &dem->src.s[dem->src.n];
     PetscInt   region = 0;
     PetscBool  set;
-    PetscCall(PetscOptionsEList(DemSourceRegionOption[k], "Particle source: the region candidates are drawn in", NULL, GeomRegionKinds, 3, GeomRegionKinds[0], &region, &set));
+    PetscCall(SableOptionsEnum(DemSourceRegionOption[k], "Particle source: the region candidates are drawn in", GeomRegionKinds, 3, 0, &region, &set));
     if (!set && help) {
       DemSource scratch;
       PetscCall(PetscMemzero(&scratch, sizeof scratch));
@@ -135,7 +135,7 @@ PetscErrorCode DemSourcesSetFromOptions(Dem dem)
         PetscCheck(!has, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s (box, cylinder or patch)", opt, DemSourceRegionOption[k]);
       }
       PetscBool ro = PETSC_FALSE; /* read (not given) so that -help lists the flag of every source */
-      PetscCall(PetscOptionsBool(DemSourceOrientOption[k], "Uniformly random orientations (default: for convex shapes)", NULL, ro, &ro, NULL));
+      PetscCall(SableOptionsBool(DemSourceOrientOption[k], "Uniformly random orientations (default: for convex shapes)", ro, &ro, NULL));
       continue;
     }
     PetscCall(PetscMemzero(s, sizeof *s));

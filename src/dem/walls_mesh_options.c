@@ -60,7 +60,7 @@ static PetscErrorCode DemMeshMotion(PetscOptionItems *PetscOptionsObject, Dem de
   PetscCall(PetscSNPrintf(o[4], sizeof o[4], "-dem_mesh_%d_omega_table", k));
   m->ax_u[2] = 1;
   PetscCall(SableOptionsRealN(o[0], "Translation velocity of this mesh", "m/s", m->vel, 3, 3, &vset));
-  PetscCall(SableOptionsReal(o[1], "Angular velocity of this mesh about its axis (right hand)", "rad/s", "(-inf,inf)", 0, &m->omega, &wset));
+  PetscCall(SableOptionsReal(o[1], "Angular velocity of this mesh about its axis (right hand)", "rad/s", NULL, 0, &m->omega, &wset));
   PetscCall(SableOptionsRealN(o[2], "A point of the rotation axis at t = 0 (it moves with -dem_mesh_<k>_velocity)", "m", m->ax_p, 3, 3, &pset));
   PetscCall(SableOptionsRealN(o[3], "Direction of the rotation axis", NULL, m->ax_u, 3, 3, &aset));
   PetscCall(SableOptionsRealArray(o[4], "Angular velocity table t0,w0,t1,w1,... (s, rad/s), times increasing: piecewise linear, constant outside", NULL, tab, 0, &nt, &tset));
@@ -135,7 +135,7 @@ PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem
     PetscBool set;
     PetscCall(PetscSNPrintf(opt, sizeof opt, DemMeshWordOptions[0], k));
     PetscCall(PetscMemzero(m, sizeof *m));
-    PetscCall(PetscOptionsString(opt, "Triangle-mesh wall: an STL file (ASCII or binary)", NULL, m->file, m->file, sizeof m->file, &set));
+    PetscCall(SableOptionsString(opt, "Triangle-mesh wall: an STL file (ASCII or binary)", m->file, sizeof m->file, &set));
     PetscCall(PetscSNPrintf(m->name, sizeof m->name, "-dem_mesh_%d", k));
     if (help && (!set || !m->file[0])) {
       DemMesh   scratch;

@@ -133,7 +133,7 @@ static PetscErrorCode DriverMonReadPlanes(PetscOptionItems *PetscOptionsObject, 
     PetscBool       set;
     val[0] = 0;
     PetscCall(PetscSNPrintf(opt, sizeof opt, pattern, (int)idx[i]));
-    PetscCall(PetscOptionsString(opt, text, NULL, val, val, sizeof val, &set));
+    PetscCall(SableOptionsString(opt, text, val, sizeof val, &set));
     if (!set) continue;
     PetscCheck(!fluid || m->coupled, m->comm, PETSC_ERR_ARG_INCOMP, "%s: an average of the fluid's fields; this run is dry (a coupled run has -fluid_ or -cpl_ options, or -sable_solver coupled)", opt);
     PetscCall(DriverMonParsePlane(m->comm, opt, val, &r));

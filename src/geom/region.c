@@ -5,8 +5,9 @@
  * sources' patches always were; the outlets' patches took a corner and two edge vectors
  * p,e1,e2 before. Both are nine numbers, so the old spelling cannot be told by its form: values
  * whose edges p1 - p0, p2 - p0 are not a rectangle while e1 = p1, e2 = p2 would be one are
- * refused in one line that gives the corners p, p + e1, p + e2 to write instead (for an outlet's
- * patch only: the other patches never took edges). */
+ * refused in one line that gives the corners p, p + e1, p + e2 to write instead; values that are
+ * a rectangle read either way (p != 0) are taken as corners with a one-line note giving the
+ * corners of the old reading (for an outlet's patch only: the other patches never took edges). */
 #include "geom/region.h"
 #include "sable.h"
 #include <string.h>
@@ -24,6 +25,13 @@ static PetscBool GeomRegionRectangle(const PetscReal e1[3], const PetscReal e2[3
   return (PetscBool)(*l1 > 0 && *l2 > 0 && PetscAbsReal(convex_dot(e1, e2)) <= 1e-9 * *l1 * *l2);
 }
 
+/* The corners p, p + e1, p + e2 of v read in the old spelling p,e1,e2, as C's printf writes the
+ * numbers (as a user writes them; PETSc's adds a '.'). */
+static void GeomRegionOldCorners(const PetscReal v[9], char *buf, size_t n)
+{
+  snprintf(buf, n, "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g", (double)v[0], (double)v[1], (double)v[2], (double)(v[0] + v[3]), (double)(v[1] + v[4]), (double)(v[2] + v[5]), (double)(v[0] + v[6]), (double)(v[1] + v[7]), (double)(v[2] + v[8]));
+}
+
 /* The patch of corners v = p0, p1, p2 into r. */
 static PetscErrorCode GeomRegionPatch(MPI_Comm comm, const char *opt, const PetscReal v[9], GeomRegion *r)
 {
@@ -35,10 +43,15 @@ static PetscErrorCode GeomRegionPatch(MPI_Comm comm, const char *opt, const Pets
     e2[d] = v[6 + d] - v[d];
   }
   if (!GeomRegionRectangle(e1, e2, &l1, &l2)) {
-    char corners[256]; /* C's printf: the numbers as a user writes them (PETSc's adds a '.') */
-    snprintf(corners, sizeof corners, "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g", (double)v[0], (double)v[1], (double)v[2], (double)(v[0] + v[3]), (double)(v[1] + v[4]), (double)(v[2] + v[5]), (double)(v[0] + v[6]), (double)(v[1] + v[7]), (double)(v[2] + v[8]));
+    char corners[256];
+    GeomRegionOldCorners(v, corners, sizeof corners);
     PetscCheck(!strstr(opt, "_outlet_") || !GeomRegionRectangle(v + 3, v + 6, &m1, &m2), comm, PETSC_ERR_ARG_WRONG, "%s takes three corners p0,p1,p2 now (as -dem_rect_<k>), not a corner and two edges p,e1,e2: write %s for the rectangle p + s e1 + t e2", opt, corners);
     SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the edges p1 - p0 = %g,%g,%g and p2 - p0 = %g,%g,%g must be non-zero and perpendicular (a degenerate patch)", opt, (double)e1[0], (double)e1[1], (double)e1[2], (double)e2[0], (double)e2[1], (double)e2[2]);
+  }
+  if (strstr(opt, "_outlet_") && (v[0] != 0 || v[1] != 0 || v[2] != 0) && GeomRegionRectangle(v + 3, v + 6, &m1, &m2)) {
+    char corners[256]; /* both readings are rectangles, and they differ (p != 0) */
+    GeomRegionOldCorners(v, corners, sizeof corners);
+    PetscCall(PetscPrintf(comm, "note: %s is read as three corners p0,p1,p2 (the rectangle from p0 with edges p1 - p0, p2 - p0); before, this option took a corner and two edges p,e1,e2, which would be the corners p, p + e1, p + e2 = %s: write those corners if that was meant\n", opt, corners));
   }
   convex_cross(e1, e2, n);
   r->kind  = GEOM_REGION_PATCH;
@@ -62,6 +75,7 @@ PetscErrorCode GeomRegionOption_Private(PetscOptionItems *PetscOptionsObject, co
   PetscCall(SableOptionsRealN(opt, text ? text : GeomRegionSyntax[kind], "m", v, 0, GeomRegionCount[kind], &given));
   if (set) *set = given;
   if (!given) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscMemzero(r, sizeof *r)); /* the fields the kind does not use are 0, not the caller's */
   if (kind == GEOM_REGION_PATCH) PetscCall(GeomRegionPatch(comm, opt, v, r));
   else if (kind == GEOM_REGION_BOX) {
     for (int d = 0; d < 3; d++) PetscCheck(v[d] < v[3 + d], comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: need lo < hi on every axis (m)", opt, (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4], (double)v[5]);

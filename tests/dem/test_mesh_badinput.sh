@@ -22,6 +22,13 @@ expect() { # name, pattern the message must match, arguments...
 }
 expect "missing file" "-dem_mesh_0_file $W/none.stl: no such readable file" $OK -dem_mesh_0_file "$W/none.stl"
 printf 'this is not a mesh\n' >"$W/text.stl"
+long=$(printf '%04096d' 0) # one character more than a path holds: refused, not cut short
+out=$($S $OK -dem_mesh_0_file "$long" 2>&1 >/dev/null); rc=$?
+if [ "$rc" -ne 0 ] && [ "$(printf '%s\n' "$out" | grep -c 'sable: error')" -eq 1 ] && printf '%s' "$out" | grep -q -- "-dem_mesh_0_file 0\{200\}\.\.\.: at most 4095 characters"; then
+  echo "PASS bad input, file name too long: exit $rc, \"$(printf '%s' "$out" | grep 'sable: error' | sed 's/0\{200\}/<200 zeros>/')\""
+else
+  echo "FAIL bad input, file name too long: exit $rc, expected one error line /at most 4095 characters/; got: $(printf '%s' "$out" | cut -c1-200)"
+fi
 expect "not STL at all" "$W/text.stl: not STL" $OK -dem_mesh_0_file "$W/text.stl"
 expect "zero scale" "-dem_mesh_0_scale 0. must be > 0" $M -dem_mesh_0_scale 0
 expect "rotation of 2 values" "-dem_mesh_0_rotate takes 3 comma-separated values, got 2" $M -dem_mesh_0_rotate 1,2

@@ -75,11 +75,19 @@ expect() { # name, pattern, options...
     echo "FAIL outlets bad input, $name: exit $rc, $lines error lines, expected /$pat/; got: $out"
   fi
 }
+# Nine numbers that are a rectangle read either way: taken as corners, with a note naming the old reading's.
+out=$(cd "$W" && "$S" $SCENE -dem_t_end 0.0001 -io_interval 0 -io_dir note.d -dem_outlet_3_patch 0.05,0.05,0,0.05,0,0,0,0.05,0 2>&1); rc=$?
+note=$(printf '%s\n' "$out" | grep '^note: -dem_outlet_3_patch is read as three corners')
+if [ "$rc" -eq 0 ] && [ "$(printf '%s\n' "$out" | grep -c '^note:')" -eq 1 ] && printf '%s' "$note" | grep -q "corners p, p + e1, p + e2 = 0.05,0.05,0,0.1,0.05,0,0.05,0.1,0:"; then
+  echo "PASS outlets ambiguous patch noted: exit $rc, \"$(printf '%s' "$note" | cut -c1-160)\""
+else
+  echo "FAIL outlets ambiguous patch noted: exit $rc, expected one note line with the old corners; got: $(printf '%s' "$out" | head -n 5)"
+fi
 expect "box outside the domain" "-dem_outlet_3_box: the box is outside the domain" -dem_outlet_3_box 0,0,-0.2,0.1,0.1,-0.1
 expect "patch outside the domain" "-dem_outlet_3_patch: corner" -dem_outlet_3_patch 0,0,0.3,0.1,0,0.3,0,0.1,0.3
 expect "old patch spelling p,e1,e2" "-dem_outlet_3_patch takes three corners p0,p1,p2 now.*write 0,0,0.08,0.07,0,0.08,0,0.1449,0.08" -dem_outlet_3_patch 0,0,0.08,0.07,0,0,0,0.1449,0
 expect "degenerate patch" "-dem_outlet_3_patch: the edges" -dem_outlet_3_patch 0,0,0.1,0.1,0,0,0.1,0,0
-expect "unknown side" "-dem_outlet_3_side" -dem_outlet_3_side bottom
+expect "unknown side" "-dem_outlet_3_side bottom is not known; valid values: xlo, xhi, ylo, yhi, zlo, zhi" -dem_outlet_3_side bottom
 expect "start after stop" "-dem_outlet_3_start 0.5 s is after -dem_outlet_3_stop 0.2 s" -dem_outlet_3_box 0,0,0,0.1,0.1,0.01 -dem_outlet_3_start 0.5 -dem_outlet_3_stop 0.2
 expect "two regions" "-dem_outlet_3: give one of" -dem_outlet_3_box 0,0,0,0.1,0.1,0.01 -dem_outlet_3_side zhi
 expect "time without a region" "-dem_outlet_4_stop given without" -dem_outlet_4_stop 1

@@ -71,7 +71,7 @@ awk '/^  -(dem|fluid|cpl|domain|io|lb)_[a-z0-9_<>]*[ :]/ {
     if ($0 ~ "^  -" raw ": <(TRUE|FALSE) : " || v ~ /^(true|false)( \(default (true|false)\))?>/) { print "flag", name; next }
     now = (v ~ /^now /); sub(/^now /, "", v); split(v, t, /[ ,>]/); x = t[1]
     num = (x ~ /^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$/)
-    if ($0 ~ /\(choose (one of|from)\)/ || $0 ~ /\(one of [^()]*\)$/ || $0 ~ / \(text\)$/ || (now && !num) || (!now && !num && x != "none")) print "word", name
+    if ($0 ~ /\(choose (one of|from)\)/ || $0 ~ /\(one of [^()]*\)$/ || $0 ~ / \(text\)( \(k = [^()]*\))?$/ || (now && !num) || (!now && !num && x != "none")) print "word", name
     else print "number", name
   }' "$T/help" > "$T/kinds"
 flags=$(genlist SableFlagOptions); words=$(genlist SableWordOptions)
