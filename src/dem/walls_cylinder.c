@@ -27,7 +27,7 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help)); /* -help: the friction listed without a cylinder */
   PetscCall(SableOptionsRealN("-dem_cylinder", "Cylinder wall, particles inside: axis point ax,ay,az (m), axis direction ux,uy,uz (-), radius R (m)", NULL, cyl, 0, 7, &set));
-  PetscCall(SableOptionsReal("-dem_cylinder_omega", "Angular velocity of the cylinder (and its caps) about its axis, right-handed", "rad/s", "(-inf,inf)", 0, &omega, &oset));
+  PetscCall(SableOptionsReal("-dem_cylinder_omega", "Angular velocity of the cylinder (and its caps) about its axis, right-handed", "rad/s", NULL, 0, &omega, &oset));
   PetscCall(SableOptionsRealN("-dem_cylinder_caps", "End caps: axial positions s0,s1 (from the axis point along the axis) of two planes perpendicular to the axis, co-rotating; default no caps", "m", caps, 0, 2, &cset));
   PetscCheck(set || (!oset && !cset) || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without -dem_cylinder", oset ? "-dem_cylinder_omega" : "-dem_cylinder_caps");
   if (!set && help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_cylinder_friction", 1, -1));
