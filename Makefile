@@ -72,7 +72,7 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libsable.a
 # `make check` is the quick tier a kernel change runs first (the tests named in tests/check.list);
 # `make test` the whole suite.
 check: deps
-	@$(MAKE) --no-print-directory -s all
+	@$(MAKE) --no-print-directory -s $(BIN)/sable $(TEST_BIN)
 	@BUILD=$(BUILD) BIN=$(BIN) TIER=check tests/run.sh
 
 test: deps
