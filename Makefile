@@ -68,23 +68,25 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libsable.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -MF $@.d -MT $@ -Itests/common -DTEST_DIR='"$(abspath $(dir $<))"' $< $(BUILD)/libsable.a $(LDLIBS) -o $@
 
-# The targets that a fresh machine runs first install what is missing, then build.
+# The targets that a fresh machine runs first install what is missing, then build, on every
+# core unless make was given -j itself.
+JOBS = $(if $(findstring j,$(firstword $(MAKEFLAGS)))$(findstring jobserver,$(MAKEFLAGS)),,-j$(shell nproc 2>/dev/null || echo 1))
 # `make check` is the quick tier a kernel change runs first (the tests named in tests/check.list);
 # `make test` the whole suite.
 check: deps
-	@$(MAKE) --no-print-directory -s $(BIN)/sable $(TEST_BIN)
+	@$(MAKE) --no-print-directory -s $(JOBS) $(BIN)/sable $(TEST_BIN)
 	@BUILD=$(BUILD) BIN=$(BIN) TIER=check tests/run.sh
 
 test: deps
-	@$(MAKE) --no-print-directory -s all
+	@$(MAKE) --no-print-directory -s $(JOBS) all
 	@BUILD=$(BUILD) BIN=$(BIN) tests/run.sh
 
 run: deps
-	@$(MAKE) --no-print-directory -s all
+	@$(MAKE) --no-print-directory -s $(JOBS) all
 	tools/run-default.sh
 
 bench: deps
-	@$(MAKE) --no-print-directory -s all
+	@$(MAKE) --no-print-directory -s $(JOBS) all
 	tools/bench.sh
 
 clean:
