@@ -169,7 +169,7 @@ static PetscErrorCode DriverMonReadProbes(PetscOptionItems *PetscOptionsObject, 
     PetscInt        ab[2] = {0, 0}, at[2] = {-1, -1};
     PetscBool       set;
     PetscCall(PetscSNPrintf(opt, sizeof opt, "-mon_dp_%d", (int)idx[i]));
-    PetscCall(PetscOptionsIntArray(opt, "Pressure drop the monitor reports: p(probe a) - p(probe b), probes of -mon_probe_<a>, -mon_probe_<b>; any k >= 0", NULL, ab, &(PetscInt){2}, &set));
+    PetscCall(SableOptionsIntN(opt, "Pressure drop the monitor reports: p(probe a) - p(probe b), probes of -mon_probe_<a>, -mon_probe_<b>; any k >= 0", NULL, "[0,inf)", ab, 0, 2, &set));
     if (!set) continue;
     for (PetscInt p = 0; p < m->nprobe; p++)
       for (int e = 0; e < 2; e++)

@@ -255,7 +255,7 @@ for c in "probe in a dry run|-mon_probe_0: a probe of the fluid pressure; this r
   if [ "$rc" -ne 0 ] && [ "$(printf '%s\n' "$out" | grep -c 'sable: error')" -eq 1 ] && printf '%s' "$out" | grep -q -- "$pat"; then echo "PASS monitor bad input, $name: exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""
   else echo "FAIL monitor bad input, $name: exit $rc; got: $out"; fi
 done
-for c in "line leaving the domain|-mon_line_2: (0., 0., 0.) to (9., 4., 48.) leaves the domain|-mon_line_2 0,0,0,9,4,48" "dp of a probe not given|-mon_dp_5 0,3: both must be probes given by -mon_probe_<k>|-mon_probe_0 1,1,1 -mon_dp_5 0,3"; do
+for c in "line leaving the domain|-mon_line_2: (0., 0., 0.) to (9., 4., 48.) leaves the domain|-mon_line_2 0,0,0,9,4,48" "dp of a probe not given|-mon_dp_5 0,3: both must be probes given by -mon_probe_<k>|-mon_probe_0 1,1,1 -mon_dp_5 0,3" "dp of three probes|-mon_dp_5 takes 2 comma-separated values, got 3|-mon_probe_0 1,1,1 -mon_probe_1 1,1,2 -mon_dp_5 0,1,1"; do
   name=${c%%|*}; rest=${c#*|}; pat=${rest%%|*}; opt=${rest#*|}
   out=$(cd "$W" && mpiexec -n 2 "$S" -options_file "$ROOT/cases/fluidized_bed/small.opts" -cpl_t_end 1 -io_interval 0 -mon_interval 0.5 -io_dir bad $opt 2>&1); rc=$?
   if [ "$rc" -ne 0 ] && [ "$(printf '%s\n' "$out" | grep -c 'sable: error')" -eq 1 ] && printf '%s' "$out" | grep -qF -- "$pat"; then echo "PASS monitor bad input, $name (coupled, 2 ranks): exit $rc, \"$(printf '%s' "$out" | grep 'sable: error')\""
