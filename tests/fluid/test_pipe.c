@@ -53,29 +53,42 @@ static PetscErrorCode SetOptInt(const char *name, PetscInt n)
 
 typedef struct {
   PetscReal Q, div, uclosed, rnorm;
+  PetscReal qmin, qmax; /* flux through the z-planes of faces (all of them, boundary planes too) */
+  PetscReal umin, umax; /* u_z over the open z-faces */
+  PetscReal ain;        /* open area of the lowest z-plane (m^2) */
   PetscInt  its, nclosed;
 } PipeResult;
 
-/* Mean flux through the z-planes, the largest |u| on a closed face and their count. */
+/* Mean flux through the z-planes, the largest |u| on a closed face and their count, the extremes
+ * of the plane fluxes and of u_z on open faces. */
 static PetscErrorCode PipeMeasure(Fluid fl, PipeResult *r)
 {
   DM                    cda, fda;
   Vec                   u, vol, area;
   const PetscScalar ****ua, ****aa;
-  PetscInt              xs[3], xm[3], N[3];
-  PetscReal             loc[3] = {0, 0, 0}, glob[3];
-  Domain               *dom;
+  PetscInt              xs[3], xm[3], N[3], np;
+  PetscReal             loc[3] = {0, 0, 0}, glob[3], ext[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL}, gext[2], *q, *gq, hx[3], ain = 0;
+  DMBoundaryType        bz;
 
   PetscFunctionBeginUser;
   PetscCall(FluidGetDMs(fl, &cda, &fda));
   PetscCall(FluidGetVelocity(fl, &u));
   PetscCall(FluidGetOpenFractions(fl, &vol, &area));
   PetscCheck(area, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "the pipe does not cut the grid");
-  PetscCall(DMDAGetInfo(cda, NULL, &N[0], &N[1], &N[2], NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL));
+  PetscCall(DMDAGetInfo(cda, NULL, &N[0], &N[1], &N[2], NULL, NULL, NULL, NULL, NULL, NULL, NULL, &bz, NULL));
+  { /* the cell sizes from the options the run was made with */
+    PetscReal lo[3], hi[3];
+    PetscInt  n = 3;
+    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-domain_lo", lo, &n, NULL));
+    n = 3;
+    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-domain_hi", hi, &n, NULL));
+    for (int d = 0; d < 3; d++) hx[d] = (hi[d] - lo[d]) / N[d];
+  }
+  np = N[2] + 1;
+  PetscCall(PetscCalloc2(np, &q, np, &gq));
   PetscCall(DMDAGetCorners(fda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(DMDAVecGetArrayDOFRead(fda, u, &ua));
   PetscCall(DMDAVecGetArrayDOFRead(fda, area, &aa));
-  (void)dom;
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; k++)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; j++)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; i++) {
@@ -88,8 +101,13 @@ static PetscErrorCode PipeMeasure(Fluid fl, PipeResult *r)
           if (aa[k][j][i][d] == 0) {
             loc[1] = PetscMax(loc[1], PetscAbsScalar(ua[k][j][i][d]));
             loc[2] += 1;
+          } else if (d == 2) {
+            ext[0] = PetscMax(ext[0], PetscRealPart(ua[k][j][i][d]));
+            ext[1] = PetscMax(ext[1], -PetscRealPart(ua[k][j][i][d]));
           }
+          if (d == 2) q[k] += PetscRealPart(aa[k][j][i][d] * ua[k][j][i][d]) * hx[0] * hx[1];
           if (d == 2 && k < N[2]) loc[0] += PetscRealPart(aa[k][j][i][d] * ua[k][j][i][d]);
+          if (d == 2 && k == 0) ain += PetscRealPart(aa[k][j][i][d]) * hx[0] * hx[1];
         }
       }
   PetscCall(DMDAVecRestoreArrayDOFRead(fda, area, &aa));
@@ -97,9 +115,17 @@ static PetscErrorCode PipeMeasure(Fluid fl, PipeResult *r)
   PetscCallMPI(MPI_Allreduce(&loc[0], &glob[0], 1, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD));
   PetscCallMPI(MPI_Allreduce(&loc[1], &glob[1], 1, MPIU_REAL, MPI_MAX, PETSC_COMM_WORLD));
   PetscCallMPI(MPI_Allreduce(&loc[2], &glob[2], 1, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD));
-  r->Q       = glob[0] / N[2];
+  PetscCallMPI(MPI_Allreduce(ext, gext, 2, MPIU_REAL, MPI_MAX, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(q, gq, np, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(&ain, &r->ain, 1, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD));
+  r->qmin = PETSC_MAX_REAL, r->qmax = -PETSC_MAX_REAL;
+  for (PetscInt k = 0; k < (bz == DM_BOUNDARY_PERIODIC ? N[2] : np); k++) r->qmin = PetscMin(r->qmin, gq[k]), r->qmax = PetscMax(r->qmax, gq[k]);
+  PetscCall(PetscFree2(q, gq));
+  r->Q       = glob[0] / N[2] * hx[0] * hx[1];
   r->uclosed = glob[1];
   r->nclosed = (PetscInt)glob[2];
+  r->umax    = gext[0];
+  r->umin    = -gext[1];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -111,7 +137,6 @@ static PetscErrorCode RunPipe(PetscInt n, PetscBool tilted, PipeResult *r)
   FluidStats      st;
   const PetscReal R = 0.5, D = 2 * R, h = D / n, G = 0.025;
   Pipe            pipe = {R, 0, 1, 0};
-  PetscReal       hx[3];
 
   PetscFunctionBeginUser;
   if (tilted) {
@@ -123,16 +148,13 @@ static PetscErrorCode RunPipe(PetscInt n, PetscBool tilted, PipeResult *r)
     PetscCall(SetOpt("-domain_periodic_x", "1"));
     PetscCall(SetOptInt("-da_grid_x", Nx));
     PetscCall(SetOptInt("-da_grid_z", (PetscInt)PetscFloorReal(Lz / h + 0.5)));
-    hx[0] = Lx / Nx, hx[2] = h;
   } else {
     PetscCall(SetOptReal3("-domain_lo", -R - 2 * h, -R - 2 * h, 0));
     PetscCall(SetOptReal3("-domain_hi", R + 2 * h, R + 2 * h, 4 * h));
     PetscCall(SetOpt("-domain_periodic_x", "0"));
     PetscCall(SetOptInt("-da_grid_x", n + 4));
     PetscCall(SetOptInt("-da_grid_z", 4));
-    hx[0] = hx[2] = h;
   }
-  hx[1] = h;
   PetscCall(SetOptInt("-da_grid_y", n + 4));
   PetscCall(SetOptReal3("-fluid_pressure_gradient", -G * pipe.s, 0, -G * pipe.c));
   PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
@@ -142,12 +164,76 @@ static PetscErrorCode RunPipe(PetscInt n, PetscBool tilted, PipeResult *r)
   PetscCall(FluidSetUp(fl));
   for (PetscInt s = 0; s < 6; s++) PetscCall(FluidStep(fl, 100 * h, &st));
   PetscCall(PipeMeasure(fl, r));
-  r->Q *= hx[0] * hx[1];
   r->div   = st.div_max;
   r->its   = st.poisson_its;
   r->rnorm = st.poisson_rnorm;
   PetscCall(FluidDestroy(&fl));
   PetscCall(DomainDestroy(&dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static void Plug(const PetscReal x[3], PetscReal v[3], void *ctx)
+{
+  (void)x, (void)ctx;
+  v[0] = v[1] = 0;
+  v[2]        = 0.01;
+}
+
+/* The z-pipe at 8 cells across with: 0, the explicit viscous term to steady state (adaptive dt
+ * up to t = 0.6 s, a decay of 1e-6 of the slowest mode); 1, slip walls, a plug flow u_z =
+ * 0.01 m/s without driving, 3 implicit steps; 2, an inlet at zlo (superficial 0.01 m/s) and an
+ * outlet at zhi over 8 cells along z, 5 implicit steps. */
+static PetscErrorCode RunPipeVariant(int kind, PipeResult *r, PetscInt *steps)
+{
+  Domain          dom = {0};
+  Fluid           fl;
+  FluidStats      st;
+  const PetscReal R = 0.5, h = 1.0 / 8;
+  Pipe            pipe = {R, 0, 1, 0};
+  PetscReal       t    = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(SetOptReal3("-domain_lo", -R - 2 * h, -R - 2 * h, 0));
+  PetscCall(SetOptReal3("-domain_hi", R + 2 * h, R + 2 * h, (kind == 2 ? 8 : 4) * h));
+  PetscCall(SetOpt("-domain_periodic_x", "0"));
+  PetscCall(SetOptInt("-da_grid_x", 12));
+  PetscCall(SetOptInt("-da_grid_y", 12));
+  PetscCall(SetOptInt("-da_grid_z", kind == 2 ? 8 : 4));
+  PetscCall(SetOptReal3("-fluid_pressure_gradient", 0, 0, kind == 0 ? -0.025 : 0));
+  PetscCall(SetOpt("-fluid_viscous", kind == 0 ? "explicit" : "implicit"));
+  if (kind == 0) PetscCall(SetOpt("-fluid_adaptive_dt", "1"));
+  if (kind == 1) PetscCall(SetOpt("-fluid_vessel_wall", "slip"));
+  if (kind == 2) {
+    PetscCall(SetOpt("-domain_periodic_z", "0"));
+    PetscCall(SetOpt("-fluid_bc_zlo", "inlet"));
+    PetscCall(SetOpt("-fluid_bc_zlo_velocity", "0,0,0.01"));
+    PetscCall(SetOpt("-fluid_bc_zhi", "outlet"));
+  }
+  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
+  PetscCall(FluidCreate(&dom, &fl));
+  PetscCall(FluidSetFromOptions(fl));
+  PetscCall(FluidSetVessel(fl, PipeLevel, &pipe));
+  PetscCall(FluidSetUp(fl));
+  if (kind == 1) PetscCall(FluidSetVelocityFunction(fl, Plug, NULL));
+  *steps = 0;
+  if (kind == 0)
+    for (; t < 0.6; (*steps)++) {
+      PetscCall(FluidStep(fl, 0.6 - t, &st));
+      t += st.dt;
+    }
+  else
+    for (; *steps < (kind == 1 ? 3 : 5); (*steps)++) PetscCall(FluidStep(fl, 0.5, &st));
+  PetscCall(PipeMeasure(fl, r));
+  r->div = st.div_max;
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  PetscCall(PetscOptionsClearValue(NULL, "-fluid_adaptive_dt"));
+  PetscCall(PetscOptionsClearValue(NULL, "-fluid_vessel_wall"));
+  PetscCall(PetscOptionsClearValue(NULL, "-fluid_bc_zlo"));
+  PetscCall(PetscOptionsClearValue(NULL, "-fluid_bc_zlo_velocity"));
+  PetscCall(PetscOptionsClearValue(NULL, "-fluid_bc_zhi"));
+  PetscCall(SetOpt("-domain_periodic_z", "1"));
+  PetscCall(SetOpt("-fluid_viscous", "implicit"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -224,6 +310,18 @@ int main(int argc, char **argv)
       PetscCall(CheckBelow(CheckName("pipe_%s_%d_continuity_residual", name[t], (int)ns[t][i]), r[t][i].div, 1e-8));
       PetscCall(CheckEqualReal(CheckName("pipe_%s_%d_closed_face_velocity", name[t], (int)ns[t][i]), r[t][i].uclosed, 0));
     }
+  }
+  { /* the explicit viscous term (and its stability number with the wall links), slip walls, inlet */
+    PipeResult v[3];
+    PetscInt   steps[3];
+    for (int k = 0; k < 3; k++) PetscCall(RunPipeVariant(k, &v[k], &steps[k]));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "# pipe z explicit viscous, 8 cells across: Q %.10e in %d adaptive steps (implicit: %.10e)\n", (double)v[0].Q, (int)steps[0], (double)r[0][0].Q));
+    PetscCall(CheckClose("pipe_z_explicit_viscous_same_steady_flow", v[0].Q, r[0][0].Q, 1e-5));
+    CheckDetail("u_z on the open faces in [%.15g, %.15g]", (double)v[1].umin, (double)v[1].umax);
+    PetscCall(CheckBelow("pipe_slip_plug_flow_kept", PetscMax(v[1].umax - 0.01, 0.01 - v[1].umin) / 0.01, 1e-10));
+    CheckDetail("open inlet area %.6g m^2 (pi R^2 = %.6g); plane fluxes in [%.15g, %.15g]", (double)v[2].ain, (double)(PETSC_PI * R * R), (double)v[2].qmin, (double)v[2].qmax);
+    PetscCall(CheckBelow("pipe_inlet_flux_every_plane", PetscMax(PetscAbsReal(v[2].qmax - 0.01 * v[2].ain), PetscAbsReal(v[2].qmin - 0.01 * v[2].ain)) / (0.01 * v[2].ain), 1e-9));
+    PetscCall(CheckEqualReal("pipe_inlet_closed_face_velocity", v[2].uclosed, 0));
   }
   { /* the box, with a vessel that cuts nothing: the same bits */
     Vec       u0, p0, u1, p1;
