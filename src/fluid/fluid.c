@@ -80,6 +80,8 @@ PetscErrorCode FluidSetFromOptions(Fluid fl)
   PetscOptionsEnd();
   PetscCall(FluidSetFromOptionsBC(fl));
   PetscCall(FluidSetFromOptionsInlet(fl));
+  PetscCall(FluidSetFromOptionsPatch(fl));
+  PetscCall(FluidSetFromOptionsDistributor(fl));
   PetscCall(KSPDestroy(&fl->pois.ksp));
   PetscCall(KSPDestroy(&fl->vimp.ksp));
   PetscCall(FluidPoissonCreateKSP(fl));
@@ -189,6 +191,7 @@ PetscErrorCode FluidSetUp(Fluid fl)
     PetscCall(VecDuplicate(fl->fld.u, &fl->pois.beta_pc));
   }
   PetscCall(FluidCreateLocals(fl));
+  PetscCall(FluidSetUpPatches(fl));
   PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
   PetscCheck(fl->pois.ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
   PetscCall(FluidPoissonSetUp(fl));
@@ -211,6 +214,8 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
   PetscCall(DMDestroy(&fl->g.cda));
   PetscCall(DMDestroy(&fl->g.fda));
   PetscCall(PetscFree(fl->mom.advbuf));
+  PetscCall(FluidDestroyPatches(fl));
+  PetscCall(VecDestroy(&fl->plate.beff));
   PetscCall(PetscFree(*fluid));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -313,7 +318,7 @@ PetscErrorCode FluidGetLocalFields(Fluid fl, Vec *uloc, Vec *ploc)
     *uloc = fl->fld.uloc;
   }
   if (ploc) {
-    PetscCall(FluidLocalCell(fl, fl->fld.p, fl->fld.ploc, PETSC_TRUE, fl->bc.p_out));
+    PetscCall(FluidLocalCell(fl, fl->fld.p, fl->fld.ploc, FLUID_GHOST_PRESSURE, fl->bc.p_out));
     *ploc = fl->fld.ploc;
   }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -172,3 +172,11 @@ PetscErrorCode FluidInitPorosity(Fluid fluid);
  * on domain faces). For a scalar such as beta pass the same Vec three times. Cell Vecs are
  * global Vecs of the cell DMDA (or of the domain's DMDA: same layout). */
 PetscErrorCode FluidCellsToFaces(Fluid fluid, Vec cell[3], Vec face);
+
+/* Inlet and outlet patches -fluid_patch_<k>_* (patch.c; src/fluid/README.md, "Patches"). Not
+ * collective: how many. Collective: patch i's option index k, its mean pressure (Pa; on a box
+ * face the face pressure, extrapolated to the face, the set pressure on outlet faces) and its
+ * mass flow (kg/s) measured from the face fluxes rho eps_f u A: into the domain at an inlet, out
+ * of it at an outlet; a source inside the domain: rho sum S_c V_c. */
+PetscErrorCode FluidGetPatchCount(Fluid fluid, PetscInt *n);
+PetscErrorCode FluidPatchMeasure(Fluid fluid, PetscInt i, PetscInt *k, PetscReal *p, PetscReal *mdot);
