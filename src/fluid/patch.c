@@ -46,6 +46,9 @@ struct _FluidPatches {
   PetscBool   sources, setup;
 };
 
+/* The options of patch k that take words (tools/gen-options.sh registers the patterns). */
+static const char *const FluidPatchWordOptions[] = {"-fluid_patch_%d_type", "-fluid_patch_%d_face"};
+
 static const char *const FluidPatchTypes[] = {"inlet", "outlet", "FluidPatchType", "FLUID_PATCH_", NULL};
 static const char *const FluidPatchFaces[] = {"xlo", "xhi", "ylo", "yhi", "zlo", "zhi", "inside", "FluidPatchFace", "FLUID_PATCH_FACE_", NULL};
 
@@ -300,8 +303,8 @@ PetscErrorCode FluidSetFromOptionsPatch(Fluid fl)
     int         d, s;
 
     pt->k = idx[i];
-    PetscCall(PetscSNPrintf(ot, sizeof ot, "-fluid_patch_%d_type", (int)pt->k));
-    PetscCall(PetscSNPrintf(of, sizeof of, "-fluid_patch_%d_face", (int)pt->k));
+    PetscCall(PetscSNPrintf(ot, sizeof ot, FluidPatchWordOptions[0], (int)pt->k));
+    PetscCall(PetscSNPrintf(of, sizeof of, FluidPatchWordOptions[1], (int)pt->k));
     PetscCall(SableOptionsEnum(ot, "Patch k: inlet or outlet", FluidPatchTypes, 2, type, &type, &set));
     PetscCheck(set, fl->comm, PETSC_ERR_ARG_WRONG, "-fluid_patch_%d_* options are given without %s inlet|outlet", (int)pt->k, ot);
     pt->outlet = (PetscBool)(type == 1);
