@@ -49,13 +49,7 @@ PetscErrorCode FluidDistributorUpdate(Fluid fl)
   const PetscReal    k = fl->prop.rho / (2 * g->h[2] * PetscSqr(fl->plate.cd * fl->plate.phi));
 
   PetscFunctionBeginUser;
-  if (fl->plate.beff) { /* a redistribution changed the layout: a new one */
-    PetscInt n, m;
-    PetscCall(VecGetLocalSize(fl->plate.beff, &n));
-    PetscCall(VecGetLocalSize(fl->fld.beta, &m));
-    if (n != m) PetscCall(VecDestroy(&fl->plate.beff));
-  }
-  if (!fl->plate.beff) PetscCall(VecDuplicate(fl->fld.beta, &fl->plate.beff));
+  if (!fl->plate.beff) PetscCall(VecDuplicate(fl->fld.beta, &fl->plate.beff)); /* first use, or a new layout */
   PetscCall(VecCopy(fl->fld.beta, fl->plate.beff));
   PetscCall(VecGetArrayRead(fl->fld.u, &u));
   PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));

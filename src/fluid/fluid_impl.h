@@ -279,6 +279,7 @@ PetscErrorCode FluidSetUpPatches(Fluid fl);
 PetscErrorCode FluidUpdatePatches(Fluid fl, PetscReal t, PetscBool *changed);
 PetscErrorCode FluidPatchSource(Fluid fl, Vec *src);
 PetscErrorCode FluidDestroyPatches(Fluid fl);
+PetscErrorCode FluidPatchesRelayout(Fluid fl);
 /* distributor.c: the perforated plate */
 PetscErrorCode    FluidSetFromOptionsDistributor(Fluid fl);
 PetscErrorCode    FluidDistributorUpdate(Fluid fl);

@@ -499,6 +499,14 @@ PetscErrorCode FluidPatchSource(Fluid fl, Vec *src)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* After a redistribution: the source Vec is made again on the new layout at its next use. */
+PetscErrorCode FluidPatchesRelayout(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  if (fl->patch) PetscCall(VecDestroy(&fl->patch->src));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FluidDestroyPatches(Fluid fl)
 {
   FluidPatches *P = fl->patch;
