@@ -220,6 +220,7 @@ PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc, Vec epsloc)
   PetscCall(VecGetArray(uloc, &a));
   if (fl->bc.has_inlet) PetscCall(VecGetArrayRead(epsloc, &e));
   PetscCall(FluidFillVelocityGhosts(fl, a, e));
+  if (fl->bc.has_inlet && fl->ves.cut) PetscCall(FluidVesselZeroClosed(fl, a)); /* inlet faces the vessel closes */
   if (fl->bc.has_inlet) PetscCall(VecRestoreArrayRead(epsloc, &e));
   PetscCall(VecRestoreArray(uloc, &a));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -282,9 +283,10 @@ PetscErrorCode FluidInletFaceValues(Fluid fl, Vec u)
       q[d] = s ? g->N[d] : 0;
       for (q[b1] = g->xs[b1]; q[b1] < g->xs[b1] + g->fxm[b1]; q[b1]++)
         for (q[a1] = g->xs[a1]; q[a1] < g->xs[a1] + g->fxm[a1]; q[a1]++) {
-          if (!bc->pkind) a[q[2]][q[1]][q[0]][d] = fluid_inlet_normal(g, bc->vel[d], eps, d, s, q);
+          const PetscBool closed = (PetscBool)(fl->ves.aloc && fl->ves.aloc[FluidFaceOff(g, q[0], q[1], q[2]) + d] == 0);
+          if (!bc->pkind) a[q[2]][q[1]][q[0]][d] = closed ? 0 : fluid_inlet_normal(g, bc->vel[d], eps, d, s, q);
           else if (FluidFaceActive(fl, d, q) || q[a1] == g->N[a1] || q[b1] == g->N[b1]) continue; /* outlets, the unused extra points */
-          else if (fluid_bc_at(fl, d, s, q) == FLUID_BC_INLET) a[q[2]][q[1]][q[0]][d] = fluid_inlet_normal(g, bc->pkind[fluid_face_point(fl, d, q)] ? bc->pvn[fluid_face_point(fl, d, q)] : bc->vel[d], eps, d, s, q);
+          else if (!closed && fluid_bc_at(fl, d, s, q) == FLUID_BC_INLET) a[q[2]][q[1]][q[0]][d] = fluid_inlet_normal(g, bc->pkind[fluid_face_point(fl, d, q)] ? bc->pvn[fluid_face_point(fl, d, q)] : bc->vel[d], eps, d, s, q);
           else a[q[2]][q[1]][q[0]][d] = 0;
         }
     }
