@@ -41,7 +41,8 @@ struct _FluidPatches {
   PetscInt    n;
   FluidPatch *p;
   PetscInt   *fid[3][2]; /* patch of each face point (-1: none) */
-  PetscReal  *fw[3][2];  /* its weight (m^2) */
+  PetscReal  *fw[3][2];  /* its weight: the patch's area on it times fa (m^2) */
+  PetscReal  *fa[3][2];  /* the face's open-area fraction (1 without a vessel) */
   Vec         src;       /* S_c (1/s, cell Vec), NULL without sources */
   PetscBool   sources, setup;
 };
@@ -329,6 +330,54 @@ PetscErrorCode FluidSetFromOptionsPatch(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The open-area fraction of every face point of box face (d, s) on every rank (1 without a
+ * vessel): each owner writes its points, summed over ranks (one non-zero per point, exact). */
+static PetscErrorCode FluidPatchFaceOpen(Fluid fl, int d, int s, PetscReal *fa)
+{
+  const FluidGrid *g = &fl->g;
+  const int        a = (d + 1) % 3, b = (d + 2) % 3;
+  const PetscInt   n = g->N[a] * g->N[b];
+  PetscReal       *loc;
+  PetscInt         q[3];
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < n; k++) fa[k] = 1;
+  if (!fl->ves.cut) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscCalloc1(n, &loc));
+  if (s ? g->xs[d] + g->xm[d] == g->N[d] : g->xs[d] == 0) {
+    const PetscScalar ****ar;
+    PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->ves.area, &ar));
+    q[d] = s ? g->N[d] : 0;
+    for (q[b] = g->xs[b]; q[b] < g->xs[b] + g->xm[b]; q[b]++)
+      for (q[a] = g->xs[a]; q[a] < g->xs[a] + g->xm[a]; q[a]++) loc[q[a] + g->N[a] * q[b]] = PetscRealPart(ar[q[2]][q[1]][q[0]][d]);
+    PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->ves.area, &ar));
+  }
+  PetscCallMPI(MPIU_Allreduce(loc, fa, (PetscMPIInt)n, MPIU_REAL, MPIU_SUM, fl->comm));
+  PetscCall(PetscFree(loc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The open-volume fraction of the n cells (natural indices) on every rank, as above. */
+static PetscErrorCode FluidPatchCellOpen(Fluid fl, PetscInt n, const PetscInt *cell, PetscReal *v)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *vol;
+  PetscReal         *loc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(n, &loc));
+  PetscCall(VecGetArrayRead(fl->ves.vol, &vol));
+  for (PetscInt j = 0; j < n; j++) {
+    PetscInt c[3] = {cell[j] % g->N[0], (cell[j] / g->N[0]) % g->N[1], cell[j] / (g->N[0] * g->N[1])}, own = 1;
+    for (int e = 0; e < 3; e++) own = own && c[e] >= g->xs[e] && c[e] < g->xs[e] + g->xm[e];
+    if (own) loc[j] = PetscRealPart(vol[((c[2] - g->xs[2]) * g->xm[1] + (c[1] - g->xs[1])) * g->xm[0] + (c[0] - g->xs[0])]);
+  }
+  PetscCall(VecRestoreArrayRead(fl->ves.vol, &vol));
+  PetscCallMPI(MPIU_Allreduce(loc, v, (PetscMPIInt)n, MPIU_REAL, MPIU_SUM, fl->comm));
+  PetscCall(PetscFree(loc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The face maps of patch i on its box face (d, s). */
 static PetscErrorCode FluidPatchCoverFace(Fluid fl, PetscInt i)
 {
@@ -344,8 +393,9 @@ static PetscErrorCode FluidPatchCoverFace(Fluid fl, PetscInt i)
   PetscFunctionBeginUser;
   if (!bc->pkind) {
     PetscCall(PetscCalloc3(Na * Nb, &bc->pkind, Na * Nb, &bc->pvn, Na * Nb, &bc->pp));
-    PetscCall(PetscMalloc2(Na * Nb, &P->fid[d][s], Na * Nb, &P->fw[d][s]));
+    PetscCall(PetscMalloc3(Na * Nb, &P->fid[d][s], Na * Nb, &P->fw[d][s], Na * Nb, &P->fa[d][s]));
     for (PetscInt q = 0; q < Na * Nb; q++) P->fid[d][s][q] = -1, P->fw[d][s][q] = 0;
+    PetscCall(FluidPatchFaceOpen(fl, d, s, P->fa[d][s]));
   }
   for (PetscInt v = 0; v < pt->nv; v++)
     for (int e = 0; e < 3; e++) blo[e] = PetscMin(blo[e], pt->v[3 * v + e]), bhi[e] = PetscMax(bhi[e], pt->v[3 * v + e]);
@@ -360,10 +410,10 @@ static PetscErrorCode FluidPatchCoverFace(Fluid fl, PetscInt i)
       lo[b] = fl->g.lo[b] + ib * hb, hi[b] = lo[b] + hb;
       lo[d] = hi[d]     = 0;
       const PetscReal A = fluid_clipped_area(pt, lo, hi, mask);
-      if (A <= 1e-12 * ha * hb || (pt->outlet && A < 0.5 * ha * hb)) continue; /* an outlet takes the faces it covers at least half */
+      if (A <= 1e-12 * ha * hb || (pt->outlet && A < 0.5 * ha * hb) || P->fa[d][s][q] == 0) continue; /* an outlet takes the faces it covers at least half; closed faces stay closed */
       PetscCheck(P->fid[d][s][q] < 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_patch_%d overlaps -fluid_patch_%d on the %s face (face point %d,%d)", (int)pt->k, (int)P->p[P->fid[d][s][q]].k, FluidPatchFaces[2 * d + s], (int)ia, (int)ib);
       P->fid[d][s][q] = i;
-      P->fw[d][s][q]  = pt->outlet ? ha * hb : A;
+      P->fw[d][s][q]  = (pt->outlet ? ha * hb : A) * P->fa[d][s][q];
       bc->pkind[q]    = (signed char)(pt->outlet ? FLUID_BC_OUTLET : FLUID_BC_INLET);
       bc->pp[q]       = pt->p;
       pt->W += P->fw[d][s][q];
@@ -410,21 +460,67 @@ static PetscErrorCode FluidPatchCoverCells(Fluid fl, PetscInt i)
         pt->w[pt->nc++]  = A;
         pt->W += A;
       }
+  if (fl->ves.cut) { /* with a vessel: the patch's area in the open part, approximated as area x vol_c */
+    PetscReal *v;
+    PetscCall(PetscMalloc1(pt->nc, &v));
+    PetscCall(FluidPatchCellOpen(fl, pt->nc, pt->cell, v));
+    pt->W = 0;
+    for (PetscInt j = 0; j < pt->nc; j++) pt->W += (pt->w[j] *= v[j]);
+    PetscCall(PetscFree(v));
+  }
   PetscCheck(pt->W > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_patch_%d lies on no box face and crosses no open cell of the grid", (int)pt->k);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* With a vessel cutting the grid: a box face declared inlet or outlet must keep some open area,
+ * and an open inlet (a face, a patch or a source) needs an open outlet. A vessel with neither
+ * (closed, or periodic and driven by a pressure gradient) is allowed. */
+static PetscErrorCode FluidCheckOpenBoundaries(Fluid fl)
+{
+  const FluidGrid *g       = &fl->g;
+  PetscReal        loc[12] = {0}, open[12], in = 0, out = 0;
+  PetscInt         q[3];
+
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      const int a = (d + 1) % 3, b = (d + 2) % 3;
+      if (FluidPeriodic(fl, d) || (s ? g->xs[d] + g->xm[d] != g->N[d] : g->xs[d] != 0)) continue;
+      q[d] = s ? g->N[d] : 0;
+      for (q[b] = g->xs[b]; q[b] < g->xs[b] + g->xm[b]; q[b]++)
+        for (q[a] = g->xs[a]; q[a] < g->xs[a] + g->xm[a]; q[a]++) {
+          const FluidBCType t  = fluid_bc_at(fl, d, s, q);
+          const PetscReal   Af = fl->ves.aloc[FluidFaceOff(g, q[0], q[1], q[2]) + d] * g->h[a] * g->h[b];
+          if (t == FLUID_BC_INLET) loc[2 * (2 * d + s)] += Af;
+          if (t == FLUID_BC_OUTLET) loc[2 * (2 * d + s) + 1] += Af;
+        }
+    }
+  PetscCallMPI(MPIU_Allreduce(loc, open, 12, MPIU_REAL, MPIU_SUM, fl->comm));
+  for (int f = 0; f < 6; f++) {
+    const FluidBCType t = fl->bc.face[f / 2][f % 2].type;
+    in += open[2 * f];
+    out += open[2 * f + 1];
+    PetscCheck(!(t == FLUID_BC_INLET && open[2 * f] == 0) && !(t == FLUID_BC_OUTLET && open[2 * f + 1] == 0), fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_bc_%s %s: the vessel closes every face of it (open area 0 m^2); open the vessel there or give the %s as a -fluid_patch_<k> where the vessel is open", FluidPatchFaces[f], FluidBCNames[t], FluidBCNames[t]);
+  }
+  for (PetscInt i = 0; fl->patch && i < fl->patch->n; i++)
+    if (fl->patch->p[i].d < 0) in += fl->patch->p[i].W;
+  PetscCheck(in == 0 || out > 0, fl->comm, PETSC_ERR_ARG_INCOMP, "the fluid has open inlets (%g m^2) but the vessel leaves no open outlet (0 m^2): give an outlet (-fluid_bc_<face> outlet or -fluid_patch_<k>_type outlet) where the vessel is open", (double)in);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidSetUpPatches(Fluid fl)
 {
   PetscFunctionBeginUser;
-  if (!fl->patch || fl->patch->setup) PetscFunctionReturn(PETSC_SUCCESS);
-  for (PetscInt i = 0; i < fl->patch->n; i++) {
-    if (fl->patch->p[i].d >= 0) PetscCall(FluidPatchCoverFace(fl, i));
-    else PetscCall(FluidPatchCoverCells(fl, i));
+  if (fl->patch && !fl->patch->setup) {
+    for (PetscInt i = 0; i < fl->patch->n; i++) {
+      if (fl->patch->p[i].d >= 0) PetscCall(FluidPatchCoverFace(fl, i));
+      else PetscCall(FluidPatchCoverCells(fl, i));
+    }
+    fl->patch->setup = PETSC_TRUE;
+    for (PetscInt i = 0; i < fl->patch->n; i++) fl->patch->p[i].value = PETSC_MAX_REAL; /* every value is new */
+    PetscCall(FluidUpdatePatches(fl, fl->clock.time, NULL));
   }
-  fl->patch->setup = PETSC_TRUE;
-  for (PetscInt i = 0; i < fl->patch->n; i++) fl->patch->p[i].value = PETSC_MAX_REAL; /* every value is new */
-  PetscCall(FluidUpdatePatches(fl, fl->clock.time, NULL));
+  if (fl->ves.cut) PetscCall(FluidCheckOpenBoundaries(fl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -458,8 +554,8 @@ PetscErrorCode FluidUpdatePatches(Fluid fl, PetscReal t, PetscBool *changed)
         const PetscInt i = P->fid[d][s][q];
         if (i < 0 || P->p[i].outlet) continue;
         const FluidPatch *pt = &P->p[i];
-        const PetscReal   Q  = pt->mass ? pt->value / fl->prop.rho : pt->value * pt->W; /* m^3/s */
-        bc->pvn[q]           = (s ? -1 : 1) * Q * (P->fw[d][s][q] / pt->W) / Af;
+        const PetscReal   Q  = pt->mass ? pt->value / fl->prop.rho : pt->value * pt->W;             /* m^3/s */
+        bc->pvn[q]           = (s ? -1 : 1) * Q * (P->fw[d][s][q] / pt->W) / (P->fa[d][s][q] * Af); /* the flux a_f U A = Q w_f / W */
       }
     }
   if (P->sources) {
@@ -517,7 +613,7 @@ PetscErrorCode FluidDestroyPatches(Fluid fl)
     for (int s = 0; s < 2; s++) {
       FluidBC *bc = &fl->bc.face[d][s];
       PetscCall(PetscFree3(bc->pkind, bc->pvn, bc->pp));
-      PetscCall(PetscFree2(P->fid[d][s], P->fw[d][s]));
+      PetscCall(PetscFree3(P->fid[d][s], P->fw[d][s], P->fa[d][s]));
     }
   for (PetscInt i = 0; i < P->n; i++) PetscCall(PetscFree2(P->p[i].cell, P->p[i].w));
   PetscCall(VecDestroy(&P->src));
@@ -574,7 +670,7 @@ PetscErrorCode FluidPatchMeasure(Fluid fl, PetscInt i, PetscInt *k, PetscReal *p
         c2[d]              = s ? g->xm[d] - 2 : 1;
         const PetscInt  o1 = (c1[2] * g->xm[1] + c1[1]) * g->xm[0] + c1[0], o2 = (c2[2] * g->xm[1] + c2[1]) * g->xm[0] + c2[0];
         const PetscReal pf     = pt->outlet ? pt->p : 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]);
-        const PetscReal fl_out = (s ? 1 : -1) * PetscRealPart(eps[o1] * u[q[2]][q[1]][q[0]][d]) * Af; /* m^3/s out of the domain */
+        const PetscReal fl_out = (s ? 1 : -1) * P->fa[d][s][m] * PetscRealPart(eps[o1] * u[q[2]][q[1]][q[0]][d]) * Af; /* m^3/s out of the domain */
         loc[0] += P->fw[d][s][m] * pf;
         loc[1] += fl->prop.rho * (pt->outlet ? fl_out : -fl_out);
       }

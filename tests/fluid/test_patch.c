@@ -15,6 +15,10 @@
  *   D. an empty column, periodic in x and y, inlet U = 0.5 m/s on zlo, outlet zhi, a distributor
  *      plate at z = 1 m (phi = 0.3, Cd = 0.6): the pressure drop across it equals Kunii &
  *      Levenspiel's orifice law rho/2 (U/(Cd phi))^2 to the solver tolerance (1e-8).
+ *   E. a cylinder vessel (FAVOR, R = 0.4 m along z): a disc inlet on zlo wider than it
+ *      (R = 0.45 m, 0.05 kg/s) and a tilted disc source inside; their mass flows equal the set
+ *      values to round-off, the outflow through zhi (a_f eps u A) their sum to the solver
+ *      tolerance; a vessel that closes the box outlet is refused.
  * On 2 ranks the same figures (the decomposition splits the box). */
 #include "fluid_common.h"
 
@@ -149,6 +153,88 @@ static PetscErrorCode CaseD(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A cylinder along z, radius 0.4 m, about (0.5, 0.5): phi > 0 inside. */
+static PetscReal Cylinder(const PetscReal x[3], void *ctx)
+{
+  (void)ctx;
+  return 0.4 - PetscSqrtReal(PetscSqr(x[0] - 0.5) + PetscSqr(x[1] - 0.5));
+}
+
+/* Volume flow out through the zhi face with the open-area fractions (m^3/s). */
+static PetscErrorCode TopFlowFavor(Fluid fl, const Domain *dom, PetscReal *Q)
+{
+  DM                    cda, fda;
+  Vec                   u, eps, vol, area;
+  const PetscScalar ****a, ***e, ****af;
+  PetscInt              xs, ys, zs, xm, ym, zm, N = dom->cells[2];
+  PetscReal             q = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidGetDMs(fl, &cda, &fda));
+  PetscCall(FluidGetVelocity(fl, &u));
+  PetscCall(FluidGetPorosity(fl, &eps));
+  PetscCall(FluidGetOpenFractions(fl, &vol, &area));
+  PetscCall(DMDAGetCorners(cda, &xs, &ys, &zs, &xm, &ym, &zm));
+  PetscCall(DMDAVecGetArrayDOFRead(fda, u, (void *)&a));
+  PetscCall(DMDAVecGetArrayDOFRead(fda, area, (void *)&af));
+  PetscCall(DMDAVecGetArrayRead(cda, eps, (void *)&e));
+  if (zs + zm == N)
+    for (PetscInt j = ys; j < ys + ym; j++)
+      for (PetscInt i = xs; i < xs + xm; i++) q += af[N][j][i][2] * e[N - 1][j][i] * a[N][j][i][2] * dom->h[0] * dom->h[1];
+  PetscCall(DMDAVecRestoreArrayRead(cda, eps, (void *)&e));
+  PetscCall(DMDAVecRestoreArrayDOFRead(fda, area, (void *)&af));
+  PetscCall(DMDAVecRestoreArrayDOFRead(fda, u, (void *)&a));
+  PetscCall(MPIU_Allreduce(&q, Q, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* E. under a cylinder vessel: a disc inlet on zlo wider than the vessel (R = 0.45 m: the faces
+ * the vessel closes or cuts take their open share) and a tilted disc source, the zhi face an
+ * outlet; then a vessel that closes the box outlet on xhi is refused. */
+static PetscErrorCode CaseE(void)
+{
+  Domain         dom = {0};
+  Fluid          fl;
+  FluidStats     st;
+  PetscReal      p, m, ms, Q;
+  PetscInt       k;
+  PetscBool      cut;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_patch.opts", "-fluid_bc_zhi outlet -fluid_patch_0_type inlet -fluid_patch_0_disc 0.5,0.5,0,0,0,1,0.45 -fluid_patch_0_mass_flow 0.05 -fluid_patch_1_type inlet -fluid_patch_1_disc 0.5,0.5,1,1,0,1,0.2 -fluid_patch_1_velocity 0.1"));
+  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
+  PetscCall(FluidCreate(&dom, &fl));
+  PetscCall(FluidSetFromOptions(fl));
+  PetscCall(FluidSetVessel(fl, Cylinder, NULL));
+  PetscCall(FluidSetUp(fl));
+  PetscCall(FluidVesselActive(fl, &cut));
+  for (int n = 0; n < 3; n++) PetscCall(FluidStep(fl, 0.01, &st));
+  PetscCall(FluidPatchMeasure(fl, 0, &k, &p, &m));
+  PetscCall(FluidPatchMeasure(fl, 1, &k, &p, &ms));
+  PetscCall(TopFlowFavor(fl, &dom, &Q));
+  CheckDetail("vessel cuts the grid: %s", cut ? "yes" : "no");
+  PetscCall(CheckClose("patch_disc_inlet_under_cylinder_vessel_mass_flow", m, 0.05, 1e-12));
+  PetscCall(CheckClose("patch_source_in_cylinder_vessel_mass_flow", ms, 0.1 * PETSC_PI * 0.04, 1e-12));
+  CheckDetail("continuity residual %.2e 1/s", (double)st.div_max);
+  PetscCall(CheckClose("patch_cylinder_vessel_outlet_flow", Q, 0.05 + 0.1 * PETSC_PI * 0.04, 1e-8));
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  /* the box outlet on xhi lies wholly in the vessel's wall */
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_patch.opts", "-fluid_bc_xhi outlet -fluid_patch_0_type inlet -fluid_patch_0_disc 0.5,0.5,0,0,0,1,0.3 -fluid_patch_0_mass_flow 0.05"));
+  PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
+  PetscCall(FluidCreate(&dom, &fl));
+  PetscCall(FluidSetFromOptions(fl));
+  PetscCall(FluidSetVessel(fl, Cylinder, NULL));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = FluidSetUp(fl);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(CheckTrue("patch_vessel_closes_the_outlet_refused", (PetscBool)(ierr == PETSC_ERR_ARG_INCOMP), ierr == PETSC_ERR_ARG_INCOMP ? "FluidSetUp stops: the vessel closes the outlet" : "FluidSetUp did not stop"));
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
@@ -156,6 +242,7 @@ int main(int argc, char **argv)
   PetscCall(CaseB());
   PetscCall(CaseC());
   PetscCall(CaseD());
+  PetscCall(CaseE());
   PetscCall(PetscFinalize());
   return check_failures ? 1 : 0;
 }
