@@ -15,7 +15,7 @@
  *   source brings no momentum (the limit of a point source).
  * Maps of the face points (FluidBC.pkind, pvn, pp; fid, fw here) cover the whole face on every
  * rank: boundary ghosts of any decomposition read them, and the set-up is the same everywhere.
- * Units SI. Limits: outlets lie on a box face; no patch with -fluid_viscous implicit. */
+ * Units SI. Limits: outlets lie on a box face. */
 #include "fluid/fluid_impl.h"
 #include <ctype.h>
 
@@ -309,7 +309,6 @@ PetscErrorCode FluidSetFromOptionsPatch(Fluid fl)
     PetscCall(SableOptionsEnum(ot, "Patch k: inlet or outlet", FluidPatchTypes, 2, type, &type, &set));
     PetscCheck(set, fl->comm, PETSC_ERR_ARG_WRONG, "-fluid_patch_%d_* options are given without %s inlet|outlet", (int)pt->k, ot);
     pt->outlet = (PetscBool)(type == 1);
-    PetscCheck(fl->mom.visc == FLUID_VISC_EXPLICIT, fl->comm, PETSC_ERR_SUP, "%s: patches work with -fluid_viscous explicit only (a stated limit)", ot);
     PetscCall(FluidPatchReadShape(PetscOptionsObject, fl, pt));
     PetscCall(SableOptionsEnum(of, "The box face the patch lies on, or inside (a volume source); default: found from the shape", FluidPatchFaces, 7, face, &face, &fset));
     FluidPatchFindFace(fl, pt, &d, &s);
