@@ -281,15 +281,40 @@ static PetscErrorCode FluidPatchReadValue(PetscOptionItems *PetscOptionsObject, 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* -help without patches: the family's lines, for k = 0 (nothing is read). */
+static PetscErrorCode FluidPatchHelp(Fluid fl)
+{
+  PetscReal g[3 * FLUID_PATCH_NV] = {0}, x = 0;
+  PetscInt  n = 3 * FLUID_PATCH_NV, e = 0;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(fl->comm, NULL, "Fluid inlet and outlet patches (any k >= 0)", NULL);
+  PetscCall(SableOptionsEnum("-fluid_patch_0_type", "Patch k: inlet or outlet", FluidPatchTypes, 2, e, &e, NULL));
+  PetscCall(SableOptionsRealN("-fluid_patch_0_disc", "A disc patch: centre, normal, radius cx,cy,cz,nx,ny,nz,R", "m", g, 0, 7, NULL));
+  PetscCall(SableOptionsRealN("-fluid_patch_0_rect", "A rectangle patch: corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0)", "m", g, 0, 9, NULL));
+  PetscCall(SableOptionsRealArray("-fluid_patch_0_polygon", "A convex polygon patch: its vertices in order x1,y1,z1,x2,... (3 to 64, in one plane)", "m", g, 0, &n, NULL));
+  PetscCall(SableOptionsEnum("-fluid_patch_0_face", "The box face the patch lies on, or inside (a volume source); default: found from the shape", FluidPatchFaces, 7, 6, &e, NULL));
+  PetscCall(SableOptionsReal("-fluid_patch_0_velocity", "Inlet patch: superficial velocity into the domain (the volume flow over the open area; along the normal for a source)", "m/s", NULL, x, &x, NULL));
+  PetscCall(SableOptionsReal("-fluid_patch_0_mass_flow", "Inlet patch: mass flow into the domain", "kg/s", NULL, x, &x, NULL));
+  PetscCall(SableOptionsRealArray("-fluid_patch_0_velocity_table", "Inlet patch: velocity from each time on: t1,U1,t2,U2,...", "s, m/s", g, 0, &n, NULL));
+  PetscCall(SableOptionsRealArray("-fluid_patch_0_mass_flow_table", "Inlet patch: mass flow from each time on: t1,m1,t2,m2,...", "s, kg/s", g, 0, &n, NULL));
+  PetscCall(SableOptionsReal("-fluid_patch_0_pressure", "Outlet patch: pressure (default -fluid_outlet_pressure)", "Pa", NULL, fl->bc.p_out, &x, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FluidSetFromOptionsPatch(Fluid fl)
 {
   PetscInt *idx, n;
+  PetscBool help;
 
   PetscFunctionBeginUser;
   PetscCall(FluidDestroyPatches(fl));
   PetscCall(FluidPatchIndices(&n, &idx));
   if (!n) {
     PetscCall(PetscFree(idx));
+    PetscCall(PetscOptionsHasHelp(NULL, &help));
+    if (help) PetscCall(FluidPatchHelp(fl));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscNew(&fl->patch));
