@@ -44,6 +44,7 @@ struct _FluidPatches {
   PetscReal  *fw[3][2];  /* its weight: the patch's area on it times fa (m^2) */
   PetscReal  *fa[3][2];  /* the face's open-area fraction (1 without a vessel) */
   Vec         src;       /* S_c (1/s, cell Vec), NULL without sources */
+  PetscReal   open[6];   /* open area of each box face (m^2; a_f summed) */
   PetscBool   sources, setup;
 };
 
@@ -541,6 +542,18 @@ PetscErrorCode FluidSetUpPatches(Fluid fl)
       else PetscCall(FluidPatchCoverCells(fl, i));
     }
     fl->patch->setup = PETSC_TRUE;
+    for (int f = 0; f < 6; f++) {
+      const int       d = f / 2, a = (d + 1) % 3, b = (d + 2) % 3;
+      const PetscInt  nq = fl->g.N[a] * fl->g.N[b];
+      const PetscReal Af = fl->g.h[a] * fl->g.h[b];
+      PetscReal      *fa;
+      fl->patch->open[f] = 0;
+      if (FluidPeriodic(fl, d)) continue;
+      PetscCall(PetscMalloc1(nq, &fa));
+      PetscCall(FluidPatchFaceOpen(fl, d, f % 2, fa));
+      for (PetscInt q = 0; q < nq; q++) fl->patch->open[f] += fa[q] * Af;
+      PetscCall(PetscFree(fa));
+    }
     for (PetscInt i = 0; i < fl->patch->n; i++) fl->patch->p[i].value = PETSC_MAX_REAL; /* every value is new */
     PetscCall(FluidUpdatePatches(fl, fl->clock.time, NULL));
   }
@@ -643,6 +656,32 @@ PetscErrorCode FluidDestroyPatches(Fluid fl)
   PetscCall(VecDestroy(&P->src));
   PetscCall(PetscFree(P->p));
   PetscCall(PetscFree(fl->patch));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective. With inlet patches on one box face after the set-up: their superficial
+ * velocity over that face's open area, U_d = Q / A_open (sign: into the domain), and n = 1;
+ * else n = 0 (init.c, a uniform initial fluid). */
+PetscErrorCode FluidPatchInletVelocity(Fluid fl, PetscReal U[3], PetscInt *n)
+{
+  FluidPatches *P    = fl->patch;
+  int           face = -1;
+  PetscReal     Q    = 0;
+
+  PetscFunctionBeginUser;
+  *n = 0;
+  if (!P || !P->setup) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt i = 0; i < P->n; i++) {
+    const FluidPatch *pt = &P->p[i];
+    if (pt->outlet || pt->d < 0) continue;
+    PetscCheck(face < 0 || face == 2 * pt->d + pt->s, fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_patch_%d: inlet patches on two box faces (%s, %s); a uniform initial fluid needs the inlets on one face", (int)pt->k, FluidPatchFaces[face], FluidPatchFaces[2 * pt->d + pt->s]);
+    face = 2 * pt->d + pt->s;
+    Q += pt->mass ? pt->value / fl->prop.rho : pt->value * pt->W;
+  }
+  if (face < 0 || P->open[face] <= 0) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int k = 0; k < 3; k++) U[k] = 0;
+  U[face / 2] = (face % 2 ? -1 : 1) * Q / P->open[face];
+  *n          = 1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

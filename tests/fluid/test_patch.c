@@ -109,8 +109,8 @@ static PetscErrorCode CaseC(void)
   Fluid           fl;
   FluidStats      st;
   Vec             beta;
-  PetscReal       p, pm, m, avg[5];
-  PetscInt        k;
+  PetscReal       p, pm, m, avg[5], Ui[3];
+  PetscInt        k, ni;
   const PetscReal U = 0.1, eps = 0.5, b = 100, L = 2, x0[3] = {0.3, 0.7, 0}, Uv[3] = {0, 0, U};
   const FluidSpan face = {{0, 0, 0}, {1, 1, 0}, PETSC_FALSE, "face zlo"};
 
@@ -119,7 +119,9 @@ static PetscErrorCode CaseC(void)
   PetscCall(TestFluidCreate(1.0, Half, NULL, &dom, &fl));
   PetscCall(FluidGetDragCoefficient(fl, &beta));
   PetscCall(VecSet(beta, b));
-  PetscCall(FluidSetSuperficialVelocity(fl, Uv));
+  PetscCall(FluidGetInletVelocity(fl, Ui, &ni)); /* the patch's flow over the face: Uv */
+  PetscCall(CheckClose("patch_inlet_velocity_for_a_uniform_start", Ui[2], Uv[2], 1e-12));
+  PetscCall(FluidSetSuperficialVelocity(fl, Ui));
   for (int n = 0; n < 2; n++) PetscCall(FluidStep(fl, 0.01, &st));
   PetscCall(FluidProbePressure(fl, x0, &p));
   PetscCall(FluidAverageFields(fl, 1, &face, PETSC_FALSE, avg));
