@@ -27,12 +27,14 @@ typedef struct {
   PetscBool  outlet, mass; /* an outlet; an inlet given as a mass flow (else a velocity) */
   PetscInt   nv;
   PetscReal  v[3 * FLUID_PATCH_NV]; /* the polygon */
-  int        d, s;                  /* the box face (axis, side); d = -1: a source inside */
-  FluidBC    tab;                   /* the inlet's value: vel0[0] constant, tab rows t, value, 0, 0 */
-  PetscReal  value;                 /* the inlet's value now (m/s or kg/s) */
-  PetscReal  p;                     /* outlet pressure (Pa) */
-  PetscReal  W;                     /* sum of the weights (open area covered, m^2) */
-  PetscInt   nc;                    /* source: cells crossed, natural index, weight (m^2) */
+  PetscInt   nq;                    /* a cylinder strip: its nq planar quads (4 vertices each), else 0 */
+  PetscReal *quad;
+  int        d, s;  /* the box face (axis, side); d = -1: a source inside */
+  FluidBC    tab;   /* the inlet's value: vel0[0] constant, tab rows t, value, 0, 0 */
+  PetscReal  value; /* the inlet's value now (m/s or kg/s) */
+  PetscReal  p;     /* outlet pressure (Pa) */
+  PetscReal  W;     /* sum of the weights (open area covered, m^2) */
+  PetscInt   nc;    /* source: cells crossed, natural index, weight (m^2) */
   PetscInt  *cell;
   PetscReal *w;
 } FluidPatch;
@@ -129,12 +131,11 @@ static PetscInt fluid_clip(PetscInt n, const PetscReal *v, int d, PetscReal c, P
 }
 
 /* Area of the polygon inside the box [lo, hi] along the axes with mask[d]. */
-static PetscReal fluid_clipped_area(const FluidPatch *pt, const PetscReal lo[3], const PetscReal hi[3], const PetscBool mask[3])
+static PetscReal fluid_clipped_polygon(PetscInt n, const PetscReal *v, const PetscReal lo[3], const PetscReal hi[3], const PetscBool mask[3])
 {
   PetscReal a[3 * FLUID_PATCH_CLIP], b[3 * FLUID_PATCH_CLIP];
-  PetscInt  n = pt->nv;
 
-  for (PetscInt i = 0; i < 3 * n; i++) a[i] = pt->v[i];
+  for (PetscInt i = 0; i < 3 * n; i++) a[i] = v[i];
   for (int d = 0; d < 3 && n >= 3; d++) {
     if (!mask[d]) continue;
     n = fluid_clip(n, a, d, lo[d], -1, b);
@@ -142,11 +143,60 @@ static PetscReal fluid_clipped_area(const FluidPatch *pt, const PetscReal lo[3],
   }
   return fluid_polygon_area(n, a);
 }
+static PetscReal fluid_clipped_area(const FluidPatch *pt, const PetscReal lo[3], const PetscReal hi[3], const PetscBool mask[3])
+{
+  PetscReal A = 0;
+  if (!pt->nq) return fluid_clipped_polygon(pt->nv, pt->v, lo, hi, mask);
+  for (PetscInt q = 0; q < pt->nq; q++) A += fluid_clipped_polygon(4, pt->quad + 12 * q, lo, hi, mask);
+  return A;
+}
+
+/* The bounding box of the patch's polygon or quads. */
+static void fluid_patch_bounds(const FluidPatch *pt, PetscReal blo[3], PetscReal bhi[3])
+{
+  const PetscInt   n = pt->nq ? 4 * pt->nq : pt->nv;
+  const PetscReal *v = pt->nq ? pt->quad : pt->v;
+  for (int e = 0; e < 3; e++) blo[e] = PETSC_MAX_REAL, bhi[e] = -PETSC_MAX_REAL;
+  for (PetscInt i = 0; i < n; i++)
+    for (int e = 0; e < 3; e++) blo[e] = PetscMin(blo[e], v[3 * i + e]), bhi[e] = PetscMax(bhi[e], v[3 * i + e]);
+}
+
+/* A strip of a cylinder's surface, cx,cy,cz,ax,ay,az,R,L[,th0,th1]: centre, axis, radius,
+ * length, angles (degrees, default 0,360) about the axis from e1, the x direction (y when the
+ * axis is along x) across the axis, towards e2 = a x e1; as nq planar quads whose chords keep
+ * the strip's area (radius R' = R (dth/2) / sin(dth/2) for quads of angle dth). */
+static PetscErrorCode FluidPatchCylinder(Fluid fl, const char *opt, const PetscReal *g, PetscInt n, FluidPatch *pt)
+{
+  const PetscReal an = PetscSqrtReal(g[3] * g[3] + g[4] * g[4] + g[5] * g[5]);
+  const PetscReal t0 = n == 10 ? g[8] * PETSC_PI / 180 : 0, t1 = n == 10 ? g[9] * PETSC_PI / 180 : 2 * PETSC_PI;
+  PetscReal       ax[3], e1[3], e2[3], ref[3] = {1, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCheck(n == 8 || n == 10, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes cx,cy,cz,ax,ay,az,R,L[,theta0,theta1]; got %d values", opt, (int)n);
+  PetscCheck(an > 0 && g[6] > 0 && g[7] > 0 && t1 > t0 && t1 - t0 <= 2 * PETSC_PI + 1e-12, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the axis must be non-zero, R and L > 0 (m), theta0 < theta1 <= theta0 + 360 (degrees)", opt);
+  for (int e = 0; e < 3; e++) ax[e] = g[3 + e] / an;
+  if (PetscAbsReal(ax[0]) > 0.9) ref[0] = 0, ref[1] = 1;
+  const PetscReal r = ref[0] * ax[0] + ref[1] * ax[1] + ref[2] * ax[2];
+  for (int e = 0; e < 3; e++) e1[e] = ref[e] - r * ax[e];
+  const PetscReal l1 = PetscSqrtReal(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  for (int e = 0; e < 3; e++) e1[e] /= l1;
+  fluid_cross(ax, e1, e2);
+  pt->nq              = PetscMax(4, (PetscInt)PetscCeilReal(FLUID_PATCH_NV * (t1 - t0) / (2 * PETSC_PI)));
+  const PetscReal dth = (t1 - t0) / pt->nq;
+  const PetscReal Rp  = g[6] * 0.5 * dth / PetscSinReal(0.5 * dth);
+  PetscCall(PetscMalloc1(12 * pt->nq, &pt->quad));
+  for (PetscInt q = 0; q < pt->nq; q++)
+    for (int k = 0; k < 4; k++) {
+      const PetscReal th = t0 + (q + (k == 1 || k == 2 ? 1 : 0)) * dth, h = (k >= 2 ? 0.5 : -0.5) * g[7];
+      for (int e = 0; e < 3; e++) pt->quad[12 * q + 3 * k + e] = g[e] + h * ax[e] + Rp * (PetscCosReal(th) * e1[e] + PetscSinReal(th) * e2[e]);
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* The shape options of patch pt (exactly one of disc, rect, polygon) into its polygon. */
 static PetscErrorCode FluidPatchReadShape(PetscOptionItems *PetscOptionsObject, Fluid fl, FluidPatch *pt)
 {
-  char      od[64], orr[64], op[64];
+  char      od[64], orr[64], op[64], oc[64];
   PetscReal g[3 * FLUID_PATCH_NV + 3];
   PetscInt  n = 3 * FLUID_PATCH_NV + 3, given = 0;
   PetscBool set;
@@ -198,7 +248,15 @@ static PetscErrorCode FluidPatchReadShape(PetscOptionItems *PetscOptionsObject, 
     PetscCall(PetscArraycpy(pt->v, g, n));
     given++;
   }
-  PetscCheck(given == 1, fl->comm, PETSC_ERR_ARG_WRONG, "-fluid_patch_%d_*: give exactly one shape of %s, %s, %s (got %d)", (int)pt->k, od, orr, op, (int)given);
+  PetscCall(PetscSNPrintf(oc, sizeof oc, "-fluid_patch_%d_cylinder", (int)pt->k));
+  n = 10;
+  PetscCall(SableOptionsRealArray(oc, "A strip of a cylinder's surface (a source inside): centre, axis, radius, length, angles about the axis from x (y for an axis along x) cx,cy,cz,ax,ay,az,R,L[,theta0,theta1]", "m, degrees", g, 0, &n, &set));
+  if (set) {
+    PetscCall(FluidPatchCylinder(fl, oc, g, n, pt));
+    given++;
+  }
+  PetscCheck(given == 1, fl->comm, PETSC_ERR_ARG_WRONG, "-fluid_patch_%d_*: give exactly one shape of %s, %s, %s, %s (got %d)", (int)pt->k, od, orr, op, oc, (int)given);
+  if (pt->nq) PetscFunctionReturn(PETSC_SUCCESS);
   /* planar and convex: every corner turns the same way as the polygon's normal, every vertex in its plane */
   fluid_polygon_normal(pt->nv, pt->v, A);
   const PetscReal An = PetscSqrtReal(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]);
@@ -221,7 +279,7 @@ static void FluidPatchFindFace(Fluid fl, const FluidPatch *pt, int *d, int *s)
 {
   *d = -1;
   *s = 0;
-  for (int e = 0; e < 3 && *d < 0; e++)
+  for (int e = 0; e < 3 && *d < 0 && !pt->nq; e++)
     for (int t = 0; t < 2 && *d < 0; t++) {
       const PetscReal x  = t ? fl->dom->hi[e] : fl->dom->lo[e];
       PetscBool       on = PETSC_TRUE;
@@ -294,6 +352,7 @@ static PetscErrorCode FluidPatchHelp(Fluid fl)
   PetscCall(SableOptionsRealN("-fluid_patch_0_disc", "A disc patch: centre, normal, radius cx,cy,cz,nx,ny,nz,R", "m", g, 0, 7, NULL));
   PetscCall(SableOptionsRealN("-fluid_patch_0_rect", "A rectangle patch: corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0)", "m", g, 0, 9, NULL));
   PetscCall(SableOptionsRealArray("-fluid_patch_0_polygon", "A convex polygon patch: its vertices in order x1,y1,z1,x2,... (3 to 64, in one plane)", "m", g, 0, &n, NULL));
+  PetscCall(SableOptionsRealArray("-fluid_patch_0_cylinder", "A strip of a cylinder's surface (a source inside): centre, axis, radius, length, angles about the axis from x (y for an axis along x) cx,cy,cz,ax,ay,az,R,L[,theta0,theta1]", "m, degrees", g, 0, &n, NULL));
   PetscCall(SableOptionsEnum("-fluid_patch_0_face", "The box face the patch lies on, or inside (a volume source); default: found from the shape", FluidPatchFaces, 7, 6, &e, NULL));
   PetscCall(SableOptionsReal("-fluid_patch_0_velocity", "Inlet patch: superficial velocity into the domain (the volume flow over the open area; along the normal for a source)", "m/s", NULL, x, &x, NULL));
   PetscCall(SableOptionsReal("-fluid_patch_0_mass_flow", "Inlet patch: mass flow into the domain", "kg/s", NULL, x, &x, NULL));
@@ -422,8 +481,7 @@ static PetscErrorCode FluidPatchCoverFace(Fluid fl, PetscInt i)
     for (PetscInt q = 0; q < Na * Nb; q++) P->fid[d][s][q] = -1, P->fw[d][s][q] = 0;
     PetscCall(FluidPatchFaceOpen(fl, d, s, P->fa[d][s]));
   }
-  for (PetscInt v = 0; v < pt->nv; v++)
-    for (int e = 0; e < 3; e++) blo[e] = PetscMin(blo[e], pt->v[3 * v + e]), bhi[e] = PetscMax(bhi[e], pt->v[3 * v + e]);
+  fluid_patch_bounds(pt, blo, bhi);
   mask[a] = mask[b]  = PETSC_TRUE;
   const PetscInt ia0 = PetscMax(0, (PetscInt)PetscFloorReal((blo[a] - fl->g.lo[a]) / ha)), ia1 = PetscMin(Na - 1, (PetscInt)PetscFloorReal((bhi[a] - fl->g.lo[a]) / ha));
   const PetscInt ib0 = PetscMax(0, (PetscInt)PetscFloorReal((blo[b] - fl->g.lo[b]) / hb)), ib1 = PetscMin(Nb - 1, (PetscInt)PetscFloorReal((bhi[b] - fl->g.lo[b]) / hb));
@@ -456,11 +514,13 @@ static PetscErrorCode FluidPatchCoverCells(Fluid fl, PetscInt i)
   PetscBool   mask[3] = {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE};
 
   PetscFunctionBeginUser;
-  for (PetscInt v = 0; v < pt->nv; v++)
-    for (int e = 0; e < 3; e++) blo[e] = PetscMin(blo[e], pt->v[3 * v + e]), bhi[e] = PetscMax(bhi[e], pt->v[3 * v + e]);
+  fluid_patch_bounds(pt, blo, bhi);
   for (int e = 0; e < 3; e++) {
     c0[e] = PetscMax(0, (PetscInt)PetscFloorReal((blo[e] - fl->g.lo[e]) / fl->g.h[e]));
     c1[e] = PetscMin(fl->g.N[e] - 1, (PetscInt)PetscFloorReal((bhi[e] - fl->g.lo[e]) / fl->g.h[e]));
+    /* flat on a plane of cell faces: the cells above it only (the two sides would both take it) */
+    const PetscReal sl = (blo[e] - fl->g.lo[e]) / fl->g.h[e], sh = (bhi[e] - fl->g.lo[e]) / fl->g.h[e];
+    if (sh - sl <= 1e-9 && PetscAbsReal(sl - PetscFloorReal(sl + 0.5)) <= 1e-9) c0[e] = c1[e] = PetscMin(fl->g.N[e] - 1, (PetscInt)PetscFloorReal(sl + 0.5));
   }
   PetscCall(PetscMalloc2(cap, &pt->cell, cap, &pt->w));
   pt->nc = 0;
@@ -652,7 +712,10 @@ PetscErrorCode FluidDestroyPatches(Fluid fl)
       PetscCall(PetscFree3(bc->pkind, bc->pvn, bc->pp));
       PetscCall(PetscFree3(P->fid[d][s], P->fw[d][s], P->fa[d][s]));
     }
-  for (PetscInt i = 0; i < P->n; i++) PetscCall(PetscFree2(P->p[i].cell, P->p[i].w));
+  for (PetscInt i = 0; i < P->n; i++) {
+    PetscCall(PetscFree2(P->p[i].cell, P->p[i].w));
+    PetscCall(PetscFree(P->p[i].quad));
+  }
   PetscCall(VecDestroy(&P->src));
   PetscCall(PetscFree(P->p));
   PetscCall(PetscFree(fl->patch));

@@ -8,6 +8,10 @@
  *   B. walls, a tilted disc (normal (1,0,1), R = 0.25 m, U = 0.2 m/s) inside the domain as a
  *      volume source, the whole zhi face an outlet: the source's flow equals rho U pi R^2 to
  *      round-off (the disc's polygon keeps its area), the outlet's to the solver tolerance;
+ *   B''. a horizontal disc source lying on a plane of cell faces (z = 1 m): counted once;
+ *   B'. a strip of a cylinder's surface (R = 0.3 m, L = 0.5 m, U = 0.05 m/s; the whole ring and
+ *      half of it) as a source: its flow equals rho U 2 pi R L (x 1/2) to round-off (the quads'
+ *      chords keep the strip's area), the outflow to the solver tolerance;
  *   C. Darcy flow, periodic in x and y, eps = 0.5, beta = 100 kg m^-3 s^-1, a rectangle inlet
  *      patch over all of zlo (U = 0.1 m/s), the zhi face an outlet at 0 Pa: the pressure is
  *      linear, p(z) = beta (U/eps) (L - z), so the face pressure at z = 0 (probe, plane
@@ -98,6 +102,55 @@ static PetscErrorCode CaseB(void)
   PetscCall(CheckClose("patch_tilted_disc_source_mass_flow", m, Qset, 1e-12));
   CheckDetail("continuity residual %.2e 1/s", (double)st.div_max);
   PetscCall(CheckClose("patch_tilted_disc_source_outlet_flow", Q, Qset, 1e-8));
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* B''. a horizontal disc source on a plane of cell faces (z = 1 m): one side's cells take it. */
+static PetscErrorCode CaseFlat(void)
+{
+  Domain          dom = {0};
+  Fluid           fl;
+  FluidStats      st;
+  PetscReal       p, m, Q;
+  PetscInt        k;
+  const PetscReal Qset = 0.2 * PETSC_PI * 0.25 * 0.25;
+
+  PetscFunctionBeginUser;
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_patch.opts", "-fluid_bc_zhi outlet -fluid_patch_0_type inlet -fluid_patch_0_disc 0.5,0.5,1,0,0,1,0.25 -fluid_patch_0_velocity 0.2"));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
+  PetscCall(FluidStep(fl, 0.01, &st));
+  PetscCall(FluidPatchMeasure(fl, 0, &k, &p, &m));
+  PetscCall(TopFlow(fl, &dom, &Q));
+  PetscCall(CheckClose("patch_disc_source_on_a_face_plane_mass_flow", m, Qset, 1e-12));
+  PetscCall(CheckClose("patch_disc_source_on_a_face_plane_outlet_flow", Q, Qset, 1e-8));
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* B'. a strip of a cylinder's surface (axis z through (0.5, 0.5, 1), R = 0.3 m, L = 0.5 m; the
+ * whole ring, then half of it) as a source of U = 0.05 m/s: flow rho U 2 pi R L (x 1/2). */
+static PetscErrorCode CaseStrip(const char *angles, PetscReal share)
+{
+  Domain          dom = {0};
+  Fluid           fl;
+  FluidStats      st;
+  PetscReal       p, m, Q;
+  PetscInt        k;
+  char            opts[256];
+  const PetscReal Qset = share * 0.05 * 2 * PETSC_PI * 0.3 * 0.5;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opts, sizeof opts, "-fluid_bc_zhi outlet -fluid_patch_0_type inlet -fluid_patch_0_cylinder 0.5,0.5,1,0,0,1,0.3,0.5%s -fluid_patch_0_velocity 0.05", angles));
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_patch.opts", opts));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
+  for (int n = 0; n < 2; n++) PetscCall(FluidStep(fl, 0.01, &st));
+  PetscCall(FluidPatchMeasure(fl, 0, &k, &p, &m));
+  PetscCall(TopFlow(fl, &dom, &Q));
+  PetscCall(CheckClose(CheckName("patch_cylinder_strip%s_source_mass_flow", *angles ? "_half" : ""), m, Qset, 1e-12));
+  PetscCall(CheckClose(CheckName("patch_cylinder_strip%s_source_outlet_flow", *angles ? "_half" : ""), Q, Qset, 1e-8));
   PetscCall(FluidDestroy(&fl));
   PetscCall(DomainDestroy(&dom));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -248,6 +301,9 @@ int main(int argc, char **argv)
   PetscCall(CaseA(""));
   PetscCall(CaseA("-fluid_viscous implicit"));
   PetscCall(CaseB());
+  PetscCall(CaseFlat());
+  PetscCall(CaseStrip("", 1));
+  PetscCall(CaseStrip(",0,180", 0.5));
   PetscCall(CaseC());
   PetscCall(CaseD(""));
   PetscCall(CaseD("-fluid_viscous implicit"));
