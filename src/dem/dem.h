@@ -151,6 +151,8 @@ PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed);
  * solid, the minimum of the signed distances (m) of those walls (a mesh's clamped to +-2 fluid
  * cells); its ctx is the Dem. The fluid's FluidLevelFn. */
 PetscErrorCode DemVesselSetUp(Dem dem, PetscBool *any);
+/* Not collective. Whether DemVesselSetUp found walls that bound the gas (false before it). */
+PetscErrorCode DemVesselGetActive(Dem dem, PetscBool *any);
 PetscReal      DemVesselLevel(const PetscReal x[3], void *dem);
 
 /* Coupling hooks (external.c). DemGetArrays: read-only views of the particle arrays, local

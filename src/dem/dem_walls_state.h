@@ -35,8 +35,9 @@ typedef struct {
 
 /* The walls (walls.c). */
 typedef struct {
-  DemWall  wall[DEM_MAX_WALLS];
-  PetscInt nwall;
+  DemWall   wall[DEM_MAX_WALLS];
+  PetscInt  nwall;
+  PetscBool vessel; /* some wall or mesh bounds the gas (DemVesselSetUp, vessel.c) */
 } DemWalls;
 
 /* Triangle-mesh walls (walls_mesh.c, walls_mesh_options.c): -dem_mesh_<k>_file, k < 8. A mesh

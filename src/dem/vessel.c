@@ -492,5 +492,13 @@ PetscErrorCode DemVesselSetUp(Dem dem, PetscBool *any)
                           m->vm->oriented ? "" : ", orientation mixed: signs by ray casts", m->vm->nb[0], m->vm->nb[1], m->vm->nb[2], m->vm->b, t1 - t0));
     *any = PETSC_TRUE;
   }
+  dem->walls.vessel = *any;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DemVesselGetActive(Dem dem, PetscBool *any)
+{
+  PetscFunctionBeginUser;
+  *any = dem->walls.vessel;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
