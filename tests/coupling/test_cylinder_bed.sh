@@ -1,0 +1,67 @@
+#!/bin/sh
+# A fluidized bed in a cylinder that bounds the gas: 5,000 spheres (d = 1, rho_p = 2) poured into a
+# vertical cylinder of D = 30 d (test_cylinder_bed_pour.opts, dry; a random packing about 7 d
+# deep), then fluidized with the inlet ramped from 0 to 2.5 U_mf and held there
+# (test_cylinder_bed.opts: rho_f = 1, mu = 0.01, Ar = 1e4; dimensionless). A low density ratio
+# (2) fluidizes smoothly, so short means are steady. Grids and ranks: CYL_RUNS (default
+# "3:1 3:2 2:2 4:2", cells of <h> d on <n> ranks). Physics references, on every run:
+#   (a) the plateau: dp/W, the pressure drop from the inlet face to the top cell over the bed's
+#       buoyant weight per area (W = N (pi d^3/6)(rho_p - rho_f) g / (pi R^2)), mean over
+#       t = 25-35 (U = 2.5 U_mf), within 3% of 1 (the fluid carries the bed); the inlet face's
+#       pressure is extrapolated linearly from the first two cell centres on the axis;
+#   (b) U_mf from the ramp (the packed branch, U in 0.3-0.7 of Wen and Yu's U_mf, fitted by
+#       dp = a U + b U^2 and met with W) within 10% of Wen and Yu's correlation
+#       (Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7; the poured porosity, about 0.40, is that of
+#       their data);
+#   (c) no gas outside the cylinder at the end: u = 0 exactly in every cell wholly outside it, and
+#       no upward flux in the cells centred outside (1e-12);
+# and across runs: (d) the same grid on 1 and 2 ranks gives U_mf and the plateau within 1%
+# (the runs differ by round-off, which the bed's motion amplifies).
+# About 40 s of CPU with the default runs (2026-12-03, the shared 2-core VM).
+cd "$(dirname "$0")/../.." || exit 1
+ROOT=$(pwd)
+S=$ROOT/${BIN:-bin}/sable
+T="/usr/bin/python3 $ROOT/tools/cylinder_bed"
+[ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+W=$(mktemp -d)
+trap 'rm -rf "$W"' EXIT
+D=tests/coupling
+"$S" -options_file $D/test_cylinder_bed_pour.opts -io_dir "$W/pour" >"$W/pour.log" 2>&1 ||
+  { echo "FAIL cylinder bed: the pour stopped:"; tail -3 "$W/pour.log"; exit 1; }
+F=$W/pour/sable_000001.h5
+set -- $($T porosity "$F" 15 1 5)
+eps=${1#eps=} n=${2#n=}
+set -- $($T wenyu 1 2 1 0.01 1)
+uwy=${1#umf=}
+w=$(awk -v n="$n" 'BEGIN { printf "%.10g", n * (3.141592653589793 / 6) * 1 * 1 / (3.141592653589793 * 225) }')
+echo "NOTE cylinder bed: $n spheres poured, porosity $eps between z = 1 and 5; W = $w; Wen-Yu U_mf $uwy"
+lo=$(awk -v u="$uwy" 'BEGIN { print 0.3 * u }')
+hi=$(awk -v u="$uwy" 'BEGIN { print 0.7 * u }')
+for run in ${CYL_RUNS:-3:1 3:2 2:2 4:2}; do
+  h=${run%:*} np=${run#*:}
+  half=$(awk -v h="$h" 'BEGIN { print 15 - (15 % h) + (15 % h ? h : 0) }')
+  top=$(awk -v h="$h" -v b="$half" 'BEGIN { print 2 * b - h / 2 }')
+  mpiexec --oversubscribe -n "$np" "$S" -options_file $D/test_cylinder_bed.opts -dem_init_file "$F" \
+    -domain_lo "-$half,-$half,0" -domain_hi "$half,$half,$((2 * half))" -domain_cell "$h" \
+    -mon_probe_0 "0,0,$(awk -v h="$h" 'BEGIN { print h / 2 }')" -mon_probe_1 "0,0,$(awk -v h="$h" 'BEGIN { print 1.5 * h }')" \
+    -mon_probe_2 "0,0,$top" -io_dir "$W/r$h-$np" >"$W/r$h-$np.log" 2>&1 ||
+    { echo "FAIL cylinder bed, cells of $h d, $np ranks: the run stopped:"; tail -3 "$W/r$h-$np.log"; continue; }
+  set -- $($T ramp "$W/r$h-$np/sable_monitor.csv" "$w" 0,0,15,0.14 "$lo" "$hi" 25 35 0 1 2 "$h")
+  umf=${1#umf=} pl=${5#plateau=} plc=${6#plateau_centre=}
+  echo "$h $np $umf $pl" >>"$W/results"
+  awk -v u="$umf" -v r="$uwy" -v p="$pl" -v pc="$plc" -v h="$h" -v np="$np" 'BEGIN {
+    e = p - 1; e = e < 0 ? -e : e
+    printf "%s cylinder bed, cells of %s d, %s ranks: plateau dp/W at 2.5 U_mf (inlet face, extrapolated from the cell centres) %.4f (bound within 3%% of 1; the first cell centre alone %.4f)\n", e < 0.03 ? "PASS" : "FAIL", h, np, p, pc
+    x = u / r - 1; ax = x < 0 ? -x : x
+    printf "%s cylinder bed, cells of %s d, %s ranks: U_mf from the ramp %.5g vs Wen-Yu %.5g, %+.1f%% (bound within 10%%)\n", ax < 0.1 ? "PASS" : "FAIL", h, np, u, r, 100 * x }'
+  last=$(ls "$W/r$h-$np"/sable_0*.h5 | tail -1)
+  set -- $($T outside "$last" 15 "-$half" "-$half" "$half" "$half")
+  awk -v n="${1#closed=}" -v u="${2#umax=}" -v f="${3#outside_flux=}" -v h="$h" -v np="$np" 'BEGIN {
+    printf "%s cylinder bed, cells of %s d, %s ranks: gas in the %d cells wholly outside the cylinder, largest |u| %.3g (bound 0: exact)\n", (n > 0 && u == 0) ? "PASS" : "FAIL", h, np, n, u
+    af = f < 0 ? -f : f
+    printf "%s cylinder bed, cells of %s d, %s ranks: fraction of the upward flux in cells centred outside the cylinder %.3g (bound < 1e-12)\n", af < 1e-12 ? "PASS" : "FAIL", h, np, f }'
+done
+[ -f "$W/results" ] && awk '{ u[$1 ":" $2] = $3; p[$1 ":" $2] = $4; g[$1] = 1 }
+  END { for (h in g) if ((h ":1") in u && (h ":2") in u) {
+    du = u[h ":2"] / u[h ":1"] - 1; dp = p[h ":2"] - p[h ":1"]; du = du < 0 ? -du : du; dp = dp < 0 ? -dp : dp
+    printf "%s cylinder bed, cells of %s d: 1 vs 2 ranks, U_mf %.5g / %.5g, plateau dp/W %.4f / %.4f (bounds within 1%%)\n", (du < 0.01 && dp < 0.01) ? "PASS" : "FAIL", h, u[h ":1"], u[h ":2"], p[h ":1"], p[h ":2"] } }' "$W/results"
