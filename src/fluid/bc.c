@@ -208,6 +208,7 @@ PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc, Vec epsloc)
   PetscCall(VecGetArray(uloc, &a));
   if (fl->bc.has_inlet) PetscCall(VecGetArrayRead(epsloc, &e));
   PetscCall(FluidFillVelocityGhosts(fl, a, e));
+  if (fl->bc.has_inlet && fl->ves.cut) PetscCall(FluidVesselZeroClosed(fl, a)); /* inlet faces the vessel closes */
   if (fl->bc.has_inlet) PetscCall(VecRestoreArrayRead(epsloc, &e));
   PetscCall(VecRestoreArray(uloc, &a));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -268,7 +269,7 @@ PetscErrorCode FluidInletFaceValues(Fluid fl, Vec u)
       if (fl->bc.face[d][s].type != FLUID_BC_INLET || (s ? g->xs[d] + g->xm[d] != g->N[d] : g->xs[d] != 0)) continue;
       q[d] = s ? g->N[d] : 0;
       for (q[b1] = g->xs[b1]; q[b1] < g->xs[b1] + g->fxm[b1]; q[b1]++)
-        for (q[a1] = g->xs[a1]; q[a1] < g->xs[a1] + g->fxm[a1]; q[a1]++) a[q[2]][q[1]][q[0]][d] = fluid_inlet_normal(g, &fl->bc.face[d][s], eps, d, s, q);
+        for (q[a1] = g->xs[a1]; q[a1] < g->xs[a1] + g->fxm[a1]; q[a1]++) a[q[2]][q[1]][q[0]][d] = (fl->ves.aloc && fl->ves.aloc[FluidFaceOff(g, q[0], q[1], q[2]) + d] == 0) ? 0 : fluid_inlet_normal(g, &fl->bc.face[d][s], eps, d, s, q);
     }
   PetscCall(DMDAVecRestoreArrayDOF(fl->g.fda, u, &a));
   PetscCall(VecRestoreArrayRead(fl->fld.epsoldloc, &eps));

@@ -80,6 +80,7 @@ PetscErrorCode FluidSetFromOptions(Fluid fl)
   PetscOptionsEnd();
   PetscCall(FluidSetFromOptionsBC(fl));
   PetscCall(FluidSetFromOptionsInlet(fl));
+  PetscCall(FluidSetFromOptionsVessel(fl));
   PetscCall(KSPDestroy(&fl->pois.ksp));
   PetscCall(KSPDestroy(&fl->vimp.ksp));
   PetscCall(FluidPoissonCreateKSP(fl));
@@ -189,6 +190,7 @@ PetscErrorCode FluidSetUp(Fluid fl)
     PetscCall(VecDuplicate(fl->fld.u, &fl->pois.beta_pc));
   }
   PetscCall(FluidCreateLocals(fl));
+  PetscCall(FluidVesselSetUp(fl));
   PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
   PetscCheck(fl->pois.ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
   PetscCall(FluidPoissonSetUp(fl));
@@ -206,6 +208,7 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
   Vec *v[] = {&fl->fld.u, &fl->fld.p, &fl->fld.eps, &fl->fld.eps_old, &fl->fld.beta, &fl->fld.us, &fl->fld.src, &fl->fld.uloc, &fl->fld.ploc, &fl->fld.epsloc, &fl->fld.epsoldloc, &fl->mom.uhat, &fl->mom.advn, &fl->mom.adv_old, &fl->mom.vis, &fl->pois.coef, &fl->pois.coefloc, &fl->vimp.bc, &fl->vimp.phiu, &fl->pois.phi, &fl->pois.rhs, &fl->pois.philoc, &fl->pois.eps_pc, &fl->pois.beta_pc};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) PetscCall(VecDestroy(v[i]));
   PetscCall(FluidSolversDestroy(fl));
+  PetscCall(FluidVesselDestroy(fl));
   PetscCall(KSPDestroy(&fl->pois.ksp));
   PetscCall(KSPDestroy(&fl->vimp.ksp));
   PetscCall(DMDestroy(&fl->g.cda));

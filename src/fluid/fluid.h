@@ -56,6 +56,26 @@ PetscErrorCode FluidCheckpointRead(Fluid fluid, IoCkpt ck);
 PetscErrorCode FluidCheckpointWriteVec(IoCkpt ck, const char *name, Vec v);
 PetscErrorCode FluidCheckpointReadVec(IoCkpt ck, const char *name, Vec v);
 
+/* The vessel (vessel.c): FAVOR on the staggered grid (Hirt & Sicilian, J. Comput. Phys. 1985).
+ * The fluid lives where the level function phi(x) > 0 (gas; < 0 solid; its zero set is the wall;
+ * it need not be a distance, but with periodic axes it must be periodic). Each cell gets an
+ * open-volume fraction vol_c, each face an open-area fraction a_f (both in [0,1]; below 1e-3, and
+ * a face whose centre lies in the solid, closed: 0). Continuity becomes
+ *   vol_c (eps^{n+1} - eps^n)/dt + sum_d [a_f eps_f u]^+_- / h_d = 0,
+ * faces with a_f = 0 are fixed at u = 0, and the viscous term sees the wall at its distance along
+ * each grid line (-fluid_vessel_wall noslip|slip, -fluid_vessel_theta_min). */
+typedef PetscReal (*FluidLevelFn)(const PetscReal x[3], void *ctx);
+/* Before FluidSetUp; collective (every rank passes the same function). NULL: the box. */
+PetscErrorCode FluidSetVessel(Fluid fluid, FluidLevelFn level, void *ctx);
+/* After FluidSetUp, not collective: whether the vessel cuts the grid (some cell or face not
+ * fully open). When it does not, the fluid runs the box code unchanged, bit for bit. */
+PetscErrorCode FluidVesselActive(Fluid fluid, PetscBool *cut);
+/* Borrowed global Vecs after FluidSetUp (invalid after FluidRedistribute/FluidDestroy):
+ * open-volume fraction per cell (cell DM, in [0,1]), open-area fraction per face component
+ * (face DM, in [0,1]; the effective one: 0 on every closed face); both NULL when the vessel does
+ * not cut the grid. */
+PetscErrorCode FluidGetOpenFractions(Fluid fluid, Vec *vol, Vec *area);
+
 /* Collective. Advances by dt (s): predictor with the implicit sink, projection so that
  * div(eps u) = -(eps^{n+1} - eps^n)/dt to solver tolerance, then eps^n <- eps^{n+1}.
  * Errors (naming dt, the limit and the cell) when dt exceeds the CFL or viscous limit, unless
@@ -145,7 +165,8 @@ PetscErrorCode FluidAverageFields(Fluid fluid, PetscInt n, const FluidSpan *span
  * boundary values to the boundary faces. */
 PetscErrorCode FluidApplyBoundaryValues(Fluid fluid);
 /* Collective. Writes eps, p and the cell-centred velocity into the open frame of io (the fluid
- * mesh is declared on first use). */
+ * mesh is declared on first use), and, when a vessel cuts the grid, its open-volume fraction
+ * as the cell field "vessel" (clip at 0.5 to see the vessel). */
 PetscErrorCode FluidWriteOutput(Fluid fluid, Io io);
 /* Collective. The cell-centred velocity of the owned cells (m/s; per component the mean of the
  * cell's two face values), 3 per cell, x fastest, as FluidWriteOutput writes it; vel has room

@@ -118,6 +118,28 @@ typedef struct {
   PetscReal        dt_mat;
 } FluidImplicitViscous;
 
+/* The vessel (vessel.c): a level function phi (> 0 in the gas) bounding the fluid inside the box,
+ * FAVOR open fractions (Hirt & Sicilian 1985). Everything below is NULL/false unless the vessel
+ * cuts the grid (cut): the box path then runs unchanged. Local arrays are ghosted copies of the
+ * cell and face DMDAs; aloc is the effective open-area fraction (0: closed, u fixed at 0), vloc
+ * the open-volume fraction; full marks cells with vol 1 and six fully open faces; a face dof
+ * with wall links (the neighbour along axis e, side s, closed by the vessel) has wl[o + d] >= 0,
+ * the index of its six wall distances theta (in cells along that axis; 0: no link). */
+typedef struct {
+  FluidLevelFn level;
+  void        *ctx;
+  PetscBool    cut;       /* the vessel cuts the grid: the FAVOR path */
+  PetscBool    slip;      /* -fluid_vessel_wall slip */
+  PetscReal    theta_min; /* -fluid_vessel_theta_min */
+  Vec          vol, area; /* global open fractions (FluidGetOpenFractions) */
+  Vec          ind;       /* null space of the Poisson matrix without outlet: open cells */
+  PetscReal   *aloc, *vloc, *full;
+  PetscInt    *wl;    /* per owned face dof: first of its six thetas, or -1 */
+  PetscReal   *theta; /* 6 per linked dof: (e, s) at 2 e + s */
+  PetscInt     nlink;
+  PetscInt     nopen; /* open cells (global) */
+} FluidVessel;
+
 /* Log events of the step's phases. */
 typedef struct {
   PetscLogEvent predict, poisson, correct;
@@ -137,6 +159,7 @@ struct _p_Fluid {
   FluidPoisson         pois;
   FluidImplicitViscous vimp;
   FluidEvents          ev;
+  FluidVessel          ves;
   PetscBool            setup; /* FluidSetUp done */
   PetscBool            ckpt;  /* FluidSetCheckpointing */
 };
@@ -154,9 +177,9 @@ static inline PetscBool FluidPeriodic(Fluid fl, int d)
   return fl->bc.face[d][0].type == FLUID_BC_PERIODIC;
 }
 
-/* Whether component d at face point idx is an unknown of the momentum equation: not a wall or
- * inlet face (fixed), not the unused extra point of a tangential component. */
-static inline PetscBool FluidFaceActive(Fluid fl, int d, const PetscInt idx[3])
+/* Whether component d at face point idx is an unknown of the momentum equation by the box: not
+ * a wall or inlet face (fixed), not the unused extra point of a tangential component. */
+static inline PetscBool FluidFaceActiveBox(Fluid fl, int d, const PetscInt idx[3])
 {
   for (int e = 0; e < 3; e++) {
     if (FluidPeriodic(fl, e)) continue;
@@ -166,6 +189,13 @@ static inline PetscBool FluidFaceActive(Fluid fl, int d, const PetscInt idx[3])
   if (idx[d] == 0) return fl->bc.face[d][0].type == FLUID_BC_OUTLET;
   if (idx[d] == fl->g.N[d]) return fl->bc.face[d][1].type == FLUID_BC_OUTLET;
   return PETSC_TRUE;
+}
+
+/* ... and not closed by the vessel (idx within the ghosted face box). */
+static inline PetscBool FluidFaceActive(Fluid fl, int d, const PetscInt idx[3])
+{
+  if (!FluidFaceActiveBox(fl, d, idx)) return PETSC_FALSE;
+  return (PetscBool)(!fl->ves.aloc || fl->ves.aloc[FluidFaceOff(&fl->g, idx[0], idx[1], idx[2]) + d] > 0);
 }
 
 /* Loops over the owned face points: local face offset f, local cell offset c, global offset o. */
@@ -186,6 +216,27 @@ static inline PetscScalar fluid_mass_divergence(const FluidGrid *g, const PetscS
   PetscScalar s = 0;
   for (int d = 0; d < 3; d++) s += (0.5 * (eps[c] + eps[c + g->cs[d]]) * u[f + g->fs[d] + d] - 0.5 * (eps[c] + eps[c - g->cs[d]]) * u[f + d]) / g->h[d];
   return s;
+}
+
+/* FAVOR: sum_d [a_f eps_f u]^+_- / h_d in the cell at local offsets (f, c), a the ghosted
+ * open-area fractions. */
+static inline PetscScalar fluid_mass_divergence_favor(const FluidGrid *g, const PetscScalar *u, const PetscScalar *eps, const PetscReal *a, PetscInt f, PetscInt c)
+{
+  PetscScalar s = 0;
+  for (int d = 0; d < 3; d++) s += (a[f + g->fs[d] + d] * 0.5 * (eps[c] + eps[c + g->cs[d]]) * u[f + g->fs[d] + d] - a[f + d] * 0.5 * (eps[c] + eps[c - g->cs[d]]) * u[f + d]) / g->h[d];
+  return s;
+}
+/* A cell of the vessel with no active face: its Poisson row is the identity, it has no residual. */
+static inline PetscBool FluidCellClosed(Fluid fl, const PetscInt idx[3])
+{
+  const PetscInt f = FluidFaceOff(&fl->g, idx[0], idx[1], idx[2]);
+  for (int d = 0; d < 3; d++) {
+    PetscInt up[3] = {idx[0], idx[1], idx[2]};
+    up[d]++;
+    if (FluidFaceActiveBox(fl, d, idx) && fl->ves.aloc[f + d] > 0) return PETSC_FALSE;
+    if (FluidFaceActiveBox(fl, d, up) && fl->ves.aloc[f + fl->g.fs[d] + d] > 0) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
 }
 
 /* fluid.c: the cell and face DMDAs from the Domain's ownership, and the grid geometry */
@@ -212,6 +263,12 @@ PetscErrorCode FluidViscousTerm(Fluid fl, const PetscScalar *u, const PetscScala
 PetscErrorCode FluidViscousCreateKSP(Fluid fl);
 PetscErrorCode FluidViscousSetUp(Fluid fl);
 PetscErrorCode FluidViscousSolve(Fluid fl, PetscReal dt, Vec rhs, Vec uhat);
+/* vessel.c */
+PetscErrorCode FluidSetFromOptionsVessel(Fluid fl);
+PetscErrorCode FluidVesselSetUp(Fluid fl);
+PetscErrorCode FluidVesselDestroy(Fluid fl);
+PetscErrorCode FluidVesselZeroClosed(Fluid fl, PetscScalar *uloc);
+PetscReal      FluidVesselViscousNumber(Fluid fl, PetscReal dt, const PetscScalar *eps, PetscInt cell[3]);
 /* poisson.c */
 PetscErrorCode FluidCheckMGLevelsOption(Fluid fl, const char *name);
 PetscErrorCode FluidPoissonCreateKSP(Fluid fl);

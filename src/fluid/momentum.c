@@ -71,6 +71,72 @@ static PetscScalar FluidViscousAt(Fluid fl, const PetscScalar *u, const PetscSca
   return sum;
 }
 
+/* With a vessel (vessel.c): u_d at the neighbour of P along e on side s, the stored value or,
+ * across a wall link, the linear extrapolation through the wall value 0 at theta h_e (no-slip),
+ * or u_P (slip: no flux to the wall). */
+static inline PetscScalar fluid_vessel_neighbour(const FluidVessel *v, const PetscScalar *u, PetscInt f, PetscInt st, int d, PetscInt w, int e, int s)
+{
+  if (w >= 0) {
+    const PetscReal th = v->theta[w + 2 * e + s];
+    if (th > 0) return v->slip ? u[f + d] : u[f + d] * (1 - 1 / th);
+  }
+  return u[f + (s ? st : -st) + d];
+}
+
+/* Whether the stencil of the d-face P (its two cells and the four cells around each of its four
+ * edges) has only full cells (vessel.c: volume 1, six open faces). */
+static inline PetscBool fluid_vessel_full_stencil(const FluidGrid *g, const PetscReal *full, PetscInt c, int d)
+{
+  const PetscInt cd = g->cs[d];
+  if (full[c] != 1 || full[c - cd] != 1) return PETSC_FALSE;
+  for (int e = 0; e < 3; e++) {
+    if (e == d) continue;
+    const PetscInt ce = g->cs[e];
+    if (full[c + ce] != 1 || full[c - ce] != 1 || full[c - cd + ce] != 1 || full[c - cd - ce] != 1) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+/* FluidViscousAt with a vessel. Where the stencil is full, the box's stress. Elsewhere the
+ * Laplacian part div(mu eps grad u_d) alone, with the wall links above: the transpose part
+ * div(mu eps (grad u)^T) is mu eps grad(div u) for constant eps, zero in the fluid, but its
+ * discrete form reads the zeros of the closed faces (an O(1) error at the wall otherwise); it is
+ * left out whole at such a face, never in part. The implicit option (transpose_only) has the
+ * Laplacian part in its matrix (viscous.c: with a vessel the normal part too has factor 1), so
+ * here it gets the whole transpose part at full stencils and nothing elsewhere. */
+static PetscScalar FluidViscousAtVessel(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscInt f, PetscInt c, PetscInt o, int d, PetscBool transpose_only)
+{
+  const FluidGrid   *g  = &fl->g;
+  const FluidVessel *v  = &fl->ves;
+  const PetscInt     fd = g->fs[d], cd = g->cs[d], w = v->wl[o + d];
+  const PetscReal    hd  = g->h[d];
+  PetscScalar        sum = 0;
+
+  if (fluid_vessel_full_stencil(g, v->full, c, d)) {
+    if (!transpose_only) return FluidViscousAt(fl, u, eps, f, c, d, PETSC_FALSE);
+    sum = fl->prop.mu * (eps[c] * (u[f + fd + d] - u[f + d]) - eps[c - cd] * (u[f + d] - u[f - fd + d])) / (hd * hd);
+    return sum + FluidViscousAt(fl, u, eps, f, c, d, PETSC_TRUE);
+  }
+  if (transpose_only) return 0;
+  for (int e = 0; e < 3; e++) {
+    const PetscInt  fe = g->fs[e], ce = g->cs[e];
+    const PetscReal he = g->h[e];
+    PetscScalar     tau[2];
+    for (int s = 0; s < 2; s++) { /* lower (s = 0) and upper face of P's control volume along e */
+      const PetscScalar nb = fluid_vessel_neighbour(v, u, f, fe, d, w, e, s);
+      PetscScalar       ee;
+      if (e == d) ee = eps[s ? c : c - cd];
+      else {
+        const PetscInt cq = c + s * ce;
+        ee                = 0.25 * (eps[cq] + eps[cq - cd] + eps[cq - ce] + eps[cq - cd - ce]);
+      }
+      tau[s] = fl->prop.mu * ee * (s ? nb - u[f + d] : u[f + d] - nb) / he;
+    }
+    sum += (tau[1] - tau[0]) / he;
+  }
+  return sum;
+}
+
 PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out)
 {
   const FluidGrid *g   = &fl->g;
@@ -123,6 +189,11 @@ PetscErrorCode FluidViscousTerm(Fluid fl, const PetscScalar *u, const PetscScala
   PetscInt         idx[3], f, c, o;
 
   PetscFunctionBeginUser;
+  if (fl->ves.cut) {
+    FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+    for (int d = 0; d < 3; d++) out[o + d] = FluidFaceActive(fl, d, idx) ? FluidViscousAtVessel(fl, u, eps, f, c, o, d, transpose_only) : 0;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) out[o + d] = FluidFaceActive(fl, d, idx) ? FluidViscousAt(fl, u, eps, f, c, d, transpose_only) : 0;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -41,6 +41,12 @@ PetscErrorCode FluidWriteOutput(Fluid fl, Io io)
   PetscCall(IoWriteField(io, "eps", 1, g->xs, g->xm, e));
   PetscCall(IoWriteField(io, "p", 1, g->xs, g->xm, p));
   PetscCall(IoWriteField(io, "velocity", 3, g->xs, g->xm, vel));
+  if (fl->ves.cut) { /* the vessel's open-volume fraction: clip at 0.5 */
+    const PetscScalar *v;
+    PetscCall(VecGetArrayRead(fl->ves.vol, &v));
+    PetscCall(IoWriteField(io, "vessel", 1, g->xs, g->xm, v));
+    PetscCall(VecRestoreArrayRead(fl->ves.vol, &v));
+  }
   PetscCall(VecRestoreArrayRead(fl->fld.p, &p));
   PetscCall(VecRestoreArrayRead(fl->fld.eps, &e));
   PetscCall(PetscFree(vel));

@@ -111,7 +111,10 @@ PetscErrorCode FluidPoissonSetUp(Fluid fl)
   PetscCall(FluidPoissonCheckMG(fl));
   PetscCall(VecDuplicate(fl->fld.u, &fl->pois.coef));
   PetscCall(VecDuplicate(fl->fld.uloc, &fl->pois.coefloc));
-  if (fl->pois.singular) {
+  if (fl->pois.singular && fl->ves.cut) { /* closed cells have identity rows: the open cells' indicator */
+    PetscCall(MatNullSpaceCreate(fl->comm, PETSC_FALSE, 1, &fl->ves.ind, &fl->pois.nsp));
+    PetscCall(MatSetNullSpace(fl->pois.A, fl->pois.nsp));
+  } else if (fl->pois.singular) {
     PetscCall(MatNullSpaceCreate(fl->comm, PETSC_TRUE, 0, NULL, &fl->pois.nsp));
     PetscCall(MatSetNullSpace(fl->pois.A, fl->pois.nsp));
   }
@@ -196,10 +199,18 @@ static PetscErrorCode FluidPoissonAssemble(Fluid fl, PetscReal dt, const PetscSc
   {
     const PetscInt   f  = FluidFaceOff(g, idx[0], idx[1], idx[2]);
     const PetscCount nd = n++;
+    const PetscReal *a  = fl->ves.aloc; /* FAVOR: the face coefficients a_f c */
     v[nd]               = 0;
+    if (a && FluidCellClosed(fl, idx)) { /* identity row: phi = 0 */
+      v[nd] = 1;
+      for (int d = 0; d < 3; d++)
+        for (int s = 0; s < 2; s++)
+          if (fluid_poisson_neighbour(fl, idx, d, s)) v[n++] = 0;
+      continue;
+    }
     for (int d = 0; d < 3; d++) {
       const PetscReal   ih2 = 1.0 / (g->h[d] * g->h[d]);
-      const PetscScalar cm = cf[f + d] * ih2, cp = cf[f + g->fs[d] + d] * ih2;
+      const PetscScalar cm = a ? a[f + d] * cf[f + d] * ih2 : cf[f + d] * ih2, cp = a ? a[f + g->fs[d] + d] * cf[f + g->fs[d] + d] * ih2 : cf[f + g->fs[d] + d] * ih2;
       v[nd] += cm + cp;
       for (int s = 0; s < 2; s++) {
         const PetscScalar cc = s ? cp : cm;
@@ -224,8 +235,13 @@ static PetscErrorCode FluidPoissonRHS(Fluid fl, PetscReal dt, const PetscScalar 
 
   PetscFunctionBeginUser;
   PetscCall(VecGetArray(fl->pois.rhs, &b));
-  FLUID_FOR_OWNED_CELLS(g, idx, c, o)
-  b[o] = -(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt);
+  if (fl->ves.cut) { /* FAVOR: a_f on the fluxes, vol_c on the time derivative; closed cells 0 */
+    FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+    b[o] = FluidCellClosed(fl, idx) ? 0 : -(fluid_mass_divergence_favor(g, u, eps, fl->ves.aloc, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + fl->ves.vloc[c] * (eps[c] - eps0[c]) / dt);
+  } else {
+    FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+    b[o] = -(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt);
+  }
   PetscCall(VecRestoreArray(fl->pois.rhs, &b));
   if (fl->pois.nsp) PetscCall(MatNullSpaceRemove(fl->pois.nsp, fl->pois.rhs));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -363,7 +379,8 @@ PetscErrorCode FluidPoissonRestore(Fluid fl, PetscBool current)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective: max over cells of |div(eps_f u) + (eps^{n+1} - eps^n)/dt| for the current u. */
+/* Collective: max over cells of |div(eps_f u) + (eps^{n+1} - eps^n)/dt| for the current u (with
+ * a vessel: over the open cells, |sum a_f eps_f u / h + vol_c (eps^{n+1} - eps^n)/dt|). */
 PetscErrorCode FluidDivergenceMax(Fluid fl, PetscReal dt, PetscReal *dmax)
 {
   const FluidGrid   *g = &fl->g;
@@ -376,8 +393,13 @@ PetscErrorCode FluidDivergenceMax(Fluid fl, PetscReal dt, PetscReal *dmax)
   PetscCall(VecGetArrayRead(fl->fld.uloc, &u));
   PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
   PetscCall(VecGetArrayRead(fl->fld.epsoldloc, &eps0));
-  FLUID_FOR_OWNED_CELLS(g, idx, c, o)
-  m = PetscMax(m, PetscAbsScalar(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt));
+  if (fl->ves.cut) {
+    FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+    if (!FluidCellClosed(fl, idx)) m = PetscMax(m, PetscAbsScalar(fluid_mass_divergence_favor(g, u, eps, fl->ves.aloc, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + fl->ves.vloc[c] * (eps[c] - eps0[c]) / dt));
+  } else {
+    FLUID_FOR_OWNED_CELLS(g, idx, c, o)
+    m = PetscMax(m, PetscAbsScalar(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt));
+  }
   PetscCall(VecRestoreArrayRead(fl->fld.epsoldloc, &eps0));
   PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
   PetscCall(VecRestoreArrayRead(fl->fld.uloc, &u));

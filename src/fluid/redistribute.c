@@ -32,6 +32,7 @@ PetscErrorCode FluidRedistribute(Fluid fl)
   PetscCall(DMDestroy(&ocda));
   PetscCall(DMDestroy(&ofda));
   PetscCall(FluidCreateLocals(fl));
+  PetscCall(FluidVesselSetUp(fl));   /* the open fractions of the new owned boxes */
   PetscCall(KSPReset(fl->pois.ksp)); /* operators of another size follow */
   PetscCall(FluidPoissonSetUp(fl));
   if (fl->vimp.ksp) {

@@ -45,6 +45,14 @@ static void FluidLocalLimits(Fluid fl, PetscReal dt, const PetscScalar *u, const
       for (int d = 0; d < 3; d++) lim->vcell[d] = idx[d];
     }
   }
+  if (fl->ves.cut) { /* the wall links' rows (vessel.c) */
+    PetscInt        cell[3];
+    const PetscReal vis = FluidVesselViscousNumber(fl, dt, eps, cell);
+    if (vis > lim->vis) {
+      lim->vis = vis;
+      for (int d = 0; d < 3; d++) lim->vcell[d] = cell[d];
+    }
+  }
 }
 
 /* Global maximum of a local value and the cell where it occurs (lowest rank wins ties). */

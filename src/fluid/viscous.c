@@ -108,6 +108,14 @@ static PetscErrorCode FluidViscousRow(Fluid fl, PetscReal dt, const PetscScalar 
         const PetscInt cq = s ? c + ce : c;
         k                 = fl->prop.mu * 0.25 * (eps[cq] + eps[cq - cd] + eps[cq - ce] + eps[cq - cd - ce]) / (g->h[e] * g->h[e]);
       }
+      if (fl->ves.cut) { /* the vessel (momentum.c, FluidViscousAtVessel): the Laplacian part, symmetric; a wall link folds into the diagonal */
+        const PetscInt w = fl->ves.wl[o + d];
+        if (e == d) k *= 0.5;
+        if (w >= 0 && fl->ves.theta[w + 2 * e + s] > 0) {
+          if (!fl->ves.slip) v[0] += k / fl->ves.theta[w + 2 * e + s];
+          continue;
+        }
+      }
       v[0] += k;
       const PetscInt top = (e == d) ? g->N[e] : g->N[e] - 1; /* last in-domain index */
       if (FluidPeriodic(fl, e) || (nb >= 0 && nb <= top && (e != d || (nb > 0 && nb < g->N[e]) || fl->bc.face[e][nb ? 1 : 0].type == FLUID_BC_OUTLET))) {

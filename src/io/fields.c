@@ -22,6 +22,7 @@ static const struct {
   {"fluid", "eps", 1},
   {"fluid", "p", 1},
   {"fluid", "velocity", 1},
+  {"fluid", "vessel", 1},
   {"fluid", "avg_solids_fraction", 1},
   {"fluid", "rms_solids_fraction", 1},
   {"fluid", "avg_fluid_velocity", 1},
