@@ -64,6 +64,10 @@ struct _p_Balance {
   PetscBool      restored;
   PetscLogDouble t_since[2];
   PetscBool      ckpt_cuts; /* the Domain holds a checkpoint's cuts: BalanceDecompose keeps them */
+  /* a coupled run's vessel (DemVesselLevel): the cells whose centre lies in the solid, which
+     carry no fluid cost; NULL without a vessel (the weights of before, bit for bit) */
+  PetscBool *closed;
+  PetscBool  closed_set;
 };
 
 PetscErrorCode BalanceCreate(Domain *dom, Dem dem, Cpl cpl, Balance *lb)
@@ -177,6 +181,7 @@ PetscErrorCode BalanceDestroy(Balance *lb)
   PetscCall(PetscFree3((*lb)->count, (*lb)->w, (*lb)->load));
   for (int k = 0; k < 3; k++) PetscCall(PetscFree((*lb)->l[k]));
   PetscCall(PetscFree((*lb)->ncand));
+  PetscCall(PetscFree((*lb)->closed));
   PetscCall(PetscFree(*lb));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -233,6 +238,33 @@ static PetscErrorCode BalanceMeshWeights(Balance b, PetscReal am, PetscInt *ncan
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Not collective (the same on every rank). A coupled run's vessel: the fluid cost beta leaves the
+ * cells whose centre lies in the solid (DemVesselLevel <= 0: closed or nearly, the fluid skips
+ * them), found once; nothing changes without a vessel. */
+static PetscErrorCode BalanceVesselWeights(Balance b, PetscReal beta, PetscReal *w)
+{
+  const Domain  *dom   = b->dom;
+  const PetscInt ncell = dom->cells[0] * dom->cells[1] * dom->cells[2];
+
+  PetscFunctionBeginUser;
+  if (!b->closed_set) {
+    PetscBool vessel;
+    b->closed_set = PETSC_TRUE;
+    PetscCall(DemVesselGetActive(b->dem, &vessel));
+    if (!vessel || !b->cpl) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCall(PetscMalloc1(ncell, &b->closed));
+    for (PetscInt c = 0; c < ncell; c++) {
+      const PetscInt  i[3] = {c % dom->cells[0], (c / dom->cells[0]) % dom->cells[1], c / (dom->cells[0] * dom->cells[1])};
+      const PetscReal x[3] = {dom->lo[0] + (i[0] + 0.5) * dom->h[0], dom->lo[1] + (i[1] + 0.5) * dom->h[1], dom->lo[2] + (i[2] + 0.5) * dom->h[2]};
+      b->closed[c]         = (PetscBool)(DemVesselLevel(x, b->dem) <= 0);
+    }
+  }
+  if (b->closed)
+    for (PetscInt c = 0; c < ncell; c++)
+      if (b->closed[c]) w[c] = PetscMax(w[c] - beta, 0.0);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Cell weights over the global grid (every rank gets all of them) and the current loads. */
 static PetscErrorCode BalanceWeigh(Balance b, PetscReal *lmin, PetscReal *lmax, PetscReal *lavg)
 {
@@ -250,6 +282,7 @@ static PetscErrorCode BalanceWeigh(Balance b, PetscReal *lmin, PetscReal *lmax, 
     PetscCall(BalanceCellWeights(&wm, ncell, b->count, b->w));
   }
   if (b->ncand) PetscCall(BalanceMeshWeights(b, alpha * cm, b->ncand, b->w));
+  PetscCall(BalanceVesselWeights(b, beta, b->w));
   b->alpha_used = alpha;
   b->beta_used  = beta;
   b->cm_used    = cm;
@@ -466,6 +499,7 @@ PetscErrorCode BalanceDecompose(Balance b)
     PetscCall(BalanceMeshWeights(b, b->alpha * b->mesh_cost, ncand, w));
     PetscCall(PetscFree(ncand));
   }
+  PetscCall(BalanceVesselWeights(b, b->beta, w));
   for (PetscInt c = 0; c < ncell; c++) total += w[c];
   PetscCall(PetscMalloc1(6 * pb.size, &buf));
   for (int k = 0; k < 3; k++) {

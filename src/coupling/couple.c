@@ -161,6 +161,7 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscCall(CplSetUpShapes(cpl));
   PetscCall(CplFilterSetUp(cpl, 0));
   PetscCall(CplSmoothSetUp(cpl, 0));
+  PetscCall(CplVesselSetUp(cpl)); /* vessel.c: a vessel cutting the fluid grid, else nothing */
   PetscCall(DemGetTimeStep(cpl->dem, &dtd));
   PetscCall(FluidGetTimeStep(cpl->fl, &dtf, &fset));
   /* a frozen bed takes no DEM steps: the coupling step is the fluid's */
@@ -217,6 +218,7 @@ PetscErrorCode CplRedistribute(Cpl cpl)
   }
   PetscCall(DemRedistribute(cpl->dem));
   PetscCall(CplSmoothDestroyGrid(cpl));
+  PetscCall(CplVesselSetUp(cpl)); /* the fluid's fractions on the new layout */
   CplInvalidateStencils(cpl);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -249,6 +251,7 @@ PetscErrorCode CplDestroy(Cpl *cpl)
   PetscCall(PetscFree((*cpl)->kern.stc));
   PetscCall(CplSelfTableDestroy(*cpl));
   PetscCall(CplSmoothDestroy(*cpl));
+  PetscCall(CplVesselDestroy(*cpl));
   PetscCall(PetscFree(*cpl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -140,13 +140,18 @@ PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscRe
  * the particle volumes (m^3). */
 PetscErrorCode CplGetSolidVolume(Cpl cpl, PetscReal *grid, PetscReal *particles);
 /* The cell layer containing height z along axis d: its centre zc (m), mean pressure (Pa) and
- * porosity, and the mean superficial velocity (m/s) through the face layer below it. */
+ * porosity, and the mean superficial velocity (m/s) through the face layer below it; in a vessel
+ * that cuts the grid, the means over the open volume and the flux over the open area. */
 PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal *p, PetscReal *eps, PetscReal *usup);
+/* Collective. The open area (m^2) of the plane of faces of axis d nearest z: the box's cross-section,
+ * or, in a vessel that cuts the grid, the faces' open-area fractions times their areas. */
+PetscErrorCode CplGetOpenArea(Cpl cpl, int d, PetscReal z, PetscReal *area);
 /* Collective. Fluid velocity u (3 per local particle, m/s) and porosity eps (1 per particle) at
  * the particles, as the drag sees them: kernel-weighted averages of the face velocities and of
  * the cell porosity. */
 PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps);
-/* Mean porosity of the cells whose centres lie in [z0, z1] along axis d. */
+/* Mean porosity of the cells whose centres lie in [z0, z1] along axis d (in a vessel that cuts the
+ * grid, over their open volume). */
 PetscErrorCode CplMeanPorosity(Cpl cpl, int d, PetscReal z0, PetscReal z1, PetscReal *eps);
 /* The total drag coefficient per particle K = 3 pi mu d F (kg/s) of the law at porosity eps and
  * Re_p = rho_f d eps |u - U| / mu; not collective, pure. */

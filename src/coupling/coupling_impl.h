@@ -10,6 +10,8 @@ typedef struct {         /* cube kernel of one particle: separable 1-D overlap f
   PetscInt c0[3], f0[3]; /* first cell, first face control volume, per axis */
   int      nc[3], nf[3];
   double   wc[3][4], wf[3][4];
+  double   zc, zf[3]; /* a vessel cutting the grid: 1 / the open share of the kernel's cells and of
+                         each component's faces (vessel.c); 1 without */
 } CplStencil;
 
 /* The fluid's properties, as the fluid's options give them, and the particles' gravity. */
@@ -105,6 +107,15 @@ typedef struct {
   PetscLogDouble t_fluid;    /* wall time in fluid steps (s): the measured cell weight */
 } CplDiag;
 
+/* The vessel (vessel.c): the fluid's open fractions when its vessel cuts the grid; the kernel then
+ * deposits into the open volume only and reads the open cells and faces only. */
+typedef struct {
+  PetscBool on;               /* FluidVesselActive: some cell or face is not fully open */
+  Vec       vol, area;        /* the fluid's open-volume (cells) and open-area (faces) fractions (borrowed) */
+  Vec       vloc, aloc;       /* their ghosted local copies */
+  PetscInt  lost, lost_total; /* kernels that met no open cell: at the last stencils, and once warned */
+} CplVessel;
+
 /* Log events. */
 typedef struct {
   PetscLogEvent project, drag, exchange, dem, filter, smooth;
@@ -127,6 +138,7 @@ struct _p_Cpl {
   CplClock        clock;
   CplExchange     ex;
   CplDiag         diag;
+  CplVessel       ves;
   CplEvents       ev;
 };
 
@@ -192,6 +204,11 @@ PetscErrorCode CplMeanDiameter(Cpl cpl, PetscReal *dmean);
 PetscErrorCode CplSeenPorosity(Cpl cpl, PetscInt n, PetscReal *u, PetscReal *eps, PetscReal *fade);
 PetscErrorCode CplSelfTableDestroy(Cpl cpl);
 PetscReal      CplUndisturbedK(Cpl cpl, PetscInt p, PetscReal d, PetscReal eps, const PetscReal u[3], const PetscReal v[3], PetscReal fade, PetscBool *capped);
+/* vessel.c: the fluid's open fractions (after FluidSetUp and after each redistribution) */
+PetscErrorCode CplVesselSetUp(Cpl cpl);
+PetscErrorCode CplVesselDestroy(Cpl cpl);
+PetscErrorCode CplVesselMask(Cpl cpl, Vec v, PetscBool face);
+PetscErrorCode CplVesselLost(Cpl cpl);
 /* start.c: the fluid's initial state (-cpl_init_fluid) */
 PetscErrorCode CplInitFluidState(Cpl cpl);
 /* preflight.c */

@@ -77,7 +77,8 @@ PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal
   const PetscScalar *pa, *e, *v;
   PetscInt           xs[3], xm[3], fxs[3], fxm[3], idx[3], c = 0, f = 0, layer;
   CplGhost           g;
-  PetscReal          loc[4] = {0};
+  PetscReal          loc[5] = {0};
+  const PetscScalar *vo = NULL, *ao = NULL; /* a vessel cutting the grid: the open cells and faces weigh */
 
   PetscFunctionBeginUser;
   layer = (PetscInt)PetscFloorReal((z - cpl->dom->lo[d]) / cpl->dom->h[d]);
@@ -93,10 +94,18 @@ PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal
   PetscCall(VecGetArrayRead(p, &pa));
   PetscCall(VecGetArrayRead(cpl->ex.cloc, &e));
   PetscCall(VecGetArrayRead(u, &v));
+  if (cpl->ves.on) {
+    PetscCall(VecGetArrayRead(cpl->ves.vol, &vo));
+    PetscCall(VecGetArrayRead(cpl->ves.area, &ao));
+  }
   for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
     for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
       for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c++)
-        if (idx[d] == layer) {
+        if (idx[d] == layer && vo) {
+          loc[0] += vo[c] * pa[c];
+          loc[1] += vo[c] * e[cpl_diag_off(&g, idx, d, 0)];
+          loc[3] += vo[c];
+        } else if (idx[d] == layer) {
           loc[0] += pa[c];
           loc[1] += e[cpl_diag_off(&g, idx, d, 0)];
           loc[3] += 1;
@@ -108,15 +117,22 @@ PetscErrorCode CplGetLayer(Cpl cpl, int d, PetscReal z, PetscReal *zc, PetscReal
         for (int k = 0; k < 3; k++) in = (PetscBool)(in && (k == d || idx[k] < cpl->dom->cells[k]));
         if (!in) continue;
         const PetscReal ef = layer > 0 || cpl->dom->periodic[d] ? 0.5 * (e[cpl_diag_off(&g, idx, d, 0)] + e[cpl_diag_off(&g, idx, d, 1)]) : e[cpl_diag_off(&g, idx, d, 0)];
-        loc[2] += ef * v[f + d];
+        if (ao) { /* the flux through the open area over the open area */
+          loc[2] += ao[f + d] * ef * v[f + d];
+          loc[4] += ao[f + d];
+        } else loc[2] += ef * v[f + d];
       }
+  if (vo) {
+    PetscCall(VecRestoreArrayRead(cpl->ves.vol, &vo));
+    PetscCall(VecRestoreArrayRead(cpl->ves.area, &ao));
+  }
   PetscCall(VecRestoreArrayRead(u, &v));
   PetscCall(VecRestoreArrayRead(cpl->ex.cloc, &e));
   PetscCall(VecRestoreArrayRead(p, &pa));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 4, MPIU_REAL, MPIU_SUM, cpl->comm));
-  *pavg = loc[0] / loc[3];
-  *eavg = loc[1] / loc[3];
-  *usup = loc[2] / loc[3];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 5, MPIU_REAL, MPIU_SUM, cpl->comm));
+  *pavg = loc[3] > 0 ? loc[0] / loc[3] : 0;
+  *eavg = loc[3] > 0 ? loc[1] / loc[3] : 1;
+  *usup = cpl->ves.on ? (loc[4] > 0 ? loc[2] / loc[4] : 0) : loc[2] / loc[3];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -126,19 +142,22 @@ PetscErrorCode CplMeanPorosity(Cpl cpl, int d, PetscReal z0, PetscReal z1, Petsc
   const PetscScalar *a;
   PetscInt           xs[3], xm[3], idx[3], c = 0;
   PetscReal          loc[2] = {0, 0};
+  const PetscScalar *vo     = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(FluidGetPorosity(cpl->fl, &e));
   PetscCall(DMDAGetCorners(cpl->cda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(VecGetArrayRead(e, &a));
+  if (cpl->ves.on) PetscCall(VecGetArrayRead(cpl->ves.vol, &vo)); /* over the open volume */
   for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
     for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
       for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c++) {
         const PetscReal z = cpl->dom->lo[d] + (idx[d] + 0.5) * cpl->dom->h[d];
         if (z < z0 - 1e-9 * cpl->dom->h[d] || z > z1 + 1e-9 * cpl->dom->h[d]) continue;
-        loc[0] += a[c];
-        loc[1] += 1;
+        loc[0] += vo ? vo[c] * a[c] : a[c];
+        loc[1] += vo ? vo[c] : 1;
       }
+  if (vo) PetscCall(VecRestoreArrayRead(cpl->ves.vol, &vo));
   PetscCall(VecRestoreArrayRead(e, &a));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_REAL, MPIU_SUM, cpl->comm));
   *eps = loc[0] / PetscMax(loc[1], 1);
@@ -213,5 +232,34 @@ PetscErrorCode CplGetMinFluidization(Cpl cpl, PetscReal eps, PetscReal d, PetscR
     else hi = m;
   }
   f->umf = 0.5 * (lo + hi);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CplGetOpenArea(Cpl cpl, int d, PetscReal z, PetscReal *area)
+{
+  const Domain      *dom  = cpl->dom;
+  const PetscReal    face = dom->h[(d + 1) % 3] * dom->h[(d + 2) % 3];
+  PetscInt           xs[3], xm[3], idx[3], f = 0, plane;
+  const PetscScalar *ao;
+  PetscReal          a = 0;
+
+  PetscFunctionBeginUser;
+  plane = (PetscInt)PetscFloorReal((z - dom->lo[d]) / dom->h[d] + 0.5);
+  plane = PetscMin(PetscMax(plane, 0), dom->cells[d]);
+  if (!cpl->ves.on) {
+    *area = dom->len[(d + 1) % 3] * dom->len[(d + 2) % 3];
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(DMDAGetCorners(cpl->fda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArrayRead(cpl->ves.area, &ao));
+  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
+    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
+      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, f += 3) {
+        PetscBool in = (PetscBool)(idx[d] == plane);
+        for (int k = 0; k < 3; k++) in = (PetscBool)(in && (k == d || idx[k] < dom->cells[k]));
+        if (in) a += ao[f + d] * face;
+      }
+  PetscCall(VecRestoreArrayRead(cpl->ves.area, &ao));
+  PetscCall(MPIU_Allreduce(&a, area, 1, MPIU_REAL, MPIU_SUM, cpl->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

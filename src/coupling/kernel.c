@@ -74,7 +74,9 @@ PetscErrorCode CplStencilOf(Cpl cpl, const PetscReal x[3], PetscReal side, CplSt
       const double u = (a - dom->lo[e]) * ih;
       PetscCheck(cpl_weights_1d(u, l, il, &s->c0[e], &s->nc[e], s->wc[e]) && cpl_weights_1d(u + 0.5, l, il, &s->f0[e], &s->nf[e], s->wf[e]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "cube kernel of side %g spans more than 4 cells of size %g; lower -cpl_kernel_scale", side, dom->h[e]);
     }
+    s->zf[e] = 1;
   }
+  s->zc = 1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -141,6 +143,32 @@ static void cpl_component(const CplStencil *s, int d, PetscInt first[3], int n[3
   }
 }
 
+/* A vessel cutting the grid (vessel.c): 1 / the open share of the stencil's cells (va: the ghosted
+ * open-volume fractions) and of each component's open faces (aa: open-area fractions; an open
+ * face's momentum volume is the whole V_cell in the fluid); a kernel with no open cell keeps 1
+ * (counted in lost). */
+static void cpl_vessel_shares(const CplBox *bc, const CplBox *bf, const PetscScalar *va, const PetscScalar *aa, CplStencil *st1, PetscInt *lost)
+{
+  double z = 0;
+  for (int k = 0; k < st1->nc[2]; k++)
+    for (int j = 0; j < st1->nc[1]; j++)
+      for (int i = 0; i < st1->nc[0]; i++) z += st1->wc[2][k] * st1->wc[1][j] * st1->wc[0][i] * va[cpl_off(bc, st1->c0[0] + i, st1->c0[1] + j, st1->c0[2] + k)];
+  st1->zc = z > 0 ? 1 / z : 1;
+  if (!(z > 0)) (*lost)++;
+  for (int d = 0; d < 3; d++) {
+    PetscInt      first[3];
+    int           n[3];
+    const double *w[3];
+    cpl_component(st1, d, first, n, w);
+    z = 0;
+    for (int k = 0; k < n[2]; k++)
+      for (int j = 0; j < n[1]; j++)
+        for (int i = 0; i < n[0]; i++)
+          if (aa[3 * cpl_off(bf, first[0] + i, first[1] + j, first[2] + k) + d] > 0) z += w[2][k] * w[1][j] * w[0][i];
+    st1->zf[d] = z > 0 ? 1 / z : 1;
+  }
+}
+
 /* The stencils of all local particles, cached while the DEM's state (DemGetState: positions and
  * order) is unchanged and until CplInvalidateStencils (the grids moved); each is checked against
  * the ghost boxes of both grids once, when computed. */
@@ -152,8 +180,14 @@ static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil
   PetscFunctionBeginUser;
   PetscCall(DemGetState(cpl->dem, &state));
   if (!cpl->kern.stc_valid || cpl->kern.stc_n != pa->nlocal || cpl->kern.stc_state != state) {
+    const PetscScalar *va = NULL, *aa = NULL;
     PetscCall(CplBoxOf(cpl->cda, &bc));
     PetscCall(CplBoxOf(cpl->fda, &bf));
+    cpl->ves.lost = 0;
+    if (cpl->ves.on) {
+      PetscCall(VecGetArrayRead(cpl->ves.vloc, &va));
+      PetscCall(VecGetArrayRead(cpl->ves.aloc, &aa));
+    }
     if (pa->nlocal > cpl->kern.stc_cap) {
       PetscCall(PetscFree(cpl->kern.stc));
       cpl->kern.stc_cap = PetscMax(pa->nlocal, 2 * cpl->kern.stc_cap);
@@ -181,6 +215,11 @@ static PetscErrorCode CplStencils(Cpl cpl, const DemArrays *pa, const CplStencil
         cpl_component(st1, d, first, n, w);
         if (!cpl_fits_all(&bf, first, n)) PetscCall(CplCheckFits(&bf, first, n, pa->id[p]));
       }
+      if (va) cpl_vessel_shares(&bc, &bf, va, aa, st1, &cpl->ves.lost);
+    }
+    if (va) {
+      PetscCall(VecRestoreArrayRead(cpl->ves.vloc, &va));
+      PetscCall(VecRestoreArrayRead(cpl->ves.aloc, &aa));
     }
     cpl->kern.stc_n     = pa->nlocal;
     cpl->kern.stc_state = state;
@@ -222,15 +261,16 @@ static PetscErrorCode CplSpreadSolid(Cpl cpl, const PetscReal *only, Vec solid)
   PetscCall(CplBoxOf(cpl->cda, &b));
   PetscCall(VecZeroEntries(cpl->ex.cloc));
   PetscCall(VecGetArray(cpl->ex.cloc, &a));
-  if (only) { /* two loops: the every-step one tests nothing */
+  if (only) { /* two loops: the every-step one tests nothing; zc is 1 without a vessel */
     for (PetscInt p = 0; p < pa.nlocal; p++)
-      if (only[p] == 0) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->kern.cell_vol, a);
+      if (only[p] == 0) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->kern.cell_vol * stc[p].zc, a);
   } else
-    for (PetscInt p = 0; p < pa.nlocal; p++) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->kern.cell_vol, a);
+    for (PetscInt p = 0; p < pa.nlocal; p++) cpl_spread_cells(&b, &stc[p], CplVolumeOf(cpl, &pa, p) / cpl->kern.cell_vol * stc[p].zc, a);
   PetscCall(VecRestoreArray(cpl->ex.cloc, &a));
   PetscCall(VecZeroEntries(solid));
   PetscCall(DMLocalToGlobal(cpl->cda, cpl->ex.cloc, ADD_VALUES, solid));
-  PetscCall(CplFilter(cpl, solid, PETSC_FALSE)); /* -cpl_filter_width; nothing when off */
+  if (cpl->ves.on) PetscCall(CplVesselMask(cpl, solid, PETSC_FALSE)); /* closed cells: nothing */
+  PetscCall(CplFilter(cpl, solid, PETSC_FALSE));                      /* -cpl_filter_width; nothing when off */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -248,7 +288,8 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
   PetscCall(PetscLogEventBegin(cpl->ev.project, 0, 0, 0, 0));
   PetscCall(DMGetGlobalVector(cpl->cda, &solid));
   PetscCall(CplSpreadSolid(cpl, NULL, solid));
-  PetscCall(VecSum(solid, &sum));
+  if (cpl->ves.on) PetscCall(VecDot(solid, cpl->ves.vol, &sum)); /* the open parts' solid volumes */
+  else PetscCall(VecSum(solid, &sum));
   cpl->diag.solid_grid = sum * cpl->kern.cell_vol;
   PetscCall(FluidGetPorosity(cpl->fl, &eps));
   PetscCall(VecGetLocalSize(eps, &n));
@@ -268,6 +309,7 @@ PetscErrorCode CplProjectPorosity(Cpl cpl, CplStats *st)
   cnt[0] = clipped;
   PetscCall(MPIU_Allreduce(cnt, cnt + 1, 1, MPIU_INT, MPI_SUM, cpl->comm));
   cpl->diag.clipped_total += cnt[1];
+  if (cpl->ves.on) PetscCall(CplVesselLost(cpl));
   if (st) {
     st->clipped = cnt[1];
     PetscCall(MPIU_Allreduce(&emin, &st->eps_min, 1, MPIU_REAL, MPIU_MIN, cpl->comm));
@@ -335,7 +377,7 @@ PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
       int           nn[3];
       const double *w[3];
       double        q[3];
-      for (PetscInt s = 0; s < n; s++) q[s] = (sp[s].scalar ? sp[s].val[p] : sp[s].val[3 * p + d]) / cpl->kern.cell_vol;
+      for (PetscInt s = 0; s < n; s++) q[s] = (sp[s].scalar ? sp[s].val[p] : sp[s].val[3 * p + d]) / cpl->kern.cell_vol * stc[p].zf[d];
       cpl_component(&stc[p], d, first, nn, w);
       for (int k = 0; k < nn[2]; k++)
         for (int j = 0; j < nn[1]; j++) {
@@ -351,7 +393,8 @@ PetscErrorCode CplSpreadFaces(Cpl cpl, PetscInt n, const CplSpread sp[])
     PetscCall(VecRestoreArray(cpl->ex.floc[s], &a[s]));
     PetscCall(VecZeroEntries(sp[s].out));
     PetscCall(DMLocalToGlobal(cpl->fda, cpl->ex.floc[s], ADD_VALUES, sp[s].out));
-    PetscCall(CplFilter(cpl, sp[s].out, PETSC_TRUE)); /* works in floc[0], whose field is summed */
+    if (cpl->ves.on) PetscCall(CplVesselMask(cpl, sp[s].out, PETSC_TRUE)); /* closed faces: nothing */
+    PetscCall(CplFilter(cpl, sp[s].out, PETSC_TRUE));                      /* works in floc[0], whose field is summed */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -365,6 +408,8 @@ PetscErrorCode CplInterpolate(Cpl cpl, PetscReal *u, PetscReal *eps)
   PetscCall(CplInterpolateSelf(cpl, u, eps, NULL, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+static PetscErrorCode CplInterpolateVessel(Cpl, const DemArrays *, const CplStencil *, const CplBox *, const CplBox *, const PetscScalar *, const PetscScalar *, PetscReal *, PetscReal *);
 
 /* As CplInterpolate; self (may be NULL; 1 per particle) gets the particle's own share of the
  * porosity dip it sees, V_p sum_c W_pc^2 / V_cell (separable: the product over the axes of the
@@ -388,6 +433,12 @@ PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscRe
   PetscCall(DMGlobalToLocal(cpl->cda, e, INSERT_VALUES, cpl->ex.cloc));
   PetscCall(VecGetArrayRead(uloc, &ua));
   PetscCall(VecGetArrayRead(cpl->ex.cloc, &ea));
+  if (cpl->ves.on) { /* vessel.c: the open cells and faces only, with the deposit's weights */
+    PetscCall(CplInterpolateVessel(cpl, &pa, stc, &bc, &bf, ua, ea, u, eps));
+    PetscCall(VecRestoreArrayRead(cpl->ex.cloc, &ea));
+    PetscCall(VecRestoreArrayRead(uloc, &ua));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     const CplStencil *st1 = &stc[p];
     double            s   = 0;
@@ -428,6 +479,46 @@ PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscRe
   }
   PetscCall(VecRestoreArrayRead(cpl->ex.cloc, &ea));
   PetscCall(VecRestoreArrayRead(uloc, &ua));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* CplInterpolateSelf in a vessel that cuts the grid (no self share, no superficial velocity:
+ * vessel.c refuses what needs them): eps_p = zc sum_c W_pc vol_c eps_c and u_p = zf sum of
+ * W_pf u_f over the open faces, the transpose of the deposit. */
+static PetscErrorCode CplInterpolateVessel(Cpl cpl, const DemArrays *pa, const CplStencil *stc, const CplBox *bc, const CplBox *bf, const PetscScalar *ua, const PetscScalar *ea, PetscReal *u, PetscReal *eps)
+{
+  const PetscScalar *va, *aa;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(cpl->ves.vloc, &va));
+  PetscCall(VecGetArrayRead(cpl->ves.aloc, &aa));
+  for (PetscInt p = 0; p < pa->nlocal; p++) {
+    const CplStencil *st1 = &stc[p];
+    double            s   = 0;
+    for (int k = 0; k < st1->nc[2]; k++)
+      for (int j = 0; j < st1->nc[1]; j++)
+        for (int i = 0; i < st1->nc[0]; i++) {
+          const PetscInt o = cpl_off(bc, st1->c0[0] + i, st1->c0[1] + j, st1->c0[2] + k);
+          s += st1->wc[2][k] * st1->wc[1][j] * st1->wc[0][i] * va[o] * ea[o];
+        }
+    eps[p] = s * st1->zc;
+    for (int d = 0; d < 3; d++) {
+      PetscInt      first[3];
+      int           n[3];
+      const double *w[3];
+      cpl_component(st1, d, first, n, w);
+      s = 0;
+      for (int k = 0; k < n[2]; k++)
+        for (int j = 0; j < n[1]; j++)
+          for (int i = 0; i < n[0]; i++) {
+            const PetscInt o = 3 * cpl_off(bf, first[0] + i, first[1] + j, first[2] + k) + d;
+            if (aa[o] > 0) s += w[2][k] * w[1][j] * w[0][i] * ua[o];
+          }
+      u[3 * p + d] = s * st1->zf[d];
+    }
+  }
+  PetscCall(VecRestoreArrayRead(cpl->ves.vloc, &va));
+  PetscCall(VecRestoreArrayRead(cpl->ves.aloc, &aa));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

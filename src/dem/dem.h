@@ -143,6 +143,18 @@ PetscErrorCode DemCountContactsBoth(Dem dem, PetscInt count[2], PetscReal key[2]
  * outside a cylinder parallel to it (walls.c). Not collective. */
 PetscErrorCode DemWallsCloseFace(Dem dem, int d, int side, PetscBool *closed);
 
+/* The vessel (vessel.c): the walls that bound the gas of a coupled run as one level function.
+ * DemVesselSetUp (collective, after DemSetUp, in a coupled run only) decides which walls bound the
+ * gas, prints one line per wall saying so, builds what the level needs (a mesh's bins) and
+ * refuses a mesh asked to bound the gas that is not closed; *any: whether some wall does.
+ * DemVesselLevel (not collective; the same on every rank): phi(x) > 0 in the gas, < 0 in the
+ * solid, the minimum of the signed distances (m) of those walls (a mesh's clamped to +-2 fluid
+ * cells); its ctx is the Dem. The fluid's FluidLevelFn. */
+PetscErrorCode DemVesselSetUp(Dem dem, PetscBool *any);
+/* Not collective. Whether DemVesselSetUp found walls that bound the gas (false before it). */
+PetscErrorCode DemVesselGetActive(Dem dem, PetscBool *any);
+PetscReal      DemVesselLevel(const PetscReal x[3], void *dem);
+
 /* Coupling hooks (external.c). DemGetArrays: read-only views of the particle arrays, local
  * particles first, then ghosts (copies of other ranks' particles and periodic images); valid until the next
  * DemStep or DemAddParticle (a list rebuild may re-sort, a growth may move them). */

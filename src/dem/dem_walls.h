@@ -82,17 +82,18 @@ PetscErrorCode DemWallsSetFromOptions(Dem dem);                                 
 PetscErrorCode DemWallPairsFill(Dem dem, const DemMaterial *wm, DemPairParams *pw, PetscReal *tc);                                                      /* contact_laws.c: (shape, wall) pairs of material wm */
 PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem dem);                                                                  /* walls_mesh_options.c */
 PetscErrorCode DemMeshesSetUp(Dem dem);                                                                                                                 /* walls_mesh_options.c: materials, after DemMaterialsSetUp */
-PetscErrorCode DemMeshesDestroy(Dem dem);                                                                                                               /* walls_mesh_options.c */
-PetscErrorCode DemMeshesMove(Dem dem, double t, double *moved);                                                                                         /* walls_mesh.c: the pose at t; the largest travel since the build */
-PetscErrorCode DemMeshesBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec);                                                                      /* walls_mesh.c */
-PetscErrorCode DemContactsMeshes(Dem dem);                                                                                                              /* walls_mesh.c */
-PetscErrorCode DemMeshesSaveSprings(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap);                                                          /* walls_mesh.c: appends the slots' records, sorted */
-PetscErrorCode DemMeshesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                                                                                /* walls_mesh.c: same rank count */
-PetscErrorCode DemMeshTouchConvex(Dem dem, const DemMesh *m, PetscInt i, ConvexContact cc[], int *nc);                                                  /* walls_mesh.c: the face rule */
-void           DemMeshMatchSlots(double *sl, int na, const double an[][3], int match[]);                                                                /* walls_mesh.c: springs matched by normal */
-PetscErrorCode DemContactsMeshesConvex(Dem dem);                                                                                                        /* convex_contacts.c */
-PetscErrorCode DemMeshesStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax);                                                                  /* walls_mesh.c: contacts, normal elastic energy */
-PetscErrorCode DemMeshesCloseFace(Dem dem, int d, int side, double tol, PetscBool *closed);                                                             /* walls_mesh.c: triangles tiling the face */
-PetscErrorCode DemMeshDepth(Dem dem, PetscInt k, PetscInt i, double *depth);                                                                            /* walls_mesh.c: placement check, radii */
-PetscBool      DemMeshesBlock(Dem dem, const double x[3], double r);                                                                                    /* walls_mesh.c: a source's candidate meets a triangle */
-PetscErrorCode DemContactsWallsConvex(Dem dem);                                                                                                         /* convex_contacts.c */
+PetscErrorCode DemMeshesDestroy(Dem dem);
+PetscErrorCode DemVesselMeshDestroy(DemMesh *m);                                                       /* vessel.c: the vessel's view of a mesh */
+PetscErrorCode DemMeshesMove(Dem dem, double t, double *moved);                                        /* walls_mesh.c: the pose at t; the largest travel since the build */
+PetscErrorCode DemMeshesBuildLists(Dem dem, const DemSpring *recs, PetscInt nrec);                     /* walls_mesh.c */
+PetscErrorCode DemContactsMeshes(Dem dem);                                                             /* walls_mesh.c */
+PetscErrorCode DemMeshesSaveSprings(Dem dem, DemSpring **recs, PetscInt *nrec, PetscInt *cap);         /* walls_mesh.c: appends the slots' records, sorted */
+PetscErrorCode DemMeshesCheckpoint(Dem dem, IoCkpt ck, PetscBool write);                               /* walls_mesh.c: same rank count */
+PetscErrorCode DemMeshTouchConvex(Dem dem, const DemMesh *m, PetscInt i, ConvexContact cc[], int *nc); /* walls_mesh.c: the face rule */
+void           DemMeshMatchSlots(double *sl, int na, const double an[][3], int match[]);               /* walls_mesh.c: springs matched by normal */
+PetscErrorCode DemContactsMeshesConvex(Dem dem);                                                       /* convex_contacts.c */
+PetscErrorCode DemMeshesStatsLocal(Dem dem, double r[5], PetscInt c[3], double *rmax);                 /* walls_mesh.c: contacts, normal elastic energy */
+PetscErrorCode DemMeshesCloseFace(Dem dem, int d, int side, double tol, PetscBool *closed);            /* walls_mesh.c: triangles tiling the face */
+PetscErrorCode DemMeshDepth(Dem dem, PetscInt k, PetscInt i, double *depth);                           /* walls_mesh.c: placement check, radii */
+PetscBool      DemMeshesBlock(Dem dem, const double x[3], double r);                                   /* walls_mesh.c: a source's candidate meets a triangle */
+PetscErrorCode DemContactsWallsConvex(Dem dem);                                                        /* convex_contacts.c */

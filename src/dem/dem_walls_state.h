@@ -23,6 +23,10 @@ typedef struct {
      wall is gone (no list, no contacts, no travel); removed says it went */
   double    t_remove;
   PetscBool removed;
+  /* the vessel (vessel.c): -dem_plane_<k>_fluid, -dem_cylinder_fluid, -dem_cylinder_caps_fluid as
+     asked (-1 not given, 0 no, 1 yes), and whether the wall bounds the gas (DemVesselSetUp) */
+  int       fluid;
+  PetscBool gas;
   /* list of particles within reach, with their tangential springs */
   PetscInt *idx;
   double   *hist;
@@ -31,8 +35,9 @@ typedef struct {
 
 /* The walls (walls.c). */
 typedef struct {
-  DemWall  wall[DEM_MAX_WALLS];
-  PetscInt nwall;
+  DemWall   wall[DEM_MAX_WALLS];
+  PetscInt  nwall;
+  PetscBool vessel; /* some wall or mesh bounds the gas (DemVesselSetUp, vessel.c) */
 } DemWalls;
 
 /* Triangle-mesh walls (walls_mesh.c, walls_mesh_options.c): -dem_mesh_<k>_file, k < 8. A mesh
@@ -49,25 +54,34 @@ typedef struct {
 #define DEM_MESH_PARTNER(k, s, half) (-1 - DEM_MAX_WALLS - 2 * ((k)*DEM_MESH_SLOTS + (s)) - (half))
 #define DEM_MESH_PARTNER_MIN         DEM_MESH_PARTNER(DEM_MAX_MESHES - 1, DEM_MESH_SLOTS - 1, 1)
 typedef struct {
-  char          name[32];                        /* -dem_mesh_<k>, for messages */
-  char          file[PETSC_MAX_PATH_LEN];        /* the STL file */
-  TriMesh       ref;                             /* the triangles at t = 0 (scaled, rotated, translated) */
-  double        vel[3], omega, ax_p[3], ax_u[3]; /* motion: translation (m/s), rotation (rad/s) about a + v t, u */
-  double       *tab;                             /* -dem_mesh_<k>_omega_table t0,w0,t1,w1,... (s, rad/s); NULL: omega */
-  PetscInt      ntab;                            /* points of the table */
-  double        raxis;                           /* largest distance of a vertex from the axis (m): the travel bound */
-  PetscBool     moving;
-  DemMaterial   mat;                           /* -dem_mesh_<k>_friction, ... (default the -dem_wall_* material) */
-  DemPairParams pw[DEM_MAX_SHAPES];            /* (shape, mesh) pair parameters */
-  double        theta, w_now, tpose;           /* the pose of cur: angle (rad), angular velocity (rad/s), time (s) */
-  double        moved;                         /* travel bound since the last list build (m) */
-  PetscInt     *loc, nloc, caploc;             /* triangles near this rank's box */
-  double       *cur;                           /* 9 per triangle (only loc's are current); ref.v at rest */
-  PetscInt     *cstart, *ctri, capstart, capc; /* candidate triangles per local particle (CSR) */
-  double       *slot;                          /* 6 DEM_MESH_SLOTS per local particle: normal, spring */
-  PetscInt      capslot;
+  char                   name[32];                        /* -dem_mesh_<k>, for messages */
+  char                   file[PETSC_MAX_PATH_LEN];        /* the STL file */
+  TriMesh                ref;                             /* the triangles at t = 0 (scaled, rotated, translated) */
+  double                 vel[3], omega, ax_p[3], ax_u[3]; /* motion: translation (m/s), rotation (rad/s) about a + v t, u */
+  double                *tab;                             /* -dem_mesh_<k>_omega_table t0,w0,t1,w1,... (s, rad/s); NULL: omega */
+  PetscInt               ntab;                            /* points of the table */
+  double                 raxis;                           /* largest distance of a vertex from the axis (m): the travel bound */
+  PetscBool              moving;
+  DemMaterial            mat;                           /* -dem_mesh_<k>_friction, ... (default the -dem_wall_* material) */
+  DemPairParams          pw[DEM_MAX_SHAPES];            /* (shape, mesh) pair parameters */
+  double                 theta, w_now, tpose;           /* the pose of cur: angle (rad), angular velocity (rad/s), time (s) */
+  double                 moved;                         /* travel bound since the last list build (m) */
+  int                    fluid;                         /* -dem_mesh_<k>_fluid: DEM_MESH_FLUID_* (-1 not given) */
+  struct _DemVesselMesh *vm;                            /* the vessel's view of it (vessel.c), NULL unless it bounds the gas */
+  PetscInt              *loc, nloc, caploc;             /* triangles near this rank's box */
+  double                *cur;                           /* 9 per triangle (only loc's are current); ref.v at rest */
+  PetscInt              *cstart, *ctri, capstart, capc; /* candidate triangles per local particle (CSR) */
+  double                *slot;                          /* 6 DEM_MESH_SLOTS per local particle: normal, spring */
+  PetscInt               capslot;
 } DemMesh;
 typedef struct {
   DemMesh  m[DEM_MAX_MESHES];
   PetscInt n;
 } DemMeshes;
+/* -dem_mesh_<k>_fluid: the gas inside the mesh (a vessel), outside it (an immersed obstacle), or
+ * not bounded by it (vessel.c). */
+enum {
+  DEM_MESH_FLUID_NONE,
+  DEM_MESH_FLUID_INSIDE,
+  DEM_MESH_FLUID_OUTSIDE
+};

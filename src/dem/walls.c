@@ -37,6 +37,7 @@ PetscErrorCode DemWallAdd(Dem dem, const char *name, const double p[3], const do
   PetscCall(PetscMemzero(w, sizeof *w));
   w->mu       = -1;             /* the wall material's friction */
   w->t_remove = PETSC_MAX_REAL; /* never removed */
+  w->fluid    = -1;             /* the kind's default (vessel.c) */
   PetscCall(PetscStrncpy(w->name, name, sizeof w->name));
   for (int k = 0; k < 3; k++) {
     w->s.p[k] = p[k];

@@ -14,14 +14,16 @@
  * plane); inside the cylinder a plane is the same as the disc. The cylinder is infinitely long
  * without caps (close it with caps, planes, or a periodic domain axis).
  * Options: -dem_cylinder ax,ay,az,ux,uy,uz,R (m, -, m); -dem_cylinder_omega (rad/s);
- * -dem_cylinder_caps s0,s1 (m); -dem_cylinder_friction (cylinder and caps). Spheres only. */
+ * -dem_cylinder_caps s0,s1 (m); -dem_cylinder_friction (cylinder and caps); -dem_cylinder_fluid
+ * yes|no (default yes) and -dem_cylinder_caps_fluid yes|no (default no): whether they bound the
+ * gas of a coupled run as well (vessel.c). Spheres only. */
 #include "dem/dem_walls.h"
 
 /* Reads the cylinder options inside the walls' options block (walls.c). */
 PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem dem)
 {
   PetscReal cyl[7], caps[2], omega = 0;
-  PetscBool set, oset, cset, help;
+  PetscBool set, oset, cset, help, gas, gset, capgas, capset;
   DemWall  *w;
 
   PetscFunctionBeginUser;
@@ -29,7 +31,12 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
   PetscCall(SableOptionsRealN("-dem_cylinder", "Cylinder wall, particles inside: axis point ax,ay,az (m), axis direction ux,uy,uz (-), radius R (m)", NULL, cyl, 0, 7, &set));
   PetscCall(SableOptionsReal("-dem_cylinder_omega", "Angular velocity of the cylinder (and its caps) about its axis, right-handed", "rad/s", NULL, 0, &omega, &oset));
   PetscCall(SableOptionsRealN("-dem_cylinder_caps", "End caps: axial positions s0,s1 (from the axis point along the axis) of two planes perpendicular to the axis, co-rotating; default no caps", "m", caps, 0, 2, &cset));
-  PetscCheck(set || (!oset && !cset) || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without -dem_cylinder", oset ? "-dem_cylinder_omega" : "-dem_cylinder_caps");
+  PetscCall(SableOptionsBool("-dem_cylinder_fluid", "Whether the cylinder also bounds the gas in a coupled run (the gas inside it; it may turn about its own axis)", PETSC_TRUE, &gas, &gset));
+  PetscCall(SableOptionsBool("-dem_cylinder_caps_fluid", "Whether the end caps also bound the gas in a coupled run (default no: they let the gas through, as a distributor and an outlet)", PETSC_FALSE, &capgas, &capset));
+  PetscCheck(set || (!oset && !cset && !gset && !capset) || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without -dem_cylinder", oset ? "-dem_cylinder_omega" : cset ? "-dem_cylinder_caps"
+                                                                                                                                                                 : gset ? "-dem_cylinder_fluid"
+                                                                                                                                                                        : "-dem_cylinder_caps_fluid");
+  PetscCheck(cset || !capset || help, dem->comm, PETSC_ERR_ARG_WRONG, "-dem_cylinder_caps_fluid given without -dem_cylinder_caps");
   if (!set && help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, "-dem_cylinder_friction", 1, -1));
   if (!set) PetscFunctionReturn(PETSC_SUCCESS);
   const double u[3] = {cyl[3], cyl[4], cyl[5]}, lu = sqrt(dem_dot(u, u));
@@ -50,6 +57,7 @@ PetscErrorCode DemWallCylinderOptions(PetscOptionItems *PetscOptionsObject, Dem 
   for (PetscInt k = first; k < dem->walls.nwall; k++) {
     w          = &dem->walls.wall[k];
     w->s.omega = omega;
+    w->fluid   = k == first ? gas : capgas;
     for (int c = 0; c < 3; c++) {
       w->s.ax_p[c] = a[c];
       w->s.ax_u[c] = un[c];

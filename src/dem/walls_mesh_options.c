@@ -5,13 +5,14 @@
  *   _rolling_friction, each defaulting to the -dem_wall_* material;
  *   motion _velocity vx,vy,vz (m/s), and rotation about the axis through _axis_point (m, moving
  *   with the translation) along _axis, at _omega (rad/s) or after _omega_table t0,w0,t1,w1,...
- *   (s, rad/s: piecewise linear in time, constant outside; the angle is its exact integral).
+ *   (s, rad/s: piecewise linear in time, constant outside; the angle is its exact integral);
+ *   the gas of a coupled run _fluid inside|outside|none (vessel.c).
  * Each mesh is read on rank 0 and broadcast, then announced in one line (file, triangles, the
  * skipped degenerate and duplicate ones, bounding box). Contacts, lists and motion: walls_mesh.c. */
 #include "dem/dem_core.h"
 #include "dem/dem_walls.h"
 
-static const char *const DemMeshWordOptions[] = {"-dem_mesh_%d_file"};
+static const char *const DemMeshWordOptions[] = {"-dem_mesh_%d_file", "-dem_mesh_%d_fluid"};
 #define DEM_MESH_TAB_MAX 64 /* points of an omega table */
 
 /* The material of mesh k: the walls' unless given. */
@@ -82,6 +83,23 @@ static PetscErrorCode DemMeshMotion(PetscOptionItems *PetscOptionsObject, Dem de
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Whether mesh k bounds the gas of a coupled run (vessel.c): -1 when not given (the default: inside
+ * for a mesh at rest, none for a moving one). */
+static PetscErrorCode DemMeshFluid(PetscOptionItems *PetscOptionsObject, Dem dem, int k, DemMesh *m)
+{
+  static const char *const names[] = {"none", "inside", "outside"};
+  char                     o[48];
+  PetscInt                 v;
+  PetscBool                set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(o, sizeof o, DemMeshWordOptions[1], k));
+  PetscCall(SableOptionsEnum(o, "Whether this mesh bounds the gas of a coupled run: inside (the gas inside a closed mesh, a vessel; default for a mesh at rest), outside (an immersed obstacle) or none (the particles only; default for a moving mesh)", names, 3, DEM_MESH_FLUID_INSIDE, &v, &set));
+  PetscCheck(!set || !m->moving || v == DEM_MESH_FLUID_NONE, dem->comm, PETSC_ERR_SUP, "%s %s: the mesh moves, and the gas sees still walls only: give %s none (it then bounds the particles only)", o, names[v], o);
+  m->fluid = set ? (int)v : -1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The placement of mesh k: scale, rotation (deg), translation (m). */
 static PetscErrorCode DemMeshPlacement(PetscOptionItems *PetscOptionsObject, Dem dem, int k, PetscReal *scale, PetscReal rot[3], PetscReal shift[3])
 {
@@ -143,12 +161,13 @@ PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem
       PetscCall(PetscMemzero(&scratch, sizeof scratch));
       PetscCall(DemMeshMaterial(PetscOptionsObject, dem, k, &scratch));
       PetscCall(DemMeshMotion(PetscOptionsObject, dem, k, &scratch));
+      PetscCall(DemMeshFluid(PetscOptionsObject, dem, k, &scratch));
       PetscCall(DemMeshPlacement(PetscOptionsObject, dem, k, &scale, rot, shift));
       PetscCall(PetscFree(scratch.tab));
       continue;
     }
     if (!set) { /* its other options would be ignored */
-      const char *sub[] = {"scale", "rotate", "translate", "friction", "restitution", "kn", "youngs_modulus", "rolling_friction", "velocity", "omega", "axis_point", "axis", "omega_table"};
+      const char *sub[] = {"scale", "rotate", "translate", "friction", "restitution", "kn", "youngs_modulus", "rolling_friction", "velocity", "omega", "axis_point", "axis", "omega_table", "fluid"};
       for (size_t j = 0; j < sizeof sub / sizeof sub[0]; j++) {
         PetscBool has;
         PetscCall(PetscSNPrintf(opt, sizeof opt, "-dem_mesh_%d_%s", k, sub[j]));
@@ -160,6 +179,7 @@ PetscErrorCode DemMeshesSetFromOptions(PetscOptionItems *PetscOptionsObject, Dem
     PetscCheck(m->file[0], dem->comm, PETSC_ERR_ARG_WRONG, "-dem_mesh_%d_file needs a file name", k);
     PetscCall(DemMeshMaterial(PetscOptionsObject, dem, k, m));
     PetscCall(DemMeshMotion(PetscOptionsObject, dem, k, m));
+    PetscCall(DemMeshFluid(PetscOptionsObject, dem, k, m));
     if (help) { /* its options listed, its file not read */
       PetscReal scale = 1, rot[3] = {0, 0, 0}, shift[3] = {0, 0, 0};
       PetscCall(DemMeshPlacement(PetscOptionsObject, dem, k, &scale, rot, shift));
@@ -203,6 +223,7 @@ PetscErrorCode DemMeshesDestroy(Dem dem)
   for (PetscInt k = 0; k < dem->meshes.n; k++) {
     DemMesh *m = &dem->meshes.m[k];
     if (m->cur != m->ref.v) PetscCall(PetscFree(m->cur));
+    PetscCall(DemVesselMeshDestroy(m));
     PetscCall(TriMeshDestroy(&m->ref));
     PetscCall(PetscFree(m->tab));
     PetscCall(PetscFree(m->loc));

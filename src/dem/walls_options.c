@@ -11,6 +11,8 @@
  * The walls are added to the store (walls.c) in this order. */
 #include "dem/dem_walls.h"
 
+static const char *const DemPlaneWordOptions[] = {"-dem_plane_%d_fluid"};
+
 /* Adds the rectangle r (a patch region: p0 + s e1 + t e2, s, t in [0,1], e1 = p1 - p0 and
  * e2 = p2 - p0 perpendicular), facing the side e1 x e2 points to. */
 static PetscErrorCode DemWallAddRect(Dem dem, const char *opt, const GeomRegion *r)
@@ -73,6 +75,15 @@ PetscErrorCode DemWallPlaneOptions(PetscOptionItems *PetscOptionsObject, Dem dem
     if (rset && trm > 0) dem->walls.wall[dem->walls.nwall - 1].t_remove = trm;
     PetscCall(PetscSNPrintf(optv, sizeof optv, "-dem_plane_%d_friction", k));
     if (set || help) PetscCall(DemWallFrictionOption(PetscOptionsObject, dem, optv, 1, set ? dem->walls.nwall - 1 : -1));
+    {
+      static const char *const yesno[] = {"no", "yes"};
+      PetscInt                 gas;
+      PetscBool                gset;
+      PetscCall(PetscSNPrintf(optv, sizeof optv, DemPlaneWordOptions[0], k));
+      PetscCall(SableOptionsEnum(optv, "Whether the plane also bounds the gas in a coupled run (default no: a plane lets the gas through, as a distributor or a lid; a moving or removable plane cannot)", yesno, 2, 0, &gas, &gset));
+      PetscCheck(set || !gset || help, dem->comm, PETSC_ERR_ARG_WRONG, "%s given without %s", optv, opt);
+      if (set && gset) dem->walls.wall[dem->walls.nwall - 1].fluid = (int)gas;
+    }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -109,7 +109,8 @@ PetscErrorCode CoupledRunDestroy(CoupledRun *r)
 }
 
 /* The column along gravity: its axis (the largest component of g; z when there is none), the
- * sign of g along it, and the cross-section area normal to it (m^2). */
+ * sign of g along it, and the cross-section area normal to it (m^2; in a vessel that cuts the
+ * grid its open area at the column's bottom face, CplGetOpenArea). */
 typedef struct {
   int       d;
   PetscReal down, area;
@@ -469,6 +470,11 @@ static PetscErrorCode CoupledSetUp(Coupled *c)
     PetscCall(CplSetRestarting(c->cpl, PETSC_TRUE)); /* the fluid is the checkpoint's: no -cpl_init_fluid */
   }
   PetscCall(DemSetUp(c->dem));
+  { /* the vessel: the walls that bound the gas, one line each; the fluid's level function */
+    PetscBool vessel;
+    PetscCall(DemVesselSetUp(c->dem, &vessel));
+    if (vessel) PetscCall(FluidSetVessel(c->fl, DemVesselLevel, c->dem));
+  }
   PetscCall(BalanceDecompose(c->lb)); /* the process grid and cuts from the particles, before the fluid's layout */
   PetscCall(DemSetRestart(c->dem, NULL));
   PetscCall(FluidSetCheckpointing(c->fl, PETSC_TRUE)); /* also a stop signal writes a checkpoint */
@@ -519,6 +525,7 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
     PetscCall(CoupledSetUp(&c));
     PetscCall(DemGetGravity(dem, g));
     c.col = ColumnFromGravity(dom, g);
+    PetscCall(CplGetOpenArea(c.cpl, c.col.d, c.col.down < 0 ? dom->lo[c.col.d] : dom->hi[c.col.d], &c.col.area)); /* a vessel's cross-section at the column's bottom */
     PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(CplView(c.cpl, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(CoupledBedStart(&c));
