@@ -54,7 +54,8 @@ PetscErrorCode DriverCkptReadRun(DriverCkpt *c, Io io, Mon mon, IoCkpt ck);
 /* The monitor file's contents, shared by both drivers (monitor.c): -mon_interval, -mon_file
  * (io/monitor.c), -mon_box_<k>, -mon_surface_<k> (-mon_surface_dz, -mon_surface_fraction),
  * -mon_flux_<k> (-mon_flux_width), and for coupled runs -mon_probe_<k>, -mon_dp_<k>,
- * -mon_line_<k>, -mon_plane_<k> (-mon_average_fields), any number of each. */
+ * -mon_line_<k>, -mon_plane_<k> (-mon_average_fields), any number of each; a coupled run
+ * reports every fluid patch (-fluid_patch_<k>_type) too. */
 typedef struct {
   PetscInt  k;            /* the option's index */
   PetscReal lo[3], hi[3]; /* a box, a segment's ends, a plane's rectangle (flat along axis), a probe (lo) */
@@ -74,6 +75,7 @@ typedef struct {
   PetscReal       *row;
   PetscLogDouble   wall0, wall_last;
   PetscInt         step_last;
+  PetscInt         npatch, *patch; /* the fluid's patches -fluid_patch_<k>_type: their indices k, sorted */
 } DriverMon;
 /* What a row is made of: the time and step counter, the DEM, and for a coupled run the fluid and
  * the last coupling step's statistics (NULL before the first). */

@@ -64,13 +64,13 @@ PetscErrorCode FluidGetBC(Fluid fl, int d, int side, FluidBCType *type)
 /* The inlet's normal face value U_n / eps_f in the column of tangential indices q (q[d] unused),
  * eps the ghosted cell porosity; columns beyond the cell ghosts (the face DMDA's extra ghost
  * point) take the last ghost cell's. */
-static inline PetscScalar fluid_inlet_normal(const FluidGrid *g, const FluidBC *bc, const PetscScalar *eps, int d, int s, const PetscInt q[3])
+static inline PetscScalar fluid_inlet_normal(const FluidGrid *g, PetscReal vn, const PetscScalar *eps, int d, int s, const PetscInt q[3])
 {
   PetscInt r[3];
   for (int e = 0; e < 3; e++) r[e] = PetscMin(PetscMax(q[e], g->gcs[e]), g->gcs[e] + g->gcm[e] - 1);
   r[d]             = s ? g->N[d] - 1 : 0;
   const PetscInt c = FluidCellOff(g, r[0], r[1], r[2]);
-  return bc->vel[d] / (0.5 * (eps[c] + eps[c + (s ? 1 : -1) * g->cs[d]]));
+  return vn / (0.5 * (eps[c] + eps[c + (s ? 1 : -1) * g->cs[d]]));
 }
 
 /* Fills the ghosts of one non-periodic face of the local face array. */
@@ -87,12 +87,16 @@ static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, const PetscScalar *e
       PetscInt q[3]     = {idx[0], idx[1], idx[2]};
       q[d]              = bnd;
       const PetscInt f0 = FluidFaceOff(g, q[0], q[1], q[2]), st = g->fs[d];
+      /* a patch's point: its condition, its normal velocity, no tangential inflow */
+      const PetscInt    pt   = bc->pkind ? fluid_face_point(fl, d, q) : 0;
+      const FluidBCType type = bc->pkind && bc->pkind[pt] ? (FluidBCType)bc->pkind[pt] : bc->type;
+      const PetscReal  *vel  = bc->pkind && bc->pkind[pt] ? (const PetscReal[3]){0, 0, 0} : bc->vel;
       /* normal component: boundary face value, then ghost faces bnd + sg*m */
-      if (bc->type == FLUID_BC_WALL || bc->type == FLUID_BC_SLIP) u[f0 + d] = 0;
-      if (bc->type == FLUID_BC_INLET) u[f0 + d] = fluid_inlet_normal(g, bc, eps, d, s, q);
+      if (type == FLUID_BC_WALL || type == FLUID_BC_SLIP) u[f0 + d] = 0;
+      if (type == FLUID_BC_INLET) u[f0 + d] = fluid_inlet_normal(g, bc->pkind && bc->pkind[pt] ? bc->pvn[pt] : bc->vel[d], eps, d, s, q);
       for (PetscInt m = 1; m <= 2; m++) {
         PetscScalar *gh = &u[f0 + sg * m * st + d], in = u[f0 - sg * m * st + d];
-        switch (bc->type) {
+        switch (type) {
         case FLUID_BC_INLET:
           *gh = u[f0 + d];
           break;
@@ -110,12 +114,12 @@ static void FluidFillVelocityFace(Fluid fl, PetscScalar *u, const PetscScalar *e
         if (c == d) continue;
         for (PetscInt m = 0; m <= 1; m++) {
           PetscScalar in = u[c0 - sg * m * st + c], *gh = &u[c0 + sg * (m + 1) * st + c];
-          switch (bc->type) {
+          switch (type) {
           case FLUID_BC_WALL:
             *gh = -in;
             break;
           case FLUID_BC_INLET:
-            *gh = 2 * bc->vel[c] - in;
+            *gh = 2 * vel[c] - in;
             break;
           default:
             *gh = in;
@@ -168,7 +172,7 @@ PetscErrorCode FluidInletsEndStep(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *v, PetscBool odd_at_outlet, PetscReal outlet_value)
+PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *v, PetscInt ghost, PetscReal outlet_value)
 {
   const FluidGrid *g = &fl->g;
 
@@ -178,7 +182,8 @@ PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *v, PetscBool odd_at_ou
     if (FluidPeriodic(fl, d)) continue;
     for (int s = 0; s < 2; s++) {
       const PetscInt  sg = s ? 1 : -1, first = s ? g->N[d] - 1 : 0;
-      const PetscBool odd = (PetscBool)(odd_at_outlet && fl->bc.face[d][s].type == FLUID_BC_OUTLET);
+      const FluidBC  *bc  = &fl->bc.face[d][s];
+      const PetscBool odd = (PetscBool)(ghost != FLUID_GHOST_EVEN && bc->type == FLUID_BC_OUTLET);
       PetscInt        idx[3];
       if (s == 0 && g->xs[d] != 0) continue;
       if (s == 1 && g->xs[d] + g->xm[d] != g->N[d]) continue;
@@ -187,9 +192,16 @@ PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *v, PetscBool odd_at_ou
           PetscInt q[3]     = {idx[0], idx[1], idx[2]};
           q[d]              = first;
           const PetscInt c0 = FluidCellOff(g, q[0], q[1], q[2]), st = g->cs[d];
+          PetscBool      o  = odd;
+          PetscReal      ov = outlet_value;
+          if (bc->pkind && ghost != FLUID_GHOST_EVEN) { /* a patch's point: odd at its outlets only, about its own pressure */
+            const PetscInt pt = fluid_face_point(fl, d, q);
+            if (bc->pkind[pt]) o = (PetscBool)(bc->pkind[pt] == FLUID_BC_OUTLET);
+            if (bc->pkind[pt] == FLUID_BC_OUTLET && ghost == FLUID_GHOST_PRESSURE) ov = bc->pp[pt];
+          }
           for (PetscInt m = 0; m <= 1; m++) {
             PetscScalar in            = v[c0 - sg * m * st];
-            v[c0 + sg * (m + 1) * st] = odd ? 2 * outlet_value - in : in;
+            v[c0 + sg * (m + 1) * st] = o ? 2 * ov - in : in;
           }
         }
     }
@@ -214,14 +226,14 @@ PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc, Vec epsloc)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FluidLocalCell(Fluid fl, Vec v, Vec vloc, PetscBool odd_at_outlet, PetscReal outlet_value)
+PetscErrorCode FluidLocalCell(Fluid fl, Vec v, Vec vloc, PetscInt ghost, PetscReal outlet_value)
 {
   PetscScalar *a;
 
   PetscFunctionBeginUser;
   PetscCall(DMGlobalToLocal(fl->g.cda, v, INSERT_VALUES, vloc));
   PetscCall(VecGetArray(vloc, &a));
-  PetscCall(FluidFillCellGhosts(fl, a, odd_at_outlet, outlet_value));
+  PetscCall(FluidFillCellGhosts(fl, a, ghost, outlet_value));
   PetscCall(VecRestoreArray(vloc, &a));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -264,12 +276,19 @@ PetscErrorCode FluidInletFaceValues(Fluid fl, Vec u)
   PetscCall(DMDAVecGetArrayDOF(fl->g.fda, u, &a));
   for (int d = 0; d < 3; d++)
     for (int s = 0; s < 2; s++) {
-      const int a1 = (d + 1) % 3, b1 = (d + 2) % 3;
-      PetscInt  q[3];
-      if (fl->bc.face[d][s].type != FLUID_BC_INLET || (s ? g->xs[d] + g->xm[d] != g->N[d] : g->xs[d] != 0)) continue;
+      const int      a1 = (d + 1) % 3, b1 = (d + 2) % 3;
+      PetscInt       q[3];
+      const FluidBC *bc = &fl->bc.face[d][s];
+      if ((bc->type != FLUID_BC_INLET && !bc->pkind) || (s ? g->xs[d] + g->xm[d] != g->N[d] : g->xs[d] != 0)) continue;
       q[d] = s ? g->N[d] : 0;
       for (q[b1] = g->xs[b1]; q[b1] < g->xs[b1] + g->fxm[b1]; q[b1]++)
-        for (q[a1] = g->xs[a1]; q[a1] < g->xs[a1] + g->fxm[a1]; q[a1]++) a[q[2]][q[1]][q[0]][d] = (fl->ves.aloc && fl->ves.aloc[FluidFaceOff(g, q[0], q[1], q[2]) + d] == 0) ? 0 : fluid_inlet_normal(g, &fl->bc.face[d][s], eps, d, s, q);
+        for (q[a1] = g->xs[a1]; q[a1] < g->xs[a1] + g->fxm[a1]; q[a1]++) {
+          const PetscBool closed = (PetscBool)(fl->ves.aloc && fl->ves.aloc[FluidFaceOff(g, q[0], q[1], q[2]) + d] == 0);
+          if (!bc->pkind) a[q[2]][q[1]][q[0]][d] = closed ? 0 : fluid_inlet_normal(g, bc->vel[d], eps, d, s, q);
+          else if (FluidFaceActive(fl, d, q) || q[a1] == g->N[a1] || q[b1] == g->N[b1]) continue; /* outlets, the unused extra points */
+          else if (!closed && fluid_bc_at(fl, d, s, q) == FLUID_BC_INLET) a[q[2]][q[1]][q[0]][d] = fluid_inlet_normal(g, bc->pkind[fluid_face_point(fl, d, q)] ? bc->pvn[fluid_face_point(fl, d, q)] : bc->vel[d], eps, d, s, q);
+          else a[q[2]][q[1]][q[0]][d] = 0;
+        }
     }
   PetscCall(DMDAVecRestoreArrayDOF(fl->g.fda, u, &a));
   PetscCall(VecRestoreArrayRead(fl->fld.epsoldloc, &eps));

@@ -81,6 +81,8 @@ PetscErrorCode FluidSetFromOptions(Fluid fl)
   PetscCall(FluidSetFromOptionsBC(fl));
   PetscCall(FluidSetFromOptionsInlet(fl));
   PetscCall(FluidSetFromOptionsVessel(fl));
+  PetscCall(FluidSetFromOptionsPatch(fl));
+  PetscCall(FluidSetFromOptionsDistributor(fl));
   PetscCall(KSPDestroy(&fl->pois.ksp));
   PetscCall(KSPDestroy(&fl->vimp.ksp));
   PetscCall(FluidPoissonCreateKSP(fl));
@@ -191,6 +193,7 @@ PetscErrorCode FluidSetUp(Fluid fl)
   }
   PetscCall(FluidCreateLocals(fl));
   PetscCall(FluidVesselSetUp(fl));
+  PetscCall(FluidSetUpPatches(fl));
   PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
   PetscCheck(fl->pois.ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
   PetscCall(FluidPoissonSetUp(fl));
@@ -214,6 +217,8 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
   PetscCall(DMDestroy(&fl->g.cda));
   PetscCall(DMDestroy(&fl->g.fda));
   PetscCall(PetscFree(fl->mom.advbuf));
+  PetscCall(FluidDestroyPatches(fl));
+  PetscCall(VecDestroy(&fl->plate.beff));
   PetscCall(PetscFree(*fluid));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -316,7 +321,7 @@ PetscErrorCode FluidGetLocalFields(Fluid fl, Vec *uloc, Vec *ploc)
     *uloc = fl->fld.uloc;
   }
   if (ploc) {
-    PetscCall(FluidLocalCell(fl, fl->fld.p, fl->fld.ploc, PETSC_TRUE, fl->bc.p_out));
+    PetscCall(FluidLocalCell(fl, fl->fld.p, fl->fld.ploc, FLUID_GHOST_PRESSURE, fl->bc.p_out));
     *ploc = fl->fld.ploc;
   }
   PetscFunctionReturn(PETSC_SUCCESS);

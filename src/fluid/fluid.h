@@ -146,7 +146,8 @@ PetscErrorCode FluidGetPressure(Fluid fluid, Vec *p);
  * valid until the next FluidStep. */
 PetscErrorCode FluidGetLocalFields(Fluid fluid, Vec *uloc, Vec *ploc);
 /* Collective (probe.c). The pressure at point x (m), trilinear between the cell centres around
- * it; within half a cell of a non-periodic boundary, the nearest centre row's value (Pa). */
+ * it; within half a cell of a non-periodic boundary extrapolated along its normal from the two
+ * nearest centre rows (on the face 1.5 p1 - 0.5 p2, exact for a linear pressure) (Pa). */
 PetscErrorCode FluidProbePressure(Fluid fluid, const PetscReal x[3], PetscReal *p);
 /* A segment a -> b (line), or an axis-aligned box [a, b] flat along some axes (a rectangle: flat
  * along its normal), in m; name (the option that gave it) labels the error of one that leaves
@@ -158,8 +159,9 @@ typedef struct {
 } FluidSpan;
 /* Collective (probe.c). For each of the n spans, the average over it of the interpolant of
  * FluidProbePressure applied to the cell-centred pressure (Pa), porosity (-) and interstitial
- * velocity (3 components, m/s; 0 unless velocity): avg[5 s + 0..4]. Exact (no sampling), the
- * same bits on any rank count. */
+ * velocity (3 components, m/s; 0 unless velocity; these two take the nearest centre row near a
+ * bounded side, not the extrapolation): avg[5 s + 0..4]. Exact (no sampling), the same bits on
+ * any rank count. */
 PetscErrorCode FluidAverageFields(Fluid fluid, PetscInt n, const FluidSpan *spans, PetscBool velocity, PetscReal *avg);
 /* Collective. Call after changing the velocity Vec by hand (initial conditions): applies the
  * boundary values to the boundary faces. */
@@ -193,3 +195,11 @@ PetscErrorCode FluidInitPorosity(Fluid fluid);
  * on domain faces). For a scalar such as beta pass the same Vec three times. Cell Vecs are
  * global Vecs of the cell DMDA (or of the domain's DMDA: same layout). */
 PetscErrorCode FluidCellsToFaces(Fluid fluid, Vec cell[3], Vec face);
+
+/* Inlet and outlet patches -fluid_patch_<k>_* (patch.c; src/fluid/README.md, "Patches"). Not
+ * collective: how many. Collective: patch i's option index k, its mean pressure (Pa; on a box
+ * face the face pressure, extrapolated to the face, the set pressure on outlet faces) and its
+ * mass flow (kg/s) measured from the face fluxes rho eps_f u A: into the domain at an inlet, out
+ * of it at an outlet; a source inside the domain: rho sum S_c V_c. */
+PetscErrorCode FluidGetPatchCount(Fluid fluid, PetscInt *n);
+PetscErrorCode FluidPatchMeasure(Fluid fluid, PetscInt i, PetscInt *k, PetscReal *p, PetscReal *mdot);

@@ -26,7 +26,28 @@ typedef struct {
   PetscInt    ntab;    /* rows of -fluid_bc_<face>_velocity_table: t, u, v, w (s, m/s) */
   PetscInt    row;     /* the last row reached (-1: none yet) */
   PetscReal   tab[4 * FLUID_INLET_TABLE_MAX];
+  /* patches on this face (patch.c; all NULL without one), per face point ia + N[a] ib of the
+   * face's tangential axes a = (d + 1) % 3, b = (d + 2) % 3: */
+  signed char *pkind; /* 0: the face's own condition; FLUID_BC_INLET or FLUID_BC_OUTLET: a patch's */
+  PetscReal   *pvn;   /* patch inlet: superficial velocity along +axis d (m/s) */
+  PetscReal   *pp;    /* patch outlet: pressure (Pa) */
 } FluidBC;
+
+/* How FluidFillCellGhosts mirrors a cell field at outlet faces: even (eps), odd about the outlet
+ * pressure (p; a patch outlet's own pressure), odd about 0 at every outlet (the increment phi). */
+#define FLUID_GHOST_EVEN      0
+#define FLUID_GHOST_PRESSURE  1
+#define FLUID_GHOST_INCREMENT 2
+
+typedef struct _FluidPatches FluidPatches; /* patch.c */
+
+/* -fluid_distributor (distributor.c): a perforated plate on the z-faces of layer k0. */
+typedef struct {
+  PetscBool on;
+  PetscInt  k0;      /* z-face layer of the plate */
+  PetscReal phi, cd; /* open-area fraction, orifice discharge coefficient */
+  Vec       beff;    /* beta + the plate's linearised resistance (face Vec) */
+} FluidPlate;
 
 /* Geometry of the ghosted local arrays of this rank, and the two DMDAs they come from. */
 typedef struct {
@@ -162,6 +183,8 @@ struct _p_Fluid {
   FluidVessel          ves;
   PetscBool            setup; /* FluidSetUp done */
   PetscBool            ckpt;  /* FluidSetCheckpointing */
+  FluidPatches        *patch; /* -fluid_patch_<k> (patch.c; NULL without) */
+  FluidPlate           plate; /* -fluid_distributor (distributor.c) */
 };
 
 static inline PetscInt FluidCellOff(const FluidGrid *g, PetscInt i, PetscInt j, PetscInt k)
@@ -177,6 +200,32 @@ static inline PetscBool FluidPeriodic(Fluid fl, int d)
   return fl->bc.face[d][0].type == FLUID_BC_PERIODIC;
 }
 
+/* The point of a face map (FluidBC.pkind) of the normal face of axis d at tangential indices
+ * q: ghost indices wrap along a periodic axis and clamp to the face along a bounded one. */
+static inline PetscInt fluid_face_point(Fluid fl, int d, const PetscInt q[3])
+{
+  const int a = (d + 1) % 3, b = (d + 2) % 3;
+  PetscInt  r[2] = {q[a], q[b]};
+  for (int e = 0; e < 2; e++) {
+    const int      ax = e ? b : a;
+    const PetscInt n  = fl->g.N[ax];
+    if (FluidPeriodic(fl, ax)) r[e] = ((r[e] % n) + n) % n;
+    else r[e] = PetscMin(PetscMax(r[e], 0), n - 1);
+  }
+  return r[0] + fl->g.N[a] * r[1];
+}
+
+/* The condition at the boundary face point q of side s of axis d: a patch's, else the face's. */
+static inline FluidBCType fluid_bc_at(Fluid fl, int d, int s, const PetscInt q[3])
+{
+  const FluidBC *bc = &fl->bc.face[d][s];
+  if (bc->pkind) {
+    const signed char k = bc->pkind[fluid_face_point(fl, d, q)];
+    if (k) return (FluidBCType)k;
+  }
+  return bc->type;
+}
+
 /* Whether component d at face point idx is an unknown of the momentum equation by the box: not
  * a wall or inlet face (fixed), not the unused extra point of a tangential component. */
 static inline PetscBool FluidFaceActiveBox(Fluid fl, int d, const PetscInt idx[3])
@@ -186,8 +235,8 @@ static inline PetscBool FluidFaceActiveBox(Fluid fl, int d, const PetscInt idx[3
     if (e != d && idx[e] == fl->g.N[e]) return PETSC_FALSE;
   }
   if (FluidPeriodic(fl, d)) return PETSC_TRUE;
-  if (idx[d] == 0) return fl->bc.face[d][0].type == FLUID_BC_OUTLET;
-  if (idx[d] == fl->g.N[d]) return fl->bc.face[d][1].type == FLUID_BC_OUTLET;
+  if (idx[d] == 0) return fluid_bc_at(fl, d, 0, idx) == FLUID_BC_OUTLET;
+  if (idx[d] == fl->g.N[d]) return fluid_bc_at(fl, d, 1, idx) == FLUID_BC_OUTLET;
   return PETSC_TRUE;
 }
 
@@ -216,6 +265,25 @@ static inline PetscScalar fluid_mass_divergence(const FluidGrid *g, const PetscS
   PetscScalar s = 0;
   for (int d = 0; d < 3; d++) s += (0.5 * (eps[c] + eps[c + g->cs[d]]) * u[f + g->fs[d] + d] - 0.5 * (eps[c] + eps[c - g->cs[d]]) * u[f + d]) / g->h[d];
   return s;
+}
+
+/* inlet.c's tables (also the patches'): the velocity of one face at time t and the last row reached (-1: none); rows within 1e-9
+ * (relative) of t count as reached, so a clock that accumulated rounding still switches on the
+ * step that ends at a row's time. */
+static inline PetscInt fluid_inlet_at(const FluidBC *bc, PetscBool linear, PetscReal t, PetscReal v[3])
+{
+  const PetscReal tr = t + 1e-9 * PetscMax(1.0, PetscAbsReal(t));
+  PetscInt        r  = -1;
+
+  for (int k = 0; k < 3; k++) v[k] = bc->vel0[k];
+  while (r + 1 < bc->ntab && bc->tab[4 * (r + 1)] <= tr) r++;
+  if (r < 0) return r;
+  for (int k = 0; k < 3; k++) v[k] = bc->tab[4 * r + 1 + k];
+  if (linear && r + 1 < bc->ntab) {
+    const PetscReal *a = &bc->tab[4 * r], *b = a + 4, w = PetscMax(0.0, (t - a[0]) / (b[0] - a[0]));
+    for (int k = 0; k < 3; k++) v[k] = (1 - w) * a[1 + k] + w * b[1 + k];
+  }
+  return r;
 }
 
 /* FAVOR: sum_d [a_f eps_f u]^+_- / h_d in the cell at local offsets (f, c), a the ghosted
@@ -249,13 +317,27 @@ PetscErrorCode FluidFillVelocityGhosts(Fluid fl, PetscScalar *u, const PetscScal
 PetscErrorCode FluidLocalPorosityOld(Fluid fl, PetscBool force);
 PetscErrorCode FluidInletsEndStep(Fluid fl);
 PetscErrorCode FluidInletFaceValues(Fluid fl, Vec u);
-PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *a, PetscBool odd_at_outlet, PetscReal outlet_value);
+PetscErrorCode FluidFillCellGhosts(Fluid fl, PetscScalar *a, PetscInt ghost, PetscReal outlet_value);
 PetscErrorCode FluidBoundaryFaceValues(Fluid fl, Vec u);
 PetscErrorCode FluidLocalVelocity(Fluid fl, Vec u, Vec uloc, Vec epsloc);
-PetscErrorCode FluidLocalCell(Fluid fl, Vec a, Vec aloc, PetscBool odd_at_outlet, PetscReal outlet_value);
+PetscErrorCode FluidLocalCell(Fluid fl, Vec a, Vec aloc, PetscInt ghost, PetscReal outlet_value);
 /* inlet.c: time tables of inlet velocities */
 PetscErrorCode FluidSetFromOptionsInlet(Fluid fl);
 PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed);
+/* patch.c: inlet and outlet patches, volume sources */
+PetscErrorCode FluidSetFromOptionsPatch(Fluid fl);
+PetscErrorCode FluidSetUpPatches(Fluid fl);
+PetscErrorCode FluidUpdatePatches(Fluid fl, PetscReal t, PetscBool *changed);
+PetscErrorCode FluidPatchSource(Fluid fl, Vec *src);
+PetscErrorCode FluidDestroyPatches(Fluid fl);
+PetscErrorCode FluidPatchesRelayout(Fluid fl);
+/* distributor.c: the perforated plate */
+PetscErrorCode    FluidSetFromOptionsDistributor(Fluid fl);
+PetscErrorCode    FluidDistributorUpdate(Fluid fl);
+static inline Vec FluidBetaOfSolve(Fluid fl)
+{
+  return fl->plate.on ? fl->plate.beff : fl->fld.beta;
+}
 /* momentum.c: explicit terms per unit volume at the active faces of the owned points */
 PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out);
 PetscErrorCode FluidViscousTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscBool transpose_only, PetscScalar *out);

@@ -60,25 +60,6 @@ PetscErrorCode FluidSetFromOptionsInlet(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The velocity of one face at time t and the last row reached (-1: none); rows within 1e-9
- * (relative) of t count as reached, so a clock that accumulated rounding still switches on the
- * step that ends at a row's time. */
-static inline PetscInt fluid_inlet_at(const FluidBC *bc, PetscBool linear, PetscReal t, PetscReal v[3])
-{
-  const PetscReal tr = t + 1e-9 * PetscMax(1.0, PetscAbsReal(t));
-  PetscInt        r  = -1;
-
-  for (int k = 0; k < 3; k++) v[k] = bc->vel0[k];
-  while (r + 1 < bc->ntab && bc->tab[4 * (r + 1)] <= tr) r++;
-  if (r < 0) return r;
-  for (int k = 0; k < 3; k++) v[k] = bc->tab[4 * r + 1 + k];
-  if (linear && r + 1 < bc->ntab) {
-    const PetscReal *a = &bc->tab[4 * r], *b = a + 4, w = PetscMax(0.0, (t - a[0]) / (b[0] - a[0]));
-    for (int k = 0; k < 3; k++) v[k] = (1 - w) * a[1 + k] + w * b[1 + k];
-  }
-  return r;
-}
-
 /* Collective. Once, at the first step of a run (fresh or restarted): the row each table is at
  * at the fluid's time, as "reaches row r ... at t = ..." when the row's time is the start's, else
  * as a row reached earlier (a restart, or a run started after a row's time). */
@@ -128,6 +109,7 @@ PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed_out)
         bc->vel[k] = v[k];
       }
     }
+  if (fl->patch) PetscCall(FluidUpdatePatches(fl, t, &changed));
   if (changed && fl->setup) {
     PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
     fl->vimp.dt_mat = -1; /* the implicit viscous right-hand side holds the inlet values (a ramp rebuilds it every step) */

@@ -243,6 +243,9 @@ static PetscErrorCode FluidPoissonRHS(Fluid fl, PetscReal dt, const PetscScalar 
     b[o] = -(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt);
   }
   PetscCall(VecRestoreArray(fl->pois.rhs, &b));
+  Vec src;
+  PetscCall(FluidPatchSource(fl, &src)); /* patches' volume sources S: div(eps_f u) + deps/dt = S */
+  if (src) PetscCall(VecAXPY(fl->pois.rhs, 1.0, src));
   if (fl->pois.nsp) PetscCall(MatNullSpaceRemove(fl->pois.nsp, fl->pois.rhs));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -256,7 +259,7 @@ static PetscErrorCode FluidCorrect(Fluid fl, const PetscScalar *eps)
   PetscInt           idx[3], f, c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(FluidLocalCell(fl, fl->pois.phi, fl->pois.philoc, PETSC_TRUE, 0.0));
+  PetscCall(FluidLocalCell(fl, fl->pois.phi, fl->pois.philoc, FLUID_GHOST_INCREMENT, 0.0));
   PetscCall(VecGetArrayRead(fl->mom.uhat, &uh));
   PetscCall(VecGetArrayRead(fl->pois.coef, &cf));
   PetscCall(VecGetArrayRead(fl->pois.philoc, &phi));
@@ -307,9 +310,9 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
   PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
   PetscCall(VecGetArrayRead(fl->fld.epsoldloc, &eps0));
   PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps, &se));
-  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &sb));
+  PetscCall(PetscObjectStateGet((PetscObject)FluidBetaOfSolve(fl), &sb));
   if (se != fl->pois.eps_state || sb != fl->pois.beta_state || dt != fl->pois.dt_mat) {
-    PetscCall(FluidPoissonAssemble(fl, dt, eps, fl->fld.beta));
+    PetscCall(FluidPoissonAssemble(fl, dt, eps, FluidBetaOfSolve(fl)));
     fl->pois.eps_state  = se;
     fl->pois.beta_state = sb;
     fl->pois.dt_mat     = dt;
@@ -387,19 +390,24 @@ PetscErrorCode FluidDivergenceMax(Fluid fl, PetscReal dt, PetscReal *dmax)
   const PetscScalar *u, *eps, *eps0;
   PetscInt           idx[3], c, o;
   PetscReal          m = 0;
+  const PetscScalar *S = NULL;
+  Vec                src;
 
   PetscFunctionBeginUser;
+  PetscCall(FluidPatchSource(fl, &src));
+  if (src) PetscCall(VecGetArrayRead(src, &S));
   PetscCall(FluidLocalVelocity(fl, fl->fld.u, fl->fld.uloc, fl->fld.epsloc));
   PetscCall(VecGetArrayRead(fl->fld.uloc, &u));
   PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
   PetscCall(VecGetArrayRead(fl->fld.epsoldloc, &eps0));
   if (fl->ves.cut) {
     FLUID_FOR_OWNED_CELLS(g, idx, c, o)
-    if (!FluidCellClosed(fl, idx)) m = PetscMax(m, PetscAbsScalar(fluid_mass_divergence_favor(g, u, eps, fl->ves.aloc, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + fl->ves.vloc[c] * (eps[c] - eps0[c]) / dt));
+    if (!FluidCellClosed(fl, idx)) m = PetscMax(m, PetscAbsScalar(fluid_mass_divergence_favor(g, u, eps, fl->ves.aloc, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + fl->ves.vloc[c] * (eps[c] - eps0[c]) / dt - (S ? S[o] : 0)));
   } else {
     FLUID_FOR_OWNED_CELLS(g, idx, c, o)
-    m = PetscMax(m, PetscAbsScalar(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt));
+    m = PetscMax(m, PetscAbsScalar(fluid_mass_divergence(g, u, eps, FluidFaceOff(g, idx[0], idx[1], idx[2]), c) + (eps[c] - eps0[c]) / dt - (S ? S[o] : 0)));
   }
+  if (src) PetscCall(VecRestoreArrayRead(src, &S));
   PetscCall(VecRestoreArrayRead(fl->fld.epsoldloc, &eps0));
   PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
   PetscCall(VecRestoreArrayRead(fl->fld.uloc, &u));

@@ -1,7 +1,8 @@
 /* Probes of the fluid: the cell-centred pressure at a point x by trilinear interpolation
- * between the eight cell centres around it. Along a wall, inlet or outlet axis a point within
- * half a cell of the boundary takes the value of the nearest centre row (no extrapolation);
- * along a periodic axis the centres wrap. The rank that owns the cell holding x interpolates from
+ * between the eight cell centres around it. Along a wall, inlet or outlet axis the pressure at a
+ * point within half a cell of the boundary is extrapolated linearly from the two nearest centre
+ * rows (on the face itself 1.5 p1 - 0.5 p2: second order, exact for a linear pressure), the
+ * porosity and velocity take the nearest row's value; along a periodic axis the centres wrap. The rank that owns the cell holding x interpolates from
  * its ghosted copy (the DMDA's stencil is at least one cell wide); the others add 0.
  * Averages (FluidAverageFields) of the same interpolant f of the cell-centred pressure, porosity
  * and velocity (the frames' fields), exact, with no sampling parameter:
@@ -17,8 +18,10 @@
  * in a fixed order: the averages are bitwise the same on any rank count. */
 #include "fluid/fluid_impl.h"
 
-/* Lower centre index and weight of the upper one along axis d for coordinate x. */
-static void FluidProbeAxis(const Fluid fl, int d, PetscReal x, PetscInt *i0, PetscReal *w)
+/* Lower centre index and weight of the upper one along axis d for coordinate x; beyond the end
+ * centres of a bounded axis the nearest one (w = 0), or with extrapolate the line through the
+ * two last (w < 0 or > 1). */
+static void FluidProbeAxisX(const Fluid fl, int d, PetscReal x, PetscBool extrapolate, PetscInt *i0, PetscReal *w)
 {
   const PetscInt  n = fl->g.N[d];
   const PetscReal s = (x - fl->g.lo[d]) / fl->g.h[d] - 0.5; /* in centre units */
@@ -26,7 +29,10 @@ static void FluidProbeAxis(const Fluid fl, int d, PetscReal x, PetscInt *i0, Pet
 
   *w = s - (PetscReal)i;
   if (!fl->dom->periodic[d]) {
-    if (i < 0) *i0 = 0, *w = 0;
+    if (extrapolate && n >= 2 && (i < 0 || i >= n - 1)) {
+      *i0 = i < 0 ? 0 : n - 2;
+      *w  = s - (PetscReal)*i0;
+    } else if (i < 0) *i0 = 0, *w = 0;
     else if (i >= n - 1) *i0 = n - 1, *w = 0;
     else *i0 = i;
   } else *i0 = i; /* the ghosts hold i = -1 and i = n */
@@ -44,7 +50,7 @@ PetscErrorCode FluidProbePressure(Fluid fl, const PetscReal x[3], PetscReal *p)
     PetscCheck(x[d] >= fl->dom->lo[d] && x[d] <= fl->dom->hi[d], fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "probe (%g, %g, %g) lies outside the domain (m)", (double)x[0], (double)x[1], (double)x[2]);
     own[d] = PetscMin((PetscInt)PetscFloorReal((x[d] - fl->g.lo[d]) / fl->g.h[d]), fl->g.N[d] - 1);
     mine   = (PetscBool)(mine && own[d] >= fl->g.xs[d] && own[d] < fl->g.xs[d] + fl->g.xm[d]);
-    FluidProbeAxis(fl, d, x[d], &i0[d], &w[d]);
+    FluidProbeAxisX(fl, d, x[d], PETSC_TRUE, &i0[d], &w[d]); /* the owner holds both rows: >= 2 cells per rank */
   }
   PetscCall(DMGetLocalVector(fl->g.cda, &loc));
   PetscCall(DMGlobalToLocal(fl->g.cda, fl->fld.p, INSERT_VALUES, loc));
@@ -85,17 +91,18 @@ typedef struct {
   const PetscReal   *vel; /* NULL: not asked for */
 } FluidCellFields;
 
-static inline void FluidCellValues(const FluidCellFields *f, PetscInt o, PetscReal w, PetscReal *out)
+static inline void FluidCellValues(const FluidCellFields *f, PetscInt o, PetscReal wp, PetscReal w, PetscReal *out)
 {
-  out[0] = w * PetscRealPart(f->p[o]);
-  out[1] = w * PetscRealPart(f->eps[o]);
-  for (int d = 0; d < 3; d++) out[2 + d] = f->vel ? w * f->vel[3 * o + d] : 0;
+  out[0] += wp * PetscRealPart(f->p[o]);
+  if (w == 0) return;
+  out[1] += w * PetscRealPart(f->eps[o]);
+  for (int d = 0; d < 3; d++) out[2 + d] += f->vel ? w * f->vel[3 * o + d] : 0;
 }
 
 /* Weights W[0..N-1] of the cell centres along axis d whose sum with the centres' values is the
  * average over [a, b] of the piecewise-linear interpolant (clamped to the end centres along a
  * non-periodic axis, wrapped along a periodic one); a point when a == b. */
-static void FluidAxisWeights(const Fluid fl, int d, PetscReal a, PetscReal b, PetscReal *W)
+static void FluidAxisWeights(const Fluid fl, int d, PetscReal a, PetscReal b, PetscBool extrapolate, PetscReal *W)
 {
   const PetscInt  n  = fl->g.N[d];
   const PetscReal sa = (a - fl->g.lo[d]) / fl->g.h[d] - 0.5, sb = (b - fl->g.lo[d]) / fl->g.h[d] - 0.5;
@@ -104,7 +111,7 @@ static void FluidAxisWeights(const Fluid fl, int d, PetscReal a, PetscReal b, Pe
   if (b <= a) {
     PetscInt  i0;
     PetscReal w;
-    FluidProbeAxis(fl, d, a, &i0, &w);
+    FluidProbeAxisX(fl, d, a, extrapolate, &i0, &w);
     W[FluidWrapIndex(fl, d, i0)] += 1 - w;
     if (w != 0) W[FluidWrapIndex(fl, d, i0 + 1)] += w;
     return;
@@ -112,7 +119,12 @@ static void FluidAxisWeights(const Fluid fl, int d, PetscReal a, PetscReal b, Pe
   for (PetscInt i = (PetscInt)PetscFloorReal(sa); i < sb; i++) {
     const PetscReal u = PetscMax(sa, (PetscReal)i) - i, v = PetscMin(sb, (PetscReal)(i + 1)) - i; /* the piece, relative to centre i */
     const PetscReal up = 0.5 * (v * v - u * u), len = v - u;                                      /* integrals of (s - i) and of 1 */
-    if (!fl->dom->periodic[d] && i < 0) W[0] += len;
+    if (extrapolate && !fl->dom->periodic[d] && n >= 2 && (i < 0 || i >= n - 1)) {                /* the line through the two last centres */
+      const PetscInt  ie = i < 0 ? 0 : n - 2;
+      const PetscReal ue = u + (i - ie), ve = v + (i - ie), upe = 0.5 * (ve * ve - ue * ue);
+      W[ie] += len - upe;
+      W[ie + 1] += upe;
+    } else if (!fl->dom->periodic[d] && i < 0) W[0] += len;
     else if (!fl->dom->periodic[d] && i >= n - 1) W[n - 1] += len;
     else {
       W[FluidWrapIndex(fl, d, i)] += len - up;
@@ -125,16 +137,18 @@ static void FluidAxisWeights(const Fluid fl, int d, PetscReal a, PetscReal b, Pe
 /* The average over a box (flat along some axes; cut to the domain) into avg[5]. */
 static PetscErrorCode FluidAverageBox(Fluid fl, const FluidSpan *sp, const FluidCellFields *f, PetscReal avg[5])
 {
-  PetscReal *W[3], *loc, *all;
+  PetscReal *W[3], *Wp[3], *loc, *all;
   PetscInt   lo[3], hi[3], m[3], nslot, c[3];
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc3(fl->g.N[0], &W[0], fl->g.N[1], &W[1], fl->g.N[2], &W[2]));
+  PetscCall(PetscMalloc3(fl->g.N[0], &Wp[0], fl->g.N[1], &Wp[1], fl->g.N[2], &Wp[2]));
   for (int d = 0; d < 3; d++) {
     const PetscReal a = sp->a[d] < sp->b[d] ? PetscMax(sp->a[d], fl->dom->lo[d]) : sp->a[d], b = sp->a[d] < sp->b[d] ? PetscMin(sp->b[d], fl->dom->hi[d]) : sp->b[d];
-    FluidAxisWeights(fl, d, a, b, W[d]);
-    for (lo[d] = 0; W[d][lo[d]] == 0; lo[d]++) { }
-    for (hi[d] = fl->g.N[d] - 1; W[d][hi[d]] == 0; hi[d]--) { }
+    FluidAxisWeights(fl, d, a, b, PETSC_FALSE, W[d]);
+    FluidAxisWeights(fl, d, a, b, PETSC_TRUE, Wp[d]); /* the pressure's */
+    for (lo[d] = 0; W[d][lo[d]] == 0 && Wp[d][lo[d]] == 0; lo[d]++) { }
+    for (hi[d] = fl->g.N[d] - 1; W[d][hi[d]] == 0 && Wp[d][hi[d]] == 0; hi[d]--) { }
     m[d] = hi[d] - lo[d] + 1;
   }
   nslot = m[0] * m[1] * m[2];
@@ -143,8 +157,8 @@ static PetscErrorCode FluidAverageBox(Fluid fl, const FluidSpan *sp, const Fluid
     for (c[1] = lo[1]; c[1] <= hi[1]; c[1]++)
       for (c[0] = lo[0]; c[0] <= hi[0]; c[0]++) {
         const PetscInt  o = FluidOwnedOffset(fl, c), slot = ((c[2] - lo[2]) * m[1] + (c[1] - lo[1])) * m[0] + (c[0] - lo[0]);
-        const PetscReal w = W[0][c[0]] * W[1][c[1]] * W[2][c[2]];
-        if (o >= 0 && w != 0) FluidCellValues(f, o, w, loc + 5 * slot);
+        const PetscReal w = W[0][c[0]] * W[1][c[1]] * W[2][c[2]], wp = Wp[0][c[0]] * Wp[1][c[1]] * Wp[2][c[2]];
+        if (o >= 0 && (w != 0 || wp != 0)) FluidCellValues(f, o, wp, w, loc + 5 * slot);
       }
   PetscCallMPI(MPI_Allreduce(loc, all, (PetscMPIInt)(5 * nslot), MPIU_REAL, MPI_SUM, fl->comm));
   for (int q = 0; q < 5; q++) avg[q] = 0;
@@ -152,6 +166,7 @@ static PetscErrorCode FluidAverageBox(Fluid fl, const FluidSpan *sp, const Fluid
     for (int q = 0; q < 5; q++) avg[q] += all[5 * k + q];
   PetscCall(PetscFree2(loc, all));
   PetscCall(PetscFree3(W[0], W[1], W[2]));
+  PetscCall(PetscFree3(Wp[0], Wp[1], Wp[2]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -177,27 +192,29 @@ static PetscErrorCode FluidAverageSegment(Fluid fl, const FluidSpan *sp, const F
   }
   PetscCall(PetscSortReal(nt, tau));
   npt = 2 * (nt - 1);
-  PetscCall(PetscCalloc2(8 * 5 * npt, &loc, 8 * 5 * npt, &all));
+  PetscCall(PetscCalloc2(16 * 5 * npt, &loc, 16 * 5 * npt, &all));
   for (PetscInt k = 0; k + 1 < nt; k++)
     for (int e = 0; e < 2; e++) {
       const PetscInt  q = 2 * k + e;
       const PetscReal t = 0.5 * (tau[k] + tau[k + 1]) + (e ? g : -g) * (tau[k + 1] - tau[k]), gw = 0.5 * (tau[k + 1] - tau[k]);
-      PetscInt        i0[3];
-      PetscReal       w[3];
-      for (int d = 0; d < 3; d++) FluidProbeAxis(fl, d, sp->a[d] + t * (sp->b[d] - sp->a[d]), &i0[d], &w[d]);
-      for (int c = 0; c < 8; c++) {
-        const int       b[3] = {c & 1, (c >> 1) & 1, (c >> 2) & 1};
-        const PetscReal wt   = gw * (b[0] ? w[0] : 1 - w[0]) * (b[1] ? w[1] : 1 - w[1]) * (b[2] ? w[2] : 1 - w[2]);
-        PetscInt        cell[3], o;
-        if (wt == 0) continue;
-        for (int d = 0; d < 3; d++) cell[d] = FluidWrapIndex(fl, d, i0[d] + b[d]);
-        o = FluidOwnedOffset(fl, cell);
-        if (o >= 0) FluidCellValues(f, o, wt, loc + 5 * (8 * q + c));
+      for (int x = 0; x < 2; x++) { /* the pressure's weights (extrapolated near a bounded side), then the others' */
+        PetscInt  i0[3];
+        PetscReal w[3];
+        for (int d = 0; d < 3; d++) FluidProbeAxisX(fl, d, sp->a[d] + t * (sp->b[d] - sp->a[d]), (PetscBool)(x == 0), &i0[d], &w[d]);
+        for (int c = 0; c < 8; c++) {
+          const int       b[3] = {c & 1, (c >> 1) & 1, (c >> 2) & 1};
+          const PetscReal wt   = gw * (b[0] ? w[0] : 1 - w[0]) * (b[1] ? w[1] : 1 - w[1]) * (b[2] ? w[2] : 1 - w[2]);
+          PetscInt        cell[3], o;
+          if (wt == 0) continue;
+          for (int d = 0; d < 3; d++) cell[d] = FluidWrapIndex(fl, d, i0[d] + b[d]);
+          o = FluidOwnedOffset(fl, cell);
+          if (o >= 0) FluidCellValues(f, o, x == 0 ? wt : 0, x == 0 ? 0 : wt, loc + 5 * (16 * q + 8 * x + c));
+        }
       }
     }
-  PetscCallMPI(MPI_Allreduce(loc, all, (PetscMPIInt)(8 * 5 * npt), MPIU_REAL, MPI_SUM, fl->comm));
+  PetscCallMPI(MPI_Allreduce(loc, all, (PetscMPIInt)(16 * 5 * npt), MPIU_REAL, MPI_SUM, fl->comm));
   for (int q = 0; q < 5; q++) avg[q] = 0;
-  for (PetscInt k = 0; k < 8 * npt; k++)
+  for (PetscInt k = 0; k < 16 * npt; k++)
     for (int q = 0; q < 5; q++) avg[q] += all[5 * k + q];
   PetscCall(PetscFree2(loc, all));
   PetscCall(PetscFree(tau));

@@ -32,7 +32,9 @@ PetscErrorCode FluidRedistribute(Fluid fl)
   PetscCall(DMDestroy(&ocda));
   PetscCall(DMDestroy(&ofda));
   PetscCall(FluidCreateLocals(fl));
-  PetscCall(FluidVesselSetUp(fl));   /* the open fractions of the new owned boxes */
+  PetscCall(FluidVesselSetUp(fl));        /* the open fractions of the new owned boxes */
+  PetscCall(VecDestroy(&fl->plate.beff)); /* the plate's and the patches' work Vecs: remade on the new layout at their next use */
+  PetscCall(FluidPatchesRelayout(fl));
   PetscCall(KSPReset(fl->pois.ksp)); /* operators of another size follow */
   PetscCall(FluidPoissonSetUp(fl));
   if (fl->vimp.ksp) {

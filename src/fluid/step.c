@@ -192,7 +192,7 @@ static PetscErrorCode FluidPredictorDiagonal(Fluid fl, PetscReal dt, const Petsc
   PetscInt           idx[3], f, c, o;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(fl->fld.beta, &beta));
+  PetscCall(VecGetArrayRead(FluidBetaOfSolve(fl), &beta)); /* with a distributor plate, its resistance too */
   PetscCall(VecGetArray(fl->mom.uhat, &uh));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
@@ -201,7 +201,7 @@ static PetscErrorCode FluidPredictorDiagonal(Fluid fl, PetscReal dt, const Petsc
     uh[o + d] /= fl->prop.rho * ef1 / dt + beta[o + d];
   }
   PetscCall(VecRestoreArray(fl->mom.uhat, &uh));
-  PetscCall(VecRestoreArrayRead(fl->fld.beta, &beta));
+  PetscCall(VecRestoreArrayRead(FluidBetaOfSolve(fl), &beta));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -212,7 +212,7 @@ static PetscErrorCode FluidPredict(Fluid fl, PetscReal dt)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(fl->ev.predict, 0, 0, 0, 0));
-  PetscCall(FluidLocalCell(fl, fl->fld.p, fl->fld.ploc, PETSC_TRUE, fl->bc.p_out));
+  PetscCall(FluidLocalCell(fl, fl->fld.p, fl->fld.ploc, FLUID_GHOST_PRESSURE, fl->bc.p_out));
   PetscCall(VecGetArrayRead(fl->fld.uloc, &u));
   PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
   PetscCall(VecGetArrayRead(fl->fld.epsoldloc, &eps0));
@@ -250,6 +250,7 @@ PetscErrorCode FluidStep(Fluid fl, PetscReal dt, FluidStats *st)
   PetscBool changed;
   PetscCall(FluidUpdateInlets(fl, fl->clock.time + dt, &changed));
   if (changed) PetscCall(FluidLocalVelocity(fl, fl->fld.u, fl->fld.uloc, fl->fld.epsoldloc));
+  if (fl->plate.on) PetscCall(FluidDistributorUpdate(fl)); /* the plate's resistance at u^n */
   PetscCall(FluidPredict(fl, dt));
   PetscCall(FluidProject(fl, dt, st));
   PetscCall(FluidDivergenceMax(fl, dt, &st->div_max));

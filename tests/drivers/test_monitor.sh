@@ -12,8 +12,10 @@
 #       plane and a rectangle (sum m v_z / w over centres within w/2 of the plane, w = 2
 #       diameters), each within 1e-12 relative (of the flow's scale sum |m v_z| / w);
 #   (b) coupled (the small fluidized bed), 1 and 2 ranks: each probe's pressure equals the
-#       frame's cell-centred pressure interpolated trilinearly at the probe (nearest centre row
-#       within half a cell of a wall), dp0 and dp9 differences of probes (probe 11: more than 8);
+#       frame's cell-centred pressure interpolated trilinearly at the probe (within half a cell
+#       of a wall extrapolated from the two nearest centre rows; eps and u take the nearest row),
+#       dp0 and dp9 differences of probes (probe 11: more than 8); an inlet patch over the whole
+#       zlo face: its mass flow equals rho U A, its mean pressure the face's plane average;
 #       the line averages (an oblique segment and one along x) of p, eps and the velocity equal
 #       the integral of the same interpolant along the segment (3-point Gauss-Legendre on each
 #       piece between the planes of cell centres it crosses: exact for the cubic pieces) over its
@@ -71,15 +73,18 @@ def flow(x, v, m, c, w, lo=(-1e300, -1e300), hi=(1e300, 1e300)):
 
 class Interp:
     """The trilinear interpolant of cell-centred fields f[z, y, x(, c)]: along a periodic axis the
-    centres wrap; along another, clamped to the end centres within half a cell of the boundary."""
-    def __init__(self, f, lo, h, periodic=(False, False, False)):
-        self.f, self.lo, self.h, self.n, self.per = f, lo, h, f.shape[:3][::-1], periodic
+    centres wrap; along another, within half a cell of the boundary, clamped to the end centres,
+    or (extrapolate: the pressure) the line through the two last centres."""
+    def __init__(self, f, lo, h, periodic=(False, False, False), extrapolate=False):
+        self.f, self.lo, self.h, self.n, self.per, self.ex = f, lo, h, f.shape[:3][::-1], periodic, extrapolate
     def __call__(self, x):
         idx, wt = [], []
         for a in range(3):
             s = (x[a] - self.lo[a]) / self.h[a] - 0.5
             i = int(np.floor(s))
             if self.per[a]: w = s - i
+            elif self.ex and i < 0: i, w = 0, s
+            elif self.ex and i >= self.n[a] - 1: i, w = self.n[a] - 2, s - (self.n[a] - 2)
             elif i < 0: i, w = 0, 0.0
             elif i >= self.n[a] - 1: i, w = self.n[a] - 1, 0.0
             else: w = s - i
@@ -172,7 +177,7 @@ for np in 1 2; do
   else echo "FAIL monitor vs frames, dry np=$np: $*; $(grep 'sable:' "$d/log" | head -n 1)"; fi
 done
 # (b) probes, line and plane averages (the small bed is periodic in x and y)
-WET="-options_file $ROOT/cases/fluidized_bed/small.opts -cpl_t_end 2 -io_interval 0.5 -mon_interval 0.5 -mon_probe_0 4,2,0.3 -mon_probe_1 3.1,1.2,20.7 -mon_probe_2 8,4,48 -mon_probe_11 0.4,3.7,9.3 -mon_dp_0 0,1 -mon_dp_9 11,2 -mon_line_0 0.3,1.1,5.5,7.7,2.9,30.2 -mon_line_4 0,2,10,8,2,10 -mon_plane_0 z=10 -mon_plane_2 1,0.5,3,6,4,3"
+WET="-options_file $ROOT/cases/fluidized_bed/small.opts -cpl_t_end 2 -io_interval 0.5 -mon_interval 0.5 -mon_probe_0 4,2,0.3 -mon_probe_1 3.1,1.2,20.7 -mon_probe_2 8,4,48 -mon_probe_11 0.4,3.7,9.3 -mon_dp_0 0,1 -mon_dp_9 11,2 -mon_line_0 0.3,1.1,5.5,7.7,2.9,30.2 -mon_line_4 0,2,10,8,2,10 -mon_plane_0 z=10 -mon_plane_2 1,0.5,3,6,4,3 -fluid_patch_0_type inlet -fluid_patch_0_rect 0,0,0,8,0,0,0,4,0 -fluid_patch_0_velocity 0.3054"
 { echo '#!/usr/bin/python3'; cat "$W/monref.py" - ; } >"$W/wet.py" <<'PY'
 import sys, os, glob, h5py, numpy as np
 sys.path.insert(0, sys.argv[2])
@@ -197,7 +202,7 @@ for f in sorted(glob.glob(os.path.join(d, "sable_[0-9]*.h5"))):
     if t == 0:
         continue
     fields = {"p": hf["fluid/p"][()], "eps": hf["fluid/eps"][()], "u": hf["fluid/velocity"][()]}
-    F = {q: Interp(v, lo, h, (True, True, False)) for q, v in fields.items()}
+    F = {q: Interp(v, lo, h, (True, True, False), q == "p") for q, v in fields.items()}
     scale = {q: np.abs(v).max() for q, v in fields.items()}
     p = {j: F["p"](x) for j, x in probes.items()}
     for j in probes:
@@ -211,6 +216,8 @@ for f in sorted(glob.glob(os.path.join(d, "sable_[0-9]*.h5"))):
                 names = ["%s%d_%s_%s" % (kind, j, q, "Pa" if q == "p" else "")] if q != "u" else ["%s%d_u%s_ms" % (kind, j, c) for c in "xyz"]
                 for c, name in enumerate(names):
                     check(kind + "s_" + q, rows[name][k], ref if q != "u" else ref[c], scale[q])
+    check("patch", rows["patch0_p_Pa"][k], plane_average(F["p"], 2, 0, (0, 0), (8, 4)), scale["p"])
+    check("patch", rows["patch0_mdot_kgs"][k], 1 * 0.3054 * 32, 1 * 0.3054 * 32)
     x, r = hf["particles/position"][()], hf["particles/radius"][()].ravel()
     check("bed_surface", rows["bed_surface_m"][k], surface(x[:, 2], r, 0, 48, 4 * r.max()), 48)
     check("highest_particle", rows["highest_particle_m"][k], (x[:, 2] + r).max(), 48)
@@ -223,7 +230,7 @@ for np in 1 2; do
   mkdir -p "$d"
   (cd "$d" && mpiexec -n $np "$S" $WET -io_dir out >log 2>&1)
   set -- $("$W/wet.py" "$d/out" "$ROOT/tools" 2>&1)
-  if [ "$#" -eq 3 ] && [ "$2" = 1 ] && [ "$1" -ge 3 ]; then echo "PASS monitor fluid columns vs frames, coupled np=$np: $1 frames, 4 probes (at a wall, a corner; index 11), dp0 and dp9, 2 lines and 2 planes (p, eps, u), bed surface and highest particle, eps_min (from the first row on), largest differences over each field's scale $3 (bound 1e-12)"
+  if [ "$#" -eq 3 ] && [ "$2" = 1 ] && [ "$1" -ge 3 ]; then echo "PASS monitor fluid columns vs frames, coupled np=$np: $1 frames, 4 probes (at a wall, a corner; index 11; the pressure extrapolated to the boundary within half a cell of it), dp0 and dp9, 2 lines and 2 planes (p, eps, u), an inlet patch's mean pressure and mass flow, bed surface and highest particle, eps_min (from the first row on), largest differences over each field's scale $3 (bound 1e-12)"
   else echo "FAIL monitor fluid columns vs frames, coupled np=$np: $*; $(grep 'sable:' "$d/log" | head -n 1)"; fi
 done
 # (c) a restarted run's monitor file

@@ -41,6 +41,21 @@ check mg_levels_zero '-fluid_poisson_pc_mg_levels 0: the number of multigrid lev
 check negative_pc_lag '-fluid_poisson_pc_lag -1 must be >= 0' 1 -fluid_poisson_pc_lag -1
 check pc_lag_growth_below_1 '-fluid_poisson_pc_lag_growth 0.5 must be >= 1' 1 -fluid_poisson_pc_lag_growth 0.5
 check bad_advection_name '-fluid_advection upwind3 is not known; valid values: central, tvd, none' 1 -fluid_advection upwind3
+# patches (src/fluid/patch.c), on 1 and 2 ranks; the box is 1 x 0.5 x 0.125 m, periodic in z
+P="-fluid_patch_0_type inlet"
+for np in 1 2; do
+  check patch_not_on_named_face_np$np '-fluid_patch_0_face xhi: the shape of patch 0 does not lie on that face' $np $P -fluid_patch_0_disc 0,0.25,0.06,1,0,0,0.05 -fluid_patch_0_face xhi -fluid_patch_0_velocity 1
+  check patch_source_off_grid_np$np '-fluid_patch_0 lies on no box face and crosses no open cell' $np $P -fluid_patch_0_disc 5,5,5,1,0,0,0.1 -fluid_patch_0_velocity 1
+  check patch_velocity_and_mass_flow_np$np '-fluid_patch_0: give a velocity \(-fluid_patch_0_velocity\) or a mass flow \(-fluid_patch_0_mass_flow\), not both' $np $P -fluid_patch_0_disc 0,0.25,0.06,1,0,0,0.05 -fluid_patch_0_velocity 1 -fluid_patch_0_mass_flow 0.1
+  check patch_outlet_inside_np$np '-fluid_patch_0: an outlet must lie on a box face' $np -fluid_patch_0_type outlet -fluid_patch_0_disc 0.5,0.25,0.06,1,0,0,0.05
+done
+check patch_no_type '-fluid_patch_3_\* options are given without -fluid_patch_3_type inlet\|outlet' 1 -fluid_patch_3_disc 0,0.25,0.06,1,0,0,0.05
+check patch_two_shapes '-fluid_patch_0_\*: give exactly one shape' 1 $P -fluid_patch_0_disc 0,0.25,0.06,1,0,0,0.05 -fluid_patch_0_rect 0,0,0,0,0.5,0,0,0,0.125 -fluid_patch_0_velocity 1
+check patch_periodic_face '-fluid_patch_0 lies on the zlo face, but the z axis is periodic' 1 $P -fluid_patch_0_disc 0.5,0.25,0,0,0,1,0.05 -fluid_patch_0_velocity 1
+check patch_outlet_with_velocity '-fluid_patch_0_velocity: patch 0 is an outlet; it takes a pressure' 1 -fluid_patch_0_type outlet -fluid_patch_0_disc 1,0.25,0.06,1,0,0,0.05 -fluid_patch_0_velocity 1
+check patch_not_convex '-fluid_patch_0_polygon: the vertices must make a convex polygon in one plane' 1 $P -fluid_patch_0_polygon 0,0.1,0.02,0,0.4,0.02,0,0.2,0.05,0,0.4,0.1 -fluid_patch_0_velocity 1
+check distributor_open_area '-fluid_distributor: open-area fraction 1.5 must be in \(0,1\]' 1 -domain_periodic_z 0 -fluid_distributor 0.06,1.5
+check distributor_outside '-fluid_distributor: height 0.5 m must lie inside the domain' 1 -domain_periodic_z 0 -fluid_distributor 0.5,0.3
 # the same too-large dt with adaptive stepping: the step is cut to 0.9 of the CFL limit
 "$exe" -io_dir "${out}.d" -fluid_dt 0.5 -fluid_adaptive_dt >"$out" 2>&1; rc=$?
 rm -rf "${out}.d"

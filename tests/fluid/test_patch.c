@@ -1,0 +1,161 @@
+/* ranks: 1 2 */
+/* Inlet and outlet patches, the face pressure and the distributor plate (src/fluid/patch.c,
+ * probe.c, distributor.c) against conservation and analytic solutions. The box of
+ * test_patch.opts (1 x 1 x 2 m, 8 x 8 x 16 cells, rho = 1 kg/m^3, Poisson rtol 1e-12):
+ *   A. walls, a disc inlet on zlo (R = 0.3 m, 0.05 kg/s) and a rectangle outlet on the upper
+ *      quarter of xhi: the inlet's mass flow measured from its face fluxes equals the set value
+ *      to round-off (1e-12), the outlet's equals it to the solver tolerance (1e-8), 3 steps;
+ *   B. walls, a tilted disc (normal (1,0,1), R = 0.25 m, U = 0.2 m/s) inside the domain as a
+ *      volume source, the whole zhi face an outlet: the source's flow equals rho U pi R^2 to
+ *      round-off (the disc's polygon keeps its area), the outlet's to the solver tolerance;
+ *   C. Darcy flow, periodic in x and y, eps = 0.5, beta = 100 kg m^-3 s^-1, a rectangle inlet
+ *      patch over all of zlo (U = 0.1 m/s), the zhi face an outlet at 0 Pa: the pressure is
+ *      linear, p(z) = beta (U/eps) (L - z), so the face pressure at z = 0 (probe, plane
+ *      average, the patch's mean) equals beta (U/eps) L to the solver tolerance (1e-8);
+ *   D. an empty column, periodic in x and y, inlet U = 0.5 m/s on zlo, outlet zhi, a distributor
+ *      plate at z = 1 m (phi = 0.3, Cd = 0.6): the pressure drop across it equals Kunii &
+ *      Levenspiel's orifice law rho/2 (U/(Cd phi))^2 to the solver tolerance (1e-8).
+ * On 2 ranks the same figures (the decomposition splits the box). */
+#include "fluid_common.h"
+
+/* Volume flow out through the zhi face (m^3/s), summed by the test itself. */
+static PetscErrorCode TopFlow(Fluid fl, const Domain *dom, PetscReal *Q)
+{
+  DM                    cda, fda;
+  Vec                   u, eps;
+  const PetscScalar ****a, ***e;
+  PetscInt              xs, ys, zs, xm, ym, zm, N = dom->cells[2];
+  PetscReal             q = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidGetDMs(fl, &cda, &fda));
+  PetscCall(FluidGetVelocity(fl, &u));
+  PetscCall(FluidGetPorosity(fl, &eps));
+  PetscCall(DMDAGetCorners(cda, &xs, &ys, &zs, &xm, &ym, &zm));
+  PetscCall(DMDAVecGetArrayDOFRead(fda, u, (void *)&a));
+  PetscCall(DMDAVecGetArrayRead(cda, eps, (void *)&e));
+  if (zs + zm == N)
+    for (PetscInt j = ys; j < ys + ym; j++)
+      for (PetscInt i = xs; i < xs + xm; i++) q += e[N - 1][j][i] * a[N][j][i][2] * dom->h[0] * dom->h[1];
+  PetscCall(DMDAVecRestoreArrayRead(cda, eps, (void *)&e));
+  PetscCall(DMDAVecRestoreArrayDOFRead(fda, u, (void *)&a));
+  PetscCall(MPIU_Allreduce(&q, Q, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscReal Half(const PetscReal x[3], void *ctx)
+{
+  (void)x;
+  (void)ctx;
+  return 0.5;
+}
+
+static PetscErrorCode CaseA(void)
+{
+  Domain     dom = {0};
+  Fluid      fl;
+  FluidStats st;
+  PetscReal  p, m[2];
+  PetscInt   k;
+
+  PetscFunctionBeginUser;
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_patch.opts", "-fluid_patch_0_type inlet -fluid_patch_0_disc 0.5,0.5,0,0,0,1,0.3 -fluid_patch_0_mass_flow 0.05 -fluid_patch_1_type outlet -fluid_patch_1_rect 1,0,1.5,1,1,1.5,1,0,2"));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
+  for (int n = 0; n < 3; n++) PetscCall(FluidStep(fl, 0.01, &st));
+  PetscCall(FluidPatchMeasure(fl, 0, &k, &p, &m[0]));
+  PetscCall(FluidPatchMeasure(fl, 1, &k, &p, &m[1]));
+  PetscCall(CheckClose("patch_disc_inlet_zlo_mass_flow", m[0], 0.05, 1e-12));
+  CheckDetail("outlet mean pressure %g Pa (set 0)", (double)p);
+  PetscCall(CheckClose("patch_rect_outlet_xhi_mass_flow", m[1], 0.05, 1e-8));
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CaseB(void)
+{
+  Domain          dom = {0};
+  Fluid           fl;
+  FluidStats      st;
+  PetscReal       p, m, Q;
+  PetscInt        k;
+  const PetscReal Qset = 0.2 * PETSC_PI * 0.25 * 0.25;
+
+  PetscFunctionBeginUser;
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_patch.opts", "-fluid_bc_zhi outlet -fluid_patch_0_type inlet -fluid_patch_0_disc 0.5,0.5,1,1,0,1,0.25 -fluid_patch_0_velocity 0.2"));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
+  for (int n = 0; n < 3; n++) PetscCall(FluidStep(fl, 0.01, &st));
+  PetscCall(FluidPatchMeasure(fl, 0, &k, &p, &m));
+  PetscCall(TopFlow(fl, &dom, &Q));
+  PetscCall(CheckClose("patch_tilted_disc_source_mass_flow", m, Qset, 1e-12));
+  CheckDetail("continuity residual %.2e 1/s", (double)st.div_max);
+  PetscCall(CheckClose("patch_tilted_disc_source_outlet_flow", Q, Qset, 1e-8));
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CaseC(void)
+{
+  Domain          dom = {0};
+  Fluid           fl;
+  FluidStats      st;
+  Vec             beta;
+  PetscReal       p, pm, m, avg[5];
+  PetscInt        k;
+  const PetscReal U = 0.1, eps = 0.5, b = 100, L = 2, x0[3] = {0.3, 0.7, 0}, Uv[3] = {0, 0, U};
+  const FluidSpan face = {{0, 0, 0}, {1, 1, 0}, PETSC_FALSE, "face zlo"};
+
+  PetscFunctionBeginUser;
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_patch.opts", "-domain_periodic_x -domain_periodic_y -fluid_bc_zhi outlet -fluid_patch_0_type inlet -fluid_patch_0_rect 0,0,0,1,0,0,0,1,0 -fluid_patch_0_velocity 0.1"));
+  PetscCall(TestFluidCreate(1.0, Half, NULL, &dom, &fl));
+  PetscCall(FluidGetDragCoefficient(fl, &beta));
+  PetscCall(VecSet(beta, b));
+  PetscCall(FluidSetSuperficialVelocity(fl, Uv));
+  for (int n = 0; n < 2; n++) PetscCall(FluidStep(fl, 0.01, &st));
+  PetscCall(FluidProbePressure(fl, x0, &p));
+  PetscCall(FluidAverageFields(fl, 1, &face, PETSC_FALSE, avg));
+  PetscCall(FluidPatchMeasure(fl, 0, &k, &pm, &m));
+  CheckDetail("the centre row reads %g Pa", (double)(b * U / eps * (L - 1.0 / 16)));
+  PetscCall(CheckClose("face_pressure_probe_darcy", p, b * U / eps * L, 1e-8));
+  PetscCall(CheckClose("face_pressure_plane_average_darcy", avg[0], b * U / eps * L, 1e-8));
+  PetscCall(CheckClose("face_pressure_patch_mean_darcy", pm, b * U / eps * L, 1e-8));
+  PetscCall(CheckClose("patch_rect_inlet_zlo_mass_flow", m, U * 1.0, 1e-12));
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CaseD(void)
+{
+  Domain          dom = {0};
+  Fluid           fl;
+  FluidStats      st;
+  PetscReal       pb, pa;
+  const PetscReal U = 0.5, phi = 0.3, cd = 0.6, xb[3] = {0.5, 0.5, 0.5}, xa[3] = {0.5, 0.5, 1.5}, Uv[3] = {0, 0, U};
+  const PetscReal law = 0.5 * 1.0 * PetscSqr(U / (cd * phi));
+
+  PetscFunctionBeginUser;
+  PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_patch.opts", "-domain_periodic_x -domain_periodic_y -fluid_bc_zlo inlet -fluid_bc_zlo_velocity 0,0,0.5 -fluid_bc_zhi outlet -fluid_distributor 1.0,0.3,0.6"));
+  PetscCall(TestFluidCreate(1.0, NULL, NULL, &dom, &fl));
+  PetscCall(FluidSetSuperficialVelocity(fl, Uv));
+  for (int n = 0; n < 3; n++) PetscCall(FluidStep(fl, 0.01, &st));
+  PetscCall(FluidProbePressure(fl, xb, &pb));
+  PetscCall(FluidProbePressure(fl, xa, &pa));
+  CheckDetail("p below %g Pa, above %g Pa", (double)pb, (double)pa);
+  PetscCall(CheckClose("distributor_dp_kunii_levenspiel", pb - pa, law, 1e-8));
+  PetscCall(FluidDestroy(&fl));
+  PetscCall(DomainDestroy(&dom));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(CaseA());
+  PetscCall(CaseB());
+  PetscCall(CaseC());
+  PetscCall(CaseD());
+  PetscCall(PetscFinalize());
+  return check_failures ? 1 : 0;
+}
