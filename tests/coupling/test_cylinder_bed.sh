@@ -17,7 +17,8 @@
 #   (c) no gas outside the cylinder at the end: u = 0 exactly in every cell wholly outside it (the
 #       cells centred outside but open in part carry a little flux: a NOTE line gives its fraction);
 # and across runs: (d) the same grid on 1 and 2 ranks gives U_mf and the plateau within 1%.
-# About 45 s of CPU with the default runs (2026-12-03, the shared 2-core VM; 5 min of wall at load 6-12).
+# About 75 s of CPU with the default runs, the pour 18 s of it (2026-12-03, the shared 2-core VM;
+# 3 min of wall at load 6-12).
 cd "$(dirname "$0")/../.." || exit 1
 ROOT=$(pwd)
 S=$ROOT/${BIN:-bin}/sable
