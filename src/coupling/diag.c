@@ -160,7 +160,7 @@ PetscErrorCode CplMeanPorosity(Cpl cpl, int d, PetscReal z0, PetscReal z1, Petsc
   if (vo) PetscCall(VecRestoreArrayRead(cpl->ves.vol, &vo));
   PetscCall(VecRestoreArrayRead(e, &a));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_REAL, MPIU_SUM, cpl->comm));
-  *eps = loc[0] / PetscMax(loc[1], 1);
+  *eps = cpl->ves.on ? (loc[1] > 0 ? loc[0] / loc[1] : 1) : loc[0] / PetscMax(loc[1], 1);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

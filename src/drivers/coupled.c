@@ -525,7 +525,14 @@ PetscErrorCode CoupledRunCase(CoupledRun r, Dem dem, Balance lb, Io io, PetscBoo
     PetscCall(CoupledSetUp(&c));
     PetscCall(DemGetGravity(dem, g));
     c.col = ColumnFromGravity(dom, g);
-    PetscCall(CplGetOpenArea(c.cpl, c.col.d, c.col.down < 0 ? dom->lo[c.col.d] : dom->hi[c.col.d], &c.col.area)); /* a vessel's cross-section at the column's bottom */
+    /* a vessel's cross-section at the column's bottom: its first plane of faces with open area
+       (a vessel fed by a source patch may close the bottom face itself) */
+    for (PetscInt k = 0; k <= dom->cells[c.col.d]; k++) {
+      const PetscReal z = c.col.down < 0 ? dom->lo[c.col.d] + k * dom->h[c.col.d] : dom->hi[c.col.d] - k * dom->h[c.col.d];
+      PetscCall(CplGetOpenArea(c.cpl, c.col.d, z, &c.col.area));
+      if (c.col.area > 0) break;
+    }
+    PetscCheck(c.col.area > 0, r->comm, PETSC_ERR_ARG_WRONG, "the vessel has no open cross-section along the column (axis %c): no gas can pass; check -dem_cylinder, -dem_mesh_<k>_fluid and -dem_plane_<k>_fluid", "xyz"[c.col.d]);
     PetscCall(DemView(dem, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(CplView(c.cpl, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(CoupledBedStart(&c));

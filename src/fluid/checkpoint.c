@@ -154,7 +154,8 @@ PetscErrorCode FluidCheckpointRead(Fluid fl, IoCkpt ck)
       bc->row = (PetscInt)r[0];
       for (int k = 0; k < 3; k++) bc->vel[k] = r[1 + k];
     }
-  fl->vimp.dt_mat = -1; /* the implicit viscous operator is assembled again at the next step */
+  if (fl->patch) PetscCall(FluidPatchesAtClock(fl)); /* the patches' values are functions of the clock */
+  fl->vimp.dt_mat = -1;                              /* the implicit viscous operator is assembled again at the next step */
   PetscCall(FluidPoissonRestore(fl, current));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

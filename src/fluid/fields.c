@@ -41,6 +41,15 @@ PetscErrorCode FluidSetVelocityFunction(Fluid fl, FluidVectorFn fn, void *ctx)
     fn(x, v, ctx);
     u[o + d] = v[d];
   }
+  if (fl->ves.cut) { /* a vessel's closed faces hold 0: no gas through the solid */
+    const PetscScalar *a;
+    PetscInt           n;
+    PetscCall(VecGetLocalSize(fl->fld.u, &n));
+    PetscCall(VecGetArrayRead(fl->ves.area, &a));
+    for (PetscInt i = 0; i < n; i++)
+      if (a[i] == 0) u[i] = 0;
+    PetscCall(VecRestoreArrayRead(fl->ves.area, &a));
+  }
   PetscCall(VecRestoreArray(fl->fld.u, &u));
   PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -194,6 +194,7 @@ PetscErrorCode FluidSetUp(Fluid fl)
   PetscCall(FluidCreateLocals(fl));
   PetscCall(FluidVesselSetUp(fl));
   PetscCall(FluidSetUpPatches(fl));
+  if (fl->patch && fl->ves.cut) PetscCall(FluidVesselSetUp(fl)); /* the wall links and closed cells again, now that the patches' faces are known (the fractions come out the same) */
   PetscCall(FluidBoundaryFaceValues(fl, fl->fld.u));
   PetscCheck(fl->pois.ksp, fl->comm, PETSC_ERR_ORDER, "call FluidSetFromOptions before FluidSetUp");
   PetscCall(FluidPoissonSetUp(fl));

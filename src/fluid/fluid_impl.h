@@ -328,6 +328,7 @@ PetscErrorCode FluidUpdateInlets(Fluid fl, PetscReal t, PetscBool *changed);
 PetscErrorCode FluidSetFromOptionsPatch(Fluid fl);
 PetscErrorCode FluidSetUpPatches(Fluid fl);
 PetscErrorCode FluidUpdatePatches(Fluid fl, PetscReal t, PetscBool *changed);
+PetscErrorCode FluidPatchesAtClock(Fluid fl);
 PetscErrorCode FluidPatchSource(Fluid fl, Vec *src);
 PetscErrorCode FluidDestroyPatches(Fluid fl);
 PetscErrorCode FluidPatchesRelayout(Fluid fl);

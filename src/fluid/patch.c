@@ -209,8 +209,8 @@ static PetscErrorCode FluidPatchReadShape(PetscOptionItems *PetscOptionsObject, 
   PetscCall(SableOptionsRealN(od, "A disc patch: centre, normal, radius cx,cy,cz,nx,ny,nz,R", "m", g, 0, 7, &set));
   if (set) {
     const PetscReal nn = PetscSqrtReal(g[3] * g[3] + g[4] * g[4] + g[5] * g[5]);
-    PetscReal       e1[3], e2[3], n1[3] = {g[3] / nn, g[4] / nn, g[5] / nn}, t[3] = {1, 0, 0};
     PetscCheck(nn > 0 && g[6] > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g,%g: the normal must be non-zero and the radius > 0 (m)", od, (double)g[0], (double)g[1], (double)g[2], (double)g[3], (double)g[4], (double)g[5], (double)g[6]);
+    PetscReal e1[3], e2[3], n1[3] = {g[3] / nn, g[4] / nn, g[5] / nn}, t[3] = {1, 0, 0};
     if (PetscAbsReal(n1[0]) > 0.6) t[0] = 0, t[1] = 1;
     fluid_cross(n1, t, e1);
     const PetscReal l1 = PetscSqrtReal(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
@@ -618,6 +618,16 @@ PetscErrorCode FluidSetUpPatches(Fluid fl)
     PetscCall(FluidUpdatePatches(fl, fl->clock.time, NULL));
   }
   if (fl->ves.cut) PetscCall(FluidCheckOpenBoundaries(fl));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. After a checkpoint restored the clock: every patch's value, face velocities and
+ * source at the clock's time, as the interrupted run held them. */
+PetscErrorCode FluidPatchesAtClock(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < fl->patch->n; i++) fl->patch->p[i].value = PETSC_MAX_REAL; /* every value is new */
+  PetscCall(FluidUpdatePatches(fl, fl->clock.time, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

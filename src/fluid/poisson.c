@@ -340,7 +340,7 @@ PetscErrorCode FluidProject(Fluid fl, PetscReal dt, FluidStats *st)
     fl->pois.pc_builds++;
     if (fl->ckpt) { /* what a checkpoint needs to build this preconditioner again */
       PetscCall(VecCopy(fl->fld.eps, fl->pois.eps_pc));
-      PetscCall(VecCopy(fl->fld.beta, fl->pois.beta_pc));
+      PetscCall(VecCopy(FluidBetaOfSolve(fl), fl->pois.beta_pc)); /* with a distributor plate, its resistance too */
     }
   } else if (changed) fl->pois.pc_age++;
   fl->pois.pc_its_last   = st->poisson_its;
