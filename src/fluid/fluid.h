@@ -72,8 +72,9 @@ PetscErrorCode FluidSetVessel(Fluid fluid, FluidLevelFn level, void *ctx);
 PetscErrorCode FluidVesselActive(Fluid fluid, PetscBool *cut);
 /* Borrowed global Vecs after FluidSetUp (invalid after FluidRedistribute/FluidDestroy):
  * open-volume fraction per cell (cell DM, in [0,1]), open-area fraction per face component
- * (face DM, in [0,1]; the effective one: 0 on every closed face); both NULL when the vessel does
- * not cut the grid. */
+ * (face DM, in [0,1]; the effective one: 0 on every closed face and on the unused extra points
+ * of tangential components); both NULL when the vessel does not cut the grid. Closed cells have
+ * volume 0 and keep eps = 1 (never read). */
 PetscErrorCode FluidGetOpenFractions(Fluid fluid, Vec *vol, Vec *area);
 
 /* Collective. Advances by dt (s): predictor with the implicit sink, projection so that
@@ -97,7 +98,8 @@ PetscErrorCode FluidGetAdaptive(Fluid fluid, PetscBool *on);
  * none); two inlets of different velocities are an error. */
 PetscErrorCode FluidGetInletVelocity(Fluid fluid, PetscReal U[3], PetscInt *ninlet);
 /* Collective. u_f = U_d / eps_f at every active face of component d (eps_f the mean of the two
- * cells' porosity eps^{n+1}), then the boundary values. */
+ * cells' porosity eps^{n+1}), then the boundary values. With a vessel: the open faces (closed
+ * ones 0); next to its wall the field is not solenoidal, the first projection corrects it. */
 PetscErrorCode FluidSetSuperficialVelocity(Fluid fluid, const PetscReal U[3]);
 /* Not collective. The fluid's clock (s, the inlet tables' time) and its step count (0: the next
  * step advects with forward Euler, not Adams-Bashforth); Set puts them back after pseudo steps. */

@@ -18,7 +18,10 @@
  * solve that fails with a kept preconditioner is repeated with a new one (a warning line, counted
  * in FluidStats). Geometric multigrid (-fluid_poisson_pc_type mg) coarsens the pressure DMDA:
  * its levels are checked against the grid at set-up, and its coarse operators must be Galerkin
- * products (-fluid_poisson_pc_mg_galerkin pmat): only the fine one is assembled. */
+ * products (-fluid_poisson_pc_mg_galerkin pmat): only the fine one is assembled.
+ * With a vessel (vessel.c, FAVOR) the face coefficients are a_f c, the divergence sums a_f eps_f u
+ * and the time derivative has vol_c; a closed cell's row is the identity (phi = 0, same pattern)
+ * and the null space without outlet is the open cells' indicator. */
 #include "fluid/fluid_impl.h"
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: rebuild the matrix only when eps, beta or dt changed */
 

@@ -8,7 +8,8 @@
  *   projection and pressure update (poisson.c).
  * Before the predictor the step is checked against the advective limit
  * CFL = dt max_cells sum_d |u_d|/h_d <= -fluid_cfl_max and, for the explicit viscous term,
- * 2 dt (mu/rho) (eps ratio) sum_d 1/h_d^2 <= -fluid_viscous_number_max. */
+ * 2 dt (mu/rho) (eps ratio) sum_d 1/h_d^2 <= -fluid_viscous_number_max; with a vessel, also the
+ * rows of the faces next to its wall, whose wall distance stiffens them (vessel.c). */
 #include "fluid/fluid_impl.h"
 
 typedef struct {

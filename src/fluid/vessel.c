@@ -8,7 +8,8 @@
  *     sampled on a 4 x 4 sub-grid with phi linear on two triangles per sub-square (exact for a
  *     plane wall); a cell's volume is the mean of 4 such cross-sections. Fractions below 1e-3
  *     count as closed, and so does a face whose centre lies in the solid (its velocity, a point
- *     value, would sit in the wall), and a cell without an active face (its volume becomes 0);
+ *     value, would sit in the wall; not on an inlet, whose value is fixed, unless the cell inside
+ *     has no other active face), and a cell without an active face (its volume becomes 0);
  *   - for every active face dof and axis e, side s, whose neighbour dof along e is closed: the
  *     distance theta h_e along that grid line to the wall (Illinois regula falsi on phi; theta = 1
  *     when the closed neighbour's centre is itself in the gas), clamped below at
@@ -171,6 +172,15 @@ static inline PetscBool fluid_face_in_range(Fluid fl, int d, const PetscInt idx[
   return PETSC_TRUE;
 }
 
+/* Whether face point idx of component d lies on an inlet face of the box (a fixed value). */
+static inline PetscBool fluid_inlet_face(Fluid fl, int d, const PetscInt idx[3])
+{
+  if (FluidPeriodic(fl, d)) return PETSC_FALSE;
+  if (idx[d] == 0) return (PetscBool)(fl->bc.face[d][0].type == FLUID_BC_INLET);
+  if (idx[d] == fl->g.N[d]) return (PetscBool)(fl->bc.face[d][1].type == FLUID_BC_INLET);
+  return PETSC_FALSE;
+}
+
 /* Open fractions of the owned cells and faces into the global Vecs; *cut: some in-range one < 1. */
 static PetscErrorCode FluidVesselFractions(Fluid fl, PetscBool *cut)
 {
@@ -243,7 +253,7 @@ static PetscErrorCode FluidVesselFractions(Fluid fl, PetscBool *cut)
       pc          = v->level(x, v->ctx);
       const int k = fluid_classify(pc, pk, 4, r);
       if (k >= 0) area[o + d] = k;
-      else if (pc <= 0) area[o + d] = 0; /* the face's velocity point is in the solid */
+      else if (pc <= 0 && !fluid_inlet_face(fl, d, idx)) area[o + d] = 0; /* the face's velocity point is in the solid */
       else {
         for (int e = 0; e < 3; e++) x0[e] = g->lo[e] + idx[e] * g->h[e];
         area[o + d] = FluidRectFraction(v, x0, a, b, g->h);
@@ -274,6 +284,31 @@ static PetscErrorCode FluidVesselLocalCopy(DM da, Vec gv, PetscReal outside, Pet
   for (PetscInt i = 0; i < n; i++) (*out)[i] = PetscRealPart(a[i]);
   PetscCall(VecRestoreArrayRead(l, &a));
   PetscCall(DMRestoreLocalVector(da, &l));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* An inlet face keeps its open area even when its centre lies in the solid (it has no momentum
+ * equation, and the inflow is then U_n times the geometric open area, not an O(h) smaller one),
+ * unless the cell inside has no active face to pass the gas on: then it is closed. *changed:
+ * some owned face was closed here. */
+static PetscErrorCode FluidVesselInlets(Fluid fl, PetscBool *changed)
+{
+  FluidGrid   *g = &fl->g;
+  PetscInt     idx[3], f, c, o;
+  PetscScalar *area;
+
+  PetscFunctionBeginUser;
+  *changed = PETSC_FALSE;
+  if (!fl->bc.has_inlet) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecGetArray(fl->ves.area, &area));
+  FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+  for (int d = 0; d < 3; d++) {
+    PetscInt in[3] = {idx[0], idx[1], idx[2]};
+    if (!fluid_inlet_face(fl, d, idx) || !fluid_face_in_range(fl, d, idx) || area[o + d] == 0) continue;
+    if (idx[d] == g->N[d]) in[d]--;
+    if (FluidCellClosed(fl, in)) area[o + d] = 0, *changed = PETSC_TRUE;
+  }
+  PetscCall(VecRestoreArray(fl->ves.area, &area));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -389,6 +424,9 @@ PetscErrorCode FluidVesselSetUp(Fluid fl)
   nf = 3 * fl->g.gfm[0] * fl->g.gfm[1] * fl->g.gfm[2];
   PetscCall(PetscMalloc3(nf, &v->aloc, nc, &v->vloc, nc, &v->full));
   PetscCall(FluidVesselLocalCopy(fl->g.fda, v->area, 0.0, &v->aloc));
+  PetscCall(FluidVesselInlets(fl, &cut));
+  PetscCallMPI(MPI_Allreduce(&cut, &gcut, 1, MPIU_BOOL, MPI_LOR, fl->comm));
+  if (gcut) PetscCall(FluidVesselLocalCopy(fl->g.fda, v->area, 0.0, &v->aloc));
   PetscCall(FluidVesselCells(fl));
   PetscCall(FluidVesselLinks(fl));
   v->cut = PETSC_TRUE;

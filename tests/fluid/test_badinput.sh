@@ -62,3 +62,5 @@ rm -rf "${out}.d"
 cfl=$(sed -n 's/.*last CFL \([0-9.]*\),.*/\1/p' "$out")
 if [ "$rc" -eq 0 ] && [ "$cfl" = "0.450" ]; then echo "PASS adaptive_dt_cuts_to_0.9_cfl_max: CFL $cfl (0.9 x 0.5)"
 else echo "FAIL adaptive_dt_cuts_to_0.9_cfl_max: exit $rc, CFL '$cfl'"; fi
+check vessel_wall_name '-fluid_vessel_wall glue is not known; valid values: noslip, slip' 1 -fluid_vessel_wall glue
+check vessel_theta_min_range '-fluid_vessel_theta_min 0\.? must be in \(0,1\]' 2 -fluid_vessel_theta_min 0
