@@ -20,6 +20,9 @@
  * odd number of times). The mesh must be closed: after welding vertices closer than 1e-9 of its
  * extent, every edge shared by exactly two triangles (else refused, naming the count of open
  * edges). Each connected shell is oriented by one ray cast from just off one of its faces.
+ * Triangles lying in a face of the domain (not a periodic one) are that face: the fluid's own
+ * condition holds there (a cylinder's cap on the inlet face lets the gas in), so the distance
+ * skips them; the sign's ray casts still count them.
  * Acceleration: a bin grid over the mesh's box grown by the band, bins of half the band; a bin
  * keeps the triangles that can be the nearest to one of its points within the band, sorted by
  * their distance from its centre, so a query stops at the first triangle that cannot be nearer
@@ -40,6 +43,9 @@ struct _DemVesselMesh {
   double       *dc;          /* their distances from the bin's centre (m) */
   signed char  *side;        /* a bin with no triangle: +1 inside the mesh, -1 outside */
   PetscInt      nopen, ntri; /* edges not shared by exactly two triangles; triangles */
+  PetscBool    *onface;      /* triangles lying in a non-periodic domain face (NULL: none) */
+  PetscInt      nface;       /* how many */
+  double        tol;         /* a point this near a face triangle lies on the box's face (m) */
 };
 
 static inline double vm_dist2(const double *a, const double *b)
@@ -85,8 +91,32 @@ static PetscInt vm_ray(const struct _DemVesselMesh *vm, const double *x, int a, 
   return count;
 }
 
+/* The parity of the crossings of the ray x + t r (t > 0) with every triangle (Moeller & Trumbore,
+ * J. Graphics Tools 2 (1997) 21); -1 when it meets an edge, a vertex or a triangle's plane. */
+static PetscInt vm_ray_all(const struct _DemVesselMesh *vm, const double *x, const double *r)
+{
+  PetscInt count = 0;
+  for (PetscInt t = 0; t < vm->ntri; t++) {
+    const double *a = vm->v + 9 * t, *b = a + 3, *c = a + 6;
+    const double  e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double  pv[3] = {r[1] * e2[2] - r[2] * e2[1], r[2] * e2[0] - r[0] * e2[2], r[0] * e2[1] - r[1] * e2[0]};
+    const double  det   = e1[0] * pv[0] + e1[1] * pv[1] + e1[2] * pv[2];
+    if (det == 0) continue; /* parallel: the neighbours decide */
+    const double tv[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+    const double u     = (tv[0] * pv[0] + tv[1] * pv[1] + tv[2] * pv[2]) / det;
+    const double qv[3] = {tv[1] * e1[2] - tv[2] * e1[1], tv[2] * e1[0] - tv[0] * e1[2], tv[0] * e1[1] - tv[1] * e1[0]};
+    const double w     = (r[0] * qv[0] + r[1] * qv[1] + r[2] * qv[2]) / det;
+    const double h     = (e2[0] * qv[0] + e2[1] * qv[1] + e2[2] * qv[2]) / det;
+    if (u < 0 || w < 0 || u + w > 1 || h < 0) continue;
+    if (u == 0 || w == 0 || u + w == 1 || h == 0) return -1;
+    count++;
+  }
+  return count;
+}
+
 /* Whether x is inside the mesh by a parity ray cast: the shortest half-rows first, the next one
- * when a ray meets an edge or a vertex. *ok false when every ray did. */
+ * when a ray meets an edge or a vertex (a grid node on the mesh's own grid lines often does); then
+ * rays in directions off every axis and plane, over all triangles. *ok false when every ray did. */
 static PetscBool vm_inside_ray(const struct _DemVesselMesh *vm, const double *x, PetscBool *ok)
 {
   int      order[6];
@@ -105,6 +135,11 @@ static PetscBool vm_inside_ray(const struct _DemVesselMesh *vm, const double *x,
     const PetscInt c = vm_ray(vm, x, order[s] / 2, order[s] % 2 ? -1 : 1);
     if (c >= 0) return (PetscBool)(c % 2);
   }
+  for (int s = 0; s < 3; s++) {
+    static const double dir[3][3] = {{0.5773502691896258, 0.5150380749100542, 0.6334158633590218}, {-0.3141592653589793, 0.8414709848078965, 0.4396926207859084}, {0.7071067811865476, -0.2718281828459045, -0.6527036446661393}};
+    const PetscInt      c         = vm_ray_all(vm, x, dir[s]);
+    if (c >= 0) return (PetscBool)(c % 2);
+  }
   *ok = PETSC_FALSE;
   return PETSC_FALSE;
 }
@@ -121,11 +156,17 @@ static double vm_inside_distance(const struct _DemVesselMesh *vm, const double *
   if (vm->start[bin] == vm->start[bin + 1]) return vm->side[bin] * vm->band;
   const double hd   = 0.5 * sqrt(3.0) * vm->b;
   double       best = vm->band * vm->band, q[3], qb[3] = {0, 0, 0};
-  PetscInt     tb = -1;
-  TriFeature   fb = TRI_FACE;
+  PetscInt     tb    = -1;
+  TriFeature   fb    = TRI_FACE;
+  PetscBool    onbox = PETSC_FALSE; /* x lies on a triangle in the box's face: in the gas's domain */
   for (PetscInt k = vm->start[bin]; k < vm->start[bin + 1]; k++) {
     const double lb = vm->dc[k] - hd;
-    if (lb > 0 && lb * lb >= best) break; /* no later triangle can be nearer */
+    if (lb > 0 && lb * lb >= best) break;       /* no later triangle can be nearer */
+    if (vm->onface && vm->onface[vm->tri[k]]) { /* the box's face: not a wall of the gas */
+      const double *p = vm->v + 9 * vm->tri[k];
+      if (!onbox) TriClosestPoint(p, p + 3, p + 6, x, q), onbox = (PetscBool)(vm_dist2(x, q) <= vm->tol * vm->tol);
+      continue;
+    }
     const double    *p  = vm->v + 9 * vm->tri[k];
     const TriFeature f  = TriClosestPoint(p, p + 3, p + 6, x, q);
     const double     d2 = vm_dist2(x, q);
@@ -133,6 +174,7 @@ static double vm_inside_distance(const struct _DemVesselMesh *vm, const double *
   }
   const double d = tb < 0 ? vm->band : sqrt(best);
   if (tb >= 0 && d == 0) return 0;
+  if (onbox) return d;
   if (tb >= 0 && vm->oriented) { /* the nearest feature's (pseudo)normal decides */
     const double *n = fb == TRI_FACE ? vm->nout + 3 * tb : vm->pn + 18 * tb + 3 * (fb - TRI_EDGE_AB);
     const double  s = (x[0] - qb[0]) * n[0] + (x[1] - qb[1]) * n[1] + (x[2] - qb[2]) * n[2];
@@ -355,7 +397,31 @@ static PetscErrorCode VmPseudonormals(struct _DemVesselMesh *vm, const PetscInt 
 }
 
 /* Builds the vessel's view of mesh m (at rest): topology, orientation, bins, the far bins' sides. */
-static PetscErrorCode VmCreate(const DemMesh *m, double band, struct _DemVesselMesh **out)
+/* The triangles of the mesh lying in a face of the domain (its three vertices within 1e-9 of the
+ * domain's extent of the face's plane), but on periodic axes (there the mesh is a wall). */
+static PetscErrorCode VmFaceTriangles(struct _DemVesselMesh *vm, const Domain *dom)
+{
+  const double tol = 1e-9 * PetscMax(dom->len[0], PetscMax(dom->len[1], dom->len[2]));
+
+  PetscFunctionBeginUser;
+  vm->tol = tol;
+  for (PetscInt t = 0; t < vm->ntri; t++) {
+    const double *p  = vm->v + 9 * t;
+    PetscBool     on = PETSC_FALSE;
+    for (int d = 0; d < 3 && !on; d++)
+      for (int side = 0; side < 2 && !on && !dom->periodic[d]; side++) {
+        const double z = side ? dom->hi[d] : dom->lo[d];
+        on             = (PetscBool)(PetscAbsReal(p[d] - z) <= tol && PetscAbsReal(p[3 + d] - z) <= tol && PetscAbsReal(p[6 + d] - z) <= tol);
+      }
+    if (!on) continue;
+    if (!vm->onface) PetscCall(PetscCalloc1(vm->ntri, &vm->onface));
+    vm->onface[t] = PETSC_TRUE;
+    vm->nface++;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode VmCreate(const DemMesh *m, const Domain *dom, double band, struct _DemVesselMesh **out)
 {
   struct _DemVesselMesh *vm;
   double                 lo[3], hi[3], ext = 0;
@@ -373,6 +439,7 @@ static PetscErrorCode VmCreate(const DemMesh *m, double band, struct _DemVesselM
   for (int d = 0; d < 3; d++) ext = PetscMax(ext, hi[d] - lo[d]);
   PetscCall(PetscMalloc1(vm->ntri, &par));
   PetscCall(PetscMalloc1(3 * vm->ntri, &vm->nout));
+  PetscCall(VmFaceTriangles(vm, dom));
   PetscCall(VmTopology(vm, lo, ext, par, &consistent, &id, &e, &ne));
   /* bins of half the band over the box grown by band + one bin, at most 128 a side */
   for (int d = 0; d < 3; d++) vm->b = PetscMax(vm->b, (hi[d] - lo[d] + 2 * band) / 126);
@@ -432,6 +499,7 @@ PetscErrorCode DemVesselMeshDestroy(DemMesh *m)
   PetscCall(PetscFree(m->vm->side));
   PetscCall(PetscFree(m->vm->nout));
   PetscCall(PetscFree(m->vm->pn));
+  PetscCall(PetscFree(m->vm->onface));
   PetscCall(PetscFree(m->vm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -477,19 +545,21 @@ PetscErrorCode DemVesselSetUp(Dem dem, PetscBool *any)
     const int      mode = m->fluid >= 0 ? m->fluid : m->moving ? DEM_MESH_FLUID_NONE
                                                                : DEM_MESH_FLUID_INSIDE;
     PetscLogDouble t0, t1;
+    char           face[128] = "";
     PetscCall(DemVesselMeshDestroy(m));
     if (mode == DEM_MESH_FLUID_NONE) {
       PetscCall(PetscPrintf(dem->comm, "vessel: %s (%s) %s: it bounds the particles only\n", m->name, m->file, m->moving ? "moves" : "has _fluid none"));
       continue;
     }
     PetscCall(PetscTime(&t0));
-    PetscCall(VmCreate(m, band, &m->vm));
+    PetscCall(VmCreate(m, dem->dom, band, &m->vm));
     PetscCall(PetscTime(&t1));
     m->vm->sgn = mode == DEM_MESH_FLUID_INSIDE ? 1 : -1;
-    PetscCheck(m->vm->nopen == 0, dem->comm, PETSC_ERR_ARG_WRONG, "%s_fluid %s: %s (%s) is not closed: %" PetscInt_FMT " edges are not shared by exactly two triangles, and the gas needs a closed surface (close it, e.g. tools/make_stl cylinder --caps, with its ends beyond the box faces where the gas enters and leaves), or give %s_fluid none (it then bounds the particles only)", m->name,
+    PetscCheck(m->vm->nopen == 0, dem->comm, PETSC_ERR_ARG_WRONG, "%s_fluid %s: %s (%s) is not closed: %" PetscInt_FMT " edges are not shared by exactly two triangles, and the gas needs a closed surface (close it, e.g. tools/make_stl cylinder --caps, its ends on or beyond the box faces where the gas enters and leaves), or give %s_fluid none (it then bounds the particles only)", m->name,
                mode == DEM_MESH_FLUID_INSIDE ? "inside" : "outside", m->name, m->file, m->vm->nopen, m->name);
-    PetscCall(PetscPrintf(dem->comm, "vessel: %s (%s) bounds particles and gas (%s: closed, %" PetscInt_FMT " triangles%s; %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " bins of %g m, set up in %.3f s)\n", m->name, m->file, mode == DEM_MESH_FLUID_INSIDE ? "the gas inside it" : "the gas outside it, an immersed obstacle", m->ref.ntri,
-                          m->vm->oriented ? "" : ", orientation mixed: signs by ray casts", m->vm->nb[0], m->vm->nb[1], m->vm->nb[2], m->vm->b, t1 - t0));
+    if (m->vm->nface) PetscCall(PetscSNPrintf(face, sizeof face, "; %" PetscInt_FMT " of them lie in the box's faces and leave them to the fluid's conditions there", m->vm->nface));
+    PetscCall(PetscPrintf(dem->comm, "vessel: %s (%s) bounds particles and gas (%s: closed, %" PetscInt_FMT " triangles%s%s; %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " bins of %g m, set up in %.3f s)\n", m->name, m->file, mode == DEM_MESH_FLUID_INSIDE ? "the gas inside it" : "the gas outside it, an immersed obstacle", m->ref.ntri,
+                          m->vm->oriented ? "" : ", orientation mixed: signs by ray casts", face, m->vm->nb[0], m->vm->nb[1], m->vm->nb[2], m->vm->b, t1 - t0));
     *any = PETSC_TRUE;
   }
   dem->walls.vessel = *any;

@@ -8,7 +8,9 @@
 #    vessel's cross-section: the inlet's 0.5 m/s (the flux through the open inlet faces over their
 #    area, 1e-9 relative), not the box's;
 #  - the same answers on 2 ranks as on 1: the column's dp/W and drag/W means to 1e-7 relative
-#    (the Poisson tolerance is 1e-8), the particles of the last frame to 1e-8 m.
+#    (the Poisson tolerance is 1e-8), the particles of the last frame to 1e-8 m;
+#  - an open mesh asked to bound the gas is refused in one line;
+#  - a closed STL cylinder with its caps on the inlet and outlet faces bounds the gas as well.
 cd "$(dirname "$0")/../.."
 [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
@@ -43,3 +45,30 @@ ok = len(ia) == 196 and len(ib) == 196 and dx < 1e-8
 print("%s cpl_vessel_ranks_frame: %d particles, largest position difference %.2e m (< 1e-8) on 2 ranks vs 1" % ("PASS" if ok else "FAIL", len(ib), dx))
 PY
 done
+
+# An open mesh asked to bound the gas (a tube without caps, tools/make_stl, 64 open edges at its
+# two rims) is refused in one line naming the option, the file and the open edges.
+/usr/bin/python3 tools/make_stl cylinder --point 0.01,0.01,-0.002 --axis 0,0,1 --radius 0.0085 --s0 0 --s1 0.044 --n 32 --nlen 2 -o "$out.tube.stl" >/dev/null 2>&1
+${BIN:-bin}/sable -options_file tests/coupling/vessel_cylinder.opts -dem_mesh_0_file "$out.tube.stl" -cpl_t_end 0.001 -io_interval 0 -io_dir "$out.d/tube" >"$out" 2>&1
+rc=$?
+msg=$(grep 'error' "$out" | head -n 1)
+if [ "$rc" -ne 0 ] && [ "$(grep -c 'error' "$out")" -eq 1 ] && echo "$msg" | grep -q -- "-dem_mesh_0_fluid inside: -dem_mesh_0 ($out.tube.stl) is not closed: 64 edges"; then
+  echo "PASS cpl_vessel_open_mesh: exit $rc, \"$msg\""
+else
+  echo "FAIL cpl_vessel_open_mesh: exit $rc, $(grep -c 'error' "$out") error lines: \"$msg\""
+fi
+rm -f "$out.tube.stl"
+
+# The same bed in a closed STL cylinder (tools/make_stl, 32 facets, its caps on the inlet and
+# outlet faces: those triangles are the box's faces, the gas passes) in place of -dem_cylinder:
+# the run goes through and its bed: line sees the inlet's 0.5 m/s over the mesh's cross-section.
+/usr/bin/python3 tools/make_stl cylinder --point 0.01,0.01,0 --axis 0,0,1 --radius 0.008 --s0 0 --s1 0.04 --n 32 --nlen 4 --caps -o "$out.cyl.stl" >/dev/null 2>&1
+${BIN:-bin}/sable -options_file tests/coupling/vessel_cylinder.opts -dem_cylinder_fluid no -dem_mesh_0_file "$out.cyl.stl" -cpl_t_end 0.002 -cpl_progress_interval 0 -io_interval 0 -io_dir "$out.d/cyl" >"$out" 2>&1
+rc=$?
+u=$(sed -n 's/^bed: .*inlet superficial velocity \([0-9.e+-]*\) m\/s.*/\1/p' "$out")
+if [ "$rc" -eq 0 ] && grep -q "^vessel: -dem_mesh_0 .* bounds particles and gas (the gas inside it: closed, 320 triangles; 64 of them lie in the box's faces" "$out" && echo "$u" | awk '{ e = ($1 - 0.5) / 0.5; exit !(NF == 1 && e < 1e-9 && e > -1e-9) }'; then
+  echo "PASS cpl_vessel_stl_cylinder: exit 0, caps on the box's faces, inlet superficial velocity $u m/s (reference 0.5, 1e-9)"
+else
+  echo "FAIL cpl_vessel_stl_cylinder: exit $rc, inlet superficial velocity \"$u\" (reference 0.5)"; grep -E '^vessel: -dem_mesh|error' "$out" | sed 's/^/    /'
+fi
+rm -f "$out.cyl.stl"

@@ -11,7 +11,9 @@
  *  - a closed STL box whose sides are written in mixed orientation (signs by parity ray casts):
  *    the box's exact signed distance to round-off;
  *  - an open box (no lid) asked to bound the gas is refused with the mesh option, the file and
- *    the count of open edges; with _fluid none it is not.
+ *    the count of open edges; with _fluid none it is not;
+ *  - a closed box on the domain's faces leaves them to the box: phi > 0 on every node of the
+ *    domain, its faces included.
  * Random points (a fixed seed) in the meshes' boxes grown by a third. The set-up and evaluation
  * times of a 576- and a 5,184-triangle cylinder are printed (not checked: the machine's; -npts n
  * evaluations, 200000). */
@@ -229,6 +231,21 @@ static PetscErrorCode TestMeshBox(void)
   PetscCall(Vessel(opts, &dom, &dem, &any, NULL));
   PetscCall(CheckTrue("open STL box with _fluid none: accepted, no vessel", (PetscBool)!any, any ? "a vessel" : "none"));
   PetscCall(TestDemDestroy(&dom, &dem));
+  { /* the box mesh on the domain's faces: they are the box's, the gas fills the domain */
+    const double dlo[3] = {0, 0, 0}, dhi[3] = {0.012, 0.012, 0.016};
+    double       pmin = PETSC_MAX_REAL;
+    PetscCall(TestWriteStl(PETSC_COMM_WORLD, file, TestBoxTriangles(dlo, dhi, 2, PETSC_FALSE, v), v));
+    PetscCall(PetscSNPrintf(opts, sizeof opts, "-domain_lo 0,0,0 -domain_hi 0.012,0.012,0.016 -da_grid_x 6 -da_grid_y 6 -da_grid_z 8 -dem_radius 0.0005 -dem_kn 100 -dem_dt 1e-5 -dem_mesh_0_file %s", file));
+    PetscCall(Vessel(opts, &dom, &dem, &any, NULL));
+    for (int i = 0; i <= 12; i++)
+      for (int j = 0; j <= 12; j++)
+        for (int k = 0; k <= 16; k++) { /* every half-cell node, the domain's faces included */
+          const double x[3] = {0.001 * i, 0.001 * j, 0.001 * k};
+          pmin              = PetscMin(pmin, DemVesselLevel(x, dem));
+        }
+    PetscCall(CheckAbove("STL box on the domain's faces (its triangles are the box's faces): smallest phi over the half-cell nodes, faces included [m]", pmin, 0));
+    PetscCall(TestDemDestroy(&dom, &dem));
+  }
   if (!rank) unlink(file);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
