@@ -31,7 +31,6 @@ PetscErrorCode FluidSetFromOptionsDistributor(Fluid fl)
   PetscCheck(v[1] > 0 && v[1] <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_distributor: open-area fraction %g must be in (0,1]", (double)v[1]);
   PetscCheck(v[2] > 0 && v[2] <= 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_distributor: orifice coefficient %g must be in (0,1]", (double)v[2]);
   PetscCheck(k0 >= 1 && k0 <= N - 1, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_distributor: height %g m must lie inside the domain, its nearest z-face layer in [1,%d] (got %d)", (double)v[0], (int)N - 1, (int)k0);
-  PetscCheck(fl->mom.visc == FLUID_VISC_EXPLICIT, fl->comm, PETSC_ERR_SUP, "-fluid_distributor works with -fluid_viscous explicit only (a stated limit)");
   fl->plate.on  = PETSC_TRUE;
   fl->plate.k0  = k0;
   fl->plate.phi = v[1];

@@ -95,7 +95,8 @@ PetscErrorCode FluidSetTimeStepName(Fluid fluid, const char *name);
 PetscErrorCode FluidGetAdaptive(Fluid fluid, PetscBool *on);
 /* Initial states (init.c). Not collective: the inlets' velocity U (m/s, the superficial
  * velocity of -fluid_bc_<face>_velocity now) and how many inlet faces there are (U = 0 with
- * none); two inlets of different velocities are an error. */
+ * none); two inlets of different velocities are an error. Without an inlet face, the inlet
+ * patches on one box face count as one inlet of their flow over the face's open area. */
 PetscErrorCode FluidGetInletVelocity(Fluid fluid, PetscReal U[3], PetscInt *ninlet);
 /* Collective. u_f = U_d / eps_f at every active face of component d (eps_f the mean of the two
  * cells' porosity eps^{n+1}), then the boundary values. With a vessel: the open faces (closed

@@ -331,6 +331,7 @@ PetscErrorCode FluidUpdatePatches(Fluid fl, PetscReal t, PetscBool *changed);
 PetscErrorCode FluidPatchSource(Fluid fl, Vec *src);
 PetscErrorCode FluidDestroyPatches(Fluid fl);
 PetscErrorCode FluidPatchesRelayout(Fluid fl);
+PetscErrorCode FluidPatchInletVelocity(Fluid fl, PetscReal U[3], PetscInt *n);
 /* distributor.c: the perforated plate */
 PetscErrorCode    FluidSetFromOptionsDistributor(Fluid fl);
 PetscErrorCode    FluidDistributorUpdate(Fluid fl);

@@ -8,7 +8,8 @@
  *   - steady: pseudo steps of the fluid through a fixed bed until the velocity stops changing;
  *     the fluid's clock and step count are then put back (FluidSetClock), so that the first real
  *     step starts at t = 0 with the first-step (Euler) advection and sees the inlet at dt.
- * FluidGetInletVelocity gives U; FluidSetClock the clock. Units SI. */
+ * FluidGetInletVelocity gives U (without an inlet face, the flow of the inlet patches on one box
+ * face over its open area, patch.c); FluidSetClock the clock. Units SI. */
 #include "fluid/fluid_impl.h"
 
 PetscErrorCode FluidGetInletVelocity(Fluid fl, PetscReal U[3], PetscInt *ninlet)
@@ -25,6 +26,7 @@ PetscErrorCode FluidGetInletVelocity(Fluid fl, PetscReal U[3], PetscInt *ninlet)
       for (int k = 0; k < 3; k++) U[k] = bc->vel[k];
       n++;
     }
+  if (!n) PetscCall(FluidPatchInletVelocity(fl, U, &n)); /* inlet patches on one face: their flow over its open area */
   *ninlet = n;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -15,7 +15,7 @@
  *   source brings no momentum (the limit of a point source).
  * Maps of the face points (FluidBC.pkind, pvn, pp; fid, fw here) cover the whole face on every
  * rank: boundary ghosts of any decomposition read them, and the set-up is the same everywhere.
- * Units SI. Limits: outlets lie on a box face; no patch with -fluid_viscous implicit. */
+ * Units SI. Limits: outlets lie on a box face. */
 #include "fluid/fluid_impl.h"
 #include <ctype.h>
 
@@ -27,12 +27,14 @@ typedef struct {
   PetscBool  outlet, mass; /* an outlet; an inlet given as a mass flow (else a velocity) */
   PetscInt   nv;
   PetscReal  v[3 * FLUID_PATCH_NV]; /* the polygon */
-  int        d, s;                  /* the box face (axis, side); d = -1: a source inside */
-  FluidBC    tab;                   /* the inlet's value: vel0[0] constant, tab rows t, value, 0, 0 */
-  PetscReal  value;                 /* the inlet's value now (m/s or kg/s) */
-  PetscReal  p;                     /* outlet pressure (Pa) */
-  PetscReal  W;                     /* sum of the weights (open area covered, m^2) */
-  PetscInt   nc;                    /* source: cells crossed, natural index, weight (m^2) */
+  PetscInt   nq;                    /* a cylinder strip: its nq planar quads (4 vertices each), else 0 */
+  PetscReal *quad;
+  int        d, s;  /* the box face (axis, side); d = -1: a source inside */
+  FluidBC    tab;   /* the inlet's value: vel0[0] constant, tab rows t, value, 0, 0 */
+  PetscReal  value; /* the inlet's value now (m/s or kg/s) */
+  PetscReal  p;     /* outlet pressure (Pa) */
+  PetscReal  W;     /* sum of the weights (open area covered, m^2) */
+  PetscInt   nc;    /* source: cells crossed, natural index, weight (m^2) */
   PetscInt  *cell;
   PetscReal *w;
 } FluidPatch;
@@ -41,8 +43,10 @@ struct _FluidPatches {
   PetscInt    n;
   FluidPatch *p;
   PetscInt   *fid[3][2]; /* patch of each face point (-1: none) */
-  PetscReal  *fw[3][2];  /* its weight (m^2) */
+  PetscReal  *fw[3][2];  /* its weight: the patch's area on it times fa (m^2) */
+  PetscReal  *fa[3][2];  /* the face's open-area fraction (1 without a vessel) */
   Vec         src;       /* S_c (1/s, cell Vec), NULL without sources */
+  PetscReal   open[6];   /* open area of each box face (m^2; a_f summed) */
   PetscBool   sources, setup;
 };
 
@@ -127,12 +131,11 @@ static PetscInt fluid_clip(PetscInt n, const PetscReal *v, int d, PetscReal c, P
 }
 
 /* Area of the polygon inside the box [lo, hi] along the axes with mask[d]. */
-static PetscReal fluid_clipped_area(const FluidPatch *pt, const PetscReal lo[3], const PetscReal hi[3], const PetscBool mask[3])
+static PetscReal fluid_clipped_polygon(PetscInt n, const PetscReal *v, const PetscReal lo[3], const PetscReal hi[3], const PetscBool mask[3])
 {
   PetscReal a[3 * FLUID_PATCH_CLIP], b[3 * FLUID_PATCH_CLIP];
-  PetscInt  n = pt->nv;
 
-  for (PetscInt i = 0; i < 3 * n; i++) a[i] = pt->v[i];
+  for (PetscInt i = 0; i < 3 * n; i++) a[i] = v[i];
   for (int d = 0; d < 3 && n >= 3; d++) {
     if (!mask[d]) continue;
     n = fluid_clip(n, a, d, lo[d], -1, b);
@@ -140,11 +143,60 @@ static PetscReal fluid_clipped_area(const FluidPatch *pt, const PetscReal lo[3],
   }
   return fluid_polygon_area(n, a);
 }
+static PetscReal fluid_clipped_area(const FluidPatch *pt, const PetscReal lo[3], const PetscReal hi[3], const PetscBool mask[3])
+{
+  PetscReal A = 0;
+  if (!pt->nq) return fluid_clipped_polygon(pt->nv, pt->v, lo, hi, mask);
+  for (PetscInt q = 0; q < pt->nq; q++) A += fluid_clipped_polygon(4, pt->quad + 12 * q, lo, hi, mask);
+  return A;
+}
+
+/* The bounding box of the patch's polygon or quads. */
+static void fluid_patch_bounds(const FluidPatch *pt, PetscReal blo[3], PetscReal bhi[3])
+{
+  const PetscInt   n = pt->nq ? 4 * pt->nq : pt->nv;
+  const PetscReal *v = pt->nq ? pt->quad : pt->v;
+  for (int e = 0; e < 3; e++) blo[e] = PETSC_MAX_REAL, bhi[e] = -PETSC_MAX_REAL;
+  for (PetscInt i = 0; i < n; i++)
+    for (int e = 0; e < 3; e++) blo[e] = PetscMin(blo[e], v[3 * i + e]), bhi[e] = PetscMax(bhi[e], v[3 * i + e]);
+}
+
+/* A strip of a cylinder's surface, cx,cy,cz,ax,ay,az,R,L[,th0,th1]: centre, axis, radius,
+ * length, angles (degrees, default 0,360) about the axis from e1, the x direction (y when the
+ * axis is along x) across the axis, towards e2 = a x e1; as nq planar quads whose chords keep
+ * the strip's area (radius R' = R (dth/2) / sin(dth/2) for quads of angle dth). */
+static PetscErrorCode FluidPatchCylinder(Fluid fl, const char *opt, const PetscReal *g, PetscInt n, FluidPatch *pt)
+{
+  const PetscReal an = PetscSqrtReal(g[3] * g[3] + g[4] * g[4] + g[5] * g[5]);
+  const PetscReal t0 = n == 10 ? g[8] * PETSC_PI / 180 : 0, t1 = n == 10 ? g[9] * PETSC_PI / 180 : 2 * PETSC_PI;
+  PetscReal       ax[3], e1[3], e2[3], ref[3] = {1, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCheck(n == 8 || n == 10, fl->comm, PETSC_ERR_ARG_SIZ, "%s takes cx,cy,cz,ax,ay,az,R,L[,theta0,theta1]; got %d values", opt, (int)n);
+  PetscCheck(an > 0 && g[6] > 0 && g[7] > 0 && t1 > t0 && t1 - t0 <= 2 * PETSC_PI + 1e-12, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the axis must be non-zero, R and L > 0 (m), theta0 < theta1 <= theta0 + 360 (degrees)", opt);
+  for (int e = 0; e < 3; e++) ax[e] = g[3 + e] / an;
+  if (PetscAbsReal(ax[0]) > 0.9) ref[0] = 0, ref[1] = 1;
+  const PetscReal r = ref[0] * ax[0] + ref[1] * ax[1] + ref[2] * ax[2];
+  for (int e = 0; e < 3; e++) e1[e] = ref[e] - r * ax[e];
+  const PetscReal l1 = PetscSqrtReal(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  for (int e = 0; e < 3; e++) e1[e] /= l1;
+  fluid_cross(ax, e1, e2);
+  pt->nq              = PetscMax(4, (PetscInt)PetscCeilReal(FLUID_PATCH_NV * (t1 - t0) / (2 * PETSC_PI)));
+  const PetscReal dth = (t1 - t0) / pt->nq;
+  const PetscReal Rp  = g[6] * 0.5 * dth / PetscSinReal(0.5 * dth);
+  PetscCall(PetscMalloc1(12 * pt->nq, &pt->quad));
+  for (PetscInt q = 0; q < pt->nq; q++)
+    for (int k = 0; k < 4; k++) {
+      const PetscReal th = t0 + (q + (k == 1 || k == 2 ? 1 : 0)) * dth, h = (k >= 2 ? 0.5 : -0.5) * g[7];
+      for (int e = 0; e < 3; e++) pt->quad[12 * q + 3 * k + e] = g[e] + h * ax[e] + Rp * (PetscCosReal(th) * e1[e] + PetscSinReal(th) * e2[e]);
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* The shape options of patch pt (exactly one of disc, rect, polygon) into its polygon. */
 static PetscErrorCode FluidPatchReadShape(PetscOptionItems *PetscOptionsObject, Fluid fl, FluidPatch *pt)
 {
-  char      od[64], orr[64], op[64];
+  char      od[64], orr[64], op[64], oc[64];
   PetscReal g[3 * FLUID_PATCH_NV + 3];
   PetscInt  n = 3 * FLUID_PATCH_NV + 3, given = 0;
   PetscBool set;
@@ -196,7 +248,15 @@ static PetscErrorCode FluidPatchReadShape(PetscOptionItems *PetscOptionsObject, 
     PetscCall(PetscArraycpy(pt->v, g, n));
     given++;
   }
-  PetscCheck(given == 1, fl->comm, PETSC_ERR_ARG_WRONG, "-fluid_patch_%d_*: give exactly one shape of %s, %s, %s (got %d)", (int)pt->k, od, orr, op, (int)given);
+  PetscCall(PetscSNPrintf(oc, sizeof oc, "-fluid_patch_%d_cylinder", (int)pt->k));
+  n = 10;
+  PetscCall(SableOptionsRealArray(oc, "A strip of a cylinder's surface (a source inside): centre, axis, radius, length, angles about the axis from x (y for an axis along x) cx,cy,cz,ax,ay,az,R,L[,theta0,theta1]", "m, degrees", g, 0, &n, &set));
+  if (set) {
+    PetscCall(FluidPatchCylinder(fl, oc, g, n, pt));
+    given++;
+  }
+  PetscCheck(given == 1, fl->comm, PETSC_ERR_ARG_WRONG, "-fluid_patch_%d_*: give exactly one shape of %s, %s, %s, %s (got %d)", (int)pt->k, od, orr, op, oc, (int)given);
+  if (pt->nq) PetscFunctionReturn(PETSC_SUCCESS);
   /* planar and convex: every corner turns the same way as the polygon's normal, every vertex in its plane */
   fluid_polygon_normal(pt->nv, pt->v, A);
   const PetscReal An = PetscSqrtReal(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]);
@@ -219,7 +279,7 @@ static void FluidPatchFindFace(Fluid fl, const FluidPatch *pt, int *d, int *s)
 {
   *d = -1;
   *s = 0;
-  for (int e = 0; e < 3 && *d < 0; e++)
+  for (int e = 0; e < 3 && *d < 0 && !pt->nq; e++)
     for (int t = 0; t < 2 && *d < 0; t++) {
       const PetscReal x  = t ? fl->dom->hi[e] : fl->dom->lo[e];
       PetscBool       on = PETSC_TRUE;
@@ -280,15 +340,41 @@ static PetscErrorCode FluidPatchReadValue(PetscOptionItems *PetscOptionsObject, 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* -help without patches: the family's lines, for k = 0 (nothing is read). */
+static PetscErrorCode FluidPatchHelp(Fluid fl)
+{
+  PetscReal g[3 * FLUID_PATCH_NV] = {0}, x = 0;
+  PetscInt  n = 3 * FLUID_PATCH_NV, e = 0;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(fl->comm, NULL, "Fluid inlet and outlet patches (any k >= 0)", NULL);
+  PetscCall(SableOptionsEnum("-fluid_patch_0_type", "Patch k: inlet or outlet", FluidPatchTypes, 2, e, &e, NULL));
+  PetscCall(SableOptionsRealN("-fluid_patch_0_disc", "A disc patch: centre, normal, radius cx,cy,cz,nx,ny,nz,R", "m", g, 0, 7, NULL));
+  PetscCall(SableOptionsRealN("-fluid_patch_0_rect", "A rectangle patch: corners p0, p1, p2 (p1 - p0 perpendicular to p2 - p0)", "m", g, 0, 9, NULL));
+  PetscCall(SableOptionsRealArray("-fluid_patch_0_polygon", "A convex polygon patch: its vertices in order x1,y1,z1,x2,... (3 to 64, in one plane)", "m", g, 0, &n, NULL));
+  PetscCall(SableOptionsRealArray("-fluid_patch_0_cylinder", "A strip of a cylinder's surface (a source inside): centre, axis, radius, length, angles about the axis from x (y for an axis along x) cx,cy,cz,ax,ay,az,R,L[,theta0,theta1]", "m, degrees", g, 0, &n, NULL));
+  PetscCall(SableOptionsEnum("-fluid_patch_0_face", "The box face the patch lies on, or inside (a volume source); default: found from the shape", FluidPatchFaces, 7, 6, &e, NULL));
+  PetscCall(SableOptionsReal("-fluid_patch_0_velocity", "Inlet patch: superficial velocity into the domain (the volume flow over the open area; along the normal for a source)", "m/s", NULL, x, &x, NULL));
+  PetscCall(SableOptionsReal("-fluid_patch_0_mass_flow", "Inlet patch: mass flow into the domain", "kg/s", NULL, x, &x, NULL));
+  PetscCall(SableOptionsRealArray("-fluid_patch_0_velocity_table", "Inlet patch: velocity from each time on: t1,U1,t2,U2,...", "s, m/s", g, 0, &n, NULL));
+  PetscCall(SableOptionsRealArray("-fluid_patch_0_mass_flow_table", "Inlet patch: mass flow from each time on: t1,m1,t2,m2,...", "s, kg/s", g, 0, &n, NULL));
+  PetscCall(SableOptionsReal("-fluid_patch_0_pressure", "Outlet patch: pressure (default -fluid_outlet_pressure)", "Pa", NULL, fl->bc.p_out, &x, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FluidSetFromOptionsPatch(Fluid fl)
 {
   PetscInt *idx, n;
+  PetscBool help;
 
   PetscFunctionBeginUser;
   PetscCall(FluidDestroyPatches(fl));
   PetscCall(FluidPatchIndices(&n, &idx));
   if (!n) {
     PetscCall(PetscFree(idx));
+    PetscCall(PetscOptionsHasHelp(NULL, &help));
+    if (help) PetscCall(FluidPatchHelp(fl));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscNew(&fl->patch));
@@ -308,7 +394,6 @@ PetscErrorCode FluidSetFromOptionsPatch(Fluid fl)
     PetscCall(SableOptionsEnum(ot, "Patch k: inlet or outlet", FluidPatchTypes, 2, type, &type, &set));
     PetscCheck(set, fl->comm, PETSC_ERR_ARG_WRONG, "-fluid_patch_%d_* options are given without %s inlet|outlet", (int)pt->k, ot);
     pt->outlet = (PetscBool)(type == 1);
-    PetscCheck(fl->mom.visc == FLUID_VISC_EXPLICIT, fl->comm, PETSC_ERR_SUP, "%s: patches work with -fluid_viscous explicit only (a stated limit)", ot);
     PetscCall(FluidPatchReadShape(PetscOptionsObject, fl, pt));
     PetscCall(SableOptionsEnum(of, "The box face the patch lies on, or inside (a volume source); default: found from the shape", FluidPatchFaces, 7, face, &face, &fset));
     FluidPatchFindFace(fl, pt, &d, &s);
@@ -329,6 +414,54 @@ PetscErrorCode FluidSetFromOptionsPatch(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The open-area fraction of every face point of box face (d, s) on every rank (1 without a
+ * vessel): each owner writes its points, summed over ranks (one non-zero per point, exact). */
+static PetscErrorCode FluidPatchFaceOpen(Fluid fl, int d, int s, PetscReal *fa)
+{
+  const FluidGrid *g = &fl->g;
+  const int        a = (d + 1) % 3, b = (d + 2) % 3;
+  const PetscInt   n = g->N[a] * g->N[b];
+  PetscReal       *loc;
+  PetscInt         q[3];
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < n; k++) fa[k] = 1;
+  if (!fl->ves.cut) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscCalloc1(n, &loc));
+  if (s ? g->xs[d] + g->xm[d] == g->N[d] : g->xs[d] == 0) {
+    const PetscScalar ****ar;
+    PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->ves.area, &ar));
+    q[d] = s ? g->N[d] : 0;
+    for (q[b] = g->xs[b]; q[b] < g->xs[b] + g->xm[b]; q[b]++)
+      for (q[a] = g->xs[a]; q[a] < g->xs[a] + g->xm[a]; q[a]++) loc[q[a] + g->N[a] * q[b]] = PetscRealPart(ar[q[2]][q[1]][q[0]][d]);
+    PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->ves.area, &ar));
+  }
+  PetscCallMPI(MPIU_Allreduce(loc, fa, (PetscMPIInt)n, MPIU_REAL, MPIU_SUM, fl->comm));
+  PetscCall(PetscFree(loc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The open-volume fraction of the n cells (natural indices) on every rank, as above. */
+static PetscErrorCode FluidPatchCellOpen(Fluid fl, PetscInt n, const PetscInt *cell, PetscReal *v)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *vol;
+  PetscReal         *loc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(n, &loc));
+  PetscCall(VecGetArrayRead(fl->ves.vol, &vol));
+  for (PetscInt j = 0; j < n; j++) {
+    PetscInt c[3] = {cell[j] % g->N[0], (cell[j] / g->N[0]) % g->N[1], cell[j] / (g->N[0] * g->N[1])}, own = 1;
+    for (int e = 0; e < 3; e++) own = own && c[e] >= g->xs[e] && c[e] < g->xs[e] + g->xm[e];
+    if (own) loc[j] = PetscRealPart(vol[((c[2] - g->xs[2]) * g->xm[1] + (c[1] - g->xs[1])) * g->xm[0] + (c[0] - g->xs[0])]);
+  }
+  PetscCall(VecRestoreArrayRead(fl->ves.vol, &vol));
+  PetscCallMPI(MPIU_Allreduce(loc, v, (PetscMPIInt)n, MPIU_REAL, MPIU_SUM, fl->comm));
+  PetscCall(PetscFree(loc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The face maps of patch i on its box face (d, s). */
 static PetscErrorCode FluidPatchCoverFace(Fluid fl, PetscInt i)
 {
@@ -344,11 +477,11 @@ static PetscErrorCode FluidPatchCoverFace(Fluid fl, PetscInt i)
   PetscFunctionBeginUser;
   if (!bc->pkind) {
     PetscCall(PetscCalloc3(Na * Nb, &bc->pkind, Na * Nb, &bc->pvn, Na * Nb, &bc->pp));
-    PetscCall(PetscMalloc2(Na * Nb, &P->fid[d][s], Na * Nb, &P->fw[d][s]));
+    PetscCall(PetscMalloc3(Na * Nb, &P->fid[d][s], Na * Nb, &P->fw[d][s], Na * Nb, &P->fa[d][s]));
     for (PetscInt q = 0; q < Na * Nb; q++) P->fid[d][s][q] = -1, P->fw[d][s][q] = 0;
+    PetscCall(FluidPatchFaceOpen(fl, d, s, P->fa[d][s]));
   }
-  for (PetscInt v = 0; v < pt->nv; v++)
-    for (int e = 0; e < 3; e++) blo[e] = PetscMin(blo[e], pt->v[3 * v + e]), bhi[e] = PetscMax(bhi[e], pt->v[3 * v + e]);
+  fluid_patch_bounds(pt, blo, bhi);
   mask[a] = mask[b]  = PETSC_TRUE;
   const PetscInt ia0 = PetscMax(0, (PetscInt)PetscFloorReal((blo[a] - fl->g.lo[a]) / ha)), ia1 = PetscMin(Na - 1, (PetscInt)PetscFloorReal((bhi[a] - fl->g.lo[a]) / ha));
   const PetscInt ib0 = PetscMax(0, (PetscInt)PetscFloorReal((blo[b] - fl->g.lo[b]) / hb)), ib1 = PetscMin(Nb - 1, (PetscInt)PetscFloorReal((bhi[b] - fl->g.lo[b]) / hb));
@@ -360,10 +493,10 @@ static PetscErrorCode FluidPatchCoverFace(Fluid fl, PetscInt i)
       lo[b] = fl->g.lo[b] + ib * hb, hi[b] = lo[b] + hb;
       lo[d] = hi[d]     = 0;
       const PetscReal A = fluid_clipped_area(pt, lo, hi, mask);
-      if (A <= 1e-12 * ha * hb || (pt->outlet && A < 0.5 * ha * hb)) continue; /* an outlet takes the faces it covers at least half */
+      if (A <= 1e-12 * ha * hb || (pt->outlet && A < 0.5 * ha * hb) || P->fa[d][s][q] == 0) continue; /* an outlet takes the faces it covers at least half; closed faces stay closed */
       PetscCheck(P->fid[d][s][q] < 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_patch_%d overlaps -fluid_patch_%d on the %s face (face point %d,%d)", (int)pt->k, (int)P->p[P->fid[d][s][q]].k, FluidPatchFaces[2 * d + s], (int)ia, (int)ib);
       P->fid[d][s][q] = i;
-      P->fw[d][s][q]  = pt->outlet ? ha * hb : A;
+      P->fw[d][s][q]  = (pt->outlet ? ha * hb : A) * P->fa[d][s][q];
       bc->pkind[q]    = (signed char)(pt->outlet ? FLUID_BC_OUTLET : FLUID_BC_INLET);
       bc->pp[q]       = pt->p;
       pt->W += P->fw[d][s][q];
@@ -381,11 +514,13 @@ static PetscErrorCode FluidPatchCoverCells(Fluid fl, PetscInt i)
   PetscBool   mask[3] = {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE};
 
   PetscFunctionBeginUser;
-  for (PetscInt v = 0; v < pt->nv; v++)
-    for (int e = 0; e < 3; e++) blo[e] = PetscMin(blo[e], pt->v[3 * v + e]), bhi[e] = PetscMax(bhi[e], pt->v[3 * v + e]);
+  fluid_patch_bounds(pt, blo, bhi);
   for (int e = 0; e < 3; e++) {
     c0[e] = PetscMax(0, (PetscInt)PetscFloorReal((blo[e] - fl->g.lo[e]) / fl->g.h[e]));
     c1[e] = PetscMin(fl->g.N[e] - 1, (PetscInt)PetscFloorReal((bhi[e] - fl->g.lo[e]) / fl->g.h[e]));
+    /* flat on a plane of cell faces: the cells above it only (the two sides would both take it) */
+    const PetscReal sl = (blo[e] - fl->g.lo[e]) / fl->g.h[e], sh = (bhi[e] - fl->g.lo[e]) / fl->g.h[e];
+    if (sh - sl <= 1e-9 && PetscAbsReal(sl - PetscFloorReal(sl + 0.5)) <= 1e-9) c0[e] = c1[e] = PetscMin(fl->g.N[e] - 1, (PetscInt)PetscFloorReal(sl + 0.5));
   }
   PetscCall(PetscMalloc2(cap, &pt->cell, cap, &pt->w));
   pt->nc = 0;
@@ -410,21 +545,79 @@ static PetscErrorCode FluidPatchCoverCells(Fluid fl, PetscInt i)
         pt->w[pt->nc++]  = A;
         pt->W += A;
       }
+  if (fl->ves.cut) { /* with a vessel: the patch's area in the open part, approximated as area x vol_c */
+    PetscReal *v;
+    PetscCall(PetscMalloc1(pt->nc, &v));
+    PetscCall(FluidPatchCellOpen(fl, pt->nc, pt->cell, v));
+    pt->W = 0;
+    for (PetscInt j = 0; j < pt->nc; j++) pt->W += (pt->w[j] *= v[j]);
+    PetscCall(PetscFree(v));
+  }
   PetscCheck(pt->W > 0, fl->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_patch_%d lies on no box face and crosses no open cell of the grid", (int)pt->k);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* With a vessel cutting the grid: a box face declared inlet or outlet must keep some open area,
+ * and an open inlet (a face, a patch or a source) needs an open outlet. A vessel with neither
+ * (closed, or periodic and driven by a pressure gradient) is allowed. */
+static PetscErrorCode FluidCheckOpenBoundaries(Fluid fl)
+{
+  const FluidGrid *g       = &fl->g;
+  PetscReal        loc[12] = {0}, open[12], in = 0, out = 0;
+  PetscInt         q[3];
+
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      const int a = (d + 1) % 3, b = (d + 2) % 3;
+      if (FluidPeriodic(fl, d) || (s ? g->xs[d] + g->xm[d] != g->N[d] : g->xs[d] != 0)) continue;
+      q[d] = s ? g->N[d] : 0;
+      for (q[b] = g->xs[b]; q[b] < g->xs[b] + g->xm[b]; q[b]++)
+        for (q[a] = g->xs[a]; q[a] < g->xs[a] + g->xm[a]; q[a]++) {
+          const FluidBCType t  = fluid_bc_at(fl, d, s, q);
+          const PetscReal   Af = fl->ves.aloc[FluidFaceOff(g, q[0], q[1], q[2]) + d] * g->h[a] * g->h[b];
+          if (t == FLUID_BC_INLET) loc[2 * (2 * d + s)] += Af;
+          if (t == FLUID_BC_OUTLET) loc[2 * (2 * d + s) + 1] += Af;
+        }
+    }
+  PetscCallMPI(MPIU_Allreduce(loc, open, 12, MPIU_REAL, MPIU_SUM, fl->comm));
+  for (int f = 0; f < 6; f++) {
+    const FluidBCType t = fl->bc.face[f / 2][f % 2].type;
+    in += open[2 * f];
+    out += open[2 * f + 1];
+    PetscCheck(!(t == FLUID_BC_INLET && open[2 * f] == 0) && !(t == FLUID_BC_OUTLET && open[2 * f + 1] == 0), fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_bc_%s %s: the vessel closes every face of it (open area 0 m^2); open the vessel there or give the %s as a -fluid_patch_<k> where the vessel is open", FluidPatchFaces[f], FluidBCNames[t], FluidBCNames[t]);
+  }
+  for (PetscInt i = 0; fl->patch && i < fl->patch->n; i++)
+    if (fl->patch->p[i].d < 0) in += fl->patch->p[i].W;
+  PetscCheck(in == 0 || out > 0, fl->comm, PETSC_ERR_ARG_INCOMP, "the fluid has open inlets (%g m^2) but the vessel leaves no open outlet (0 m^2): give an outlet (-fluid_bc_<face> outlet or -fluid_patch_<k>_type outlet) where the vessel is open", (double)in);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FluidSetUpPatches(Fluid fl)
 {
   PetscFunctionBeginUser;
-  if (!fl->patch || fl->patch->setup) PetscFunctionReturn(PETSC_SUCCESS);
-  for (PetscInt i = 0; i < fl->patch->n; i++) {
-    if (fl->patch->p[i].d >= 0) PetscCall(FluidPatchCoverFace(fl, i));
-    else PetscCall(FluidPatchCoverCells(fl, i));
+  if (fl->patch && !fl->patch->setup) {
+    for (PetscInt i = 0; i < fl->patch->n; i++) {
+      if (fl->patch->p[i].d >= 0) PetscCall(FluidPatchCoverFace(fl, i));
+      else PetscCall(FluidPatchCoverCells(fl, i));
+    }
+    fl->patch->setup = PETSC_TRUE;
+    for (int f = 0; f < 6; f++) {
+      const int       d = f / 2, a = (d + 1) % 3, b = (d + 2) % 3;
+      const PetscInt  nq = fl->g.N[a] * fl->g.N[b];
+      const PetscReal Af = fl->g.h[a] * fl->g.h[b];
+      PetscReal      *fa;
+      fl->patch->open[f] = 0;
+      if (FluidPeriodic(fl, d)) continue;
+      PetscCall(PetscMalloc1(nq, &fa));
+      PetscCall(FluidPatchFaceOpen(fl, d, f % 2, fa));
+      for (PetscInt q = 0; q < nq; q++) fl->patch->open[f] += fa[q] * Af;
+      PetscCall(PetscFree(fa));
+    }
+    for (PetscInt i = 0; i < fl->patch->n; i++) fl->patch->p[i].value = PETSC_MAX_REAL; /* every value is new */
+    PetscCall(FluidUpdatePatches(fl, fl->clock.time, NULL));
   }
-  fl->patch->setup = PETSC_TRUE;
-  for (PetscInt i = 0; i < fl->patch->n; i++) fl->patch->p[i].value = PETSC_MAX_REAL; /* every value is new */
-  PetscCall(FluidUpdatePatches(fl, fl->clock.time, NULL));
+  if (fl->ves.cut) PetscCall(FluidCheckOpenBoundaries(fl));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -458,8 +651,8 @@ PetscErrorCode FluidUpdatePatches(Fluid fl, PetscReal t, PetscBool *changed)
         const PetscInt i = P->fid[d][s][q];
         if (i < 0 || P->p[i].outlet) continue;
         const FluidPatch *pt = &P->p[i];
-        const PetscReal   Q  = pt->mass ? pt->value / fl->prop.rho : pt->value * pt->W; /* m^3/s */
-        bc->pvn[q]           = (s ? -1 : 1) * Q * (P->fw[d][s][q] / pt->W) / Af;
+        const PetscReal   Q  = pt->mass ? pt->value / fl->prop.rho : pt->value * pt->W;             /* m^3/s */
+        bc->pvn[q]           = (s ? -1 : 1) * Q * (P->fw[d][s][q] / pt->W) / (P->fa[d][s][q] * Af); /* the flux a_f U A = Q w_f / W */
       }
     }
   if (P->sources) {
@@ -517,12 +710,41 @@ PetscErrorCode FluidDestroyPatches(Fluid fl)
     for (int s = 0; s < 2; s++) {
       FluidBC *bc = &fl->bc.face[d][s];
       PetscCall(PetscFree3(bc->pkind, bc->pvn, bc->pp));
-      PetscCall(PetscFree2(P->fid[d][s], P->fw[d][s]));
+      PetscCall(PetscFree3(P->fid[d][s], P->fw[d][s], P->fa[d][s]));
     }
-  for (PetscInt i = 0; i < P->n; i++) PetscCall(PetscFree2(P->p[i].cell, P->p[i].w));
+  for (PetscInt i = 0; i < P->n; i++) {
+    PetscCall(PetscFree2(P->p[i].cell, P->p[i].w));
+    PetscCall(PetscFree(P->p[i].quad));
+  }
   PetscCall(VecDestroy(&P->src));
   PetscCall(PetscFree(P->p));
   PetscCall(PetscFree(fl->patch));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Not collective. With inlet patches on one box face after the set-up: their superficial
+ * velocity over that face's open area, U_d = Q / A_open (sign: into the domain), and n = 1;
+ * else n = 0 (init.c, a uniform initial fluid). */
+PetscErrorCode FluidPatchInletVelocity(Fluid fl, PetscReal U[3], PetscInt *n)
+{
+  FluidPatches *P    = fl->patch;
+  int           face = -1;
+  PetscReal     Q    = 0;
+
+  PetscFunctionBeginUser;
+  *n = 0;
+  if (!P || !P->setup) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt i = 0; i < P->n; i++) {
+    const FluidPatch *pt = &P->p[i];
+    if (pt->outlet || pt->d < 0) continue;
+    PetscCheck(face < 0 || face == 2 * pt->d + pt->s, fl->comm, PETSC_ERR_ARG_INCOMP, "-fluid_patch_%d: inlet patches on two box faces (%s, %s); a uniform initial fluid needs the inlets on one face", (int)pt->k, FluidPatchFaces[face], FluidPatchFaces[2 * pt->d + pt->s]);
+    face = 2 * pt->d + pt->s;
+    Q += pt->mass ? pt->value / fl->prop.rho : pt->value * pt->W;
+  }
+  if (face < 0 || P->open[face] <= 0) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int k = 0; k < 3; k++) U[k] = 0;
+  U[face / 2] = (face % 2 ? -1 : 1) * Q / P->open[face];
+  *n          = 1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -574,7 +796,7 @@ PetscErrorCode FluidPatchMeasure(Fluid fl, PetscInt i, PetscInt *k, PetscReal *p
         c2[d]              = s ? g->xm[d] - 2 : 1;
         const PetscInt  o1 = (c1[2] * g->xm[1] + c1[1]) * g->xm[0] + c1[0], o2 = (c2[2] * g->xm[1] + c2[1]) * g->xm[0] + c2[0];
         const PetscReal pf     = pt->outlet ? pt->p : 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]);
-        const PetscReal fl_out = (s ? 1 : -1) * PetscRealPart(eps[o1] * u[q[2]][q[1]][q[0]][d]) * Af; /* m^3/s out of the domain */
+        const PetscReal fl_out = (s ? 1 : -1) * P->fa[d][s][m] * PetscRealPart(eps[o1] * u[q[2]][q[1]][q[0]][d]) * Af; /* m^3/s out of the domain */
         loc[0] += P->fw[d][s][m] * pf;
         loc[1] += fl->prop.rho * (pt->outlet ? fl_out : -fl_out);
       }

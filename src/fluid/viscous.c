@@ -50,21 +50,23 @@ PetscErrorCode FluidViscousSetUp(Fluid fl)
 
 /* Ghost of component d across side s of axis e, for an active point next to it:
  * ghost = alpha u(P) + gamma (bc.c). */
-static void FluidGhostRelation(Fluid fl, int d, int e, int s, PetscScalar *alpha, PetscScalar *gamma)
+static void FluidGhostRelation(Fluid fl, int d, int e, int s, const PetscInt idx[3], PetscScalar *alpha, PetscScalar *gamma)
 {
-  const FluidBC *bc = &fl->bc.face[e][s];
-  *gamma            = 0;
+  const FluidBC    *bc    = &fl->bc.face[e][s];
+  const FluidBCType type  = fluid_bc_at(fl, e, s, idx); /* a patch's point: its condition, no tangential inflow */
+  const PetscBool   patch = (PetscBool)(bc->pkind && bc->pkind[fluid_face_point(fl, e, idx)]);
+  *gamma                  = 0;
   if (d == e) {
     *alpha = 1;
     return;
   } /* only an outlet face has a ghost normal neighbour */
-  switch (bc->type) {
+  switch (type) {
   case FLUID_BC_WALL:
     *alpha = -1;
     break;
   case FLUID_BC_INLET:
     *alpha = -1;
-    *gamma = 2 * bc->vel[d];
+    *gamma = patch ? 0 : 2 * bc->vel[d];
     break;
   default:
     *alpha = 1;
@@ -74,11 +76,13 @@ static void FluidGhostRelation(Fluid fl, int d, int e, int s, PetscScalar *alpha
 
 /* Value of the fixed normal face of axis d on side s, cb the local offset of the cell next to it
  * (wall 0, inlet U_n / eps_f at the new level's porosity, as bc.c fills it). */
-static PetscScalar FluidFixedValue(Fluid fl, const PetscScalar *eps, PetscInt cb, int d, int s)
+static PetscScalar FluidFixedValue(Fluid fl, const PetscScalar *eps, PetscInt cb, int d, int s, const PetscInt idx[3])
 {
-  const FluidGrid *g = &fl->g;
-  if (fl->bc.face[d][s].type != FLUID_BC_INLET) return 0;
-  return fl->bc.face[d][s].vel[d] / (0.5 * (eps[cb] + eps[cb + (s ? 1 : -1) * g->cs[d]]));
+  const FluidGrid *g  = &fl->g;
+  const FluidBC   *bc = &fl->bc.face[d][s];
+  if (fluid_bc_at(fl, d, s, idx) != FLUID_BC_INLET) return 0;
+  const PetscReal vn = bc->pkind && bc->pkind[fluid_face_point(fl, d, idx)] ? bc->pvn[fluid_face_point(fl, d, idx)] : bc->vel[d];
+  return vn / (0.5 * (eps[cb] + eps[cb + (s ? 1 : -1) * g->cs[d]]));
 }
 
 /* One row of the matrix (and its boundary right-hand side) for component d at point idx. */
@@ -118,16 +122,16 @@ static PetscErrorCode FluidViscousRow(Fluid fl, PetscReal dt, const PetscScalar 
       }
       v[0] += k;
       const PetscInt top = (e == d) ? g->N[e] : g->N[e] - 1; /* last in-domain index */
-      if (FluidPeriodic(fl, e) || (nb >= 0 && nb <= top && (e != d || (nb > 0 && nb < g->N[e]) || fl->bc.face[e][nb ? 1 : 0].type == FLUID_BC_OUTLET))) {
+      if (FluidPeriodic(fl, e) || (nb >= 0 && nb <= top && (e != d || (nb > 0 && nb < g->N[e]) || fluid_bc_at(fl, e, nb ? 1 : 0, idx) == FLUID_BC_OUTLET))) {
         col[n] = row;
         if (e == 0) col[n].i = nb;
         if (e == 1) col[n].j = nb;
         if (e == 2) col[n].k = nb;
         v[n++] = -k;
-      } else if (nb >= 0 && nb <= top) vbc[o + d] += k * FluidFixedValue(fl, eps, nb ? c : c - cd, d, nb ? 1 : 0); /* fixed face */
+      } else if (nb >= 0 && nb <= top) vbc[o + d] += k * FluidFixedValue(fl, eps, nb ? c : c - cd, d, nb ? 1 : 0, idx); /* fixed face */
       else {
         PetscScalar alpha, gamma;
-        FluidGhostRelation(fl, d, e, s, &alpha, &gamma);
+        FluidGhostRelation(fl, d, e, s, idx, &alpha, &gamma);
         v[0] -= k * alpha;
         vbc[o + d] += k * gamma;
       }
@@ -146,12 +150,12 @@ static PetscErrorCode FluidViscousAssemble(Fluid fl, PetscReal dt)
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(fl->vimp.V));
   PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
-  PetscCall(VecGetArrayRead(fl->fld.beta, &beta));
+  PetscCall(VecGetArrayRead(FluidBetaOfSolve(fl), &beta)); /* with a distributor plate, its resistance too */
   PetscCall(VecGetArray(fl->vimp.bc, &vbc));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) PetscCall(FluidViscousRow(fl, dt, eps, beta, idx, f, c, o, d, vbc));
   PetscCall(VecRestoreArray(fl->vimp.bc, &vbc));
-  PetscCall(VecRestoreArrayRead(fl->fld.beta, &beta));
+  PetscCall(VecRestoreArrayRead(FluidBetaOfSolve(fl), &beta));
   PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
   PetscCall(MatAssemblyBegin(fl->vimp.V, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(fl->vimp.V, MAT_FINAL_ASSEMBLY));
@@ -169,7 +173,7 @@ PetscErrorCode FluidViscousSolve(Fluid fl, PetscReal dt, Vec rhs, Vec uhat)
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps, &se));
-  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &sb));
+  PetscCall(PetscObjectStateGet((PetscObject)FluidBetaOfSolve(fl), &sb));
   if (se != fl->vimp.eps_state || sb != fl->vimp.beta_state || dt != fl->vimp.dt_mat) {
     PetscCall(FluidViscousAssemble(fl, dt));
     fl->vimp.eps_state  = se;
