@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """picture.py: a picture of the cylindrical bed (cases/cylinder_bed) from its output, as PNG.
 
-  cases/cylinder_bed/picture.py [OUT_DIR (out/bed)] [PNG (OUT_DIR/cylinder_bed.png)]
+  cases/cylinder_bed/picture.py [OUT_DIR (out/cylinder_bed)] [PNG (OUT_DIR/cylinder_bed.png)]
 
 Left: the last frame cut through the axis: the gas's vertical superficial velocity eps u_z in the
 cell row through y = 0 (colour; the cells outside the cylinder carry none), the beads whose
@@ -38,7 +38,7 @@ def inlet(t):
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else "out/bed"
+    out = sys.argv[1] if len(sys.argv) > 1 else "out/cylinder_bed"
     png = sys.argv[2] if len(sys.argv) > 2 else os.path.join(out, "cylinder_bed.png")
     frames = sorted(glob.glob(os.path.join(out, "sable_[0-9]*.h5")))
     if not frames:
