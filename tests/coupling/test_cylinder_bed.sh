@@ -17,8 +17,8 @@
 #   (c) no gas outside the cylinder at the end: u = 0 exactly in every cell wholly outside it (the
 #       cells centred outside but open in part carry a little flux: a NOTE line gives its fraction);
 # and across runs: (d) the same grid on 1 and 2 ranks gives U_mf and the plateau within 1%.
-# About 50 s of CPU with the default run, the pour 18 s of it (2026-12-03, the shared 2-core VM;
-# 3 min of wall at load 6-12).
+# 18 s of wall in the suite (2026-12-03, the 2-core VM idle; about 3 min at load 6-12 with two
+# runs).
 cd "$(dirname "$0")/../.." || exit 1
 ROOT=$(pwd)
 S=$ROOT/${BIN:-bin}/sable
