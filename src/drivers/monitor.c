@@ -45,31 +45,6 @@ static PetscErrorCode DriverMonIndices(const char *family, PetscInt *n, PetscInt
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The indices k of the fluid's patches, -fluid_patch_<k>_type given (sorted, without repeats,
- * as the fluid numbers them); *idx is freed by the caller. Not collective. */
-static PetscErrorCode DriverMonPatchIndices(PetscInt *n, PetscInt **idx)
-{
-  char    *all, *tok, *save = NULL;
-  PetscInt cap = 8;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(cap, idx));
-  *n = 0;
-  PetscCall(PetscOptionsGetAll(NULL, &all));
-  for (tok = strtok_r(all, " ", &save); tok; tok = strtok_r(NULL, " ", &save)) {
-    char *end;
-    long  k;
-    if (strncmp(tok, "-fluid_patch_", 13) || !isdigit((unsigned char)tok[13])) continue;
-    k = strtol(tok + 13, &end, 10);
-    if (strcmp(end, "_type") || k > 999999) continue;
-    if (*n == cap) PetscCall(PetscRealloc(sizeof(PetscInt) * (cap *= 2), idx));
-    (*idx)[(*n)++] = (PetscInt)k;
-  }
-  PetscCall(PetscFree(all));
-  PetscCall(PetscSortRemoveDupsInt(n, *idx));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* Appends region r to the list *list of *n (grown one at a time: set-up only). */
 static PetscErrorCode DriverMonAppend(DriverMonRegion **list, PetscInt *n, const DriverMonRegion *r)
 {
@@ -227,7 +202,7 @@ PetscErrorCode DriverMonSetFromOptions(DriverMon *m, MPI_Comm comm, PetscBool co
   PetscCall(DriverMonReadPlanes(PetscOptionsObject, m, "mon_flux", DriverMonWordOptions[0], "A plane through which the monitor reports the solids mass flow (kg/s, along +axis): x=c, y=c, z=c (whole), or a rectangle lo_x,lo_y,lo_z,hi_x,hi_y,hi_z flat along one axis; any k >= 0", PETSC_FALSE, &m->flux, &m->nflux));
   PetscCall(SableOptionsReal("-mon_flux_width", "Width of the slab about a -mon_flux_<k> plane whose particles count: flow = sum(m v.n) / width; default 2 x the largest particle diameter", "m", "(0,inf)", 0, &m->flux_width, NULL));
   PetscCall(DriverMonReadProbes(PetscOptionsObject, m));
-  if (coupled) PetscCall(DriverMonPatchIndices(&m->npatch, &m->patch));
+  if (coupled) PetscCall(FluidPatchIndices(&m->npatch, &m->patch)); /* as the fluid numbers its patches */
   PetscCall(DriverMonReadBoxes(PetscOptionsObject, m, "mon_line", "-mon_line_%d", "A segment along which the monitor averages the fluid's fields (coupled runs): x0,y0,z0,x1,y1,z1; any k >= 0", PETSC_TRUE, PETSC_TRUE, &m->line, &m->nline));
   PetscCall(DriverMonReadPlanes(PetscOptionsObject, m, "mon_plane", DriverMonWordOptions[1], "A plane over which the monitor averages the fluid's fields (coupled runs): x=c, y=c, z=c (whole), or a rectangle lo_x,lo_y,lo_z,hi_x,hi_y,hi_z flat along one axis; any k >= 0", PETSC_TRUE, &m->plane, &m->nplane));
   PetscCall(PetscOptionsStringArray("-mon_average_fields", "Fields the -mon_line_<k> and -mon_plane_<k> averages report: p (Pa), eps (-), u (interstitial velocity, 3 columns, m/s); default p,eps,u", NULL, fp, &nf, &set));

@@ -205,4 +205,8 @@ PetscErrorCode FluidCellsToFaces(Fluid fluid, Vec cell[3], Vec face);
  * mass flow (kg/s) measured from the face fluxes rho eps_f u A: into the domain at an inlet, out
  * of it at an outlet; a source inside the domain: rho sum S_c V_c. */
 PetscErrorCode FluidGetPatchCount(Fluid fluid, PetscInt *n);
+/* Not collective; from the options alone (before the fluid exists): the indices k of the options
+ * -fluid_patch_<k>_... given, sorted, without repeats, the order of the fluid's patches; *idx is
+ * freed by the caller (PetscFree). */
+PetscErrorCode FluidPatchIndices(PetscInt *n, PetscInt **idx);
 PetscErrorCode FluidPatchMeasure(Fluid fluid, PetscInt i, PetscInt *k, PetscReal *p, PetscReal *mdot);

@@ -56,8 +56,7 @@ static const char *const FluidPatchWordOptions[] = {"-fluid_patch_%d_type", "-fl
 static const char *const FluidPatchTypes[] = {"inlet", "outlet", "FluidPatchType", "FLUID_PATCH_", NULL};
 static const char *const FluidPatchFaces[] = {"xlo", "xhi", "ylo", "yhi", "zlo", "zhi", "inside", "FluidPatchFace", "FLUID_PATCH_FACE_", NULL};
 
-/* The indices k of the options -fluid_patch_<k>_... given, sorted, without repeats. */
-static PetscErrorCode FluidPatchIndices(PetscInt *n, PetscInt **idx)
+PetscErrorCode FluidPatchIndices(PetscInt *n, PetscInt **idx)
 {
   char    *all, *tok, *save = NULL;
   PetscInt cap = 8;
