@@ -9,7 +9,8 @@
  *   beta_p = rho eps_f^2 |u^n| / (2 h_z (Cd phi)^2),
  * linearised with the previous velocity u^n, so that h_z beta_p u = dp exactly in a steady flow.
  * It adds to beta in the predictor and the Poisson coefficient (FluidBetaOfSolve), not to the
- * drag's beta u_s term: the plate stands still. Limits: z-faces only, -fluid_viscous explicit. */
+ * drag's beta u_s term: the plate stands still. Limits: z-faces only; with -fluid_viscous implicit
+ * the steady dp is reached after a short transient (src/fluid/README.md, Limits). */
 #include "fluid/fluid_impl.h"
 
 PetscErrorCode FluidSetFromOptionsDistributor(Fluid fl)
