@@ -20,7 +20,7 @@ PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscRe
 {
   DemArrays          pa;
   Vec                u, eps;
-  const PetscScalar *v, *e, *o;
+  const PetscScalar *v, *e, *o, *ar          = NULL;
   PetscInt           xs[3], xm[3], idx[3], c = 0;
   CplGhost           g;
   PetscReal          loc[9] = {0};
@@ -37,15 +37,17 @@ PetscErrorCode CplGetMomentum(Cpl cpl, PetscReal pp[3], PetscReal pf[3], PetscRe
   PetscCall(VecGetArrayRead(u, &v));
   PetscCall(VecGetArrayRead(cpl->ex.cloc, &e));
   PetscCall(VecGetArrayRead(cpl->ex.owed, &o));
+  if (cpl->ves.on) PetscCall(VecGetArrayRead(cpl->ves.area, &ar));
   for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
     for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
       for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c += 3)
         for (int d = 0; d < 3; d++) {
           if (!CplInteriorFace(cpl->dom, d, idx)) continue;
           const PetscReal ef = 0.5 * (e[cpl_diag_off(&g, idx, d, 0)] + e[cpl_diag_off(&g, idx, d, 1)]);
-          loc[3 + d] += cpl->prop.rho * ef * v[c + d] * cpl->kern.cell_vol;
+          loc[3 + d] += cpl->prop.rho * ef * v[c + d] * (ar ? cpl->kern.cell_vol * ar[c + d] : cpl->kern.cell_vol); /* a_f V_cell in a vessel */
           loc[6 + d] += o[c + d];
         }
+  if (ar) PetscCall(VecRestoreArrayRead(cpl->ves.area, &ar));
   PetscCall(VecRestoreArrayRead(cpl->ex.owed, &o));
   PetscCall(VecRestoreArrayRead(cpl->ex.cloc, &e));
   PetscCall(VecRestoreArrayRead(u, &v));

@@ -100,15 +100,26 @@ PetscErrorCode CplSetFluidDrag(Cpl cpl)
   PetscCall(VecRestoreArrayRead(beta, &b));
   PetscCall(VecCopy(cpl->ex.owed, src));
   PetscCall(VecScale(src, 1.0 / (cpl->kern.cell_vol * cpl->clock.dt)));
+  if (cpl->ves.on) { /* a face's momentum control volume is a_f V_cell (owed carries the a_f) */
+    const PetscScalar *ar;
+    PetscScalar       *sa;
+    PetscCall(VecGetLocalSize(src, &n));
+    PetscCall(VecGetArrayRead(cpl->ves.area, &ar));
+    PetscCall(VecGetArray(src, &sa));
+    for (PetscInt i = 0; i < n; i++) sa[i] = ar[i] > 0 ? sa[i] / ar[i] : 0;
+    PetscCall(VecRestoreArray(src, &sa));
+    PetscCall(VecRestoreArrayRead(cpl->ves.area, &ar));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* owed = V_cell (beta (u - u_s) dt - sum_p J_p W / V_cell) at interior faces, 0 elsewhere (the
- * spread impulses jf come from CplSetFluidDrag). */
+/* owed = V_f (beta (u - u_s) dt - sum_p J_p W / V_cell) at interior faces, 0 elsewhere (the
+ * spread impulses jf come from CplSetFluidDrag); V_f the face's momentum control volume, V_cell
+ * in a box, a_f V_cell in a vessel that cuts the grid. */
 static PetscErrorCode CplComputeOwed(Cpl cpl, PetscReal *norm)
 {
   Vec                beta, us, u;
-  const PetscScalar *b, *s, *v, *j;
+  const PetscScalar *b, *s, *v, *j, *ar = NULL;
   PetscScalar       *o;
   PetscInt           xs[3], xm[3], idx[3], c = 0;
 
@@ -125,11 +136,13 @@ static PetscErrorCode CplComputeOwed(Cpl cpl, PetscReal *norm)
   PetscCall(VecGetArrayRead(u, &v));
   PetscCall(VecGetArrayRead(cpl->ex.jf, &j));
   PetscCall(VecGetArray(cpl->ex.owed, &o));
+  if (cpl->ves.on) PetscCall(VecGetArrayRead(cpl->ves.area, &ar));
   for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
     for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
       for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c += 3)
         for (int d = 0; d < 3; d++)
-          if (CplInteriorFace(cpl->dom, d, idx)) o[c + d] = cpl->kern.cell_vol * (b[c + d] * (v[c + d] - s[c + d]) * cpl->clock.dt - j[c + d]);
+          if (CplInteriorFace(cpl->dom, d, idx)) o[c + d] = (ar ? cpl->kern.cell_vol * ar[c + d] : cpl->kern.cell_vol) * (b[c + d] * (v[c + d] - s[c + d]) * cpl->clock.dt - j[c + d]);
+  if (ar) PetscCall(VecRestoreArrayRead(cpl->ves.area, &ar));
   PetscCall(VecRestoreArray(cpl->ex.owed, &o));
   PetscCall(VecRestoreArrayRead(cpl->ex.jf, &j));
   PetscCall(VecRestoreArrayRead(u, &v));

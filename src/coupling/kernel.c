@@ -144,9 +144,8 @@ static void cpl_component(const CplStencil *s, int d, PetscInt first[3], int n[3
 }
 
 /* A vessel cutting the grid (vessel.c): 1 / the open share of the stencil's cells (va: the ghosted
- * open-volume fractions) and of each component's open faces (aa: open-area fractions; an open
- * face's momentum volume is the whole V_cell in the fluid); a kernel with no open cell keeps 1
- * (counted in lost). */
+ * open-volume fractions) and of each component's faces (aa: open-area fractions; a face's
+ * momentum control volume is a_f V_cell); a kernel with no open cell keeps 1 (counted in lost). */
 static void cpl_vessel_shares(const CplBox *bc, const CplBox *bf, const PetscScalar *va, const PetscScalar *aa, CplStencil *st1, PetscInt *lost)
 {
   double z = 0;
@@ -164,7 +163,7 @@ static void cpl_vessel_shares(const CplBox *bc, const CplBox *bf, const PetscSca
     for (int k = 0; k < n[2]; k++)
       for (int j = 0; j < n[1]; j++)
         for (int i = 0; i < n[0]; i++)
-          if (aa[3 * cpl_off(bf, first[0] + i, first[1] + j, first[2] + k) + d] > 0) z += w[2][k] * w[1][j] * w[0][i];
+          z += w[2][k] * w[1][j] * w[0][i] * aa[3 * cpl_off(bf, first[0] + i, first[1] + j, first[2] + k) + d];
     st1->zf[d] = z > 0 ? 1 / z : 1;
   }
 }
@@ -483,8 +482,8 @@ PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscRe
 }
 
 /* CplInterpolateSelf in a vessel that cuts the grid (no self share, no superficial velocity:
- * vessel.c refuses what needs them): eps_p = zc sum_c W_pc vol_c eps_c and u_p = zf sum of
- * W_pf u_f over the open faces, the transpose of the deposit. */
+ * vessel.c refuses what needs them): eps_p = zc sum_c W_pc vol_c eps_c and u_p = zf sum_f
+ * W_pf a_f u_f, the transpose of the deposit. */
 static PetscErrorCode CplInterpolateVessel(Cpl cpl, const DemArrays *pa, const CplStencil *stc, const CplBox *bc, const CplBox *bf, const PetscScalar *ua, const PetscScalar *ea, PetscReal *u, PetscReal *eps)
 {
   const PetscScalar *va, *aa;
@@ -512,7 +511,7 @@ static PetscErrorCode CplInterpolateVessel(Cpl cpl, const DemArrays *pa, const C
         for (int j = 0; j < n[1]; j++)
           for (int i = 0; i < n[0]; i++) {
             const PetscInt o = 3 * cpl_off(bf, first[0] + i, first[1] + j, first[2] + k) + d;
-            if (aa[o] > 0) s += w[2][k] * w[1][j] * w[0][i] * ua[o];
+            s += w[2][k] * w[1][j] * w[0][i] * aa[o] * ua[o];
           }
       u[3 * p + d] = s * st1->zf[d];
     }

@@ -4,11 +4,14 @@
  *     renormalised, W'_pc = W_pc vol_c / Z_p, Z_p = sum_c W_pc vol_c, so its whole volume lands in
  *     open volume; the porosity of the open part of a cell is then
  *     eps_c = 1 - V_solid,c / (vol_c V_cell) = 1 - sum_p V_p W_pc / (Z_p V_cell)  (vol_c cancels),
- *     clipped as in a box; closed cells keep eps = 1. Face fields (drag, impulses) alike, one Z per
- *     component over the open faces (a_f > 0: the fluid's momentum equation holds there per unit
- *     of the whole V_cell, so each open face weighs 1 and Z_p^d = sum of W_pf over them); closed
- *     faces (a_f = 0, held at u = 0) receive nothing. The momentum exchange (exchange.c) is then
- *     exact as in a box: what the particles receive is spread over the faces the fluid solves.
+ *     clipped as in a box; closed cells keep eps = 1. Face fields (drag, impulses) alike: a face's
+ *     momentum control volume is a_f V_cell (FAVOR), so Z_p^d = sum_f W_pf a_f per component and
+ *     the density deposited on face f is K_p W_pf Z_p^-1 / V_cell (its share W_pf a_f / Z_p over
+ *     its volume a_f V_cell); closed faces (a_f = 0, held at u = 0) weigh nothing. The fluid side
+ *     of the exchange (exchange.c) and the gas momentum (diag.c) count each face as a_f V_cell, so
+ *     sum_f a_f V_cell beta_f (u_f - us_f) = sum_p K_p (...): exact as in a box; and a layer's
+ *     pressure drop holds the bed over sum_f a_f h^2 (about pi R^2 in a cylinder), not over a
+ *     count of whole faces (which was several % off on cells of 2 to 4 diameters).
  *   - reads: the porosity and velocity at a particle are the same renormalised weights'
  *     averages (the transpose of the deposit), so nothing is read from closed cells or faces.
  * The per-particle 1/Z are kept in the stencils (CplStencil zc, zf). A kernel that meets no open

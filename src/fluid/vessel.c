@@ -7,12 +7,16 @@
  *     the largest slope of phi from the centre to a corner) is classified at once; any other is
  *     sampled on a 4 x 4 sub-grid with phi linear on two triangles per sub-square (exact for a
  *     plane wall); a cell's volume is the mean of 4 such cross-sections. Fractions below 1e-3
- *     count as closed, and so does a face whose centre lies in the solid (its velocity, a point
- *     value, would sit in the wall; not on an inlet, whose value is fixed, unless the cell inside
- *     has no other active face), and a cell without an active face (its volume becomes 0);
- *   - for every active face dof and axis e, side s, whose neighbour dof along e is closed: the
- *     distance theta h_e along that grid line to the wall (Illinois regula falsi on phi; theta = 1
- *     when the closed neighbour's centre is itself in the gas), clamped below at
+ *     count as closed, and so does a cell without an active face (its volume becomes 0). A face
+ *     whose centre lies in the solid keeps its sampled fraction: its momentum control volume is
+ *     a_f V_cell (the coupling's too), so the open area sum a_f h^2 of a layer, not a count of
+ *     faces, carries the pressure drop;
+ *   - for every active face dof and axis e, side s, whose neighbour dof along e is closed or has
+ *     its centre in the solid, or whose own centre is in the solid (a wall link: the two values
+ *     do not see each other, the matrix stays symmetric): the distance theta h_e along that grid
+ *     line to the wall (Illinois regula falsi on phi; theta = 1 when the closed neighbour's centre
+ *     is itself in the gas, theta_min when the face's own centre is in the solid: its velocity,
+ *     the mean over an open sliver along the wall, is held near 0 by the wall), clamped below at
  *     -fluid_vessel_theta_min (0.05). The viscous term (momentum.c, viscous.c) replaces the
  *     neighbour by the linear extrapolation through the wall value, u_Q = u_P (1 - 1/theta), so
  *     the flux to the wall is mu (0 - u_P)/(theta h): the symmetric second-order treatment of
@@ -253,7 +257,6 @@ static PetscErrorCode FluidVesselFractions(Fluid fl, PetscBool *cut)
       pc          = v->level(x, v->ctx);
       const int k = fluid_classify(pc, pk, 4, r);
       if (k >= 0) area[o + d] = k;
-      else if (pc <= 0 && !fluid_inlet_face(fl, d, idx)) area[o + d] = 0; /* the face's velocity point is in the solid */
       else {
         for (int e = 0; e < 3; e++) x0[e] = g->lo[e] + idx[e] * g->h[e];
         area[o + d] = FluidRectFraction(v, x0, a, b, g->h);
@@ -366,24 +369,29 @@ static PetscErrorCode FluidVesselLinks(Fluid fl)
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
     PetscReal th[6] = {0, 0, 0, 0, 0, 0}, xp[3], fp = 0;
-    PetscBool any = PETSC_FALSE;
-    v->wl[o + d]  = -1;
+    PetscBool any = PETSC_FALSE, have = PETSC_FALSE;
+    v->wl[o + d] = -1;
     if (!FluidFaceActive(fl, d, idx)) continue;
     for (int e = 0; e < 3; e++)
       for (int s = 0; s < 2; s++) {
         PetscInt q[3] = {idx[0], idx[1], idx[2]};
         q[e] += s ? 1 : -1;
-        if (!fluid_face_in_range(fl, d, q) || v->aloc[f + (s ? 1 : -1) * g->fs[e] + d] > 0) continue;
+        if (!fluid_face_in_range(fl, d, q)) continue;
+        const PetscReal aq = v->aloc[f + (s ? 1 : -1) * g->fs[e] + d];
+        if (aq == 1 && v->aloc[f + d] == 1) continue; /* both whole: both centres in the gas */
         PetscReal xq[3], fq, t = 1;
-        if (!any) {
+        if (!have) {
           FluidFaceCentreX(g, idx, d, xp);
-          fp = v->level(xp, v->ctx);
+          fp   = v->level(xp, v->ctx);
+          have = PETSC_TRUE;
         }
-        any = PETSC_TRUE;
         for (int k = 0; k < 3; k++) xq[k] = xp[k];
         xq[e] += (s ? 1 : -1) * g->h[e];
         fq = v->level(xq, v->ctx);
-        if (fq <= 0 && fp > 0) t = FluidWallDistance(v, xp, xq, fp, fq);
+        if (aq > 0 && fp > 0 && fq > 0) continue; /* an open neighbour in the gas: an ordinary link */
+        any = PETSC_TRUE;
+        if (fp <= 0) t = 0; /* the face's own velocity point is in the solid: the wall is at it */
+        else if (fq <= 0) t = FluidWallDistance(v, xp, xq, fp, fq);
         th[2 * e + s] = PetscMax(t, v->theta_min);
       }
     if (!any) continue;
