@@ -12,6 +12,7 @@
  * drag's beta u_s term: the plate stands still. Limits: z-faces only; with -fluid_viscous implicit
  * the steady dp is reached after a short transient (src/fluid/README.md, Limits). */
 #include "fluid/fluid_impl.h"
+#include <petsc/private/petscimpl.h> /* PetscObjectStateGet */
 
 PetscErrorCode FluidSetFromOptionsDistributor(Fluid fl)
 {
@@ -39,18 +40,27 @@ PetscErrorCode FluidSetFromOptionsDistributor(Fluid fl)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective. beff = beta + beta_p at u^n (fl->u) and eps^{n+1} (epsloc, current). */
-PetscErrorCode FluidDistributorUpdate(Fluid fl)
+/* Collective. beff = beta + the vessel's film friction (vessel.c) + beta_p at u^n (fl->u) and
+ * eps^{n+1} (epsloc, current). Without a plate beff changes only with beta: it is remade only
+ * when beta's state moved (else the Poisson matrix, keyed on beff's state, would be rebuilt
+ * every step of a fluid alone in a vessel). */
+PetscErrorCode FluidResistanceUpdate(Fluid fl)
 {
   const FluidGrid   *g = &fl->g;
   const PetscScalar *u, *eps;
   PetscScalar       *b;
   PetscInt           idx[3], f, c, o;
-  const PetscReal    k = fl->prop.rho / (2 * g->h[2] * PetscSqr(fl->plate.cd * fl->plate.phi));
+  PetscObjectState   sb;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &sb));
+  if (!fl->plate.on && fl->plate.beff && sb == fl->plate.beta_state) PetscFunctionReturn(PETSC_SUCCESS);
   if (!fl->plate.beff) PetscCall(VecDuplicate(fl->fld.beta, &fl->plate.beff)); /* first use, or a new layout */
   PetscCall(VecCopy(fl->fld.beta, fl->plate.beff));
+  if (fl->ves.film) PetscCall(VecAXPY(fl->plate.beff, 1.0, fl->ves.film));
+  fl->plate.beta_state = sb;
+  if (!fl->plate.on) PetscFunctionReturn(PETSC_SUCCESS);
+  const PetscReal k = fl->prop.rho / (2 * g->h[2] * PetscSqr(fl->plate.cd * fl->plate.phi));
   PetscCall(VecGetArrayRead(fl->fld.u, &u));
   PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
   PetscCall(VecGetArray(fl->plate.beff, &b));

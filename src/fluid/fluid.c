@@ -219,6 +219,7 @@ PetscErrorCode FluidDestroy(Fluid *fluid)
   PetscCall(DMDestroy(&fl->g.fda));
   PetscCall(PetscFree(fl->mom.advbuf));
   PetscCall(FluidDestroyPatches(fl));
+  PetscCall(FluidFaceShiftDestroy(fl));
   PetscCall(VecDestroy(&fl->plate.beff));
   PetscCall(PetscFree(*fluid));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -46,7 +46,8 @@ typedef struct {
   PetscBool on;
   PetscInt  k0;      /* z-face layer of the plate */
   PetscReal phi, cd; /* open-area fraction, orifice discharge coefficient */
-  Vec       beff;    /* beta + the plate's linearised resistance (face Vec) */
+  Vec              beff;       /* beta + the vessel's film friction + the plate's linearised resistance (face Vec) */
+  PetscObjectState beta_state; /* without a plate: beta's state when beff was made */
 } FluidPlate;
 
 /* Geometry of the ghosted local arrays of this rank, and the two DMDAs they come from. */
@@ -159,6 +160,9 @@ typedef struct {
   PetscReal   *theta; /* 6 per linked dof: (e, s) at 2 e + s */
   PetscInt     nlink;
   PetscInt     nopen; /* open cells (global) */
+  Vec          film;  /* per face dof whose velocity point lies in the solid (no-slip): the wall
+                         friction of its open sliver, 3 mu / w^2, w = a_f h (an implicit sink
+                         added to beta, FluidBetaOfSolve); NULL when there is none */
 } FluidVessel;
 
 /* Log events of the step's phases. */
@@ -167,6 +171,15 @@ typedef struct {
 } FluidEvents;
 
 /* The Fluid: its state grouped by concern, one struct each (above). */
+/* The drag's shift of the pressure on bounded faces (faceshift.c): per non-periodic side, one
+ * value a face point (index along the face's axes a = (d + 1) % 3, b = (d + 2) % 3: i_a + N_a
+ * i_b), the same on every rank; kept while u, beta and u_s keep their states st. */
+typedef struct {
+  PetscBool        valid, any; /* any: beta is not 0 everywhere (else dp is not filled) */
+  PetscObjectState st[3];
+  PetscReal       *dp[3][2];
+} FluidFaceShift;
+
 struct _p_Fluid {
   MPI_Comm             comm;
   Domain              *dom;
@@ -184,8 +197,15 @@ struct _p_Fluid {
   PetscBool            setup; /* FluidSetUp done */
   PetscBool            ckpt;  /* FluidSetCheckpointing */
   FluidPatches        *patch; /* -fluid_patch_<k> (patch.c; NULL without) */
-  FluidPlate           plate; /* -fluid_distributor (distributor.c) */
+  FluidPlate           plate;  /* -fluid_distributor (distributor.c) */
+  FluidFaceShift       fshift; /* faceshift.c */
 };
+
+PetscErrorCode FluidFaceShiftUpdate(Fluid, PetscBool *);
+PetscReal      FluidFaceShiftAxisShare(const Fluid, int, int, PetscReal, PetscReal);
+PetscReal      FluidFaceShiftAt(const Fluid, int, int, const PetscReal *, const PetscReal *);
+PetscReal      FluidFaceShiftPoint(const Fluid, int, int, PetscInt);
+PetscErrorCode FluidFaceShiftDestroy(Fluid);
 
 static inline PetscInt FluidCellOff(const FluidGrid *g, PetscInt i, PetscInt j, PetscInt k)
 {
@@ -335,10 +355,10 @@ PetscErrorCode FluidPatchesRelayout(Fluid fl);
 PetscErrorCode FluidPatchInletVelocity(Fluid fl, PetscReal U[3], PetscInt *n);
 /* distributor.c: the perforated plate */
 PetscErrorCode    FluidSetFromOptionsDistributor(Fluid fl);
-PetscErrorCode    FluidDistributorUpdate(Fluid fl);
+PetscErrorCode    FluidResistanceUpdate(Fluid fl);
 static inline Vec FluidBetaOfSolve(Fluid fl)
 {
-  return fl->plate.on ? fl->plate.beff : fl->fld.beta;
+  return fl->plate.on || fl->ves.film ? fl->plate.beff : fl->fld.beta;
 }
 /* momentum.c: explicit terms per unit volume at the active faces of the owned points */
 PetscErrorCode FluidAdvectionTerm(Fluid fl, const PetscScalar *u, const PetscScalar *eps, PetscScalar *out);

@@ -765,7 +765,8 @@ PetscErrorCode FluidGetPatchCount(Fluid fl, PetscInt *n)
 }
 
 /* Collective. Patch i's option index, mean pressure over it (Pa: the face pressure, 1.5 p1 -
- * 0.5 p2 along the normal, the set pressure on outlet faces; a source: the cells' pressure) and
+ * 0.5 p2 along the normal plus the drag's shift (faceshift.c), the set pressure on outlet faces;
+ * a source: the cells' pressure) and
  * its mass flow measured from the face fluxes rho eps_f u A (kg/s; into the domain at an inlet,
  * out of it at an outlet; a source: rho sum S_c V_c). */
 PetscErrorCode FluidPatchMeasure(Fluid fl, PetscInt i, PetscInt *k, PetscReal *pmean, PetscReal *mdot)
@@ -776,8 +777,11 @@ PetscErrorCode FluidPatchMeasure(Fluid fl, PetscInt i, PetscInt *k, PetscReal *p
   PetscReal          loc[2] = {0, 0}, sum[2];
   const PetscScalar *p, *eps;
 
+  PetscBool          any;
+
   PetscFunctionBeginUser;
   *k = pt->k;
+  PetscCall(FluidFaceShiftUpdate(fl, &any));
   PetscCall(VecGetArrayRead(fl->fld.p, &p));
   PetscCall(VecGetArrayRead(fl->fld.eps_old, &eps));
   if (pt->d < 0) { /* a source: its pressure over the cells it crosses, its flow as imposed on them */
@@ -804,7 +808,7 @@ PetscErrorCode FluidPatchMeasure(Fluid fl, PetscInt i, PetscInt *k, PetscReal *p
         c1[d]              = s ? g->xm[d] - 1 : 0;
         c2[d]              = s ? g->xm[d] - 2 : 1;
         const PetscInt  o1 = (c1[2] * g->xm[1] + c1[1]) * g->xm[0] + c1[0], o2 = (c2[2] * g->xm[1] + c2[1]) * g->xm[0] + c2[0];
-        const PetscReal pf     = pt->outlet ? pt->p : 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]);
+        const PetscReal pf     = pt->outlet ? pt->p : 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]) + FluidFaceShiftPoint(fl, d, s, m);
         const PetscReal fl_out = (s ? 1 : -1) * P->fa[d][s][m] * PetscRealPart(eps[o1] * u[q[2]][q[1]][q[0]][d]) * Af; /* m^3/s out of the domain */
         loc[0] += P->fw[d][s][m] * pf;
         loc[1] += fl->prop.rho * (pt->outlet ? fl_out : -fl_out);

@@ -38,11 +38,43 @@ static void FluidProbeAxisX(const Fluid fl, int d, PetscReal x, PetscBool extrap
   } else *i0 = i; /* the ghosts hold i = -1 and i = n */
 }
 
+/* Global cell index along axis d: periodic indices wrapped into [0, N). */
+static inline PetscInt FluidWrapIndex(const Fluid fl, int d, PetscInt i)
+{
+  const PetscInt n = fl->g.N[d];
+  return fl->dom->periodic[d] ? ((i % n) + n) % n : i;
+}
+
+/* The drag's shift of the pressure at point x (faceshift.c): over every bounded face within half
+ * a cell of x, the face's shifts interpolated along its axes, times the share along its normal. */
+static PetscReal FluidProbeShift(const Fluid fl, const PetscReal x[3])
+{
+  PetscReal v = 0;
+
+  if (!fl->fshift.any) return 0;
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      const PetscReal share = FluidFaceShiftAxisShare(fl, d, s, x[d], x[d]);
+      const int       a = (d + 1) % 3, c = (d + 2) % 3;
+      PetscInt        ia, ic;
+      PetscReal       wa, wc;
+      if (share == 0) continue;
+      FluidProbeAxisX(fl, a, x[a], PETSC_FALSE, &ia, &wa);
+      FluidProbeAxisX(fl, c, x[c], PETSC_FALSE, &ic, &wc);
+      for (int k = 0; k < 4; k++) {
+        const int       ba = k & 1, bc = k >> 1;
+        const PetscReal wt = (ba ? wa : 1 - wa) * (bc ? wc : 1 - wc);
+        if (wt != 0) v += share * wt * FluidFaceShiftPoint(fl, d, s, FluidWrapIndex(fl, a, ia + ba) + fl->g.N[a] * FluidWrapIndex(fl, c, ic + bc));
+      }
+    }
+  return v;
+}
+
 PetscErrorCode FluidProbePressure(Fluid fl, const PetscReal x[3], PetscReal *p)
 {
   PetscInt  own[3], i0[3];
   PetscReal w[3], v = 0;
-  PetscBool mine = PETSC_TRUE;
+  PetscBool mine = PETSC_TRUE, any;
   Vec       loc;
 
   PetscFunctionBeginUser;
@@ -66,14 +98,9 @@ PetscErrorCode FluidProbePressure(Fluid fl, const PetscReal x[3], PetscReal *p)
   }
   PetscCall(DMRestoreLocalVector(fl->g.cda, &loc));
   PetscCallMPI(MPI_Allreduce(&v, p, 1, MPIU_REAL, MPI_SUM, fl->comm));
+  PetscCall(FluidFaceShiftUpdate(fl, &any));
+  if (any) *p += FluidProbeShift(fl, x);
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Global cell index along axis d: periodic indices wrapped into [0, N). */
-static inline PetscInt FluidWrapIndex(const Fluid fl, int d, PetscInt i)
-{
-  const PetscInt n = fl->g.N[d];
-  return fl->dom->periodic[d] ? ((i % n) + n) % n : i;
 }
 
 /* The owned-cell offset of global cell (i, j, k), -1 when another rank owns it. */
@@ -138,6 +165,7 @@ static void FluidAxisWeights(const Fluid fl, int d, PetscReal a, PetscReal b, Pe
 static PetscErrorCode FluidAverageBox(Fluid fl, const FluidSpan *sp, const FluidCellFields *f, PetscReal avg[5])
 {
   PetscReal *W[3], *Wp[3], *loc, *all;
+  PetscReal  ab[3][2];
   PetscInt   lo[3], hi[3], m[3], nslot, c[3];
 
   PetscFunctionBeginUser;
@@ -145,6 +173,7 @@ static PetscErrorCode FluidAverageBox(Fluid fl, const FluidSpan *sp, const Fluid
   PetscCall(PetscMalloc3(fl->g.N[0], &Wp[0], fl->g.N[1], &Wp[1], fl->g.N[2], &Wp[2]));
   for (int d = 0; d < 3; d++) {
     const PetscReal a = sp->a[d] < sp->b[d] ? PetscMax(sp->a[d], fl->dom->lo[d]) : sp->a[d], b = sp->a[d] < sp->b[d] ? PetscMin(sp->b[d], fl->dom->hi[d]) : sp->b[d];
+    ab[d][0] = a, ab[d][1] = b;
     FluidAxisWeights(fl, d, a, b, PETSC_FALSE, W[d]);
     FluidAxisWeights(fl, d, a, b, PETSC_TRUE, Wp[d]); /* the pressure's */
     for (lo[d] = 0; W[d][lo[d]] == 0 && Wp[d][lo[d]] == 0; lo[d]++) { }
@@ -164,6 +193,11 @@ static PetscErrorCode FluidAverageBox(Fluid fl, const FluidSpan *sp, const Fluid
   for (int q = 0; q < 5; q++) avg[q] = 0;
   for (PetscInt k = 0; k < nslot; k++)
     for (int q = 0; q < 5; q++) avg[q] += all[5 * k + q];
+  for (int d = 0; d < 3 && fl->fshift.any; d++) /* the drag's shift near bounded faces (faceshift.c) */
+    for (int s = 0; s < 2; s++) {
+      const PetscReal share = FluidFaceShiftAxisShare(fl, d, s, ab[d][0], ab[d][1]);
+      if (share != 0) avg[0] += share * FluidFaceShiftAt(fl, d, s, W[(d + 1) % 3], W[(d + 2) % 3]);
+    }
   PetscCall(PetscFree2(loc, all));
   PetscCall(PetscFree3(W[0], W[1], W[2]));
   PetscCall(PetscFree3(Wp[0], Wp[1], Wp[2]));
@@ -216,6 +250,13 @@ static PetscErrorCode FluidAverageSegment(Fluid fl, const FluidSpan *sp, const F
   for (int q = 0; q < 5; q++) avg[q] = 0;
   for (PetscInt k = 0; k < 16 * npt; k++)
     for (int q = 0; q < 5; q++) avg[q] += all[5 * k + q];
+  for (PetscInt k = 0; k + 1 < nt && fl->fshift.any; k++) /* the drag's shift near bounded faces (faceshift.c) */
+    for (int e = 0; e < 2; e++) {
+      const PetscReal t = 0.5 * (tau[k] + tau[k + 1]) + (e ? g : -g) * (tau[k + 1] - tau[k]), gw = 0.5 * (tau[k + 1] - tau[k]);
+      PetscReal       x[3];
+      for (int d = 0; d < 3; d++) x[d] = sp->a[d] + t * (sp->b[d] - sp->a[d]);
+      avg[0] += gw * FluidProbeShift(fl, x);
+    }
   PetscCall(PetscFree2(loc, all));
   PetscCall(PetscFree(tau));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -225,9 +266,11 @@ PetscErrorCode FluidAverageFields(Fluid fl, PetscInt n, const FluidSpan *sp, Pet
 {
   FluidCellFields f   = {NULL, NULL, NULL};
   PetscReal      *vel = NULL;
+  PetscBool       any;
 
   PetscFunctionBeginUser;
   if (!n) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(FluidFaceShiftUpdate(fl, &any));
   for (PetscInt s = 0; s < n; s++)
     for (int d = 0; d < 3; d++) { /* a segment within the domain; a box's flat axes within it, its others cut to it */
       const PetscBool in  = (PetscBool)(sp[s].a[d] >= fl->dom->lo[d] && sp[s].a[d] <= fl->dom->hi[d] && sp[s].b[d] >= fl->dom->lo[d] && sp[s].b[d] <= fl->dom->hi[d]);

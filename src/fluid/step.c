@@ -251,7 +251,7 @@ PetscErrorCode FluidStep(Fluid fl, PetscReal dt, FluidStats *st)
   PetscBool changed;
   PetscCall(FluidUpdateInlets(fl, fl->clock.time + dt, &changed));
   if (changed) PetscCall(FluidLocalVelocity(fl, fl->fld.u, fl->fld.uloc, fl->fld.epsoldloc));
-  if (fl->plate.on) PetscCall(FluidDistributorUpdate(fl)); /* the plate's resistance at u^n */
+  if (fl->plate.on || fl->ves.film) PetscCall(FluidResistanceUpdate(fl)); /* the vessel's films, the plate's resistance at u^n */
   PetscCall(FluidPredict(fl, dt));
   PetscCall(FluidProject(fl, dt, st));
   PetscCall(FluidDivergenceMax(fl, dt, &st->div_max));

@@ -79,6 +79,7 @@ PetscErrorCode FluidVesselDestroy(Fluid fl)
   PetscCall(PetscFree3(fl->ves.aloc, fl->ves.vloc, fl->ves.full));
   PetscCall(PetscFree(fl->ves.wl));
   PetscCall(PetscFree(fl->ves.theta));
+  PetscCall(VecDestroy(&fl->ves.film));
   fl->ves.nlink = 0;
   fl->ves.cut   = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -362,10 +363,13 @@ static PetscErrorCode FluidVesselLinks(Fluid fl)
 {
   FluidVessel *v = &fl->ves;
   FluidGrid   *g = &fl->g;
-  PetscInt     idx[3], f, c, o, n = 0, cap = 0;
+  PetscInt     idx[3], f, c, o, n = 0, cap = 0, nfilm = 0, gfilm;
+  PetscScalar *film;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(3 * g->fxm[0] * g->fxm[1] * g->fxm[2], &v->wl));
+  PetscCall(DMCreateGlobalVector(g->fda, &v->film));
+  PetscCall(VecGetArray(v->film, &film));
   FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
   for (int d = 0; d < 3; d++) {
     PetscReal th[6] = {0, 0, 0, 0, 0, 0}, xp[3], fp = 0;
@@ -394,6 +398,11 @@ static PetscErrorCode FluidVesselLinks(Fluid fl)
         else if (fq <= 0) t = FluidWallDistance(v, xp, xq, fp, fq);
         th[2 * e + s] = PetscMax(t, v->theta_min);
       }
+    if (have && fp <= 0 && !v->slip) { /* the open part of the face is a sliver along the wall */
+      const PetscReal w = v->aloc[f + d] * PetscSqrtReal(g->h[(d + 1) % 3] * g->h[(d + 2) % 3]);
+      film[o + d]       = 3 * fl->prop.mu / (w * w);
+      nfilm++;
+    }
     if (!any) continue;
     if (n + 6 > cap) {
       PetscReal *nt;
@@ -407,6 +416,9 @@ static PetscErrorCode FluidVesselLinks(Fluid fl)
     for (int k = 0; k < 6; k++) v->theta[n++] = th[k];
   }
   v->nlink = n / 6;
+  PetscCall(VecRestoreArray(v->film, &film));
+  PetscCallMPI(MPIU_Allreduce(&nfilm, &gfilm, 1, MPIU_INT, MPI_SUM, fl->comm));
+  if (!gfilm) PetscCall(VecDestroy(&v->film));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

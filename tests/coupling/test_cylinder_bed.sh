@@ -45,10 +45,10 @@ for run in ${CYL_RUNS:-3:2}; do
   mpiexec --oversubscribe -n "$np" "$S" -options_file $D/test_cylinder_bed.opts -dem_init_file "$F" \
     -domain_lo "-$half,-$half,0" -domain_hi "$half,$half,$((2 * half))" -domain_cell "$h" \
     -mon_probe_0 "0,0,$(awk -v h="$h" 'BEGIN { print h / 2 }')" -mon_probe_1 "0,0,$(awk -v h="$h" 'BEGIN { print 1.5 * h }')" \
-    -mon_probe_2 "0,0,$top" -io_dir "$W/r$h-$np" >"$W/r$h-$np.log" 2>&1 ||
+    -mon_probe_2 "0,0,$top" -mon_probe_3 0,0,0 -io_dir "$W/r$h-$np" >"$W/r$h-$np.log" 2>&1 ||
     { echo "FAIL cylinder bed, cells of $h d, $np ranks: the run stopped:"; tail -3 "$W/r$h-$np.log"; continue; }
-  set -- $($T ramp "$W/r$h-$np/sable_monitor.csv" "$w" 0,0,8,0.14 "$lo" "$hi" 18 28 0 1 2 "$h")
-  umf=${1#umf=} pl=${5#plateau=} plc=${6#plateau_centre=}
+  set -- $($T ramp "$W/r$h-$np/sable_monitor.csv" "$w" 0,0,8,0.14 "$lo" "$hi" 18 28 0 1 2 "$h" 3)
+  umf=${1#umf=} pl=${5#plateau=} plc=${6#plateau_centre=} ple=${8#plateau_extrap=}
   wo=$(sed -n 's/.*weight per area \([0-9.e+-]*\) Pa.*/\1/p' "$W/r$h-$np.log")
   echo "$h $np $umf $pl" >>"$W/results"
   awk -v u="$umf" -v r="$uwy" -v p="$pl" -v pc="$plc" -v h="$h" -v np="$np" -v w="$w" -v wo="$wo" 'BEGIN {

@@ -1,0 +1,143 @@
+/* The pressure on a bounded face (wall or inlet) where particles deposit drag.
+ *
+ * A face point on a non-periodic boundary carries no momentum equation: its velocity is the
+ * boundary's. The drag the coupling deposits there, D_b = beta (u - u_s) (force per unit of the
+ * face's momentum control volume), is felt by no interior equation: the half cell between the
+ * face and the first row of centres holds it. That half cell's momentum balance gives the face's
+ * pressure (axis d, cell side h, centres 1 and 2 counted from the face, s = +1 on the low side,
+ * -1 on the high one):
+ *   p_b = p_1 + s h (D_b + R / 2),   R = s (p_1 - p_2) / h - D_1,
+ * R being the rest of the first interior face's balance (inertia, viscous stress, sources) taken
+ * as the same over the half cell. Hence
+ *   p_b = 1.5 p_1 - 0.5 p_2 + s h (D_b - D_1 / 2):
+ * the linear extrapolation of the centres (exact for a linear pressure: a fluid alone, or a
+ * uniform bed) plus the drag's shift. Over a bed this makes the pressure drop from the inlet face
+ * equal the drag the gas carries, per unit of its open area, whatever the height of the first
+ * cell: beads resting on the floor deposit part of their drag on the inlet's face points, which
+ * the extrapolation of the centres sees only when the bed is uniform across the first two rows.
+ * Inside the half cell the shift falls linearly to 0 at the first centre.
+ *
+ * The shifts of every bounded face point (inlets and walls; 0 at outlets, whose pressure is set)
+ * are gathered on every rank (one owner a slot, summed: bitwise the same on any rank count) and
+ * kept until u, beta or u_s change. Without drag (beta = 0 everywhere, a fluid alone) nothing is
+ * stored and nothing is added. */
+#include "fluid/fluid_impl.h"
+#include <petsc/private/petscimpl.h> /* PetscObjectStateGet: recompute only when u, beta or u_s changed */
+
+static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
+{
+  FluidFaceShift   *fs = &fl->fshift;
+  const FluidGrid  *g  = &fl->g;
+  PetscObjectState  st[3];
+  PetscReal         bmax;
+  const PetscScalar ****u, ****b, ****us;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.u, &st[0]));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &st[1]));
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.us, &st[2]));
+  if (fs->valid && st[0] == fs->st[0] && st[1] == fs->st[1] && st[2] == fs->st[2]) PetscFunctionReturn(PETSC_SUCCESS);
+  for (int k = 0; k < 3; k++) fs->st[k] = st[k];
+  fs->valid = PETSC_TRUE;
+  PetscCall(VecNorm(fl->fld.beta, NORM_INFINITY, &bmax));
+  fs->any = (PetscBool)(bmax > 0);
+  if (!fs->any) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.u, &u));
+  PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.beta, &b));
+  PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.us, &us));
+  for (int d = 0; d < 3; d++) {
+    const int      a = (d + 1) % 3, c = (d + 2) % 3;
+    const PetscInt n = g->N[a] * g->N[c];
+    if (FluidPeriodic(fl, d)) continue;
+    for (int s = 0; s < 2; s++) {
+      const FluidBC *bc = &fl->bc.face[d][s];
+      PetscReal     *loc;
+      PetscInt       q[3];
+      if (!fs->dp[d][s]) PetscCall(PetscMalloc1(n, &fs->dp[d][s]));
+      PetscCall(PetscCalloc1(n, &loc));
+      q[d] = s ? g->N[d] : 0;
+      if (s ? g->xs[d] + g->xm[d] == g->N[d] : g->xs[d] == 0)
+        for (q[c] = g->xs[c]; q[c] < g->xs[c] + g->xm[c]; q[c]++)
+          for (q[a] = g->xs[a]; q[a] < g->xs[a] + g->xm[a]; q[a]++) {
+            const PetscInt    m    = q[a] + g->N[a] * q[c];
+            const FluidBCType type = bc->pkind && bc->pkind[m] ? (FluidBCType)bc->pkind[m] : bc->type;
+            PetscInt          r[3] = {q[0], q[1], q[2]};
+            PetscReal         db, d1;
+            if (type == FLUID_BC_OUTLET) continue;
+            r[d] += s ? -1 : 1; /* the first interior face point: owned, a rank holds >= 2 cells */
+            db      = PetscRealPart(b[q[2]][q[1]][q[0]][d] * (u[q[2]][q[1]][q[0]][d] - us[q[2]][q[1]][q[0]][d]));
+            d1      = PetscRealPart(b[r[2]][r[1]][r[0]][d] * (u[r[2]][r[1]][r[0]][d] - us[r[2]][r[1]][r[0]][d]));
+            loc[m] = (s ? -1 : 1) * g->h[d] * (db - 0.5 * d1);
+          }
+      PetscCallMPI(MPIU_Allreduce(loc, fs->dp[d][s], (PetscMPIInt)n, MPIU_REAL, MPIU_SUM, fl->comm));
+      PetscCall(PetscFree(loc));
+    }
+  }
+  PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.us, &us));
+  PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.beta, &b));
+  PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.u, &u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidFaceShiftUpdate(Fluid fl, PetscBool *any)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FluidFaceShiftCompute(fl));
+  *any = fl->fshift.any;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The shift's share along axis d of the interval [x0, x1] (a point when x1 <= x0), its mean over
+ * the interval: 1 on a bounded face, falling linearly to 0 at the first centre; side s. */
+PetscReal FluidFaceShiftAxisShare(const Fluid fl, int d, int s, PetscReal x0, PetscReal x1)
+{
+  const PetscReal h = fl->g.h[d], e = s ? fl->dom->hi[d] : fl->dom->lo[d];
+  PetscReal       t0, t1; /* distances from the face, in half cells */
+
+  if (FluidPeriodic(fl, d) || fl->g.N[d] < 2) return 0;
+  t0 = PetscAbsReal(x0 - e) / (0.5 * h);
+  t1 = PetscAbsReal(x1 - e) / (0.5 * h);
+  if (x1 <= x0) return t0 < 1 ? 1 - t0 : 0;
+  if (t0 > t1) {
+    const PetscReal t = t0;
+    t0 = t1, t1 = t;
+  }
+  if (t0 >= 1) return 0;
+  {
+    const PetscReal b = PetscMin(t1, 1); /* integral of (1 - t) over [t0, b], over the interval's length */
+    return ((b - t0) - 0.5 * (b * b - t0 * t0)) / (t1 - t0);
+  }
+}
+
+/* The shift on the face (d, s) at tangential weights Wa, Wb (cell-centre weights along the
+ * face's axes a = (d + 1) % 3, b = (d + 2) % 3, summing to 1). */
+PetscReal FluidFaceShiftAt(const Fluid fl, int d, int s, const PetscReal *Wa, const PetscReal *Wb)
+{
+  const FluidGrid *g  = &fl->g;
+  const int        a  = (d + 1) % 3, c = (d + 2) % 3;
+  const PetscReal *dp = fl->fshift.dp[d][s];
+  PetscReal        v  = 0;
+
+  if (!fl->fshift.any || !dp) return 0;
+  for (PetscInt j = 0; j < g->N[c]; j++) {
+    if (Wb[j] == 0) continue;
+    for (PetscInt i = 0; i < g->N[a]; i++)
+      if (Wa[i] != 0) v += Wb[j] * Wa[i] * dp[i + g->N[a] * j];
+  }
+  return v;
+}
+
+/* The shift of patch face point m (index along the face's axes) of face (d, s). */
+PetscReal FluidFaceShiftPoint(const Fluid fl, int d, int s, PetscInt m)
+{
+  return fl->fshift.any && fl->fshift.dp[d][s] ? fl->fshift.dp[d][s][m] : 0;
+}
+
+PetscErrorCode FluidFaceShiftDestroy(Fluid fl)
+{
+  PetscFunctionBeginUser;
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) PetscCall(PetscFree(fl->fshift.dp[d][s]));
+  fl->fshift.valid = fl->fshift.any = PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
