@@ -138,14 +138,22 @@ static PetscErrorCode CoupledBedWeight(Cpl cpl, const Column *c, PetscReal *w)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Pressure at the bottom of the column (upstream of gravity) less that at its top (Pa). */
-static PetscErrorCode CoupledColumnDrop(Cpl cpl, const Domain *dom, const Column *c, PetscReal *dp)
+/* Pressure at the bottom of the column (upstream of gravity) less that at its top (Pa): along a
+ * bounded axis the means over the open end faces (FluidFacePressure: the face pressure, not the
+ * first cell centre's, so the drop does not depend on the height of the first cell); along a
+ * periodic one the end layers' means. */
+static PetscErrorCode CoupledColumnDrop(Cpl cpl, Fluid fl, const Domain *dom, const Column *c, PetscReal *dp)
 {
   PetscReal p0, p1, e, u;
 
   PetscFunctionBeginUser;
-  PetscCall(CplGetLayer(cpl, c->d, dom->lo[c->d], NULL, &p0, &e, &u));
-  PetscCall(CplGetLayer(cpl, c->d, dom->hi[c->d], NULL, &p1, &e, &u));
+  if (!dom->periodic[c->d] && dom->cells[c->d] >= 2) {
+    PetscCall(FluidFacePressure(fl, c->d, 0, &p0));
+    PetscCall(FluidFacePressure(fl, c->d, 1, &p1));
+  } else {
+    PetscCall(CplGetLayer(cpl, c->d, dom->lo[c->d], NULL, &p0, &e, &u));
+    PetscCall(CplGetLayer(cpl, c->d, dom->hi[c->d], NULL, &p1, &e, &u));
+  }
   *dp = c->down < 0 ? p0 - p1 : p1 - p0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -393,7 +401,7 @@ static PetscErrorCode CoupledRunLoop(Coupled *c)
     PetscCall(IoDue(c->io, t, &due));
     if (due) PetscCall(CoupledOutput(c));
     PetscCall(CoupledMonitor(c, &st));
-    PetscCall(CoupledColumnDrop(c->cpl, r->dom, &c->col, &dp));
+    PetscCall(CoupledColumnDrop(c->cpl, c->fl, r->dom, &c->col, &dp));
     if (t > 0.5 * r->t_end) {
       c->avg += dp;
       c->davg += -c->col.down * st.drag[c->col.d];

@@ -24,6 +24,18 @@
 #include "fluid/fluid_impl.h"
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: recompute only when u, beta or u_s changed */
 
+/* The shift at boundary face point q (global indices, q[d] = 0 or N[d]) of side s, owned. */
+static inline PetscReal fluid_face_shift(const FluidGrid *g, int d, int s, const PetscScalar ****u, const PetscScalar ****b, const PetscScalar ****us, const PetscInt q[3])
+{
+  PetscInt  r[3] = {q[0], q[1], q[2]};
+  PetscReal db, d1;
+
+  r[d] += s ? -1 : 1; /* the first interior face point: owned, a rank holds >= 2 cells */
+  db = PetscRealPart(b[q[2]][q[1]][q[0]][d] * (u[q[2]][q[1]][q[0]][d] - us[q[2]][q[1]][q[0]][d]));
+  d1 = PetscRealPart(b[r[2]][r[1]][r[0]][d] * (u[r[2]][r[1]][r[0]][d] - us[r[2]][r[1]][r[0]][d]));
+  return (s ? -1 : 1) * g->h[d] * (db - 0.5 * d1);
+}
+
 static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
 {
   FluidFaceShift   *fs = &fl->fshift;
@@ -61,13 +73,7 @@ static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
           for (q[a] = g->xs[a]; q[a] < g->xs[a] + g->xm[a]; q[a]++) {
             const PetscInt    m    = q[a] + g->N[a] * q[c];
             const FluidBCType type = bc->pkind && bc->pkind[m] ? (FluidBCType)bc->pkind[m] : bc->type;
-            PetscInt          r[3] = {q[0], q[1], q[2]};
-            PetscReal         db, d1;
-            if (type == FLUID_BC_OUTLET) continue;
-            r[d] += s ? -1 : 1; /* the first interior face point: owned, a rank holds >= 2 cells */
-            db      = PetscRealPart(b[q[2]][q[1]][q[0]][d] * (u[q[2]][q[1]][q[0]][d] - us[q[2]][q[1]][q[0]][d]));
-            d1      = PetscRealPart(b[r[2]][r[1]][r[0]][d] * (u[r[2]][r[1]][r[0]][d] - us[r[2]][r[1]][r[0]][d]));
-            loc[m] = (s ? -1 : 1) * g->h[d] * (db - 0.5 * d1);
+            if (type != FLUID_BC_OUTLET) loc[m] = fluid_face_shift(g, d, s, u, b, us, q);
           }
       PetscCallMPI(MPIU_Allreduce(loc, fs->dp[d][s], (PetscMPIInt)n, MPIU_REAL, MPIU_SUM, fl->comm));
       PetscCall(PetscFree(loc));
@@ -76,6 +82,56 @@ static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
   PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.us, &us));
   PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.beta, &b));
   PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.u, &u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective. The mean pressure over the open part of the boundary face (d, s), weighted by the
+ * open area a_f h_a h_b: the set pressure at its outlet points, elsewhere 1.5 p_1 - 0.5 p_2 plus
+ * the drag's shift. Local sums and one reduction (the shifts of other faces are not gathered). */
+PetscErrorCode FluidFacePressure(Fluid fl, int d, int s, PetscReal *pmean)
+{
+  const FluidGrid   *g = &fl->g;
+  const FluidBC     *bc = &fl->bc.face[d][s];
+  const int          a = (d + 1) % 3, c = (d + 2) % 3;
+  PetscReal          loc[2] = {0, 0}, sum[2];
+  const PetscScalar *p, ****ar = NULL, ****u, ****b, ****us;
+  PetscInt           q[3], c1[3], c2[3];
+
+  PetscFunctionBeginUser;
+  PetscCheck(!FluidPeriodic(fl, d) && g->N[d] >= 2, fl->comm, PETSC_ERR_ARG_WRONG, "FluidFacePressure: axis %d is periodic or has one cell", d);
+  if (s ? g->xs[d] + g->xm[d] == g->N[d] : g->xs[d] == 0) {
+    PetscCall(VecGetArrayRead(fl->fld.p, &p));
+    if (fl->ves.cut) PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->ves.area, &ar));
+    PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.u, &u));
+    PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.beta, &b));
+    PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.us, &us));
+    q[d] = s ? g->N[d] : 0;
+    for (q[c] = g->xs[c]; q[c] < g->xs[c] + g->xm[c]; q[c]++)
+      for (q[a] = g->xs[a]; q[a] < g->xs[a] + g->xm[a]; q[a]++) {
+        const PetscInt    m    = q[a] + g->N[a] * q[c];
+        const FluidBCType type = bc->pkind && bc->pkind[m] ? (FluidBCType)bc->pkind[m] : bc->type;
+        PetscReal         w    = g->h[a] * g->h[c], pf;
+        for (int e = 0; e < 3; e++) c1[e] = c2[e] = q[e] - g->xs[e];
+        c1[d] = s ? g->xm[d] - 1 : 0;
+        c2[d] = s ? g->xm[d] - 2 : 1;
+        if (ar) w *= PetscRealPart(ar[q[2]][q[1]][q[0]][d]);
+        if (w == 0) continue;
+        if (type == FLUID_BC_OUTLET) pf = bc->pkind && bc->pkind[m] ? bc->pp[m] : fl->bc.p_out;
+        else {
+          const PetscInt o1 = (c1[2] * g->xm[1] + c1[1]) * g->xm[0] + c1[0], o2 = (c2[2] * g->xm[1] + c2[1]) * g->xm[0] + c2[0];
+          pf = 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]) + fluid_face_shift(g, d, s, u, b, us, q);
+        }
+        loc[0] += w * pf;
+        loc[1] += w;
+      }
+    PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.us, &us));
+    PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.beta, &b));
+    PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.u, &u));
+    if (ar) PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->ves.area, &ar));
+    PetscCall(VecRestoreArrayRead(fl->fld.p, &p));
+  }
+  PetscCallMPI(MPIU_Allreduce(loc, sum, 2, MPIU_REAL, MPIU_SUM, fl->comm));
+  *pmean = sum[1] > 0 ? sum[0] / sum[1] : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -152,6 +152,11 @@ PetscErrorCode FluidGetLocalFields(Fluid fluid, Vec *uloc, Vec *ploc);
  * it; within half a cell of a non-periodic boundary extrapolated along its normal from the two
  * nearest centre rows (on the face 1.5 p1 - 0.5 p2, exact for a linear pressure) (Pa). */
 PetscErrorCode FluidProbePressure(Fluid fluid, const PetscReal x[3], PetscReal *p);
+/* Collective. The mean pressure over the open part of the boundary face of axis d (not periodic),
+ * side s (0 low, 1 high), weighted by open area (Pa): the set pressure at outlet points, elsewhere
+ * the face pressure, the centres' extrapolation plus the drag the particles leave on the face
+ * (faceshift.c). */
+PetscErrorCode FluidFacePressure(Fluid fluid, int d, int s, PetscReal *pmean);
 /* A segment a -> b (line), or an axis-aligned box [a, b] flat along some axes (a rectangle: flat
  * along its normal), in m; name (the option that gave it) labels the error of one that leaves
  * the domain. */
