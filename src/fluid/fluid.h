@@ -135,7 +135,9 @@ extern const char *const FluidBCNames[];
 PetscErrorCode           FluidGetBC(Fluid fluid, int d, int side, FluidBCType *type);
 /* Borrowed global Vecs, valid until FluidDestroy. eps: porosity eps^{n+1} (cell, set it before
  * FluidStep); eps_old: eps^n (cell, read only); beta: drag coefficient per face component
- * (kg m^-3 s^-1, face); u_s: solid velocity per face component (m/s); source: explicit momentum
+ * (kg m^-3 s^-1, face; on a wall or inlet face point, which has no momentum equation, beta (u -
+ * u_s) V_cell is the force the half cell next to the face holds, as a kernel deposits it: a
+ * uniform medium has half its density there; the face's pressure reads it, faceshift.c); u_s: solid velocity per face component (m/s); source: explicit momentum
  * source per face component (N/m^3); u: face velocity (m/s); p: pressure (Pa). */
 PetscErrorCode FluidGetPorosity(Fluid fluid, Vec *eps);
 PetscErrorCode FluidGetPorosityOld(Fluid fluid, Vec *eps_old);
