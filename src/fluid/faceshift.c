@@ -38,10 +38,10 @@ static inline PetscReal fluid_face_shift(const FluidGrid *g, int d, int s, const
 
 static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
 {
-  FluidFaceShift   *fs = &fl->fshift;
-  const FluidGrid  *g  = &fl->g;
-  PetscObjectState  st[3];
-  PetscReal         bmax;
+  FluidFaceShift       *fs = &fl->fshift;
+  const FluidGrid      *g  = &fl->g;
+  PetscObjectState      st[3];
+  PetscReal             bmax;
   const PetscScalar ****u, ****b, ****us;
 
   PetscFunctionBeginUser;
@@ -90,7 +90,7 @@ static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
  * the drag's shift. Local sums and one reduction (the shifts of other faces are not gathered). */
 PetscErrorCode FluidFacePressure(Fluid fl, int d, int s, PetscReal *pmean)
 {
-  const FluidGrid   *g = &fl->g;
+  const FluidGrid   *g  = &fl->g;
   const FluidBC     *bc = &fl->bc.face[d][s];
   const int          a = (d + 1) % 3, c = (d + 2) % 3;
   PetscReal          loc[2] = {0, 0}, sum[2];
@@ -169,8 +169,8 @@ PetscReal FluidFaceShiftAxisShare(const Fluid fl, int d, int s, PetscReal x0, Pe
  * face's axes a = (d + 1) % 3, b = (d + 2) % 3, summing to 1). */
 PetscReal FluidFaceShiftAt(const Fluid fl, int d, int s, const PetscReal *Wa, const PetscReal *Wb)
 {
-  const FluidGrid *g  = &fl->g;
-  const int        a  = (d + 1) % 3, c = (d + 2) % 3;
+  const FluidGrid *g = &fl->g;
+  const int        a = (d + 1) % 3, c = (d + 2) % 3;
   const PetscReal *dp = fl->fshift.dp[d][s];
   PetscReal        v  = 0;
 

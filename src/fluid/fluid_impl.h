@@ -43,9 +43,9 @@ typedef struct _FluidPatches FluidPatches; /* patch.c */
 
 /* -fluid_distributor (distributor.c): a perforated plate on the z-faces of layer k0. */
 typedef struct {
-  PetscBool on;
-  PetscInt  k0;      /* z-face layer of the plate */
-  PetscReal phi, cd; /* open-area fraction, orifice discharge coefficient */
+  PetscBool        on;
+  PetscInt         k0;         /* z-face layer of the plate */
+  PetscReal        phi, cd;    /* open-area fraction, orifice discharge coefficient */
   Vec              beff;       /* beta + the vessel's film friction + the plate's linearised resistance (face Vec) */
   PetscObjectState beta_state; /* without a plate: beta's state when beff was made */
 } FluidPlate;
@@ -194,9 +194,9 @@ struct _p_Fluid {
   FluidImplicitViscous vimp;
   FluidEvents          ev;
   FluidVessel          ves;
-  PetscBool            setup; /* FluidSetUp done */
-  PetscBool            ckpt;  /* FluidSetCheckpointing */
-  FluidPatches        *patch; /* -fluid_patch_<k> (patch.c; NULL without) */
+  PetscBool            setup;  /* FluidSetUp done */
+  PetscBool            ckpt;   /* FluidSetCheckpointing */
+  FluidPatches        *patch;  /* -fluid_patch_<k> (patch.c; NULL without) */
   FluidPlate           plate;  /* -fluid_distributor (distributor.c) */
   FluidFaceShift       fshift; /* faceshift.c */
 };

@@ -777,7 +777,7 @@ PetscErrorCode FluidPatchMeasure(Fluid fl, PetscInt i, PetscInt *k, PetscReal *p
   PetscReal          loc[2] = {0, 0}, sum[2];
   const PetscScalar *p, *eps;
 
-  PetscBool          any;
+  PetscBool any;
 
   PetscFunctionBeginUser;
   *k = pt->k;

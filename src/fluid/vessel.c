@@ -21,7 +21,12 @@
  *     neighbour by the linear extrapolation through the wall value, u_Q = u_P (1 - 1/theta), so
  *     the flux to the wall is mu (0 - u_P)/(theta h): the symmetric second-order treatment of
  *     Gibou, Fedkiw, Cheng & Kang, J. Comput. Phys. 176 (2002) 205, doi:10.1006/jcph.2001.6977.
- *     With -fluid_vessel_wall slip the flux to the wall is 0 instead (zero normal derivative).
+ *     With -fluid_vessel_wall slip the flux to the wall is 0 instead (zero normal derivative);
+ *   - for a face whose own centre is in the solid (no-slip), the friction of its open sliver as a
+ *     film of width w = a_f h (h the face's mean side) along one no-slip wall, 3 mu / w^2 (the
+ *     mean velocity of such a film is G w^2 / (3 mu)), kept in film: an implicit sink added to
+ *     beta (FluidBetaOfSolve). The wall link alone (at theta_min) left the slivers, free of
+ *     particles, nearly free of friction, and the gas ran up them past a bed.
  * Nothing is kept when the vessel cuts no cell or face: the box code runs unchanged. */
 #include "fluid/fluid_impl.h"
 

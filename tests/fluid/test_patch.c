@@ -173,9 +173,9 @@ static PetscErrorCode CaseC(void)
   PetscCall(FluidGetDragCoefficient(fl, &beta));
   PetscCall(VecSet(beta, b));
   { /* the inlet's face points carry the force of the half cell above them per V_cell (fluid.h): b / 2 */
-    DM               cda, fda;
+    DM              cda, fda;
     PetscScalar ****a;
-    PetscInt         xs, ys, zs, xm, ym, zm;
+    PetscInt        xs, ys, zs, xm, ym, zm;
     PetscCall(FluidGetDMs(fl, &cda, &fda));
     PetscCall(DMDAGetCorners(cda, &xs, &ys, &zs, &xm, &ym, &zm));
     PetscCall(DMDAVecGetArrayDOF(fda, beta, (void *)&a));
@@ -200,11 +200,11 @@ static PetscErrorCode CaseC(void)
        k = 0 too): the inlet face's pressure less the outlet's is the whole column's momentum
        balance, h u (beta_0 + sum_{0<k<N} beta_k + beta_N / 2), u = U / eps (the outlet face's
        equation spans half a cell to its ghost); the centres' extrapolation alone misses it */
-    DM               cda, fda;
+    DM              cda, fda;
     PetscScalar ****a;
-    PetscInt         xs, ys, zs, xm, ym, zm, N = dom.cells[2];
-    const PetscReal  h = L / N;
-    PetscReal        ref = 0;
+    PetscInt        xs, ys, zs, xm, ym, zm, N = dom.cells[2];
+    const PetscReal h   = L / N;
+    PetscReal       ref = 0;
     PetscCall(FluidGetDMs(fl, &cda, &fda));
     PetscCall(DMDAGetCorners(fda, &xs, &ys, &zs, &xm, &ym, &zm)); /* the owned face points: the last rank along z holds k = N */
     PetscCall(DMDAVecGetArrayDOF(fda, beta, (void *)&a));
