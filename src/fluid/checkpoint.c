@@ -76,15 +76,20 @@ static void FluidCkptFields(Fluid fl, const char *names[11], Vec vecs[11])
 }
 
 /* The counters (all stored as reals; the integers are exact). *current: whether the Poisson
- * matrix is that of the current eps, beta and dt_mat (no change since its assembly). */
+ * matrix is that of the current eps, beta and dt_mat (no change since its assembly); the beta of
+ * the solve is beff with the vessel's films (it must still be beta's: FluidResistanceUpdate
+ * remakes it on reading) and never current with a plate (its resistance follows u^n). */
 static PetscErrorCode FluidCkptState(Fluid fl, PetscReal s[FLUID_CKPT_NSTATE], PetscBool get, PetscBool *current)
 {
   PetscFunctionBeginUser;
   if (get) {
-    PetscObjectState se, sb;
+    PetscObjectState se, sb, sbeta;
     PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps, &se));
-    PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &sb));
-    *current                             = (PetscBool)(fl->pois.dt_mat > 0 && se == fl->pois.eps_state && sb == fl->pois.beta_state);
+    PetscCall(PetscObjectStateGet((PetscObject)FluidBetaOfSolve(fl), &sb));
+    PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &sbeta));
+    *current = (PetscBool)(fl->pois.dt_mat > 0 && se == fl->pois.eps_state && sb == fl->pois.beta_state);
+    if (fl->plate.on) *current = PETSC_FALSE;
+    else if (fl->ves.film) *current = (PetscBool)(*current && fl->plate.beff && fl->plate.beta_state == sbeta);
     const PetscReal v[FLUID_CKPT_NSTATE] = {fl->clock.time, fl->mom.dt_old, (PetscReal)fl->clock.nsteps, fl->pois.dt_pc, (PetscReal)fl->pois.pc_its0, (PetscReal)fl->pois.pc_age, (PetscReal)fl->pois.pc_its_last, (PetscReal)fl->pois.pc_builds, (PetscReal)fl->pois.pc_retries, fl->pois.dt_mat, (PetscReal)*current};
     for (int k = 0; k < FLUID_CKPT_NSTATE; k++) s[k] = v[k];
   } else {
@@ -154,8 +159,9 @@ PetscErrorCode FluidCheckpointRead(Fluid fl, IoCkpt ck)
       bc->row = (PetscInt)r[0];
       for (int k = 0; k < 3; k++) bc->vel[k] = r[1 + k];
     }
-  if (fl->patch) PetscCall(FluidPatchesAtClock(fl)); /* the patches' values are functions of the clock */
-  fl->vimp.dt_mat = -1;                              /* the implicit viscous operator is assembled again at the next step */
+  if (fl->patch) PetscCall(FluidPatchesAtClock(fl));                       /* the patches' values are functions of the clock */
+  fl->vimp.dt_mat = -1;                                                    /* the implicit viscous operator is assembled again at the next step */
+  if (fl->ves.film && !fl->plate.on) PetscCall(FluidResistanceUpdate(fl)); /* beff = beta + films, as the matrix had it */
   PetscCall(FluidPoissonRestore(fl, current));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -42,13 +42,16 @@ static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
   const FluidGrid      *g  = &fl->g;
   PetscObjectState      st[3];
   PetscReal             bmax;
+  PetscBool             changed;
   const PetscScalar ****u, ****b, ****us;
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectStateGet((PetscObject)fl->fld.u, &st[0]));
   PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &st[1]));
   PetscCall(PetscObjectStateGet((PetscObject)fl->fld.us, &st[2]));
-  if (fs->valid && st[0] == fs->st[0] && st[1] == fs->st[1] && st[2] == fs->st[2]) PetscFunctionReturn(PETSC_SUCCESS);
+  changed = (PetscBool) !(fs->valid && st[0] == fs->st[0] && st[1] == fs->st[1] && st[2] == fs->st[2]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPIU_BOOL, MPI_LOR, fl->comm)); /* one decision on every rank: the states are per rank */
+  if (!changed) PetscFunctionReturn(PETSC_SUCCESS);
   for (int k = 0; k < 3; k++) fs->st[k] = st[k];
   fs->valid = PETSC_TRUE;
   PetscCall(VecNorm(fl->fld.beta, NORM_INFINITY, &bmax));
@@ -94,7 +97,7 @@ PetscErrorCode FluidFacePressure(Fluid fl, int d, int s, PetscReal *pmean)
   const FluidBC     *bc = &fl->bc.face[d][s];
   const int          a = (d + 1) % 3, c = (d + 2) % 3;
   PetscReal          loc[2] = {0, 0}, sum[2];
-  const PetscScalar *p, ****ar = NULL, ****u, ****b, ****us;
+  const PetscScalar *p, *vol = NULL, ****ar = NULL, ****u, ****b, ****us;
   PetscInt           q[3], c1[3], c2[3];
 
   PetscFunctionBeginUser;
@@ -102,6 +105,7 @@ PetscErrorCode FluidFacePressure(Fluid fl, int d, int s, PetscReal *pmean)
   if (s ? g->xs[d] + g->xm[d] == g->N[d] : g->xs[d] == 0) {
     PetscCall(VecGetArrayRead(fl->fld.p, &p));
     if (fl->ves.cut) PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->ves.area, &ar));
+    if (fl->ves.cut) PetscCall(VecGetArrayRead(fl->ves.vol, &vol));
     PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.u, &u));
     PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.beta, &b));
     PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.us, &us));
@@ -118,8 +122,9 @@ PetscErrorCode FluidFacePressure(Fluid fl, int d, int s, PetscReal *pmean)
         if (w == 0) continue;
         if (type == FLUID_BC_OUTLET) pf = bc->pkind && bc->pkind[m] ? bc->pp[m] : fl->bc.p_out;
         else {
-          const PetscInt o1 = (c1[2] * g->xm[1] + c1[1]) * g->xm[0] + c1[0], o2 = (c2[2] * g->xm[1] + c2[1]) * g->xm[0] + c2[0];
-          pf = 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]) + fluid_face_shift(g, d, s, u, b, us, q);
+          const PetscInt  o1 = (c1[2] * g->xm[1] + c1[1]) * g->xm[0] + c1[0], o2 = (c2[2] * g->xm[1] + c2[1]) * g->xm[0] + c2[0];
+          const PetscBool line = (PetscBool)(!vol || PetscRealPart(vol[o2]) > 0); /* the second centre closed by the vessel: the first alone */
+          pf                   = (line ? 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]) : PetscRealPart(p[o1])) + fluid_face_shift(g, d, s, u, b, us, q);
         }
         loc[0] += w * pf;
         loc[1] += w;
@@ -127,6 +132,7 @@ PetscErrorCode FluidFacePressure(Fluid fl, int d, int s, PetscReal *pmean)
     PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.us, &us));
     PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.beta, &b));
     PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.u, &u));
+    if (vol) PetscCall(VecRestoreArrayRead(fl->ves.vol, &vol));
     if (ar) PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->ves.area, &ar));
     PetscCall(VecRestoreArrayRead(fl->fld.p, &p));
   }

@@ -136,8 +136,9 @@ PetscErrorCode           FluidGetBC(Fluid fluid, int d, int side, FluidBCType *t
 /* Borrowed global Vecs, valid until FluidDestroy. eps: porosity eps^{n+1} (cell, set it before
  * FluidStep); eps_old: eps^n (cell, read only); beta: drag coefficient per face component
  * (kg m^-3 s^-1, face; on a wall or inlet face point, which has no momentum equation, beta (u -
- * u_s) V_cell is the force the half cell next to the face holds, as a kernel deposits it: a
- * uniform medium has half its density there; the face's pressure reads it, faceshift.c); u_s: solid velocity per face component (m/s); source: explicit momentum
+ * u_s) V_f is the force the half cell next to the face holds, as a kernel deposits it, V_f the
+ * face's momentum volume, V_cell or a_f V_cell in a vessel: a uniform medium has half its
+ * density there; the face's pressure reads it, faceshift.c); u_s: solid velocity per face component (m/s); source: explicit momentum
  * source per face component (N/m^3); u: face velocity (m/s); p: pressure (Pa). */
 PetscErrorCode FluidGetPorosity(Fluid fluid, Vec *eps);
 PetscErrorCode FluidGetPorosityOld(Fluid fluid, Vec *eps_old);
@@ -152,7 +153,9 @@ PetscErrorCode FluidGetPressure(Fluid fluid, Vec *p);
 PetscErrorCode FluidGetLocalFields(Fluid fluid, Vec *uloc, Vec *ploc);
 /* Collective (probe.c). The pressure at point x (m), trilinear between the cell centres around
  * it; within half a cell of a non-periodic boundary extrapolated along its normal from the two
- * nearest centre rows (on the face 1.5 p1 - 0.5 p2, exact for a linear pressure) (Pa). */
+ * nearest centre rows (on the face 1.5 p1 - 0.5 p2, exact for a linear pressure), plus at a
+ * wall or inlet the drag's shift (faceshift.c: on the face the whole of it, 0 at the first
+ * centre) (Pa). */
 PetscErrorCode FluidProbePressure(Fluid fluid, const PetscReal x[3], PetscReal *p);
 /* Collective. The mean pressure over the open part of the boundary face of axis d (not periodic),
  * side s (0 low, 1 high), weighted by open area (Pa): the set pressure at outlet points, elsewhere

@@ -775,15 +775,15 @@ PetscErrorCode FluidPatchMeasure(Fluid fl, PetscInt i, PetscInt *k, PetscReal *p
   FluidPatches      *P      = fl->patch;
   const FluidPatch  *pt     = &P->p[i];
   PetscReal          loc[2] = {0, 0}, sum[2];
-  const PetscScalar *p, *eps;
-
-  PetscBool any;
+  const PetscScalar *p, *eps, *vol = NULL;
+  PetscBool          any;
 
   PetscFunctionBeginUser;
   *k = pt->k;
   PetscCall(FluidFaceShiftUpdate(fl, &any));
   PetscCall(VecGetArrayRead(fl->fld.p, &p));
   PetscCall(VecGetArrayRead(fl->fld.eps_old, &eps));
+  if (fl->ves.cut) PetscCall(VecGetArrayRead(fl->ves.vol, &vol));
   if (pt->d < 0) { /* a source: its pressure over the cells it crosses, its flow as imposed on them */
     const PetscReal Q = pt->mass ? pt->value / fl->prop.rho : pt->value * pt->W;
     for (PetscInt j = 0; j < pt->nc; j++) {
@@ -808,13 +808,15 @@ PetscErrorCode FluidPatchMeasure(Fluid fl, PetscInt i, PetscInt *k, PetscReal *p
         c1[d]              = s ? g->xm[d] - 1 : 0;
         c2[d]              = s ? g->xm[d] - 2 : 1;
         const PetscInt  o1 = (c1[2] * g->xm[1] + c1[1]) * g->xm[0] + c1[0], o2 = (c2[2] * g->xm[1] + c2[1]) * g->xm[0] + c2[0];
-        const PetscReal pf     = pt->outlet ? pt->p : 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]) + FluidFaceShiftPoint(fl, d, s, m);
+        const PetscBool line   = (PetscBool)(!vol || PetscRealPart(vol[o2]) > 0); /* the second centre closed by the vessel: the first alone */
+        const PetscReal pf     = pt->outlet ? pt->p : (line ? 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]) : PetscRealPart(p[o1])) + FluidFaceShiftPoint(fl, d, s, m);
         const PetscReal fl_out = (s ? 1 : -1) * P->fa[d][s][m] * PetscRealPart(eps[o1] * u[q[2]][q[1]][q[0]][d]) * Af; /* m^3/s out of the domain */
         loc[0] += P->fw[d][s][m] * pf;
         loc[1] += fl->prop.rho * (pt->outlet ? fl_out : -fl_out);
       }
     PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.u, &u));
   }
+  if (vol) PetscCall(VecRestoreArrayRead(fl->ves.vol, &vol));
   PetscCall(VecRestoreArrayRead(fl->fld.eps_old, &eps));
   PetscCall(VecRestoreArrayRead(fl->fld.p, &p));
   PetscCallMPI(MPIU_Allreduce(loc, sum, 2, MPIU_REAL, MPIU_SUM, fl->comm));

@@ -378,10 +378,10 @@ PetscErrorCode FluidPoissonRestore(Fluid fl, PetscBool current)
   }
   PetscCall(FluidLocalCell(fl, fl->fld.eps, fl->fld.epsloc, PETSC_FALSE, 0.0));
   PetscCall(VecGetArrayRead(fl->fld.epsloc, &eps));
-  PetscCall(FluidPoissonAssemble(fl, fl->pois.dt_mat, eps, fl->fld.beta));
+  PetscCall(FluidPoissonAssemble(fl, fl->pois.dt_mat, eps, FluidBetaOfSolve(fl))); /* with the vessel's films (beff, remade on reading) */
   PetscCall(VecRestoreArrayRead(fl->fld.epsloc, &eps));
   PetscCall(PetscObjectStateGet((PetscObject)fl->fld.eps, &fl->pois.eps_state));
-  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &fl->pois.beta_state));
+  PetscCall(PetscObjectStateGet((PetscObject)FluidBetaOfSolve(fl), &fl->pois.beta_state));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,8 +1,9 @@
 /* Probes of the fluid: the cell-centred pressure at a point x by trilinear interpolation
  * between the eight cell centres around it. Along a wall, inlet or outlet axis the pressure at a
  * point within half a cell of the boundary is extrapolated linearly from the two nearest centre
- * rows (on the face itself 1.5 p1 - 0.5 p2: second order, exact for a linear pressure), the
- * porosity and velocity take the nearest row's value; along a periodic axis the centres wrap. The rank that owns the cell holding x interpolates from
+ * rows (on the face itself 1.5 p1 - 0.5 p2: second order, exact for a linear pressure), plus at
+ * a wall or inlet the drag's shift (faceshift.c; the averages too: near such a face they are not
+ * the frames' interpolant alone), the porosity and velocity take the nearest row's value; along a periodic axis the centres wrap. The rank that owns the cell holding x interpolates from
  * its ghosted copy (the DMDA's stencil is at least one cell wide); the others add 0.
  * Averages (FluidAverageFields) of the same interpolant f of the cell-centred pressure, porosity
  * and velocity (the frames' fields), exact, with no sampling parameter:
