@@ -100,7 +100,7 @@ for f in cases/*/*.opts; do
     [ -n "$fill" ] && $S -options_file "$fill" -dem_t_end 0.01 -io_interval 0.01 -io_dir "$T/fill" >/dev/null 2>&1
     set -- -dem_init_file "$T/fill/$(basename "$init")"
   fi
-  warns "shipped case $f" 0 . -options_file "$f" "$@" -cpl_t_end 0.03 -cpl_progress_interval 0 -io_interval 0
+  warns "shipped case $f" 0 . -options_file "$f" "$@" -cpl_t_end 1e-4 -cpl_progress_interval 0 -io_interval 0
 done
 # periodicity is one option for both: a fluid wall on a periodic axis, a DEM box across one, are errors
 stops "fluid wall on a periodic axis" 1 '-fluid_bc_xlo wall: the x axis is periodic (-domain_periodic_x)' $B -fluid_bc_xlo wall
