@@ -4,9 +4,10 @@
  * walls on the inlet face) with the inlet ramped linearly (-fluid_bc_zlo_velocity_table,
  * -fluid_inlet_interpolation linear).
  * Every fluid step records the inlet's superficial velocity U and the pressure drop across the
- * column, dp = p(z = 0) - p(top cell), p(z = 0) extrapolated linearly from the two lowest cell
- * centres (the bed starts on the inlet face: the half cell below the first centre holds bed
- * whatever the cell size). The packed branch, the steps with U in -umf_fit lo,hi times the drag
+ * column, dp = p(z = 0) - p(top cell), p(z = 0) the inlet face's pressure (FluidFacePressure:
+ * the two lowest centres' linear extrapolation plus the drag the beads leave on the inlet's face
+ * points; the bed starts on the inlet face, so the half cell below the first centre holds bed
+ * whatever the cell size; -umf_extrapolate: the extrapolation alone, as before). The packed branch, the steps with U in -umf_fit lo,hi times the drag
  * law's prediction U_mf(eps_ref) (CplGetMinFluidization at -umf_eps, default 1 - pi/6), is
  * fitted by least squares to dp = a U + b U^2 (Ergun's form); U_mf is where that fit reaches the
  * bed's buoyant weight per area W = N (pi d^3/6)(rho_p - rho_f) g / A (-dem_radius,
@@ -86,6 +87,7 @@ int main(int argc, char **argv)
   CplFluidization f;
   Sweep           sw     = {0};
   PetscReal       fit[2] = {0.3, 0.7}, eps_ref = 1 - PETSC_PI / 6, t_end = 100, t = 0, W = 0, h, top, plateau = 0;
+  PetscBool       face = PETSC_TRUE;
   PetscInt        nfit = 2, print = 200, step = 0, np = 0, npl = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
@@ -93,6 +95,11 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-umf_eps", &eps_ref, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-umf_print", &print, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-cpl_t_end", &t_end, NULL));
+  {
+    PetscBool extrapolate = PETSC_FALSE;
+    PetscCall(PetscOptionsGetBool(NULL, NULL, "-umf_extrapolate", &extrapolate, NULL));
+    face = (PetscBool)!extrapolate;
+  }
   PetscCall(DomainCreate(PETSC_COMM_WORLD, 1.0, 1, &dom));
   PetscCall(DemCreate(&dom, &dem));
   PetscCall(DemSetFromOptions(dem));
@@ -118,10 +125,14 @@ int main(int argc, char **argv)
     PetscCall(CplStep(cpl, &st));
     PetscCall(CplGetTime(cpl, &t, NULL));
     PetscCall(FluidGetInletVelocity(fl, U, &ninlet));
-    PetscCall(CplGetLayer(cpl, 2, dom.lo[2] + 0.5 * h, NULL, &p0, &e, &u));
-    PetscCall(CplGetLayer(cpl, 2, dom.lo[2] + 1.5 * h, NULL, &p1, &e, &u));
     PetscCall(CplGetLayer(cpl, 2, top, NULL, &pt, &e, &u));
-    const PetscReal dp = p0 + 0.5 * (p0 - p1) - pt;
+    if (face) PetscCall(FluidFacePressure(fl, 2, 0, &p0)); /* the inlet face's pressure, the drag left on it included */
+    else {
+      PetscCall(CplGetLayer(cpl, 2, dom.lo[2] + 0.5 * h, NULL, &p0, &e, &u));
+      PetscCall(CplGetLayer(cpl, 2, dom.lo[2] + 1.5 * h, NULL, &p1, &e, &u));
+      p0 += 0.5 * (p0 - p1);
+    }
+    const PetscReal dp = p0 - pt;
     PetscCall(SweepAdd(&sw, U[2], dp));
     if (U[2] > 1.3 * f.umf) {
       plateau += dp / W;
