@@ -7,8 +7,8 @@ Left: the last frame cut through the axis: the gas's vertical superficial veloci
 cell row through y = 0 (colour; the cells outside the cylinder carry none), the beads whose
 centres lie within one diameter of that plane (grey circles to scale) and the wall (black lines).
 Right: the monitor's pressure drop from the inlet face over the bed's buoyant weight per area
-against the inlet velocity over Wen and Yu's U_mf (the face pressure extrapolated from the
-probes at the first two cell centres, columns p_probe1 and p_probe2, the top p_probe3). Reads the
+against the inlet velocity over Wen and Yu's U_mf (the face pressure, the probe on the inlet
+face, column p_probe0, less the top one, p_probe3). Reads the
 case's numbers (R, the table, the beads) from the options below; matplotlib and h5py only."""
 import csv
 import glob
@@ -77,9 +77,9 @@ def main():
     us, dps = [], []
     for row in rows[1:]:
         tt = float(row[0])
-        pa, pb, pt = float(row[col["p_probe1"]]), float(row[col["p_probe2"]]), float(row[col["p_probe3"]])
+        p0, pt = float(row[col["p_probe0"]]), float(row[col["p_probe3"]])
         us.append(inlet(tt) / umf)
-        dps.append((pa + 0.5 * (pa - pb) - pt) / w)
+        dps.append((p0 - pt) / w)
     b.plot(us, dps, ".", ms=2)
     b.axhline(1, color="k", lw=0.8)
     b.axvline(1, color="r", lw=0.8, ls="--", label="Wen-Yu U_mf %.3f m/s" % umf)
