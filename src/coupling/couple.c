@@ -19,6 +19,7 @@
 
 static const char *const CplDragNames[] = {"beetstra", "difelice", "gidaspow", "schiller", "CplDragLaw", "CPL_DRAG_", NULL};
 static const char *const CplModeNames[] = {"twoway", "oneway", "CplMode", "CPL_MODE_", NULL};
+static const char *const CplFormNames[] = {"B", "A", "CplForm", "CPL_FORM_", NULL};
 static const char *const CplInitNames[] = {"rest", "uniform", "steady", "CplInitFluid", "CPL_INIT_", NULL};
 
 PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fl, Cpl *cpl)
@@ -91,12 +92,14 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
 {
   PetscReal fg[3];
   PetscBool remove = PETSC_FALSE;
-  PetscInt  law = cpl->drag.law, mode = cpl->drag.mode, init = cpl->start.init;
+  PetscInt  law = cpl->drag.law, mode = cpl->drag.mode, init = cpl->start.init, form = cpl->drag.form;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(cpl->comm, NULL, "CFD-DEM coupling", NULL);
   PetscCall(SableOptionsEnum("-cpl_drag", "Drag law: beetstra (eq. 15), difelice, gidaspow (Ergun / Wen-Yu), schiller (Schiller-Naumann, single sphere)", CplDragNames, 4, law, &law, NULL));
   cpl->drag.law = (CplDragLaw)law;
+  PetscCall(SableOptionsEnum("-cpl_form", "Form of the averaged momentum equations: B, the fluid feels -grad p and the drag law carries the whole fluid-particle force but buoyancy; A, the fluid feels -eps grad p and the particles -V grad p besides eps times the law's drag (Zhou et al. 2010; the same force in a steady uniform bed)", CplFormNames, 2, form, &form, NULL));
+  cpl->drag.form = (CplForm)form;
   PetscCall(SableOptionsEnum("-cpl_mode", "twoway: fluid and particles act on each other; oneway: the fluid acts on the particles only (the fluid is single phase: porosity 1 everywhere, no drag reaction)", CplModeNames, 2, mode, &mode, NULL));
   cpl->drag.mode = (CplMode)mode;
   PetscCall(SableOptionsEnum("-cpl_init_fluid", "Fluid velocity before the first step: rest, uniform (the inlet's superficial velocity over the porosity), steady (a steady solve through the initial bed held fixed)", CplInitNames, 3, init, &init, NULL));
@@ -118,6 +121,8 @@ PetscErrorCode CplSetFromOptions(Cpl cpl)
   PetscCheck(!(cpl->self.eps && cpl->filt.width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_self_porosity removes the particle's unfiltered kernel dip, which -cpl_filter_width %g changes: use one of the two (the filtered dip is not implemented)", (double)cpl->filt.width);
   PetscCheck(!(cpl->pw.width > 0 && cpl->filt.width > 0), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_filter_width %g: both smooth over a width in diameters (the drag's porosity, the spread fields); use one of the two", (double)cpl->pw.width, (double)cpl->filt.width);
   PetscCheck(!(cpl->pw.width > 0 && cpl->drag.mode == CPL_MODE_ONEWAY), cpl->comm, PETSC_ERR_ARG_INCOMP, "-cpl_porosity_width %g with -cpl_mode oneway: a one-way run's drag sees porosity 1; drop one of them", (double)cpl->pw.width);
+  PetscCheck(!(cpl->drag.form == CPL_FORM_A && cpl->filt.width > 0), cpl->comm, PETSC_ERR_SUP, "-cpl_filter_width %g with -cpl_form A: the filter would move the pressure-gradient force's reaction off the faces the particles read; use -cpl_form B or leave out the filter", (double)cpl->filt.width);
+  PetscCheck(!(cpl->drag.form == CPL_FORM_A && cpl->self.u), cpl->comm, PETSC_ERR_SUP, "-cpl_self_velocity with -cpl_form A: the undisturbed drag is derived for form B's coefficient only; use -cpl_form B or leave out -cpl_self_velocity");
   PetscCall(CplOutletFaces(cpl, remove));
   PetscCall(FluidGetDensity(cpl->fl, &cpl->prop.rho));
   PetscCall(FluidGetViscosity(cpl->fl, &cpl->prop.mu));
@@ -153,6 +158,11 @@ PetscErrorCode CplSetUp(Cpl cpl)
   PetscCall(VecDuplicate(cpl->ex.kv, &cpl->ex.jf));
   PetscCall(VecDuplicate(cpl->ex.kv, &cpl->ex.owed));
   PetscCall(VecZeroEntries(cpl->ex.owed));
+  if (cpl->drag.form == CPL_FORM_A) { /* the pressure gradient at the particles; the fluid's -eps grad p */
+    PetscCall(VecDuplicate(cpl->ex.kv, &cpl->ex.gp));
+    PetscCall(DMCreateLocalVector(cpl->fda, &cpl->ex.gploc));
+    if (cpl->drag.mode == CPL_MODE_TWOWAY) PetscCall(VecDuplicate(cpl->ex.kv, &cpl->ex.phi));
+  }
   cpl->kern.cell_vol = cpl->dom->h[0] * cpl->dom->h[1] * cpl->dom->h[2];
   PetscCall(DemGetGravity(cpl->dem, cpl->prop.g));
   PetscCall(DemGetFrozen(cpl->dem, &cpl->clock.frozen));
@@ -202,13 +212,18 @@ PetscErrorCode CplSetUp(Cpl cpl)
 PetscErrorCode CplRedistribute(Cpl cpl)
 {
   DM   ofda   = cpl->fda;
-  Vec *face[] = {&cpl->ex.kv, &cpl->ex.jf, &cpl->ex.owed};
+  Vec *face[] = {&cpl->ex.kv, &cpl->ex.jf, &cpl->ex.owed, &cpl->ex.gp, &cpl->ex.phi};
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectReference((PetscObject)ofda)); /* the fluid drops its old DMs */
   PetscCall(FluidRedistribute(cpl->fl));
   PetscCall(FluidGetDMs(cpl->fl, &cpl->cda, &cpl->fda));
-  for (size_t i = 0; i < sizeof face / sizeof face[0]; i++) PetscCall(DomainMoveVec(ofda, cpl->fda, face[i]));
+  for (size_t i = 0; i < sizeof face / sizeof face[0]; i++)
+    if (*face[i]) PetscCall(DomainMoveVec(ofda, cpl->fda, face[i]));
+  if (cpl->ex.gploc) {
+    PetscCall(VecDestroy(&cpl->ex.gploc));
+    PetscCall(DMCreateLocalVector(cpl->fda, &cpl->ex.gploc));
+  }
   PetscCall(DMDestroy(&ofda));
   PetscCall(VecDestroy(&cpl->ex.cloc));
   PetscCall(DMCreateLocalVector(cpl->cda, &cpl->ex.cloc));
@@ -229,6 +244,7 @@ PetscErrorCode CplView(Cpl cpl, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: drag %s, %d DEM steps per fluid step of %g s, cube kernel %g x the volume-equivalent side, porosity floor %g%s\n", CplDragNames[cpl->drag.law], (int)cpl->clock.substeps, (double)(cpl->clock.adaptive ? (cpl->clock.frozen ? cpl->clock.dtf : cpl->clock.substeps * cpl->clock.dtd) : cpl->clock.dt), (double)cpl->kern.scale, (double)cpl->drag.eps_floor, cpl->clock.frozen ? ", frozen bed (no DEM steps)" : ""));
   if (cpl->filt.n > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: diffusion filter -cpl_filter_width %g x mean diameter %g m: Gaussian sigma %g m, %d sweeps per field\n", (double)cpl->filt.width, (double)cpl->filt.d, (double)PetscSqrtReal(cpl->filt.var), (int)cpl->filt.n));
   if (cpl->pw.width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: the drag's porosity -cpl_porosity_width %g x mean diameter %g m: Gaussian sigma %g m on a grid %d x %d x %d times finer than the fluid's\n", (double)cpl->pw.width, (double)cpl->pw.d, (double)cpl->pw.sigma, (int)cpl->pw.n[0], (int)cpl->pw.n[1], (int)cpl->pw.n[2]));
+  if (cpl->drag.form == CPL_FORM_A) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: momentum equations' form A (-cpl_form A): the fluid feels -eps grad p, the particles -V grad p and eps times the law's drag\n"));
   if (cpl->drag.mode == CPL_MODE_ONEWAY) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: one-way (-cpl_mode oneway): the fluid acts on the particles only; the fluid is single phase (porosity 1, no drag reaction)\n"));
   if (cpl->clock.adaptive && cpl->clock.frozen) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): at most -fluid_dt %g s, within 0.9 of the fluid's stability limit\n", (double)cpl->clock.dtf));
   else if (cpl->clock.adaptive) PetscCall(PetscViewerASCIIPrintf(viewer, "coupling: adaptive fluid step (-fluid_adaptive_dt): 1 to %d DEM steps of %g s per fluid step, within 0.9 of the fluid's stability limit\n", (int)cpl->clock.substeps, (double)cpl->clock.dtd));
@@ -247,6 +263,9 @@ PetscErrorCode CplDestroy(Cpl *cpl)
   PetscCall(VecDestroy(&(*cpl)->ex.kv));
   PetscCall(VecDestroy(&(*cpl)->ex.jf));
   PetscCall(VecDestroy(&(*cpl)->ex.owed));
+  PetscCall(VecDestroy(&(*cpl)->ex.gp));
+  PetscCall(VecDestroy(&(*cpl)->ex.gploc));
+  PetscCall(VecDestroy(&(*cpl)->ex.phi));
   PetscCall(PetscFree4((*cpl)->kern.side, (*cpl)->kern.vol, (*cpl)->kern.diam, (*cpl)->kern.mass));
   PetscCall(PetscFree((*cpl)->kern.stc));
   PetscCall(CplSelfTableDestroy(*cpl));

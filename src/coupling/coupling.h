@@ -32,6 +32,15 @@ typedef enum {
   CPL_MODE_ONEWAY
 } CplMode;
 
+/* -cpl_form: the averaged momentum equations' form (Zhou, Kuang, Chu & Yu 2010, J. Fluid Mech.
+ * 661:482). B (default): the fluid feels -grad p and the drag law carries the whole fluid-particle
+ * force but buoyancy. A: the fluid feels -eps grad p, the particles the pressure-gradient force
+ * -V grad p besides a drag eps times the law's (the same force in a steady uniform bed). */
+typedef enum {
+  CPL_FORM_B,
+  CPL_FORM_A
+} CplForm;
+
 /* -cpl_init_fluid: the fluid velocity before the first coupling step. rest: zero (the inlet's
  * value on its faces); uniform: the inlet's superficial velocity over the porosity at every
  * face along the inlet's axis; steady: a steady solve through the initial bed, held fixed. */
@@ -52,7 +61,7 @@ typedef struct {
 
 /* Collective. dom, dem and fluid must outlive the coupling. */
 PetscErrorCode CplCreate(Domain *dom, Dem dem, Fluid fluid, Cpl *cpl);
-/* Collective. Reads -cpl_drag, -cpl_mode, -cpl_init_fluid (and its _rtol, _max_steps),
+/* Collective. Reads -cpl_drag, -cpl_form, -cpl_mode, -cpl_init_fluid (and its _rtol, _max_steps),
  * -cpl_substeps, -cpl_kernel_scale, -cpl_filter_width, -cpl_porosity_width, -cpl_porosity_floor, -cpl_relaxation_ratio_max,
  * -cpl_self_porosity, -cpl_self_velocity, -cpl_self_fade, -cpl_outlet_remove (the run's length and probes belong to the coupled driver); takes
  * the fluid's density and viscosity from the Fluid (call after FluidSetFromOptions), whose

@@ -57,6 +57,7 @@ typedef struct {
 /* The drag law and the coupling mode (couple.c options). */
 typedef struct {
   CplDragLaw law;
+  CplForm    form;
   CplMode    mode;
   PetscReal  eps_floor;   /* -cpl_porosity_floor */
   PetscReal  umf_eps;     /* -cpl_umf_porosity: the porosity of the bed: line's U_mf when the bed is loose */
@@ -95,8 +96,9 @@ typedef struct {
 
 /* The exchange's fields: work locals and face globals (exchange.c, kernel.c). */
 typedef struct {
-  Vec cloc, floc[3]; /* work: cell local, face locals (one per field spread together) */
-  Vec kv, jf, owed;  /* face globals: sum K W v, spread impulse, momentum owed */
+  Vec cloc, floc[3];  /* work: cell local, face locals (one per field spread together) */
+  Vec kv, jf, owed;   /* face globals: sum K W v, spread impulse, momentum owed */
+  Vec gp, gploc, phi; /* -cpl_form A: the fluid's pressure gradient of the step's start (global, ghosted), the reaction of the particles' pressure-gradient forces (global); NULL otherwise */
 } CplExchange;
 
 /* Diagnostics and measured figures. */
@@ -184,6 +186,7 @@ PetscErrorCode CplAdmitNewParticles(Cpl cpl);
 void           CplInvalidateStencils(Cpl cpl);
 PetscErrorCode CplInterpolateSelf(Cpl cpl, PetscReal *u, PetscReal *eps, PetscReal *self, PetscReal *usup);
 PetscErrorCode CplFacePorosityScale(Cpl cpl, Vec beta);
+PetscErrorCode CplInterpolateFaces(Cpl cpl, Vec floc, PetscReal *out);
 typedef struct {
   const PetscReal *val; /* 3 per local particle, or 1 if scalar */
   PetscBool        scalar;

@@ -3,12 +3,14 @@
  * momentum owed to the fluid for the next step. */
 #include "coupling/coupling_impl.h"
 
+static PetscErrorCode CplPressureExchange(Cpl, Vec);
+
 /* Drag coefficient, fluid velocity and buoyancy at the particles; zeroes the impulses. */
 PetscErrorCode CplSetParticleDrag(Cpl cpl)
 {
   DemArrays   pa;
   DemExternal ex;
-  PetscReal  *eps, *fade;
+  PetscReal  *eps, *fade, *gp = NULL, *ep = NULL;
   PetscInt    capped[2] = {0, 0};
 
   PetscFunctionBeginUser;
@@ -17,6 +19,18 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
   PetscCall(DemGetExternal(cpl->dem, &ex));
   PetscCall(PetscMalloc2(pa.nlocal + 1, &eps, pa.nlocal + 1, &fade));
   PetscCall(CplSeenPorosity(cpl, pa.nlocal, ex.u, eps, fade));
+  if (cpl->drag.form == CPL_FORM_A) { /* the pressure gradient at the particles (p^n) and the porosity of its force's reaction */
+    PetscCall(FluidGetPressureGradient(cpl->fl, cpl->ex.gp));
+    PetscCall(DMGlobalToLocal(cpl->fda, cpl->ex.gp, INSERT_VALUES, cpl->ex.gploc));
+    PetscCall(PetscMalloc2(3 * pa.nlocal + 1, &gp, 3 * pa.nlocal + 1, &ep));
+    PetscCall(CplInterpolateFaces(cpl, cpl->ex.gploc, gp));
+    if (cpl->drag.mode == CPL_MODE_TWOWAY) {
+      PetscCall(CplPressureExchange(cpl, cpl->ex.floc[0]));
+      PetscCall(CplInterpolateFaces(cpl, cpl->ex.floc[0], ep));
+      for (PetscInt p = 0; p < pa.nlocal; p++) ep[p] = (ep[3 * p] + ep[3 * p + 1] + ep[3 * p + 2]) / 3;
+    } else
+      for (PetscInt p = 0; p < pa.nlocal; p++) ep[p] = 1; /* one-way: the fluid alone */
+  }
   for (PetscInt p = 0; p < pa.nlocal; p++) {
     const PetscReal d = CplDiameterOf(cpl, &pa, p), vol = CplVolumeOf(cpl, &pa, p);
     PetscReal       w2 = 0;
@@ -32,8 +46,13 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
       ex.fext[3 * p + k] = -cpl->prop.rho * vol * cpl->prop.g[k];
       ex.j[3 * p + k]    = 0;
     }
+    if (gp) { /* form A: e times the law's drag, and -V grad p held over the step */
+      ex.k[p] *= ep[p];
+      for (int k = 0; k < 3; k++) ex.fext[3 * p + k] -= vol * gp[3 * p + k];
+    }
   }
   PetscCall(PetscFree2(eps, fade));
+  PetscCall(PetscFree2(gp, ep));
   if (cpl->self.u) { /* a counted warning, printed once: the corrected drag is too low there */
     PetscCall(MPIU_Allreduce(capped, capped + 1, 1, MPIU_INT, MPI_SUM, cpl->comm));
     const PetscReal hmin = PetscMin(PetscMin(cpl->dom->h[0], cpl->dom->h[1]), cpl->dom->h[2]);
@@ -43,6 +62,66 @@ PetscErrorCode CplSetParticleDrag(Cpl cpl)
   }
   PetscCall(PetscLogEventEnd(cpl->ev.drag, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Form A, at the step's start (positions x^n, the face gradient g of p^n in ex.gp): the particles'
+ * volumes spread onto the faces as beta is, phi = sum V_p W / V_f. A particle's force -V_p sum_f
+ * W_pf g_f is given back face by face: the fluid's source R = phi g (ex.phi, added in
+ * CplSetFluidDrag), so the fluid loses what the particles gain, exactly and locally (steady and
+ * uniform: (1 - phi) g balances the drag, the fluid's -eps grad p). eloc (ghosted) gets the
+ * porosity the particle's drag is scaled by, e = 1 - phi at a face, 1 - 2 phi on a wall or inlet
+ * face point (its half cell), at least -cpl_porosity_floor. */
+static PetscErrorCode CplPressureExchange(Cpl cpl, Vec eloc)
+{
+  DemArrays          pa;
+  PetscReal         *vol;
+  Vec                ev;
+  PetscScalar       *e, *r;
+  const PetscScalar *g;
+  PetscInt           xs[3], xm[3], idx[3], c = 0;
+  const Domain      *dom = cpl->dom;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(PetscMalloc1(pa.nlocal + 1, &vol));
+  for (PetscInt p = 0; p < pa.nlocal; p++) vol[p] = CplVolumeOf(cpl, &pa, p);
+  {
+    const CplSpread sp = {vol, PETSC_TRUE, cpl->ex.phi};
+    PetscCall(CplSpreadFaces(cpl, 1, &sp));
+  }
+  PetscCall(PetscFree(vol));
+  PetscCall(DMGetGlobalVector(cpl->fda, &ev));
+  PetscCall(DMDAGetCorners(cpl->fda, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArray(cpl->ex.phi, &r));
+  PetscCall(VecGetArrayRead(cpl->ex.gp, &g));
+  PetscCall(VecGetArray(ev, &e));
+  for (idx[2] = xs[2]; idx[2] < xs[2] + xm[2]; idx[2]++)
+    for (idx[1] = xs[1]; idx[1] < xs[1] + xm[1]; idx[1]++)
+      for (idx[0] = xs[0]; idx[0] < xs[0] + xm[0]; idx[0]++, c += 3)
+        for (int d = 0; d < 3; d++) {
+          const PetscBool bnd = (PetscBool)(!dom->periodic[d] && (idx[d] == 0 || idx[d] == dom->cells[d]));
+          e[c + d]            = PetscMax(1 - (bnd ? 2 : 1) * PetscRealPart(r[c + d]), cpl->drag.eps_floor);
+          r[c + d] *= g[c + d];
+        }
+  PetscCall(VecRestoreArray(ev, &e));
+  PetscCall(VecRestoreArrayRead(cpl->ex.gp, &g));
+  PetscCall(VecRestoreArray(cpl->ex.phi, &r));
+  PetscCall(DMGlobalToLocal(cpl->fda, ev, INSERT_VALUES, eloc));
+  PetscCall(DMRestoreGlobalVector(cpl->fda, &ev));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Form A, for the step's mean fluid force: the sum of the particles' pressure-gradient forces,
+ * fext + rho_f V g (fext less the buoyancy; 0 for a particle that joined during the step, whose
+ * K is still 0: DemAddParticle clears its arrays). Local. */
+static void CplPressureForceSum(Cpl cpl, const DemArrays *pa, const DemExternal *ex, PetscReal tot[3])
+{
+  tot[0] = tot[1] = tot[2] = 0;
+  for (PetscInt p = 0; p < pa->nlocal; p++) {
+    const PetscReal vol = CplVolumeOf(cpl, pa, p);
+    if (ex->k[p] > 0)
+      for (int k = 0; k < 3; k++) tot[k] += ex->fext[3 * p + k] + cpl->prop.rho * vol * cpl->prop.g[k];
+  }
 }
 
 /* beta and u_s on the faces from K and the particle velocities at the new positions, and the
@@ -110,6 +189,7 @@ PetscErrorCode CplSetFluidDrag(Cpl cpl)
     PetscCall(VecRestoreArray(src, &sa));
     PetscCall(VecRestoreArrayRead(cpl->ves.area, &ar));
   }
+  if (cpl->ex.phi) PetscCall(VecAXPY(src, 1.0, cpl->ex.phi)); /* form A: the reaction of the particles' pressure-gradient forces (CplPressureExchange) */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -168,6 +248,11 @@ static PetscErrorCode CplDragTotal(Cpl cpl, PetscReal drag[3])
   else
     for (PetscInt p = 0; p < pa.nlocal; p++)
       for (int k = 0; k < 3; k++) loc[k] += ex.j[3 * p + k] / cpl->clock.dt;
+  if (cpl->drag.form == CPL_FORM_A) { /* and the pressure-gradient force */
+    PetscReal f[3];
+    CplPressureForceSum(cpl, &pa, &ex, f);
+    for (int k = 0; k < 3; k++) loc[k] += f[k];
+  }
   PetscCall(MPIU_Allreduce(loc, drag, 3, MPIU_REAL, MPIU_SUM, cpl->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

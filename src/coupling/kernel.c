@@ -521,6 +521,42 @@ static PetscErrorCode CplInterpolateVessel(Cpl cpl, const DemArrays *pa, const C
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Not collective. A face field at the particles (3 per local particle) from its ghosted local
+ * copy floc: the velocity's weights, sum_f W_pf a_f g_f zf in a vessel that cuts the grid (the
+ * transpose of the deposit, closed faces weigh nothing). */
+PetscErrorCode CplInterpolateFaces(Cpl cpl, Vec floc, PetscReal *out)
+{
+  DemArrays          pa;
+  CplBox             bf;
+  const CplStencil  *stc;
+  const PetscScalar *ga, *aa = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(DemGetArrays(cpl->dem, &pa));
+  PetscCall(CplStencils(cpl, &pa, &stc));
+  PetscCall(CplBoxOf(cpl->fda, &bf));
+  PetscCall(VecGetArrayRead(floc, &ga));
+  if (cpl->ves.on) PetscCall(VecGetArrayRead(cpl->ves.aloc, &aa));
+  for (PetscInt p = 0; p < pa.nlocal; p++)
+    for (int d = 0; d < 3; d++) {
+      PetscInt      first[3];
+      int           n[3];
+      const double *w[3];
+      double        s = 0;
+      cpl_component(&stc[p], d, first, n, w);
+      for (int k = 0; k < n[2]; k++)
+        for (int j = 0; j < n[1]; j++)
+          for (int i = 0; i < n[0]; i++) {
+            const PetscInt o = 3 * cpl_off(&bf, first[0] + i, first[1] + j, first[2] + k) + d;
+            s += w[2][k] * w[1][j] * w[0][i] * (aa ? aa[o] * ga[o] : ga[o]);
+          }
+      out[3 * p + d] = aa ? s * stc[p].zf[d] : s;
+    }
+  if (aa) PetscCall(VecRestoreArrayRead(cpl->ves.aloc, &aa));
+  PetscCall(VecRestoreArrayRead(floc, &ga));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Collective. beta (a global face Vec) times the face porosity the fluid uses (the fluid's
  * current cell porosity, cpl_face_porosity), at every owned face. */
 PetscErrorCode CplFacePorosityScale(Cpl cpl, Vec beta)

@@ -1,9 +1,10 @@
 /* The pressure on a bounded face (wall or inlet) where particles deposit drag.
  *
  * A face point on a non-periodic boundary carries no momentum equation: its velocity is the
- * boundary's. The drag the coupling deposits there, D_b = beta (u - u_s) (force per unit of the
- * face's momentum control volume), is felt by no interior equation: the half cell between the
- * face and the first row of centres holds it. That half cell's momentum balance gives the face's
+ * boundary's. The drag the coupling deposits there, D_b = beta (u - u_s) - f (force per unit of
+ * the face's momentum control volume; f the explicit source deposited there: the reaction of the
+ * particles' pressure-gradient force with -cpl_form A, else 0), is felt by no interior equation:
+ * the half cell between the face and the first row of centres holds it. That half cell's momentum balance gives the face's
  * pressure (axis d, cell side h, centres 1 and 2 counted from the face, s = +1 on the low side,
  * -1 on the high one):
  *   p_b = p_1 + s h (D_b + R / 2),   R = s (p_1 - p_2) / h - D_1,
@@ -25,13 +26,13 @@
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet: recompute only when u, beta or u_s changed */
 
 /* The shift at boundary face point q (global indices, q[d] = 0 or N[d]) of side s, owned. */
-static inline PetscReal fluid_face_shift(const FluidGrid *g, int d, int s, const PetscScalar ****u, const PetscScalar ****b, const PetscScalar ****us, const PetscInt q[3])
+static inline PetscReal fluid_face_shift(const FluidGrid *g, int d, int s, const PetscScalar ****u, const PetscScalar ****b, const PetscScalar ****us, const PetscScalar ****src, const PetscInt q[3])
 {
   PetscInt  r[3] = {q[0], q[1], q[2]};
   PetscReal db, d1;
 
   r[d] += s ? -1 : 1; /* the first interior face point: owned, a rank holds >= 2 cells */
-  db = PetscRealPart(b[q[2]][q[1]][q[0]][d] * (u[q[2]][q[1]][q[0]][d] - us[q[2]][q[1]][q[0]][d]));
+  db = PetscRealPart(b[q[2]][q[1]][q[0]][d] * (u[q[2]][q[1]][q[0]][d] - us[q[2]][q[1]][q[0]][d]) - src[q[2]][q[1]][q[0]][d]);
   d1 = PetscRealPart(b[r[2]][r[1]][r[0]][d] * (u[r[2]][r[1]][r[0]][d] - us[r[2]][r[1]][r[0]][d]));
   return (s ? -1 : 1) * g->h[d] * (db - 0.5 * d1);
 }
@@ -40,19 +41,20 @@ static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
 {
   FluidFaceShift       *fs = &fl->fshift;
   const FluidGrid      *g  = &fl->g;
-  PetscObjectState      st[3];
+  PetscObjectState      st[4];
   PetscReal             bmax;
   PetscBool             changed;
-  const PetscScalar ****u, ****b, ****us;
+  const PetscScalar ****u, ****b, ****us, ****src;
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectStateGet((PetscObject)fl->fld.u, &st[0]));
   PetscCall(PetscObjectStateGet((PetscObject)fl->fld.beta, &st[1]));
   PetscCall(PetscObjectStateGet((PetscObject)fl->fld.us, &st[2]));
-  changed = (PetscBool) !(fs->valid && st[0] == fs->st[0] && st[1] == fs->st[1] && st[2] == fs->st[2]);
+  PetscCall(PetscObjectStateGet((PetscObject)fl->fld.src, &st[3]));
+  changed = (PetscBool) !(fs->valid && st[0] == fs->st[0] && st[1] == fs->st[1] && st[2] == fs->st[2] && st[3] == fs->st[3]);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPIU_BOOL, MPI_LOR, fl->comm)); /* one decision on every rank: the states are per rank */
   if (!changed) PetscFunctionReturn(PETSC_SUCCESS);
-  for (int k = 0; k < 3; k++) fs->st[k] = st[k];
+  for (int k = 0; k < 4; k++) fs->st[k] = st[k];
   fs->valid = PETSC_TRUE;
   PetscCall(VecNorm(fl->fld.beta, NORM_INFINITY, &bmax));
   fs->any = (PetscBool)(bmax > 0);
@@ -60,6 +62,7 @@ static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
   PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.u, &u));
   PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.beta, &b));
   PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.us, &us));
+  PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.src, &src));
   for (int d = 0; d < 3; d++) {
     const int      a = (d + 1) % 3, c = (d + 2) % 3;
     const PetscInt n = g->N[a] * g->N[c];
@@ -76,12 +79,13 @@ static PetscErrorCode FluidFaceShiftCompute(Fluid fl)
           for (q[a] = g->xs[a]; q[a] < g->xs[a] + g->xm[a]; q[a]++) {
             const PetscInt    m    = q[a] + g->N[a] * q[c];
             const FluidBCType type = bc->pkind && bc->pkind[m] ? (FluidBCType)bc->pkind[m] : bc->type;
-            if (type != FLUID_BC_OUTLET) loc[m] = fluid_face_shift(g, d, s, u, b, us, q);
+            if (type != FLUID_BC_OUTLET) loc[m] = fluid_face_shift(g, d, s, u, b, us, src, q);
           }
       PetscCallMPI(MPIU_Allreduce(loc, fs->dp[d][s], (PetscMPIInt)n, MPIU_REAL, MPIU_SUM, fl->comm));
       PetscCall(PetscFree(loc));
     }
   }
+  PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.src, &src));
   PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.us, &us));
   PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.beta, &b));
   PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.u, &u));
@@ -97,7 +101,7 @@ PetscErrorCode FluidFacePressure(Fluid fl, int d, int s, PetscReal *pmean)
   const FluidBC     *bc = &fl->bc.face[d][s];
   const int          a = (d + 1) % 3, c = (d + 2) % 3;
   PetscReal          loc[2] = {0, 0}, sum[2];
-  const PetscScalar *p, *vol = NULL, ****ar = NULL, ****u, ****b, ****us;
+  const PetscScalar *p, *vol = NULL, ****ar = NULL, ****u, ****b, ****us, ****src;
   PetscInt           q[3], c1[3], c2[3];
 
   PetscFunctionBeginUser;
@@ -109,6 +113,7 @@ PetscErrorCode FluidFacePressure(Fluid fl, int d, int s, PetscReal *pmean)
     PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.u, &u));
     PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.beta, &b));
     PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.us, &us));
+    PetscCall(DMDAVecGetArrayDOFRead(g->fda, fl->fld.src, &src));
     q[d] = s ? g->N[d] : 0;
     for (q[c] = g->xs[c]; q[c] < g->xs[c] + g->xm[c]; q[c]++)
       for (q[a] = g->xs[a]; q[a] < g->xs[a] + g->xm[a]; q[a]++) {
@@ -124,11 +129,12 @@ PetscErrorCode FluidFacePressure(Fluid fl, int d, int s, PetscReal *pmean)
         else {
           const PetscInt  o1 = (c1[2] * g->xm[1] + c1[1]) * g->xm[0] + c1[0], o2 = (c2[2] * g->xm[1] + c2[1]) * g->xm[0] + c2[0];
           const PetscBool line = (PetscBool)(!vol || PetscRealPart(vol[o2]) > 0); /* the second centre closed by the vessel: the first alone */
-          pf                   = (line ? 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]) : PetscRealPart(p[o1])) + fluid_face_shift(g, d, s, u, b, us, q);
+          pf                   = (line ? 1.5 * PetscRealPart(p[o1]) - 0.5 * PetscRealPart(p[o2]) : PetscRealPart(p[o1])) + fluid_face_shift(g, d, s, u, b, us, src, q);
         }
         loc[0] += w * pf;
         loc[1] += w;
       }
+    PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.src, &src));
     PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.us, &us));
     PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.beta, &b));
     PetscCall(DMDAVecRestoreArrayDOFRead(g->fda, fl->fld.u, &u));

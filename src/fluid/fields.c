@@ -109,3 +109,38 @@ PetscErrorCode FluidCellsToFaces(Fluid fl, Vec cell[3], Vec face)
   PetscCall(DMRestoreLocalVector(fl->g.cda, &loc));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/* The pressure-gradient field for the pressure-gradient form's force on the particles: the
+ * momentum equation's own face gradient at the active faces; a wall or inlet face point (no
+ * equation) takes its first interior neighbour's, the half cell next to the face then pushes
+ * the particles as the cell above it does; unused and closed face points 0. */
+PetscErrorCode FluidGetPressureGradient(Fluid fl, Vec gv)
+{
+  const FluidGrid   *g = &fl->g;
+  const PetscScalar *p;
+  PetscScalar       *gp;
+  PetscInt           idx[3], f, c, o;
+
+  PetscFunctionBeginUser;
+  PetscCall(FluidLocalCell(fl, fl->fld.p, fl->fld.ploc, FLUID_GHOST_PRESSURE, fl->bc.p_out));
+  PetscCall(VecGetArrayRead(fl->fld.ploc, &p));
+  PetscCall(VecGetArray(gv, &gp));
+  FLUID_FOR_OWNED_FACES(g, idx, f, c, o)
+  for (int d = 0; d < 3; d++) {
+    PetscInt cc = c, on = 1;
+    gp[o + d] = 0;
+    if (!FluidFaceActive(fl, d, idx)) { /* a wall or inlet point on a bounded side: its neighbour's */
+      on = 0;
+      for (int e = 0; e < 3; e++)
+        if (!FluidPeriodic(fl, e) && e != d && idx[e] == g->N[e]) on = -1; /* an unused point */
+      if (on == 0 && !FluidPeriodic(fl, d) && (idx[d] == 0 || idx[d] == g->N[d]) && (!fl->ves.aloc || fl->ves.aloc[f + d] > 0)) {
+        cc = idx[d] == 0 ? c + g->cs[d] : c - g->cs[d];
+        on = 1;
+      }
+    }
+    if (on == 1) gp[o + d] = (p[cc] - p[cc - g->cs[d]]) / g->h[d] + fl->prop.dpdx[d];
+  }
+  PetscCall(VecRestoreArray(gv, &gp));
+  PetscCall(VecRestoreArrayRead(fl->fld.ploc, &p));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

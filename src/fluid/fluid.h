@@ -139,7 +139,7 @@ PetscErrorCode           FluidGetBC(Fluid fluid, int d, int side, FluidBCType *t
  * u_s) V_f is the force the half cell next to the face holds, as a kernel deposits it, V_f the
  * face's momentum volume, V_cell or a_f V_cell in a vessel: a uniform medium has half its
  * density there; the face's pressure reads it, faceshift.c); u_s: solid velocity per face component (m/s); source: explicit momentum
- * source per face component (N/m^3); u: face velocity (m/s); p: pressure (Pa). */
+ * source per face component (N/m^3; on a wall or inlet face point, as beta, the half cell's); u: face velocity (m/s); p: pressure (Pa). */
 PetscErrorCode FluidGetPorosity(Fluid fluid, Vec *eps);
 PetscErrorCode FluidGetPorosityOld(Fluid fluid, Vec *eps_old);
 PetscErrorCode FluidGetDragCoefficient(Fluid fluid, Vec *beta);
@@ -147,6 +147,11 @@ PetscErrorCode FluidGetSolidVelocity(Fluid fluid, Vec *us);
 PetscErrorCode FluidGetMomentumSource(Fluid fluid, Vec *source);
 PetscErrorCode FluidGetVelocity(Fluid fluid, Vec *u);
 PetscErrorCode FluidGetPressure(Fluid fluid, Vec *p);
+/* Collective. The pressure gradient the momentum equation uses, (p_c - p_{c-1})/h + the imposed
+ * mean gradient (-fluid_pressure_gradient), into the global face Vec g (Pa/m): at every active
+ * face; a face point on a wall or inlet takes its first interior neighbour's (it has no momentum
+ * equation); unused and closed face points 0. For the pressure-gradient force on particles. */
+PetscErrorCode FluidGetPressureGradient(Fluid fluid, Vec g);
 /* Collective. Ghosted local copies for interpolation: the face velocity with boundary ghosts
  * filled from the boundary conditions (two layers), and the pressure with its ghosts. Borrowed,
  * valid until the next FluidStep. */

@@ -173,10 +173,10 @@ typedef struct {
 /* The Fluid: its state grouped by concern, one struct each (above). */
 /* The drag's shift of the pressure on bounded faces (faceshift.c): per non-periodic side, one
  * value a face point (index along the face's axes a = (d + 1) % 3, b = (d + 2) % 3: i_a + N_a
- * i_b), the same on every rank; kept while u, beta and u_s keep their states st. */
+ * i_b), the same on every rank; kept while u, beta, u_s and the source keep their states st. */
 typedef struct {
   PetscBool        valid, any; /* any: beta is not 0 everywhere (else dp is not filled) */
-  PetscObjectState st[3];
+  PetscObjectState st[4];
   PetscReal       *dp[3][2];
 } FluidFaceShift;
 

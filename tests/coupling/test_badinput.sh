@@ -27,6 +27,9 @@ check inconsistent_dt '-fluid_dt 0.1 differs from -cpl_substeps 5 x -dem_dt' -fl
 check porosity_floor '-cpl_porosity_floor 1.5 must be in \(0,1\)' -cpl_porosity_floor 1.5
 check substeps '-cpl_substeps 0 must be >= 1' -cpl_substeps 0
 check filter_sweeps '-cpl_filter_width 200. .* takes 5411 diffusion sweeps .* the limit is 100' -cpl_filter_width 200
+check form_unknown '-cpl_form C is not known; valid values: B, A' -cpl_form C
+check form_filter '-cpl_filter_width 2. with -cpl_form A: the filter would move' -cpl_form A -cpl_filter_width 2
+check form_self '-cpl_self_velocity with -cpl_form A: ' -cpl_form A -cpl_self_velocity
 check self_porosity_filter '-cpl_self_porosity removes the particle.s unfiltered kernel dip, which -cpl_filter_width 2. changes' -cpl_self_porosity -cpl_filter_width 2
 check porosity_width_filter '-cpl_porosity_width 3.5 with -cpl_filter_width 2.: both smooth over a width in diameters' -cpl_porosity_width 3.5 -cpl_filter_width 2
 check porosity_width_oneway '-cpl_porosity_width 3.5 with -cpl_mode oneway: a one-way run.s drag sees porosity 1' -cpl_porosity_width 3.5 -cpl_mode oneway

@@ -4,7 +4,8 @@
 # point. On 1 and 2 ranks, a run to T = 4 without checkpoints and a run to T/2 = 2 that writes a
 # checkpoint, continued with -restart to T, end with bitwise the same final frame (every dataset,
 # particles and fluid, compared with h5py) and the same "column:" summary line (means over the
-# second half of the run); the restarted run must be the one that switches the inlet. A
+# second half of the run); the restarted run must be the one that switches the inlet; the same
+# with -cpl_porosity_width 2 (1 and 2 ranks) and in the pressure-gradient form -cpl_form A (2). A
 # checkpoint continued on another rank count (2 -> 1, 1 -> 2) ends within round-off of the
 # writer's uninterrupted run. SIGTERM during a run leaves a checkpoint (exit 143, no .tmp) that
 # continues bitwise to the same final frame. A checkpoint given to a run whose fluid grid
@@ -53,21 +54,25 @@ for np in 1 2; do
   fi
 done
 # the same with the drag's porosity smoothed over 2 d (-cpl_porosity_width: its mean diameter is in
-# the checkpoint, the smoothed field is recomputed from the particles at every step)
-for np in 1 2; do
-  d=$W/pw.$np
-  run "$np" "$d/full" -cpl_t_end $T -io_interval $T -cpl_porosity_width 2
-  run "$np" "$d/half" -cpl_t_end $H -io_interval 0 -io_checkpoint_interval $H -cpl_porosity_width 2
-  ck=$(sed -n 's/^checkpoint: //p' "$d/half/log" | tail -n 1)
-  run "$np" "$d/rest" -cpl_t_end $T -io_interval $T -restart "../half/$ck" -cpl_porosity_width 2
-  a=$(ls "$d/full/out/"sable_*.h5 2>/dev/null | grep -v checkpoint | tail -n 1); b=$(ls "$d/rest/out/"sable_*.h5 2>/dev/null | grep -v checkpoint | tail -n 1)
+# the checkpoint, the smoothed field is recomputed from the particles at every step) and in the
+# pressure-gradient form (-cpl_form A: its force on the particles and the reaction are recomputed
+# from the checkpoint's pressure and positions at every step)
+same_restart() { # label, np, dir, options...
+  lbl=$1; snp=$2; sd=$3; shift 3
+  run "$snp" "$sd/full" -cpl_t_end $T -io_interval $T "$@"
+  run "$snp" "$sd/half" -cpl_t_end $H -io_interval 0 -io_checkpoint_interval $H "$@"
+  ck=$(sed -n 's/^checkpoint: //p' "$sd/half/log" | tail -n 1)
+  run "$snp" "$sd/rest" -cpl_t_end $T -io_interval $T -restart "../half/$ck" "$@"
+  a=$(ls "$sd/full/out/"sable_*.h5 2>/dev/null | grep -v checkpoint | tail -n 1); b=$(ls "$sd/rest/out/"sable_*.h5 2>/dev/null | grep -v checkpoint | tail -n 1)
   set -- $([ -n "$ck" ] && [ -n "$a" ] && [ -n "$b" ] && tests/common/frames_equal.py "$a" "$b")
   if [ "$#" -ge 2 ] && [ "$1" -gt 0 ] && [ "$2" -eq 0 ]; then
-    echo "PASS coupled checkpoint -cpl_porosity_width 2 np=$np: final frames at t=$T bitwise equal, $1 datasets compared, 0 differing"
+    echo "PASS coupled checkpoint $lbl np=$snp: final frames at t=$T bitwise equal, $1 datasets compared, 0 differing"
   else
-    echo "FAIL coupled checkpoint -cpl_porosity_width 2 np=$np: compared: $*; $(cat "$d"/*/log | grep 'error' | head -n 2)"
+    echo "FAIL coupled checkpoint $lbl np=$snp: compared: $*; $(cat "$sd"/*/log | grep 'error' | head -n 2)"
   fi
-done
+}
+for np in 1 2; do same_restart "-cpl_porosity_width 2" "$np" "$W/pw.$np" -cpl_porosity_width 2; done
+same_restart "-cpl_form A" 2 "$W/formA" -cpl_form A
 out=$(cd "$W/pw.1" && "$S" $SCENE -cpl_t_end $T -io_interval 0 -io_dir plain -restart "half/$(sed -n 's/^checkpoint: //p' "$W/pw.1/half/log" | tail -n 1)" 2>&1 >/dev/null); rc=$?
 out2=$(cd "$W/bed.1" && "$S" $SCENE -cpl_t_end $T -io_interval 0 -io_dir pw -cpl_porosity_width 2 -restart "half/$(sed -n 's/^checkpoint: //p' "$W/bed.1/half/log" | tail -n 1)" 2>&1 >/dev/null); rc2=$?
 if [ "$rc" -eq 0 ] && [ "$rc2" -ne 0 ] && printf '%s' "$out2" | grep -q -- "-cpl_porosity_width 2.: the checkpoint was written without it; restart without -cpl_porosity_width"; then

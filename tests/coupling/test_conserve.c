@@ -19,7 +19,9 @@
  *     no fade): the drag coefficient changes (the particles keep more momentum than without,
  *     by more than 1e-3 of sum |m v|: the correction acts) and the exchange stays exact;
  *  6. the same with the drag's porosity smoothed over 2 d (-cpl_porosity_width 2: the drag sees
- *     the superficial velocity over that porosity, the fluid's face coefficient follows).
+ *     the superficial velocity over that porosity, the fluid's face coefficient follows);
+ *  7. the same in the pressure-gradient form (-cpl_form A): the particles' -V grad p comes back to
+ *     the fluid face by face, so the exchange stays exact.
  * The Poisson solve of a fully periodic box is singular; hypre's default Gaussian elimination on the
  * coarsest level then fails now and then on 2 ranks (a fluid-side limitation, reported), so this
  * test relaxes the coarsest level instead. The scene: test_conserve.opts. */
@@ -107,6 +109,7 @@ int main(int argc, char **argv)
   PetscCall(TestCplDestroy(&t));
   PetscCall(Corrected("self corrections", "-cpl_self_porosity -cpl_self_velocity -cpl_self_fade 0", s1));
   PetscCall(Corrected("-cpl_porosity_width 2", "-cpl_porosity_width 2", s1));
+  PetscCall(Corrected("-cpl_form A", "-cpl_form A", s1));
   PetscCall(OwedDecays());
   {
     PetscCall(TestSceneLoad(PETSC_COMM_WORLD, "test_conserve.opts", "-dem_shape cube -dem_shape_size 0.9 -dem_lattice_random_orientation"));
