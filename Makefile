@@ -32,7 +32,7 @@ LIB_OBJ = $(LIB_SRC:%.c=$(BUILD)/%.o)
 TEST_SRC = $(wildcard tests/*/*.c)
 TEST_BIN = $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps check test run bench clean
+.PHONY: all deps check test run bench validate clean
 all: $(BIN)/sable $(TEST_BIN) $(BUILD)/tools/tradeoff_run $(BUILD)/tools/umf_sweep $(BUILD)/tools/grid_settle
 
 deps:
@@ -88,6 +88,10 @@ run: deps
 bench: deps
 	@$(MAKE) --no-print-directory -s $(JOBS) all
 	tools/bench.sh
+
+validate: deps
+	@$(MAKE) --no-print-directory -s $(JOBS) all
+	tools/validate.sh
 
 clean:
 	rm -rf build build-debug bin

@@ -18,11 +18,7 @@
 #   (d) the fluidized bed expands: its mean 95% solids-mass height over the second half is at
 #       least 15% above the packed lattice's (measured +72%).
 cd "$(dirname "$0")/../.." || exit 1
-ROOT=$(pwd)
-S=$ROOT/${BIN:-bin}/sable
-[ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-W=$(mktemp -d)
-trap 'rm -rf "$W"' EXIT
+. tests/common/coupled.sh
 "$S" -options_file "$ROOT/cases/bubbling_bed/bubbling.opts" -io_dir "$W/out" -io_interval 0 \
   -domain_hi 0.02,0.004,0.06 -da_grid_x 10 -da_grid_z 30 -dem_plane_1 0,0,0.06,0,0,-1 \
   -dem_lattice 20,4,10 -mon_probe_0 0.01,0.002,0.001 -mon_probe_1 0.01,0.002,0.05 \

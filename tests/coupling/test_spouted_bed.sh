@@ -21,11 +21,7 @@
 # cases/spouted_bed/ums_sweep (doc/validation.md: measured 20% below at 0.1 s a step, 10% below
 # with steadier steps). 24 s on 2 ranks of the idle VM (46 s of CPU).
 cd "$(dirname "$0")/../.." || exit 1
-ROOT=$(pwd)
-S=$ROOT/${BIN:-bin}/sable
-[ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-W=$(mktemp -d)
-trap 'rm -rf "$W"' EXIT
+. tests/common/coupled.sh
 C=$ROOT/cases/spouted_bed
 mpiexec --oversubscribe -n 2 "$S" -options_file "$C/fill.opts" -io_dir "$W/fill" >"$W/fill.log" 2>&1 || { echo "FAIL spouted bed: the fill stopped:"; tail -3 "$W/fill.log"; exit 1; }
 # The flows: H = 0.01935 m is this fill's packed height (Mathur-Gishler 1.2186 m/s); the checks
